@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the project builds with. Idempotent; needs root
+# (or sudo). Nothing is downloaded at build time: everything comes from here.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  clang                 # optional: libFuzzer targets
+  libboost-dev          # Asio, MSM, CRC (header-only parts)
+  libyaml-cpp-dev       # configuration files
+  nlohmann-json3-dev    # JSON form of messages
+  libcli11-dev          # command-line parsing
+  libspdlog-dev libfmt-dev
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+sudo_cmd=""
+[ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo_cmd apt-get update -qq
+$sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"

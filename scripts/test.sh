@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs what the project needs, builds it and runs every test:
+#   1. Debug build (-Wall -Wextra -Werror), whole test suite;
+#   2. optimised build with AddressSanitizer + UndefinedBehaviorSanitizer, whole test suite;
+#   3. libFuzzer targets (clang), each run briefly on its seed corpus.
+# Usage: ./scripts/test.sh        (from anywhere; builds go to build/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+
+./scripts/setup.sh
+
+jobs=$(nproc)
+run_suite() {  # $1 build dir, remaining args: cmake options
+  local dir=$1; shift
+  cmake -S "$root" -B "$dir" -G Ninja "$@" >/dev/null
+  cmake --build "$dir" -j "$jobs"
+  ctest --test-dir "$dir" --output-on-failure -j "$jobs" --timeout 300
+}
+
+echo "== debug build and tests"
+run_suite build/debug -DCMAKE_BUILD_TYPE=Debug
+
+echo "== address + undefined-behaviour sanitizer build and tests"
+run_suite build/asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF
+
+if command -v clang++ >/dev/null; then
+  echo "== fuzz targets (libFuzzer, short smoke run)"
+  CXX=clang++ cmake -S "$root" -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DJAUS_BUILD_FUZZERS=ON -DJAUS_BUILD_TESTS=OFF -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build build/fuzz -j "$jobs" --target fuzz_targets
+  for target in build/fuzz/fuzz/fuzz_*; do
+    [ -x "$target" ] || continue
+    name=$(basename "$target")
+    corpus=$(mktemp -d)
+    cp -r "$root/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
+    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 2>&1 | tail -n 2
+    rm -rf "$corpus"
+  done
+else
+  echo "== clang not found: fuzz targets skipped"
+fi
+echo "== all tests passed"
