@@ -1,0 +1,13 @@
+#include "jaus/bridge/crc.hpp"
+
+#include <boost/crc.hpp>
+
+namespace jaus::bridge {
+
+std::uint16_t clearpath_crc(std::span<const std::uint8_t> bytes) noexcept {
+  boost::crc_optimal<16, 0x1021, 0xFFFF, 0, false, false> crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return static_cast<std::uint16_t>(crc.checksum());
+}
+
+}  // namespace jaus::bridge
