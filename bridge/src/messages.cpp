@@ -8,13 +8,13 @@ namespace jaus::bridge {
 namespace {
 
 // Alternatives 1..N of Message are the typed messages (0 is Ack).
-constexpr std::size_t kTyped = std::variant_size_v<Message> - 1;
+constexpr std::size_t kTyped = std::variant_size_v<MessageVariant> - 1;
 
 template <std::size_t... I>
 constexpr std::array<MessageInfo, kTyped> build_catalogue(std::index_sequence<I...>) {
-  return {MessageInfo{std::variant_alternative_t<I + 1, Message>::kType,
-                      std::variant_alternative_t<I + 1, Message>::kName,
-                      kind_of(std::variant_alternative_t<I + 1, Message>::kType)}...};
+  return {MessageInfo{std::variant_alternative_t<I + 1, MessageVariant>::kType,
+                      std::variant_alternative_t<I + 1, MessageVariant>::kName,
+                      kind_of(std::variant_alternative_t<I + 1, MessageVariant>::kType)}...};
 }
 
 template <std::size_t... I>

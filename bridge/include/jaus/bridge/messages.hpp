@@ -17,7 +17,7 @@ namespace jaus::bridge {
 
 // Every typed message of the document. Ack is first; it has no type code of
 // its own (it carries the acknowledged message's type in the frame header).
-using Message = std::variant<
+using MessageVariant = std::variant<
     Ack,
     // commands
     SetPlatformName, SetPlatformTime, SetSafetySystem, SetDifferentialSpeeds, SetDifferentialControl,
@@ -43,6 +43,11 @@ using Message = std::variant<
     AccelerationData, SixAxisData, SixAxisOrientationData, MagnetometerData, EncoderData, RawEncoderData,
     EncoderConfigData, AbsoluteJointsData, RelativeJointsData, JointControlData, JointHomingData, JointTorqueData,
     EndEffectorPositionData, EndEffectorPoseSetpointData, EndEffectorPoseData>;
+
+// A named type rather than an alias keeps symbol names (and object files) short.
+struct Message : MessageVariant {
+  using MessageVariant::MessageVariant;
+};
 
 // A type code of the document and its message name.
 struct MessageInfo {
