@@ -1,0 +1,91 @@
+// clearpath-sim: a simulated Clearpath platform on UDP, a serial device or a
+// PTY it opens itself (`pty: /dev/pts/N` is then its first line of output).
+#include <csignal>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "jaus/bridge/sim/sim_server.hpp"
+
+namespace sim = jaus::bridge::sim;
+
+int main(int argc, char** argv) {
+  CLI::App app{"clearpath-sim: simulated Clearpath platform"};
+  std::string udp, serial, drive = "differential", log_level = "info";
+  bool pty = false;
+  sim::FaultConfig faults;
+  double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5;
+  auto* udp_opt = app.add_option("--udp", udp, "Serve UDP on HOST:PORT");
+  auto* serial_opt = app.add_option("--serial", serial, "Serve on a serial device (115200 8N1)");
+  auto* pty_opt = app.add_flag("--pty", pty, "Open a PTY and serve on it; prints `pty: PATH` first");
+  udp_opt->excludes(serial_opt, pty_opt);
+  serial_opt->excludes(pty_opt);
+  app.add_option("--drive", drive, "Drivetrain")->check(CLI::IsMember({"differential", "ackermann"}));
+  app.add_option("--corrupt-rate", faults.corrupt_rate, "Probability a frame gets a flipped bit")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--drop-rate", faults.drop_rate, "Probability an outgoing frame is dropped")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--latency-ms", latency_ms, "Delay added to every outgoing frame")->check(CLI::NonNegativeNumber);
+  app.add_option("--disconnect-every", disconnect_every_s, "Go silent every N seconds (0 = never)")->check(CLI::NonNegativeNumber);
+  app.add_option("--disconnect-for", disconnect_for_s, "Seconds each silence lasts")->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", faults.seed, "Seed of the fault injector");
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  spdlog::set_level(spdlog::level::from_str(log_level));
+  faults.latency = std::chrono::milliseconds(static_cast<long>(latency_ms));
+  faults.disconnect_every = std::chrono::milliseconds(static_cast<long>(disconnect_every_s * 1000));
+  faults.disconnect_for = std::chrono::milliseconds(static_cast<long>(disconnect_for_s * 1000));
+
+  sim::ServerEndpoint endpoint;
+  sim::PlatformConfig platform;
+  platform.vehicle.drive = drive == "ackermann" ? sim::Drive::ackermann : sim::Drive::differential;
+  if (!udp.empty()) {
+    const auto colon = udp.rfind(':');
+    if (colon == std::string::npos) {
+      std::cerr << "error: --udp expects HOST:PORT\n";
+      return 2;
+    }
+    endpoint.kind = sim::ServerEndpoint::Kind::udp;
+    endpoint.host = udp.substr(0, colon);
+    try {
+      endpoint.port = static_cast<std::uint16_t>(std::stoul(udp.substr(colon + 1)));
+    } catch (const std::exception&) {
+      std::cerr << "error: bad port in --udp " << udp << '\n';
+      return 2;
+    }
+  } else if (!serial.empty()) {
+    endpoint.kind = sim::ServerEndpoint::Kind::serial;
+    endpoint.device = serial;
+    // On a serial line, subscriptions are judged against 115200 baud.
+    platform.bandwidth_bytes_per_second = sim::kSerialBytesPerSecond;
+  } else if (pty) {
+    endpoint.kind = sim::ServerEndpoint::Kind::pty;
+    platform.bandwidth_bytes_per_second = sim::kSerialBytesPerSecond;
+  } else {
+    std::cerr << "error: give one of --udp HOST:PORT, --serial DEVICE or --pty\n";
+    return 2;
+  }
+
+  boost::asio::io_context io;
+  sim::SimServer server(io, endpoint, platform, faults);
+  if (const auto error = server.start()) {
+    std::cerr << "error: " << *error << '\n';
+    return 1;
+  }
+  if (endpoint.kind == sim::ServerEndpoint::Kind::pty) std::cout << "pty: " << server.pty_path() << std::endl;
+  spdlog::info("clearpath-sim: {} drive, serving on {}", drive,
+               endpoint.kind == sim::ServerEndpoint::Kind::udp ? udp : (pty ? server.pty_path() : serial));
+  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const boost::system::error_code&, int) {
+    server.stop();
+    io.stop();
+  });
+  io.run();
+  return 0;
+}
