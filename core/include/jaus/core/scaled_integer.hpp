@@ -1,0 +1,63 @@
+// Scaled integers (jaus-wire-notes.md): a real value in [lower, upper] sent as
+// an n-bit integer.
+//   unsigned: scale = (upper - lower) / (2^n - 1), bias = lower
+//   signed:   scale = (upper - lower) / (2^n - 2), bias = (upper + lower) / 2
+//   encode: clamp to [lower, upper], integer = round((v - bias) / scale)
+//   decode: v = integer * scale + bias
+#pragma once
+
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+namespace jaus {
+
+template <std::integral I>
+struct ScaledRange {
+  static_assert(sizeof(I) <= 4, "scaled integers are at most 32 bits wide");
+  double lower = 0;
+  double upper = 0;
+  // Interoperability knobs for the common RA 3.3 peer (jaus-wire-notes.md):
+  // it divides 32-bit unsigned ranges into 2^32 - 2 steps, and rounds with
+  // (int)(x + 0.5), one step high for negative values.
+  bool peer_steps = false;
+  bool peer_rounding = false;
+
+  constexpr double steps() const {
+    constexpr double full = static_cast<double>(std::numeric_limits<std::make_unsigned_t<I>>::max());
+    if (std::is_signed_v<I> || (peer_steps && sizeof(I) == 4)) return full - 1.0;
+    return full;
+  }
+  constexpr double scale() const { return (upper - lower) / steps(); }
+  constexpr double bias() const { return std::is_signed_v<I> ? (upper + lower) / 2.0 : lower; }
+
+  // Round half away from zero; |x| stays below 2^33 after clamping, so the
+  // 64-bit truncation is exact and cheaper than std::round.
+  static constexpr double round_half_away(double x) {
+    return static_cast<double>(static_cast<std::int64_t>(x + (x >= 0 ? 0.5 : -0.5)));
+  }
+
+  constexpr I encode(double value) const {
+    if (!(value >= lower)) value = lower;  // also maps NaN to the lower limit
+    if (value > upper) value = upper;
+    const double exact = (value - bias()) / scale();
+    double raw = peer_rounding ? static_cast<double>(static_cast<std::int64_t>(exact + 0.5)) : round_half_away(exact);
+    constexpr double lo = std::is_signed_v<I> ? -static_cast<double>(std::numeric_limits<I>::max()) : 0.0;
+    constexpr double hi = static_cast<double>(std::numeric_limits<I>::max());
+    if (raw < lo) raw = lo;
+    if (raw > hi) raw = hi;
+    return static_cast<I>(raw);
+  }
+
+  constexpr double decode(I raw) const {
+    // The one signed value below -(2^(n-1) - 1) is outside the encoding; read it as the lower limit.
+    if constexpr (std::is_signed_v<I>) {
+      if (raw == std::numeric_limits<I>::min()) return lower;
+    }
+    return static_cast<double>(raw) * scale() + bias();
+  }
+};
+
+}  // namespace jaus

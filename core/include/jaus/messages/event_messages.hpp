@@ -1,0 +1,127 @@
+// RA 3.2/3.3 events: 0x01F0-0x01F3 and 0x41F1 (jaus-wire-notes.md; the optional
+// fields of Create/Update Event follow the RA 3.3 peers' presence bits).
+#pragma once
+
+#include "jaus/messages/common.hpp"
+
+namespace jaus::msg {
+
+// Event types: 0 periodic, 1 every change, 2 first change, 3 first change in
+// and out of boundary, 4 periodic without repeats, 5 one time on demand.
+// Boundaries: 0 equal, 1 not equal, 2 inside inclusive, 3 inside exclusive,
+// 4 outside inclusive, 5 outside exclusive.
+struct EventRequestBody {
+  std::uint8_t request_id = 0;
+  std::uint16_t report_code = 0;
+  std::uint8_t event_type = 0;
+  std::optional<std::uint8_t> event_boundary;
+  std::optional<std::uint8_t> limit_data_field;
+  std::optional<wire::EventLimit> lower_limit;
+  std::optional<wire::EventLimit> upper_limit;
+  std::optional<wire::EventLimit> state_limit;
+  std::optional<double> minimum_rate_hz;
+  std::optional<double> requested_rate_hz;
+  std::optional<std::vector<std::uint8_t>> query_message;  // payload of the query (no header)
+  bool operator==(const EventRequestBody&) const = default;
+  static constexpr auto describe() {
+    using B = EventRequestBody;
+    return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
+                           wire::field("report_code", &B::report_code, UShort{}),
+                           wire::field("event_type", &B::event_type, Byte{}),
+                           wire::optional(0, "event_boundary", &B::event_boundary, Byte{}),
+                           wire::optional(1, "limit_data_field", &B::limit_data_field, Byte{}),
+                           wire::optional(2, "lower_limit", &B::lower_limit, wire::EventLimitCodec{}),
+                           wire::optional(3, "upper_limit", &B::upper_limit, wire::EventLimitCodec{}),
+                           wire::optional(4, "state_limit", &B::state_limit, wire::EventLimitCodec{}),
+                           wire::optional(5, "minimum_rate_hz", &B::minimum_rate_hz, kServiceRate),
+                           wire::optional(6, "requested_rate_hz", &B::requested_rate_hz, kServiceRate),
+                           wire::optional(7, "query_message", &B::query_message, wire::Bytes<std::uint32_t>{}));
+  }
+};
+
+// Update Event: as Create Event, with the event ID before the query message.
+struct EventUpdateBody {
+  std::uint8_t request_id = 0;
+  std::uint16_t report_code = 0;
+  std::uint8_t event_type = 0;
+  std::optional<std::uint8_t> event_boundary;
+  std::optional<std::uint8_t> limit_data_field;
+  std::optional<wire::EventLimit> lower_limit;
+  std::optional<wire::EventLimit> upper_limit;
+  std::optional<wire::EventLimit> state_limit;
+  std::optional<double> minimum_rate_hz;
+  std::optional<double> requested_rate_hz;
+  std::uint8_t event_id = 0;
+  std::optional<std::vector<std::uint8_t>> query_message;
+  bool operator==(const EventUpdateBody&) const = default;
+  static constexpr auto describe() {
+    using B = EventUpdateBody;
+    return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
+                           wire::field("report_code", &B::report_code, UShort{}),
+                           wire::field("event_type", &B::event_type, Byte{}),
+                           wire::optional(0, "event_boundary", &B::event_boundary, Byte{}),
+                           wire::optional(1, "limit_data_field", &B::limit_data_field, Byte{}),
+                           wire::optional(2, "lower_limit", &B::lower_limit, wire::EventLimitCodec{}),
+                           wire::optional(3, "upper_limit", &B::upper_limit, wire::EventLimitCodec{}),
+                           wire::optional(4, "state_limit", &B::state_limit, wire::EventLimitCodec{}),
+                           wire::optional(5, "minimum_rate_hz", &B::minimum_rate_hz, kServiceRate),
+                           wire::optional(6, "requested_rate_hz", &B::requested_rate_hz, kServiceRate),
+                           wire::field("event_id", &B::event_id, Byte{}),
+                           wire::optional(7, "query_message", &B::query_message, wire::Bytes<std::uint32_t>{}));
+  }
+};
+
+struct CancelEventBody {
+  std::uint8_t request_id = 0;
+  std::optional<std::uint16_t> message_code;
+  std::optional<std::uint8_t> event_id;
+  bool operator==(const CancelEventBody&) const = default;
+  static constexpr auto describe() {
+    using B = CancelEventBody;
+    return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
+                           wire::optional(0, "message_code", &B::message_code, UShort{}),
+                           wire::optional(1, "event_id", &B::event_id, Byte{}));
+  }
+};
+
+struct ConfirmEventRequestBody {
+  std::uint8_t request_id = 0;
+  std::uint16_t message_code = 0;
+  std::uint8_t event_id = 0;
+  std::optional<double> confirmed_rate_hz;
+  std::uint8_t response_code = 0;  // 0 ok
+  bool operator==(const ConfirmEventRequestBody&) const = default;
+  static constexpr auto describe() {
+    using B = ConfirmEventRequestBody;
+    return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
+                           wire::field("message_code", &B::message_code, UShort{}),
+                           wire::field("event_id", &B::event_id, Byte{}),
+                           wire::optional(0, "confirmed_rate_hz", &B::confirmed_rate_hz, kServiceRate),
+                           wire::field("response_code", &B::response_code, Byte{}));
+  }
+};
+
+struct EventBody {
+  std::uint8_t event_id = 0;
+  std::uint16_t report_code = 0;
+  std::uint8_t sequence_number = 0;
+  std::vector<std::uint8_t> report_message;  // payload of the report (no header)
+  bool operator==(const EventBody&) const = default;
+  static constexpr auto describe() {
+    using B = EventBody;
+    return std::make_tuple(wire::field("event_id", &B::event_id, Byte{}),
+                           wire::field("report_code", &B::report_code, UShort{}),
+                           wire::field("sequence_number", &B::sequence_number, Byte{}),
+                           wire::field("report_message", &B::report_message, wire::Bytes<std::uint32_t>{}));
+  }
+};
+
+using CreateEvent = Message<0x01F0, "Create Event", EventRequestBody>;
+using UpdateEvent = Message<0x01F1, "Update Event", EventUpdateBody>;
+using CancelEvent = Message<0x01F2, "Cancel Event", CancelEventBody>;
+using ConfirmEventRequest = Message<0x01F3, "Confirm Event Request", ConfirmEventRequestBody>;
+using Event = Message<0x41F1, "Event", EventBody>;
+
+using EventMessages = TypeList<CreateEvent, UpdateEvent, CancelEvent, ConfirmEventRequest, Event>;
+
+}  // namespace jaus::msg

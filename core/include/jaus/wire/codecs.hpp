@@ -1,0 +1,591 @@
+// Field codecs: how one field of a message travels on the wire. A message is
+// described once as a list of fields (see describe.hpp), each naming its
+// member, its codec and, when optional, its presence-vector bit; the binary
+// codec, the JSON form and the tests are all derived from those descriptions.
+//
+// Every codec has:
+//   value_type                                    the member's type (engineering units)
+//   encode(const value_type&, ByteWriter&, CodecContext&)
+//   decode(ByteReader&, value_type&, CodecContext&)
+//   to_json<Json>(const value_type&) / from_json<Json>(const Json&, value_type&, std::string& why)
+// JSON members are templates so that this header does not pull in a JSON library.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "jaus/core/address.hpp"
+#include "jaus/core/byte_io.hpp"
+#include "jaus/core/hex.hpp"
+#include "jaus/core/scaled_integer.hpp"
+#include "jaus/core/time_stamp.hpp"
+
+namespace jaus::wire {
+
+// Which peer's reading of the wire to use. `ra` is what Part 3 specifies and
+// what we send; `openjaus` reproduces the quirks of the common open RA 3.3
+// implementation (jaus-wire-notes.md, "Interoperability") so that its messages
+// decode to the values it meant.
+enum class Dialect : std::uint8_t { ra, openjaus };
+
+// State shared by the fields of one message while it is encoded or decoded.
+struct CodecContext {
+  Dialect dialect = Dialect::ra;
+  // Counts declared once and used by several arrays (e.g. the joint count of
+  // Set Joint Motion, used by every pose).
+  std::array<std::uint32_t, 2> dims{};
+};
+
+namespace detail {
+template <class Json, std::integral T>
+bool integer_from_json(const Json& j, T& out, std::string& why) {
+  if (!j.is_number_integer()) {
+    why = "expected an integer";
+    return false;
+  }
+  if (j.is_number_unsigned()) {
+    const auto v = j.template get<std::uint64_t>();
+    if (v > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) {
+      why = "out of range for its wire type";
+      return false;
+    }
+    out = static_cast<T>(v);
+    return true;
+  }
+  const auto v = j.template get<std::int64_t>();
+  if constexpr (std::is_unsigned_v<T>) {
+    if (v < 0 || static_cast<std::uint64_t>(v) > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) {
+      why = "out of range for its wire type";
+      return false;
+    }
+  } else {
+    if (v < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+        v > static_cast<std::int64_t>(std::numeric_limits<T>::max())) {
+      why = "out of range for its wire type";
+      return false;
+    }
+  }
+  out = static_cast<T>(v);
+  return true;
+}
+
+template <class Json>
+bool real_from_json(const Json& j, double& out, std::string& why) {
+  if (!j.is_number()) {
+    why = "expected a number";
+    return false;
+  }
+  out = j.template get<double>();
+  return true;
+}
+
+inline constexpr char kHexDigits[] = "0123456789ABCDEF";
+
+inline std::string hex_u32(std::uint32_t v) {
+  std::string out;
+  bool started = false;
+  for (int shift = 28; shift >= 0; shift -= 4) {
+    const unsigned digit = (v >> shift) & 0xF;
+    if (digit != 0 || started || shift == 0) {
+      out += kHexDigits[digit];
+      started = true;
+    }
+  }
+  return out;
+}
+}  // namespace detail
+
+// A plain integer (Byte, Short Integer, Unsigned Integer, ... without limits).
+template <std::integral T>
+struct Int {
+  using value_type = T;
+  using wire_type = T;
+  void encode(const T& v, ByteWriter& w, CodecContext&) const { w.write(v); }
+  void decode(ByteReader& r, T& v, CodecContext&) const { r.read(v); }
+  template <class Json>
+  Json to_json(const T& v) const { return Json(v); }
+  template <class Json>
+  bool from_json(const Json& j, T& v, std::string& why) const { return detail::integer_from_json(j, v, why); }
+};
+
+// IEEE 754 Float or Double.
+template <std::floating_point T>
+struct Real {
+  using value_type = T;
+  void encode(const T& v, ByteWriter& w, CodecContext&) const { w.write(v); }
+  void decode(ByteReader& r, T& v, CodecContext&) const { r.read(v); }
+  template <class Json>
+  Json to_json(const T& v) const { return Json(v); }
+  template <class Json>
+  bool from_json(const Json& j, T& v, std::string& why) const {
+    double d = 0;
+    if (!detail::real_from_json(j, d, why)) return false;
+    v = static_cast<T>(d);
+    return true;
+  }
+};
+
+// The openjaus quirk for signed manipulator quantities: sent as unsigned with
+// bias = lower limit. Marked on the fields it affects.
+enum class Quirk : std::uint8_t { none, openjaus_unsigned_bias };
+
+// A scaled integer with limits (jaus-wire-notes.md); the value is in the
+// engineering unit named by the field.
+template <std::integral T>
+struct Scaled {
+  using value_type = double;
+  using wire_type = T;
+  double lower;
+  double upper;
+  Quirk quirk = Quirk::none;
+
+  // Resolution of the encoding: values round-trip within one step.
+  constexpr double step() const { return ScaledRange<T>{lower, upper}.scale(); }
+
+  // The range as the dialect reads it: the openjaus dialect sends quirk fields
+  // as unsigned with bias = lower limit, divides 32-bit unsigned ranges into
+  // 2^32 - 2 steps and rounds like that implementation.
+  template <class W>
+  constexpr ScaledRange<W> range_for(const CodecContext& ctx) const {
+    const bool peer = ctx.dialect == Dialect::openjaus;
+    return ScaledRange<W>{lower, upper, peer, peer};
+  }
+  bool uses_quirk(const CodecContext& ctx) const {
+    if constexpr (std::is_signed_v<T>) {
+      return quirk == Quirk::openjaus_unsigned_bias && ctx.dialect == Dialect::openjaus;
+    } else {
+      return false;
+    }
+  }
+  void encode(const double& v, ByteWriter& w, CodecContext& ctx) const {
+    if (uses_quirk(ctx))
+      w.write(range_for<std::make_unsigned_t<T>>(ctx).encode(v));
+    else
+      w.write(range_for<T>(ctx).encode(v));
+  }
+  void decode(ByteReader& r, double& v, CodecContext& ctx) const {
+    if (uses_quirk(ctx)) {
+      std::make_unsigned_t<T> raw{};
+      if (r.read(raw)) v = range_for<std::make_unsigned_t<T>>(ctx).decode(raw);
+    } else {
+      T raw{};
+      if (r.read(raw)) v = range_for<T>(ctx).decode(raw);
+    }
+  }
+  template <class Json>
+  Json to_json(const double& v) const { return Json(v); }
+  template <class Json>
+  bool from_json(const Json& j, double& v, std::string& why) const { return detail::real_from_json(j, v, why); }
+};
+
+// An integer with a fixed unit factor and no limits (value = raw * factor),
+// e.g. milliradians or millimetres carried as Unsigned Short.
+template <std::integral T>
+struct Linear {
+  using value_type = double;
+  using wire_type = T;
+  double factor;
+
+  constexpr double step() const { return factor; }
+  constexpr double lower() const { return static_cast<double>(std::numeric_limits<T>::min()) * factor; }
+  constexpr double upper() const { return static_cast<double>(std::numeric_limits<T>::max()) * factor; }
+  void encode(const double& v, ByteWriter& w, CodecContext&) const {
+    double raw = ScaledRange<T>::round_half_away(std::isfinite(v) ? v / factor : 0.0);
+    raw = std::clamp(raw, static_cast<double>(std::numeric_limits<T>::min()),
+                     static_cast<double>(std::numeric_limits<T>::max()));
+    w.write(static_cast<T>(raw));
+  }
+  void decode(ByteReader& r, double& v, CodecContext&) const {
+    T raw{};
+    if (r.read(raw)) v = static_cast<double>(raw) * factor;
+  }
+  template <class Json>
+  Json to_json(const double& v) const { return Json(v); }
+  template <class Json>
+  bool from_json(const Json& j, double& v, std::string& why) const { return detail::real_from_json(j, v, why); }
+};
+
+// ASCII text in a fixed-length field, NUL padded. With `accept_shorter`, a
+// final field may arrive shorter than its length (Report Identification).
+template <std::size_t N, bool AcceptShorter = false>
+struct Text {
+  using value_type = std::string;
+  static constexpr std::size_t length = N;
+
+  void encode(const std::string& v, ByteWriter& w, CodecContext&) const {
+    if (v.size() > N) {
+      w.fail(ErrorCode::string_too_long, std::to_string(v.size()) + " > " + std::to_string(N) + " characters");
+      return;
+    }
+    w.write_bytes({reinterpret_cast<const std::uint8_t*>(v.data()), v.size()});
+    w.write_zeros(N - v.size());
+  }
+  void decode(ByteReader& r, std::string& v, CodecContext&) const {
+    std::span<const std::uint8_t> bytes;
+    const std::size_t n = AcceptShorter ? std::min(N, r.remaining()) : N;
+    if (!r.read_bytes(n, bytes)) return;
+    std::size_t len = 0;
+    while (len < bytes.size() && bytes[len] != 0) ++len;
+    v.assign(reinterpret_cast<const char*>(bytes.data()), len);
+  }
+  template <class Json>
+  Json to_json(const std::string& v) const { return Json(v); }
+  template <class Json>
+  bool from_json(const Json& j, std::string& v, std::string& why) const {
+    if (!j.is_string()) {
+      why = "expected a string";
+      return false;
+    }
+    v = j.template get<std::string>();
+    if (v.size() > N) {
+      why = "longer than " + std::to_string(N) + " characters";
+      return false;
+    }
+    return true;
+  }
+};
+
+// Time stamp (u32) as its parts.
+struct Time {
+  using value_type = TimeStamp;
+  void encode(const TimeStamp& v, ByteWriter& w, CodecContext&) const {
+    const auto raw = v.pack();
+    if (!raw) {
+      w.fail(ErrorCode::bad_value, "time stamp part out of its bit range");
+      return;
+    }
+    w.write(*raw);
+  }
+  void decode(ByteReader& r, TimeStamp& v, CodecContext&) const {
+    std::uint32_t raw = 0;
+    if (r.read(raw)) v = TimeStamp::unpack(raw);
+  }
+  template <class Json>
+  Json to_json(const TimeStamp& v) const {
+    return Json{{"day", v.day}, {"hour", v.hour}, {"minute", v.minute}, {"second", v.second},
+                {"millisecond", v.millisecond}};
+  }
+  template <class Json>
+  bool from_json(const Json& j, TimeStamp& v, std::string& why) const {
+    if (!j.is_object()) {
+      why = "expected {day, hour, minute, second, millisecond}";
+      return false;
+    }
+    for (const auto& [key, value] : j.items()) {
+      bool ok = true;
+      if (key == "day") ok = detail::integer_from_json(value, v.day, why);
+      else if (key == "hour") ok = detail::integer_from_json(value, v.hour, why);
+      else if (key == "minute") ok = detail::integer_from_json(value, v.minute, why);
+      else if (key == "second") ok = detail::integer_from_json(value, v.second, why);
+      else if (key == "millisecond") ok = detail::integer_from_json(value, v.millisecond, why);
+      else {
+        why = "unknown time stamp part '" + key + "'";
+        return false;
+      }
+      if (!ok) return false;
+    }
+    if (!v.pack()) {
+      why = "time stamp part out of range";
+      return false;
+    }
+    return true;
+  }
+};
+
+// Date stamp (u16) as its parts. The openjaus dialect writes the calendar year
+// masked to 7 bits and a 0-based month; it is mapped back here.
+struct Date {
+  using value_type = DateStamp;
+  void encode(const DateStamp& v, ByteWriter& w, CodecContext& ctx) const {
+    DateStamp wire = v;
+    if (ctx.dialect == Dialect::openjaus) {
+      wire.month = static_cast<std::uint8_t>(v.month == 0 ? 0 : v.month - 1);
+      wire.year = static_cast<std::uint16_t>(2000 + (v.year & 0x7F));
+    }
+    const auto raw = wire.pack();
+    if (!raw) {
+      w.fail(ErrorCode::bad_value, "date stamp part out of its bit range");
+      return;
+    }
+    w.write(*raw);
+  }
+  void decode(ByteReader& r, DateStamp& v, CodecContext& ctx) const {
+    std::uint16_t raw = 0;
+    if (!r.read(raw)) return;
+    v = DateStamp::unpack(raw);
+    if (ctx.dialect == Dialect::openjaus) {
+      v.month = static_cast<std::uint8_t>(v.month + 1);
+      // The year in 2000-2127 whose low 7 bits were sent.
+      const unsigned low = (v.year - 2000) & 0x7F;
+      v.year = static_cast<std::uint16_t>(2000 + ((low + 128 - (2000 & 0x7F)) & 0x7F));
+    }
+  }
+  template <class Json>
+  Json to_json(const DateStamp& v) const { return Json{{"year", v.year}, {"month", v.month}, {"day", v.day}}; }
+  template <class Json>
+  bool from_json(const Json& j, DateStamp& v, std::string& why) const {
+    if (!j.is_object()) {
+      why = "expected {year, month, day}";
+      return false;
+    }
+    for (const auto& [key, value] : j.items()) {
+      bool ok = true;
+      if (key == "year") ok = detail::integer_from_json(value, v.year, why);
+      else if (key == "month") ok = detail::integer_from_json(value, v.month, why);
+      else if (key == "day") ok = detail::integer_from_json(value, v.day, why);
+      else {
+        why = "unknown date stamp part '" + key + "'";
+        return false;
+      }
+      if (!ok) return false;
+    }
+    if (!v.pack()) {
+      why = "date stamp part out of range (year 2000-2127, month 0-15, day 0-31)";
+      return false;
+    }
+    return true;
+  }
+};
+
+// Opaque bytes: either the rest of the payload (SizeT = void) or preceded by
+// a size of type SizeT. JSON form: upper-case hex string.
+template <class SizeT = void>
+struct Bytes {
+  using value_type = std::vector<std::uint8_t>;
+  void encode(const value_type& v, ByteWriter& w, CodecContext&) const {
+    if constexpr (!std::is_void_v<SizeT>) {
+      if (v.size() > std::numeric_limits<SizeT>::max()) {
+        w.fail(ErrorCode::count_out_of_range, "too many bytes for the size field");
+        return;
+      }
+      w.write(static_cast<SizeT>(v.size()));
+    }
+    w.write_bytes(v);
+  }
+  void decode(ByteReader& r, value_type& v, CodecContext&) const {
+    std::size_t n = r.remaining();
+    if constexpr (!std::is_void_v<SizeT>) {
+      SizeT size{};
+      if (!r.read(size)) return;
+      if (size > r.remaining()) {
+        r.fail(ErrorCode::count_out_of_range,
+               "size " + std::to_string(size) + " but " + std::to_string(r.remaining()) + " bytes left");
+        return;
+      }
+      n = size;
+    }
+    std::span<const std::uint8_t> bytes;
+    if (r.read_bytes(n, bytes)) v.assign(bytes.begin(), bytes.end());
+  }
+  template <class Json>
+  Json to_json(const value_type& v) const {
+    return Json(jaus::to_hex(v));
+  }
+  template <class Json>
+  bool from_json(const Json& j, value_type& v, std::string& why) const;
+};
+
+template <class SizeT>
+template <class Json>
+bool Bytes<SizeT>::from_json(const Json& j, value_type& v, std::string& why) const {
+  if (!j.is_string()) {
+    why = "expected a hex string";
+    return false;
+  }
+  return jaus::parse_hex(j.template get<std::string>(), v, why);
+}
+
+// An address as four bytes in the order subsystem, node, component, instance
+// (the order of discovery and control reports; the header uses the reverse).
+struct AddressCodec {
+  using value_type = Address;
+  void encode(const Address& v, ByteWriter& w, CodecContext&) const {
+    w.write(v.subsystem);
+    w.write(v.node);
+    w.write(v.component);
+    w.write(v.instance);
+  }
+  void decode(ByteReader& r, Address& v, CodecContext&) const {
+    r.read(v.subsystem);
+    r.read(v.node);
+    r.read(v.component);
+    r.read(v.instance);
+  }
+  template <class Json>
+  Json to_json(const Address& v) const { return Json(v.to_string()); }
+  template <class Json>
+  bool from_json(const Json& j, Address& v, std::string& why) const {
+    const auto parsed = j.is_string() ? Address::parse(j.template get<std::string>()) : std::nullopt;
+    if (!parsed) {
+      why = "expected an address \"S.N.C.I\"";
+      return false;
+    }
+    v = *parsed;
+    return true;
+  }
+};
+
+// Event limit of Create/Update Event: a type tag then a value of that type.
+struct EventLimit {
+  enum Type : std::uint8_t {
+    byte = 0, short_integer = 1, integer = 2, long_integer = 3, unsigned_short = 4, unsigned_integer = 5,
+    unsigned_long = 6, float32 = 7, float64 = 8, rgb = 9
+  };
+  std::uint8_t type = byte;
+  std::uint64_t bits = 0;  // the value's little-endian bytes, zero-extended
+
+  bool operator==(const EventLimit&) const = default;
+  static constexpr std::size_t size_of(std::uint8_t type) {
+    constexpr std::size_t sizes[] = {1, 2, 4, 8, 2, 4, 8, 4, 8, 3};
+    return type < 10 ? sizes[type] : 0;
+  }
+};
+
+struct EventLimitCodec {
+  using value_type = EventLimit;
+  void encode(const EventLimit& v, ByteWriter& w, CodecContext&) const {
+    const std::size_t n = EventLimit::size_of(v.type);
+    if (n == 0) {
+      w.fail(ErrorCode::bad_value, "event limit type " + std::to_string(v.type));
+      return;
+    }
+    w.write(v.type);
+    std::array<std::uint8_t, 8> raw{};
+    jaus::detail::to_little_endian<std::uint64_t>(v.bits, raw.data());
+    w.write_bytes(std::span<const std::uint8_t>(raw).first(n));
+  }
+  void decode(ByteReader& r, EventLimit& v, CodecContext&) const {
+    if (!r.read(v.type)) return;
+    const std::size_t n = EventLimit::size_of(v.type);
+    if (n == 0) {
+      r.fail(ErrorCode::bad_value, "event limit type " + std::to_string(v.type));
+      return;
+    }
+    std::span<const std::uint8_t> bytes;
+    if (!r.read_bytes(n, bytes)) return;
+    std::array<std::uint8_t, 8> raw{};
+    std::copy(bytes.begin(), bytes.end(), raw.begin());
+    v.bits = jaus::detail::from_little_endian<std::uint64_t>(raw.data());
+  }
+  template <class Json>
+  Json to_json(const EventLimit& v) const { return Json{{"type", v.type}, {"bits", v.bits}}; }
+  template <class Json>
+  bool from_json(const Json& j, EventLimit& v, std::string& why) const {
+    if (!j.is_object() || !j.contains("type") || !j.contains("bits")) {
+      why = "expected {type, bits}";
+      return false;
+    }
+    if (!detail::integer_from_json(j.at("type"), v.type, why) || !detail::integer_from_json(j.at("bits"), v.bits, why))
+      return false;
+    if (EventLimit::size_of(v.type) == 0) {
+      why = "unknown event limit type";
+      return false;
+    }
+    return true;
+  }
+};
+
+// ---- counts of variable-length parts --------------------------------------
+
+// The element count travels right before the elements.
+template <std::unsigned_integral T>
+struct Prefix {
+  using wire_type = T;
+  std::uint32_t min = 0;  // e.g. 1 where "0 is reserved"
+  std::uint32_t max = std::numeric_limits<T>::max();
+};
+
+// The count was sent earlier by a Dimension field (dims[K]) minus `less`.
+template <std::size_t K, std::uint32_t Less = 0>
+struct FromDim {};
+
+// A count sent once and shared by later arrays (FromDim<K>). Its member holds
+// the count; encoding checks every such array against it.
+template <std::size_t K, std::unsigned_integral T>
+struct Dimension {
+  static_assert(K < std::tuple_size_v<decltype(CodecContext::dims)>);
+  using value_type = T;
+  std::uint32_t min = 0;
+  void encode(const T& v, ByteWriter& w, CodecContext& ctx) const {
+    if (v < min) {
+      w.fail(ErrorCode::count_out_of_range, std::to_string(v) + " < " + std::to_string(min));
+      return;
+    }
+    ctx.dims[K] = v;
+    w.write(v);
+  }
+  void decode(ByteReader& r, T& v, CodecContext& ctx) const {
+    if (!r.read(v)) return;
+    if (v < min) r.fail(ErrorCode::count_out_of_range, std::to_string(v) + " < " + std::to_string(min));
+    ctx.dims[K] = v;
+  }
+  template <class Json>
+  Json to_json(const T& v) const { return Json(v); }
+  template <class Json>
+  bool from_json(const Json& j, T& v, std::string& why) const { return detail::integer_from_json(j, v, why); }
+};
+
+namespace detail {
+template <std::size_t K, std::uint32_t Less>
+bool encode_dim_count(const FromDim<K, Less>&, std::size_t n, ByteWriter& w, CodecContext& ctx) {
+  const std::size_t expected = ctx.dims[K] >= Less ? ctx.dims[K] - Less : 0;
+  if (n != expected) {
+    w.fail(ErrorCode::count_mismatch, std::to_string(n) + " elements, count says " + std::to_string(expected));
+    return false;
+  }
+  return true;
+}
+
+template <std::size_t K, std::uint32_t Less>
+std::size_t decode_dim_count(const FromDim<K, Less>&, const CodecContext& ctx) {
+  return ctx.dims[K] >= Less ? ctx.dims[K] - Less : 0;
+}
+// Writes the count (Prefix) or checks it (FromDim). False on failure.
+template <class Count>
+bool encode_count(const Count& count, std::size_t n, ByteWriter& w, CodecContext& ctx) {
+  if constexpr (requires { typename Count::wire_type; }) {
+    if (n < count.min || n > count.max) {
+      w.fail(ErrorCode::count_out_of_range, std::to_string(n) + " elements, allowed " + std::to_string(count.min) +
+                                                "-" + std::to_string(count.max));
+      return false;
+    }
+    return w.write(static_cast<typename Count::wire_type>(n));
+  } else {
+    return encode_dim_count(count, n, w, ctx);
+  }
+}
+// Reads or looks up the count; checks that the elements can fit in what is left
+// (each at least `min_element_size` bytes) before anything is allocated.
+template <class Count>
+bool decode_count(const Count& count, std::size_t min_element_size, ByteReader& r, CodecContext& ctx,
+                  std::size_t& n) {
+  if constexpr (requires { typename Count::wire_type; }) {
+    typename Count::wire_type raw{};
+    if (!r.read(raw)) return false;
+    if (raw < count.min || raw > count.max) {
+      r.fail(ErrorCode::count_out_of_range,
+             std::to_string(raw) + ", allowed " + std::to_string(count.min) + "-" + std::to_string(count.max));
+      return false;
+    }
+    n = raw;
+  } else {
+    n = decode_dim_count(count, ctx);
+  }
+  if (min_element_size > 0 && n > r.remaining() / min_element_size) {
+    r.fail(ErrorCode::count_out_of_range, std::to_string(n) + " elements cannot fit in " +
+                                              std::to_string(r.remaining()) + " bytes");
+    return false;
+  }
+  return true;
+}
+}  // namespace detail
+
+}  // namespace jaus::wire

@@ -1,0 +1,386 @@
+// Describing a message once. A body type lists its fields in wire order:
+//
+//   struct GlobalPose {
+//     std::optional<double> latitude_deg;
+//     ...
+//     static constexpr auto describe() {
+//       return std::make_tuple(
+//           presence_vector<std::uint16_t>(),
+//           optional(0, "latitude_deg", &GlobalPose::latitude_deg, Scaled<std::int32_t>{-90, 90}),
+//           ...);
+//     }
+//   };
+//
+// From that list this header derives the binary encoder and decoder, the JSON
+// form, and the presence vector (computed from which optional members are set,
+// never stored twice).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "jaus/wire/codecs.hpp"
+
+namespace jaus::wire {
+
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+
+template <class Owner, class Member, class Codec>
+struct Field {
+  std::string_view name;
+  Member Owner::*member;
+  Codec codec;
+  int bit = -1;  // presence-vector bit of an optional field
+  // For an optional field that only one dialect sends (no presence bit): that dialect.
+  std::optional<Dialect> only_in{};
+  using codec_type = Codec;
+  static constexpr bool is_optional = wire::is_optional<Member>::value;
+};
+
+// The presence vector itself: its value is derived from the optional members.
+template <std::unsigned_integral T>
+struct PresenceVector {
+  using wire_type = T;
+};
+
+template <std::unsigned_integral T>
+constexpr PresenceVector<T> presence_vector() {
+  return {};
+}
+
+template <class Owner, class M, class C>
+constexpr Field<Owner, M, C> field(std::string_view name, M Owner::*member, C codec) {
+  static_assert(std::is_same_v<M, typename C::value_type>, "member type must match the codec");
+  return {name, member, codec, -1, std::nullopt};
+}
+
+template <class Owner, class M, class C>
+constexpr Field<Owner, std::optional<M>, C> optional(int bit, std::string_view name, std::optional<M> Owner::*member,
+                                                     C codec) {
+  static_assert(std::is_same_v<M, typename C::value_type>, "member type must match the codec");
+  return {name, member, codec, bit, std::nullopt};
+}
+
+// A field one peer sends that Part 3 does not define (see docs/messages.md):
+// present exactly when encoding/decoding in that dialect.
+template <class Owner, class M, class C>
+constexpr Field<Owner, std::optional<M>, C> dialect_field(Dialect dialect, std::string_view name,
+                                                          std::optional<M> Owner::*member, C codec) {
+  static_assert(std::is_same_v<M, typename C::value_type>, "member type must match the codec");
+  return {name, member, codec, -1, dialect};
+}
+
+template <class T>
+struct is_presence_vector : std::false_type {};
+template <class T>
+struct is_presence_vector<PresenceVector<T>> : std::true_type {};
+
+// Bits the body defines; any other bit of a received presence vector is reserved.
+template <class Body>
+constexpr std::uint32_t optional_mask() {
+  std::uint32_t mask = 0;
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           if constexpr (!is_presence_vector<std::decay_t<decltype(f)>>::value)
+             if (f.bit >= 0) mask |= 1u << f.bit;
+         }()),
+         ...);
+      },
+      Body::describe());
+  return mask;
+}
+
+template <class Body>
+constexpr bool has_presence_vector() {
+  return std::apply([](const auto&... f) { return (is_presence_vector<std::decay_t<decltype(f)>>::value || ...); },
+                    Body::describe());
+}
+
+template <class Body>
+std::uint32_t presence_of(const Body& body) {
+  std::uint32_t pv = 0;
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           if constexpr (!is_presence_vector<std::decay_t<decltype(f)>>::value) {
+             if constexpr (std::decay_t<decltype(f)>::is_optional)
+               if (f.bit >= 0 && (body.*f.member).has_value()) pv |= 1u << f.bit;
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+  return pv;
+}
+
+// ---- binary ----------------------------------------------------------------
+
+template <class Body>
+void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx);
+template <class Body>
+void decode_fields(ByteReader& r, Body& body, CodecContext& ctx);
+
+template <class Codec>
+constexpr std::size_t min_wire_size() {
+  if constexpr (requires { typename Codec::wire_type; })
+    return sizeof(typename Codec::wire_type);
+  else
+    return 1;
+}
+
+// A variable-length list of values of one codec.
+template <class Count, class Elem>
+struct Array {
+  using value_type = std::vector<typename Elem::value_type>;
+  Count count;
+  Elem elem;
+
+  void encode(const value_type& v, ByteWriter& w, CodecContext& ctx) const {
+    if (!detail::encode_count(count, v.size(), w, ctx)) return;
+    for (const auto& e : v) elem.encode(e, w, ctx);
+  }
+  void decode(ByteReader& r, value_type& v, CodecContext& ctx) const {
+    std::size_t n = 0;
+    if (!detail::decode_count(count, min_wire_size<Elem>(), r, ctx, n)) return;
+    v.resize(n);
+    for (auto& e : v) {
+      if (r.failed()) return;
+      elem.decode(r, e, ctx);
+    }
+  }
+  template <class Json>
+  Json to_json(const value_type& v) const {
+    Json out = Json::array();
+    for (const auto& e : v) out.push_back(elem.template to_json<Json>(e));
+    return out;
+  }
+  template <class Json>
+  bool from_json(const Json& j, value_type& v, std::string& why) const {
+    if (!j.is_array()) {
+      why = "expected an array";
+      return false;
+    }
+    v.resize(j.size());
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      if (!elem.template from_json<Json>(j[i], v[i], why)) {
+        why = "[" + std::to_string(i) + "]: " + why;
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+// A variable-length list of records, each described like a message body.
+template <class Count, class Record>
+struct Records {
+  using value_type = std::vector<Record>;
+  Count count;
+
+  void encode(const value_type& v, ByteWriter& w, CodecContext& ctx) const {
+    if (!detail::encode_count(count, v.size(), w, ctx)) return;
+    for (const auto& e : v) encode_fields(e, w, ctx);
+  }
+  void decode(ByteReader& r, value_type& v, CodecContext& ctx) const {
+    std::size_t n = 0;
+    if (!detail::decode_count(count, 1, r, ctx, n)) return;
+    v.resize(n);
+    for (auto& e : v) {
+      if (r.failed()) return;
+      decode_fields(r, e, ctx);
+    }
+  }
+  template <class Json>
+  Json to_json(const value_type& v) const;
+  template <class Json>
+  bool from_json(const Json& j, value_type& v, std::string& why) const;
+};
+
+template <class Body>
+void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx) {
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (is_presence_vector<F>::value) {
+             w.set_field("presence_vector");
+             w.write(static_cast<typename F::wire_type>(presence_of(body)));
+           } else {
+             w.set_field(f.name);
+             if constexpr (F::is_optional) {
+               if (f.only_in) {
+                 if (*f.only_in == ctx.dialect)
+                   f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
+               } else if ((body.*f.member).has_value()) {
+                 f.codec.encode(*(body.*f.member), w, ctx);
+               }
+             } else {
+               f.codec.encode(body.*f.member, w, ctx);
+             }
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+}
+
+template <class Body>
+void decode_fields(ByteReader& r, Body& body, CodecContext& ctx) {
+  std::uint32_t pv = 0;
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (is_presence_vector<F>::value) {
+             r.set_field("presence_vector");
+             typename F::wire_type raw{};
+             if (!r.read(raw)) return;
+             pv = raw;
+             constexpr std::uint32_t defined = optional_mask<Body>();
+             if ((pv & ~defined) != 0) {
+               r.fail_at(ErrorCode::reserved_presence_bits, r.offset() - sizeof(raw),
+                         "defined bits are 0x" + detail::hex_u32(defined) + ", got 0x" + detail::hex_u32(pv));
+             }
+           } else {
+             if constexpr (F::is_optional) {
+               auto& member = body.*f.member;
+               const bool present = f.only_in ? *f.only_in == ctx.dialect : ((pv >> f.bit) & 1u) != 0;
+               if (present) {
+                 r.set_field(f.name);
+                 if (!member) member.emplace();
+                 f.codec.decode(r, *member, ctx);
+               } else {
+                 member.reset();
+               }
+             } else {
+               r.set_field(f.name);
+               f.codec.decode(r, body.*f.member, ctx);
+             }
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+}
+
+// ---- JSON ------------------------------------------------------------------
+// Keys are the field names; an optional field is present in JSON exactly when
+// it is present on the wire. The presence vector is not a key: it is derived.
+
+template <class Json, class Body>
+Json fields_to_json(const Body& body) {
+  Json out = Json::object();
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (!is_presence_vector<F>::value) {
+             if constexpr (F::is_optional) {
+               if ((body.*f.member).has_value())
+                 out[std::string(f.name)] = f.codec.template to_json<Json>(*(body.*f.member));
+             } else {
+               out[std::string(f.name)] = f.codec.template to_json<Json>(body.*f.member);
+             }
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+  return out;
+}
+
+// Fills `body` from a JSON object. Unknown keys and missing required fields
+// are errors; `why` names the field.
+template <class Json, class Body>
+bool fields_from_json(const Json& j, Body& body, std::string& why) {
+  if (!j.is_object()) {
+    why = "expected a JSON object";
+    return false;
+  }
+  std::size_t known = 0;
+  bool ok = true;
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (!is_presence_vector<F>::value) {
+             if (!ok) return;
+             const std::string key(f.name);
+             const auto it = j.find(key);
+             if (it == j.end()) {
+               if constexpr (F::is_optional) {
+                 (body.*f.member).reset();
+               } else {
+                 why = "'" + key + "' is missing";
+                 ok = false;
+               }
+               return;
+             }
+             ++known;
+             std::string inner;
+             if constexpr (F::is_optional) {
+               auto& member = body.*f.member;
+               member.emplace();
+               ok = f.codec.template from_json<Json>(*it, *member, inner);
+             } else {
+               ok = f.codec.template from_json<Json>(*it, body.*f.member, inner);
+             }
+             if (!ok) why = "'" + key + "': " + inner;
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+  if (ok && known != j.size()) {
+    for (const auto& item : j.items()) {
+      bool is_known = false;
+      std::apply([&](const auto&... f) {
+        ((is_known = is_known || [&] {
+            if constexpr (is_presence_vector<std::decay_t<decltype(f)>>::value) return false;
+            else return f.name == item.key();
+          }()), ...);
+      }, Body::describe());
+      if (!is_known) {
+        why = "unknown field '" + item.key() + "'";
+        return false;
+      }
+    }
+  }
+  return ok;
+}
+
+template <class Count, class Record>
+template <class Json>
+Json Records<Count, Record>::to_json(const value_type& v) const {
+  Json out = Json::array();
+  for (const auto& e : v) out.push_back(fields_to_json<Json>(e));
+  return out;
+}
+
+template <class Count, class Record>
+template <class Json>
+bool Records<Count, Record>::from_json(const Json& j, value_type& v, std::string& why) const {
+  if (!j.is_array()) {
+    why = "expected an array of objects";
+    return false;
+  }
+  v.resize(j.size());
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    if (!fields_from_json<Json>(j[i], v[i], why)) {
+      why = "[" + std::to_string(i) + "]: " + why;
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace jaus::wire

@@ -1,0 +1,219 @@
+#include "jaus/messages/catalogue.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "catalogue_entries.hpp"
+
+namespace jaus::msg {
+
+namespace {
+
+std::vector<MessageInfo> build_catalogue() {
+  std::vector<MessageInfo> all;
+  for (auto part : {detail::core_entries(), detail::communications_entries(), detail::platform_entries(),
+                    detail::manipulator_entries(), detail::environment_entries(),
+                    detail::discovery_and_event_entries()}) {
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.code < b.code; });
+  return all;
+}
+
+std::string code_text(std::uint16_t code) {
+  char text[8];
+  std::snprintf(text, sizeof text, "0x%04X", code);
+  return text;
+}
+
+Error json_error(std::string_view field, std::string detail) {
+  return Error{ErrorCode::json, 0, field, std::move(detail)};
+}
+
+constexpr std::string_view kAckNakNames[] = {"none", "ack_requested", "nak", "ack"};
+
+std::string_view data_flag_name(DataFlag flag) {
+  switch (flag) {
+    case DataFlag::single: return "single";
+    case DataFlag::first: return "first";
+    case DataFlag::middle: return "middle";
+    case DataFlag::retransmitted: return "retransmitted";
+    case DataFlag::last: return "last";
+  }
+  return "single";
+}
+
+template <class T>
+bool small_integer(const nlohmann::ordered_json& j, unsigned max, T& out) {
+  if (!j.is_number_unsigned() || j.get<std::uint64_t>() > max) return false;
+  out = static_cast<T>(j.get<std::uint64_t>());
+  return true;
+}
+
+// Header keys that the JSON may set; command_code and data_size are derived.
+Expected<Header, Error> header_from_json(const nlohmann::ordered_json& j) {
+  Header h;
+  if (j.is_null()) return h;
+  if (!j.is_object()) return unexpected(json_error("header", "expected an object"));
+  for (const auto& [key, value] : j.items()) {
+    bool ok = true;
+    if (key == "priority") {
+      ok = small_integer(value, 15, h.priority);
+    } else if (key == "ack_nak") {
+      ok = false;
+      for (unsigned i = 0; i < 4; ++i)
+        if ((value.is_string() && value.get<std::string>() == kAckNakNames[i]) ||
+            (value.is_number_unsigned() && value.get<std::uint64_t>() == i)) {
+          h.ack_nak = static_cast<AckNak>(i);
+          ok = true;
+        }
+    } else if (key == "service_connection") {
+      ok = value.is_boolean();
+      if (ok) h.service_connection = value.get<bool>();
+    } else if (key == "experimental") {
+      ok = value.is_boolean();
+      if (ok) h.experimental = value.get<bool>();
+    } else if (key == "version") {
+      ok = small_integer(value, 63, h.version);
+    } else if (key == "destination" || key == "source") {
+      const auto address = value.is_string() ? Address::parse(value.get<std::string>()) : std::nullopt;
+      ok = address.has_value();
+      if (ok) (key == "destination" ? h.destination : h.source) = *address;
+    } else if (key == "data_flag") {
+      ok = false;
+      for (auto flag : {DataFlag::single, DataFlag::first, DataFlag::middle, DataFlag::retransmitted, DataFlag::last})
+        if ((value.is_string() && value.get<std::string>() == data_flag_name(flag)) ||
+            (value.is_number_unsigned() && value.get<std::uint64_t>() == static_cast<unsigned>(flag))) {
+          h.data_flag = flag;
+          ok = true;
+        }
+    } else if (key == "sequence") {
+      ok = small_integer(value, 0xFFFF, h.sequence);
+    } else if (key == "data_size" || key == "command_code") {
+      // Derived from the message; accepted so that decode output round-trips.
+    } else {
+      return unexpected(json_error("header", "unknown key '" + key + "'"));
+    }
+    if (!ok) return unexpected(json_error("header", "bad value for '" + key + "'"));
+  }
+  return h;
+}
+
+Expected<std::uint16_t, Error> code_from_json(const nlohmann::ordered_json& message) {
+  if (const auto it = message.find("code"); it != message.end()) {
+    if (it->is_number_unsigned() && it->get<std::uint64_t>() <= 0xFFFF) return static_cast<std::uint16_t>(it->get<std::uint64_t>());
+    if (it->is_string()) {
+      const std::string text = it->get<std::string>();
+      unsigned value = 0;
+      int consumed = 0;
+      if (std::sscanf(text.c_str(), "%x%n", &value, &consumed) == 1 && consumed == static_cast<int>(text.size()) &&
+          value <= 0xFFFF)
+        return static_cast<std::uint16_t>(value);
+    }
+    return unexpected(json_error("code", "expected a command code such as \"0x4402\""));
+  }
+  if (const auto it = message.find("name"); it != message.end() && it->is_string()) {
+    if (const auto* info = find_message(it->get<std::string>())) return info->code;
+    return unexpected(json_error("name", "no message named '" + it->get<std::string>() + "'"));
+  }
+  return unexpected(json_error("code", "'code' or 'name' is required"));
+}
+
+}  // namespace
+
+std::span<const MessageInfo> catalogue() {
+  static const std::vector<MessageInfo> all = build_catalogue();
+  return all;
+}
+
+const MessageInfo* find_message(std::uint16_t code) {
+  const auto all = catalogue();
+  const auto it = std::lower_bound(all.begin(), all.end(), code, [](const auto& m, auto c) { return m.code < c; });
+  return it != all.end() && it->code == code ? &*it : nullptr;
+}
+
+const MessageInfo* find_message(std::string_view name) {
+  for (const auto& m : catalogue())
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+std::string_view message_class(std::uint16_t code) {
+  switch (code >> 12) {
+    case 0x0: return "command";
+    case 0x2: return "query";
+    case 0x4: return "inform";
+    case 0x6: return "event setup";
+    case 0x8: return "event notification";
+    case 0xD: return "node management";
+    default: return "experimental";
+  }
+}
+
+std::string_view message_subgroup(std::uint16_t code) {
+  const unsigned low = code & 0x0FFF;
+  if (low < 0x200) return "core";
+  if (low < 0x400) return "communications";
+  if (low < 0x600) return "platform";
+  if (low < 0x800) return "manipulator";
+  if (low < 0xA00) return "environment sensor";
+  if (low < 0xC00) return "discovery";
+  return "other";
+}
+
+nlohmann::ordered_json header_to_json(const Header& h) {
+  return nlohmann::ordered_json{{"priority", h.priority},
+                        {"ack_nak", kAckNakNames[static_cast<unsigned>(h.ack_nak) & 3]},
+                        {"service_connection", h.service_connection},
+                        {"experimental", h.experimental},
+                        {"version", h.version},
+                        {"destination", h.destination.to_string()},
+                        {"source", h.source.to_string()},
+                        {"data_size", h.data_size},
+                        {"data_flag", data_flag_name(h.data_flag)},
+                        {"sequence", h.sequence}};
+}
+
+Expected<nlohmann::ordered_json, Error> message_to_json(std::span<const std::uint8_t> bytes, wire::Dialect dialect) {
+  auto packet = decode_packet(bytes);
+  if (!packet) return unexpected(packet.error());
+  const Header& h = packet->header;
+  const MessageInfo* info = find_message(h.command_code);
+  if (!info)
+    return unexpected(Error{ErrorCode::unknown_message, 2, "command_code", code_text(h.command_code)});
+  if (h.data_flag != DataFlag::single)
+    return unexpected(Error{ErrorCode::bad_data_flag, 13, "data_flag",
+                            "one packet of a large data set: reassemble before decoding"});
+  auto fields = info->payload_to_json(packet->payload, dialect);
+  if (!fields) return unexpected(fields.error());
+  return nlohmann::ordered_json{
+      {"code", code_text(h.command_code)}, {"name", info->name}, {"header", header_to_json(h)}, {"fields", *fields}};
+}
+
+Expected<Bytes, Error> message_from_json(const nlohmann::ordered_json& message, wire::Dialect dialect) {
+  if (!message.is_object()) return unexpected(json_error({}, "expected a JSON object"));
+  for (const auto& [key, value] : message.items())
+    if (key != "code" && key != "name" && key != "header" && key != "fields")
+      return unexpected(json_error({}, "unknown key '" + key + "'"));
+  auto code = code_from_json(message);
+  if (!code) return unexpected(code.error());
+  const MessageInfo* info = find_message(*code);
+  if (!info) return unexpected(Error{ErrorCode::unknown_message, 0, "code", code_text(*code)});
+  auto header = header_from_json(message.value("header", nlohmann::ordered_json()));
+  if (!header) return unexpected(header.error());
+  auto payload = info->payload_from_json(message.value("fields", nlohmann::ordered_json::object()), dialect);
+  if (!payload) return unexpected(payload.error());
+  if (payload->size() > kMaxPayloadSize)
+    return unexpected(Error{ErrorCode::payload_too_large, 0, {}, std::to_string(payload->size()) + " bytes"});
+  header->command_code = *code;
+  header->data_size = static_cast<std::uint16_t>(payload->size());
+  auto head = encode_header(*header);
+  if (!head) return unexpected(head.error());
+  Bytes out(head->begin(), head->end());
+  out.insert(out.end(), payload->begin(), payload->end());
+  return out;
+}
+
+}  // namespace jaus::msg

@@ -1,0 +1,192 @@
+// Test support derived from the message descriptions: random in-range values
+// for any described body, and comparison within one scale step. Like the codec
+// itself, nothing here is written per message.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "jaus/messages/all.hpp"
+
+namespace jaus::test {
+
+using Rng = std::mt19937_64;
+
+template <class Body>
+void randomize(Body& body, Rng& rng, wire::CodecContext& ctx, bool all_present = false);
+
+inline double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+template <class T>
+T uniform_int(Rng& rng, T lo, T hi) {
+  return static_cast<T>(std::uniform_int_distribution<std::int64_t>(lo, hi)(rng));
+}
+
+// ---- random values, one overload per codec kind ---------------------------
+template <class T>
+void random_value(const wire::Int<T>&, T& v, Rng& rng, wire::CodecContext&) {
+  v = uniform_int<T>(rng, std::numeric_limits<T>::min(), std::numeric_limits<T>::max());
+}
+template <class T>
+void random_value(const wire::Real<T>&, T& v, Rng& rng, wire::CodecContext&) {
+  v = static_cast<T>(uniform(rng, -1e6, 1e6));
+}
+template <class T>
+void random_value(const wire::Scaled<T>& c, double& v, Rng& rng, wire::CodecContext&) {
+  v = uniform(rng, c.lower, c.upper);
+}
+template <class T>
+void random_value(const wire::Linear<T>& c, double& v, Rng& rng, wire::CodecContext&) {
+  v = uniform(rng, c.lower(), c.upper());
+}
+template <std::size_t N, bool S>
+void random_value(const wire::Text<N, S>&, std::string& v, Rng& rng, wire::CodecContext&) {
+  v.assign(uniform_int<std::size_t>(rng, S ? 1 : 0, N), 'a');
+  for (auto& c : v) c = static_cast<char>(uniform_int<int>(rng, 32, 126));
+}
+inline void random_value(const wire::Time&, TimeStamp& v, Rng& rng, wire::CodecContext&) {
+  v = TimeStamp{uniform_int<std::uint16_t>(rng, 0, 999), uniform_int<std::uint8_t>(rng, 0, 59),
+                uniform_int<std::uint8_t>(rng, 0, 59), uniform_int<std::uint8_t>(rng, 0, 23),
+                uniform_int<std::uint8_t>(rng, 1, 31)};
+}
+inline void random_value(const wire::Date&, DateStamp& v, Rng& rng, wire::CodecContext&) {
+  v = DateStamp{uniform_int<std::uint8_t>(rng, 1, 31), uniform_int<std::uint8_t>(rng, 1, 12),
+                uniform_int<std::uint16_t>(rng, 2000, 2127)};
+}
+template <class S>
+void random_value(const wire::Bytes<S>&, std::vector<std::uint8_t>& v, Rng& rng, wire::CodecContext&) {
+  v.resize(uniform_int<std::size_t>(rng, 0, 64));
+  for (auto& b : v) b = uniform_int<std::uint8_t>(rng, 0, 255);
+}
+inline void random_value(const wire::AddressCodec&, Address& v, Rng& rng, wire::CodecContext&) {
+  v = Address{uniform_int<std::uint8_t>(rng, 1, 255), uniform_int<std::uint8_t>(rng, 1, 255),
+              uniform_int<std::uint8_t>(rng, 1, 255), uniform_int<std::uint8_t>(rng, 1, 255)};
+}
+inline void random_value(const wire::EventLimitCodec&, wire::EventLimit& v, Rng& rng, wire::CodecContext&) {
+  v.type = uniform_int<std::uint8_t>(rng, 0, 9);
+  const auto bits = 8 * wire::EventLimit::size_of(v.type);
+  v.bits = rng() & (bits == 64 ? ~0ull : ((1ull << bits) - 1));
+}
+template <std::size_t K, class T>
+void random_value(const wire::Dimension<K, T>& c, T& v, Rng& rng, wire::CodecContext& ctx) {
+  v = uniform_int<T>(rng, static_cast<T>(std::max<std::uint32_t>(c.min, 1)), 4);
+  ctx.dims[K] = v;
+}
+
+template <class Count>
+std::size_t random_count(const Count& count, Rng& rng, const wire::CodecContext& ctx) {
+  if constexpr (requires { typename Count::wire_type; })
+    return uniform_int<std::size_t>(rng, count.min, std::min<std::uint32_t>(count.max, 5));
+  else
+    return wire::detail::decode_dim_count(count, ctx);
+}
+template <class Count, class Elem>
+void random_value(const wire::Array<Count, Elem>& c, typename wire::Array<Count, Elem>::value_type& v, Rng& rng,
+                  wire::CodecContext& ctx) {
+  v.resize(random_count(c.count, rng, ctx));
+  for (auto& e : v) random_value(c.elem, e, rng, ctx);
+}
+template <class Count, class Record>
+void random_value(const wire::Records<Count, Record>& c, std::vector<Record>& v, Rng& rng, wire::CodecContext& ctx) {
+  v.resize(random_count(c.count, rng, ctx));
+  for (auto& e : v) randomize(e, rng, ctx);
+}
+
+template <class Body>
+void randomize(Body& body, Rng& rng, wire::CodecContext& ctx, bool all_present) {
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (!wire::is_presence_vector<F>::value) {
+             if constexpr (F::is_optional) {
+               auto& member = body.*f.member;
+               // A dialect-only field is always there in its dialect, never elsewhere.
+               const bool present = f.only_in ? *f.only_in == ctx.dialect : (all_present || (rng() & 1));
+               if (present) {
+                 member.emplace();
+                 random_value(f.codec, *member, rng, ctx);
+               } else {
+                 member.reset();
+               }
+             } else {
+               random_value(f.codec, body.*f.member, rng, ctx);
+             }
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+}
+
+// ---- comparison within a number of scale steps ----------------------------
+// Our own encoding is within half a step; the openjaus dialect's rounding
+// (int)(x + 0.5) is up to one step high for negative values, so comparisons
+// in that dialect allow 1.5 steps.
+inline double& step_tolerance() {
+  static double steps = 1.0;
+  return steps;
+}
+struct StepTolerance {
+  explicit StepTolerance(double steps) : saved(step_tolerance()) { step_tolerance() = steps; }
+  ~StepTolerance() { step_tolerance() = saved; }
+  double saved;
+};
+
+template <class Codec, class V>
+void expect_close(const Codec&, const V& a, const V& b, const std::string& where) {
+  EXPECT_EQ(a, b) << where;
+}
+template <class T>
+void expect_close(const wire::Scaled<T>& c, const double& a, const double& b, const std::string& where) {
+  // The openjaus quirk uses the unsigned step, never larger than the signed one.
+  EXPECT_NEAR(a, b, c.step() * step_tolerance() * 1.001) << where;
+}
+template <class T>
+void expect_close(const wire::Linear<T>& c, const double& a, const double& b, const std::string& where) {
+  EXPECT_NEAR(a, b, c.step() * step_tolerance() * 1.001) << where;
+}
+template <class T>
+void expect_close(const wire::Real<T>&, const T& a, const T& b, const std::string& where) {
+  EXPECT_EQ(a, b) << where;
+}
+template <class Body>
+void expect_close_body(const Body& a, const Body& b, const std::string& where);
+template <class Count, class Elem>
+void expect_close(const wire::Array<Count, Elem>& c, const typename wire::Array<Count, Elem>::value_type& a,
+                  const typename wire::Array<Count, Elem>::value_type& b, const std::string& where) {
+  ASSERT_EQ(a.size(), b.size()) << where;
+  for (std::size_t i = 0; i < a.size(); ++i) expect_close(c.elem, a[i], b[i], where + "[" + std::to_string(i) + "]");
+}
+template <class Count, class Record>
+void expect_close(const wire::Records<Count, Record>&, const std::vector<Record>& a, const std::vector<Record>& b,
+                  const std::string& where) {
+  ASSERT_EQ(a.size(), b.size()) << where;
+  for (std::size_t i = 0; i < a.size(); ++i) expect_close_body(a[i], b[i], where + "[" + std::to_string(i) + "]");
+}
+
+template <class Body>
+void expect_close_body(const Body& a, const Body& b, const std::string& where) {
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (!wire::is_presence_vector<F>::value) {
+             const std::string name = where + "." + std::string(f.name);
+             if constexpr (F::is_optional) {
+               const auto& x = a.*f.member;
+               const auto& y = b.*f.member;
+               ASSERT_EQ(x.has_value(), y.has_value()) << name;
+               if (x) expect_close(f.codec, *x, *y, name);
+             } else {
+               expect_close(f.codec, a.*f.member, b.*f.member, name);
+             }
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+}
+
+}  // namespace jaus::test
