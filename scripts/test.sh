@@ -33,7 +33,12 @@ if command -v clang++ >/dev/null; then
     [ -x "$target" ] || continue
     name=$(basename "$target")
     corpus=$(mktemp -d)
-    cp -r "$root/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
+    cp -r "$root/tests/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
+    if [ "$name" = fuzz_jaus_decode ]; then
+      # Seed with every JAUS vector, one file each.
+      grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
+        while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done
+    fi
     "$target" "$corpus" -max_total_time=20 -print_final_stats=0 2>&1 | tail -n 2
     rm -rf "$corpus"
   done

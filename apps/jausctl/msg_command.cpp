@@ -85,6 +85,12 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
   add_dialect(encode_cmd);
   encode_cmd->callback([&exit_code, dialect] { exit_code = encode(*dialect); });
 
+  auto* doc_cmd = msg->add_subcommand("doc", "Print docs/messages.md, generated from the message descriptions");
+  doc_cmd->callback([&exit_code] {
+    std::cout << jaus::msg::messages_markdown();
+    exit_code = kExitOk;
+  });
+
   auto* list_cmd = msg->add_subcommand("list", "List every supported message: code, name, subgroup, class");
   list_cmd->callback([&exit_code] { exit_code = list(); });
 }

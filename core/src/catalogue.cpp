@@ -216,4 +216,73 @@ Expected<Bytes, Error> message_from_json(const nlohmann::ordered_json& message, 
   return out;
 }
 
+std::string messages_markdown() {
+  std::string out = R"(# Supported messages
+
+Generated from the message descriptions by `jausctl msg doc`; a test fails when
+this file and the descriptions disagree. Regenerate with
+`jausctl msg doc > docs/messages.md`.
+
+## Conventions
+
+- Every message is a 16-byte header (see `core/include/jaus/core/header.hpp`)
+  and the payload listed here, fields in wire order, little-endian.
+- Values are in engineering units, named in the key: `_deg` degrees, `_rad`
+  radians, `_m` metres, `_mps` m/s, `_rps` rad/s, `_rps2` rad/s^2, `_hz`
+  hertz, `_percent`, `_c` degrees Celsius, `_nm` newton metres, `_s` seconds.
+  Keys without a unit are integers, bit fields or text.
+- `scaled [lower, upper]` fields use the RA scaled-integer rule; values are
+  clamped to the limits on encode and round-trip within one step.
+- Optional fields carry their presence-vector bit. The presence vector of a
+  message whose layout it governs is derived from the fields present; a
+  received vector with bits the message does not define is rejected
+  (`reserved_presence_bits`), since the layout after it cannot be known. A
+  query's `presence_vector` is a request mask: bits beyond the report's are
+  ignored, as the wire notes say.
+- Counts (`u8 count`) are derived from the array length on encode and checked
+  against the bytes left on decode; "0 is reserved" counts are rejected.
+- Decoding consumes every byte: trailing bytes are an error.
+
+## Dialects and settled ambiguities
+
+- `ra` (default) is Part 3 as written and what the node sends. `openjaus`
+  reads and writes what the common open RA 3.3 implementation does: manipulator
+  signed values as unsigned with bias = lower limit, 2^32 - 2 steps for 32-bit
+  unsigned ranges, `(int)(x + 0.5)` rounding, date stamps with a 7-bit
+  calendar year and a 0-based month, and the extra u16 `object_id` at the end
+  of Report Relative Object Position. In that dialect our encoder reproduces
+  its vectors byte for byte (`tests/core/vectors_test.cpp`).
+- Query Local Path Segment (0x2410): Part 3's table puts the presence vector
+  first, the reverse of its global twin 0x240F; the RA 3.3 peers send the
+  number first for both, and so do we.
+- Report Global Pose / Local Pose / Velocity State: the mapping table names a
+  field 11 for bit 9 that the field table does not have; bit 9 is reserved.
+- Joint values whose limits depend on the joint type (positions, velocities,
+  accelerations, force/torques) are carried with the revolute limits, in the
+  revolute unit. For a prismatic joint the same integer means
+  value x (prismatic range / revolute range): positions x 10/(8 pi) m,
+  velocities x 5/(10 pi) m/s, accelerations x 20/(10 pi) m/s^2, forces x 0.5 N.
+- Report Manipulator Specifications: thousandths of a radian or millimetres
+  are both read x 0.001, so values are in rad or m by joint type; the last
+  joint comes first, as Part 3 orders it.
+- Report Image carries opaque bytes (Part 3 defines no fields).
+- Cancel Event: presence bit 0 is the message code and bit 1 the event ID, as
+  the RA 3.3 peers send them.
+- Create/Update Event: optional fields follow the RA 3.3 peers' presence bits
+  (0 boundary, 1 limit field, 2-4 lower/upper/state limits, 5 minimum rate,
+  6 requested rate, 7 query message); an event limit is a type byte then a
+  value of that type (`bits` holds its little-endian bytes).
+
+## Messages
+
+| code | name | subgroup | class | payload |
+|---|---|---|---|---|
+)";
+  for (const auto& m : catalogue()) {
+    out += "| " + code_text(m.code) + " | " + std::string(m.name) + " | " + std::string(message_subgroup(m.code)) +
+           " | " + std::string(message_class(m.code)) + " | " + m.fields_doc() + " |\n";
+  }
+  return out;
+}
+
 }  // namespace jaus::msg

@@ -39,7 +39,8 @@ Expected<Bytes, Error> payload_from_json(const Json& fields, wire::Dialect diale
 
 template <class... Ms>
 std::vector<MessageInfo> entries_of(TypeList<Ms...>) {
-  return {MessageInfo{Ms::code, Ms::name, &payload_to_json<Ms>, &payload_from_json<Ms>}...};
+  return {MessageInfo{Ms::code, Ms::name, &payload_to_json<Ms>, &payload_from_json<Ms>,
+                      [] { return wire::fields_doc<Ms>(); }}...};
 }
 
 std::vector<MessageInfo> core_entries();

@@ -47,7 +47,8 @@ class ByteReader {
 
   template <WireScalar T>
   bool read(T& out) {
-    if (!require(sizeof(T))) return false;
+    if (!has_room(sizeof(T))) [[unlikely]]
+      return fail_truncated(sizeof(T));
     out = detail::from_little_endian<T>(bytes_.data() + pos_);
     pos_ += sizeof(T);
     return true;
@@ -55,7 +56,8 @@ class ByteReader {
 
   // A view of the next n bytes (valid while the underlying buffer lives).
   bool read_bytes(std::size_t n, std::span<const std::uint8_t>& out) {
-    if (!require(n)) return false;
+    if (!has_room(n)) [[unlikely]]
+      return fail_truncated(n);
     out = bytes_.subspan(pos_, n);
     pos_ += n;
     return true;
@@ -81,14 +83,13 @@ class ByteReader {
   const std::optional<Error>& error() const { return error_; }
 
  private:
-  bool require(std::size_t n) {
-    if (failed()) return false;
-    if (bytes_.size() - pos_ < n) {
+  bool has_room(std::size_t n) const { return !error_ && bytes_.size() - pos_ >= n; }
+  // Kept out of line: the hot path is the bounds check above.
+  [[gnu::noinline]] bool fail_truncated(std::size_t n) {
+    if (!failed())
       fail(ErrorCode::truncated,
            "needs " + std::to_string(n) + " bytes, " + std::to_string(bytes_.size() - pos_) + " left");
-      return false;
-    }
-    return true;
+    return false;
   }
 
   std::span<const std::uint8_t> bytes_;
@@ -104,7 +105,8 @@ class ByteWriter {
 
   template <WireScalar T>
   bool write(T value) {
-    if (!require(sizeof(T))) return false;
+    if (!has_room(sizeof(T))) [[unlikely]]
+      return fail_full();
     detail::to_little_endian<T>(value, out_.data() + pos_);
     pos_ += sizeof(T);
     return true;
@@ -143,14 +145,12 @@ class ByteWriter {
   const std::optional<Error>& error() const { return error_; }
 
  private:
-  bool require(std::size_t n) {
-    if (failed()) return false;
-    if (out_.size() - pos_ < n) {
-      fail(ErrorCode::output_too_small);
-      return false;
-    }
-    return true;
+  bool has_room(std::size_t n) const { return !error_ && out_.size() - pos_ >= n; }
+  [[gnu::noinline]] bool fail_full() {
+    fail(ErrorCode::output_too_small);
+    return false;
   }
+  bool require(std::size_t n) { return has_room(n) || fail_full(); }
 
   std::span<std::uint8_t> out_;
   std::size_t pos_ = 0;

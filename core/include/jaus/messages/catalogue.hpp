@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -24,7 +25,12 @@ struct MessageInfo {
   // Payload (no header) to the JSON object of its fields, and back.
   Expected<nlohmann::ordered_json, Error> (*payload_to_json)(std::span<const std::uint8_t>, wire::Dialect) = nullptr;
   Expected<Bytes, Error> (*payload_from_json)(const nlohmann::ordered_json&, wire::Dialect) = nullptr;
+  // The fields as described (name, presence bit, wire type, limits), for docs.
+  std::string (*fields_doc)() = nullptr;
 };
+
+// docs/messages.md, generated from the descriptions (`jausctl msg doc`).
+std::string messages_markdown();
 
 // Every supported message, sorted by code.
 std::span<const MessageInfo> catalogue();

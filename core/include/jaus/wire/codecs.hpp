@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <concepts>
 #include <cstdint>
 #include <limits>
@@ -45,6 +46,18 @@ struct CodecContext {
 };
 
 namespace detail {
+template <class T>
+std::string wire_name() {
+  const char* base = std::is_floating_point_v<T> ? (sizeof(T) == 4 ? "float" : "double")
+                                                 : (std::is_signed_v<T> ? "i" : "u");
+  return std::is_floating_point_v<T> ? std::string(base) : std::string(base) + std::to_string(8 * sizeof(T));
+}
+inline std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
 template <class Json, std::integral T>
 bool integer_from_json(const Json& j, T& out, std::string& why) {
   if (!j.is_number_integer()) {
@@ -108,6 +121,7 @@ template <std::integral T>
 struct Int {
   using value_type = T;
   using wire_type = T;
+  std::string doc() const { return detail::wire_name<T>(); }
   void encode(const T& v, ByteWriter& w, CodecContext&) const { w.write(v); }
   void decode(ByteReader& r, T& v, CodecContext&) const { r.read(v); }
   template <class Json>
@@ -120,6 +134,7 @@ struct Int {
 template <std::floating_point T>
 struct Real {
   using value_type = T;
+  std::string doc() const { return detail::wire_name<T>(); }
   void encode(const T& v, ByteWriter& w, CodecContext&) const { w.write(v); }
   void decode(ByteReader& r, T& v, CodecContext&) const { r.read(v); }
   template <class Json>
@@ -146,6 +161,9 @@ struct Scaled {
   double lower;
   double upper;
   Quirk quirk = Quirk::none;
+  std::string doc() const {
+    return detail::wire_name<T>() + " scaled [" + detail::number_text(lower) + ", " + detail::number_text(upper) + "]";
+  }
 
   // Resolution of the encoding: values round-trip within one step.
   constexpr double step() const { return ScaledRange<T>{lower, upper}.scale(); }
@@ -193,6 +211,7 @@ struct Linear {
   using value_type = double;
   using wire_type = T;
   double factor;
+  std::string doc() const { return detail::wire_name<T>() + " x " + detail::number_text(factor); }
 
   constexpr double step() const { return factor; }
   constexpr double lower() const { return static_cast<double>(std::numeric_limits<T>::min()) * factor; }
@@ -219,6 +238,9 @@ template <std::size_t N, bool AcceptShorter = false>
 struct Text {
   using value_type = std::string;
   static constexpr std::size_t length = N;
+  std::string doc() const {
+    return "text, " + std::to_string(N) + " bytes NUL padded" + (AcceptShorter ? " (shorter accepted)" : "");
+  }
 
   void encode(const std::string& v, ByteWriter& w, CodecContext&) const {
     if (v.size() > N) {
@@ -256,6 +278,7 @@ struct Text {
 // Time stamp (u32) as its parts.
 struct Time {
   using value_type = TimeStamp;
+  std::string doc() const { return "time stamp (u32)"; }
   void encode(const TimeStamp& v, ByteWriter& w, CodecContext&) const {
     const auto raw = v.pack();
     if (!raw) {
@@ -304,6 +327,7 @@ struct Time {
 // masked to 7 bits and a 0-based month; it is mapped back here.
 struct Date {
   using value_type = DateStamp;
+  std::string doc() const { return "date stamp (u16)"; }
   void encode(const DateStamp& v, ByteWriter& w, CodecContext& ctx) const {
     DateStamp wire = v;
     if (ctx.dialect == Dialect::openjaus) {
@@ -360,6 +384,10 @@ struct Date {
 template <class SizeT = void>
 struct Bytes {
   using value_type = std::vector<std::uint8_t>;
+  std::string doc() const {
+    if constexpr (std::is_void_v<SizeT>) return "bytes to the end (hex)";
+    else return detail::wire_name<SizeT>() + " size + bytes (hex)";
+  }
   void encode(const value_type& v, ByteWriter& w, CodecContext&) const {
     if constexpr (!std::is_void_v<SizeT>) {
       if (v.size() > std::numeric_limits<SizeT>::max()) {
@@ -407,6 +435,7 @@ bool Bytes<SizeT>::from_json(const Json& j, value_type& v, std::string& why) con
 // (the order of discovery and control reports; the header uses the reverse).
 struct AddressCodec {
   using value_type = Address;
+  std::string doc() const { return "address S.N.C.I (4 x u8)"; }
   void encode(const Address& v, ByteWriter& w, CodecContext&) const {
     w.write(v.subsystem);
     w.write(v.node);
@@ -451,6 +480,7 @@ struct EventLimit {
 
 struct EventLimitCodec {
   using value_type = EventLimit;
+  std::string doc() const { return "event limit: u8 type + value"; }
   void encode(const EventLimit& v, ByteWriter& w, CodecContext&) const {
     const std::size_t n = EventLimit::size_of(v.type);
     if (n == 0) {
@@ -514,6 +544,7 @@ struct Dimension {
   static_assert(K < std::tuple_size_v<decltype(CodecContext::dims)>);
   using value_type = T;
   std::uint32_t min = 0;
+  std::string doc() const { return detail::wire_name<T>() + " count (shared)"; }
   void encode(const T& v, ByteWriter& w, CodecContext& ctx) const {
     if (v < min) {
       w.fail(ErrorCode::count_out_of_range, std::to_string(v) + " < " + std::to_string(min));

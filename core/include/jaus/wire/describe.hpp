@@ -107,6 +107,7 @@ constexpr bool has_presence_vector() {
 
 template <class Body>
 std::uint32_t presence_of(const Body& body) {
+  static constexpr auto fields = Body::describe();
   std::uint32_t pv = 0;
   std::apply(
       [&](const auto&... f) {
@@ -118,7 +119,7 @@ std::uint32_t presence_of(const Body& body) {
          }()),
          ...);
       },
-      Body::describe());
+      fields);
   return pv;
 }
 
@@ -138,11 +139,20 @@ constexpr std::size_t min_wire_size() {
 }
 
 // A variable-length list of values of one codec.
+template <class Count>
+std::string count_doc(const Count&) {
+  if constexpr (requires { typename Count::wire_type; })
+    return detail::wire_name<typename Count::wire_type>() + " count, then ";
+  else
+    return "count given earlier, ";
+}
+
 template <class Count, class Elem>
 struct Array {
   using value_type = std::vector<typename Elem::value_type>;
   Count count;
   Elem elem;
+  std::string doc() const { return count_doc(count) + "each " + elem.doc(); }
 
   void encode(const value_type& v, ByteWriter& w, CodecContext& ctx) const {
     if (!detail::encode_count(count, v.size(), w, ctx)) return;
@@ -181,10 +191,14 @@ struct Array {
 };
 
 // A variable-length list of records, each described like a message body.
+template <class Body>
+std::string fields_doc(const std::string& indent = "");
+
 template <class Count, class Record>
 struct Records {
   using value_type = std::vector<Record>;
   Count count;
+  std::string doc() const { return count_doc(count) + "records of: " + fields_doc<Record>(""); }
 
   void encode(const value_type& v, ByteWriter& w, CodecContext& ctx) const {
     if (!detail::encode_count(count, v.size(), w, ctx)) return;
@@ -207,6 +221,8 @@ struct Records {
 
 template <class Body>
 void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx) {
+  // A constant description lets the compiler fold every codec's limits.
+  static constexpr auto fields = Body::describe();
   std::apply(
       [&](const auto&... f) {
         (([&] {
@@ -230,11 +246,12 @@ void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx) {
          }()),
          ...);
       },
-      Body::describe());
+      fields);
 }
 
 template <class Body>
 void decode_fields(ByteReader& r, Body& body, CodecContext& ctx) {
+  static constexpr auto fields = Body::describe();
   std::uint32_t pv = 0;
   std::apply(
       [&](const auto&... f) {
@@ -269,7 +286,31 @@ void decode_fields(ByteReader& r, Body& body, CodecContext& ctx) {
          }()),
          ...);
       },
+      fields);
+}
+
+// One line per message: "name: type; name (bit 0): type; ..." for docs/messages.md.
+template <class Body>
+std::string fields_doc(const std::string&) {
+  std::string out;
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if (!out.empty()) out += "; ";
+           if constexpr (is_presence_vector<F>::value) {
+             out += "presence vector (" + detail::wire_name<typename F::wire_type>() + ")";
+           } else {
+             out += "`" + std::string(f.name) + "`";
+             if (f.bit >= 0) out += " (bit " + std::to_string(f.bit) + ")";
+             if (f.only_in) out += " (openjaus dialect only)";
+             out += ": " + f.codec.doc();
+           }
+         }()),
+         ...);
+      },
       Body::describe());
+  return out.empty() ? "(no fields)" : "{" + out + "}";
 }
 
 // ---- JSON ------------------------------------------------------------------
