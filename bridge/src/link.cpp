@@ -48,7 +48,12 @@ std::optional<LinkEndpoint> parse_endpoint(const std::string& text) {
 ClearpathLink::ClearpathLink(asio::io_context& io, LinkEndpoint endpoint, ClientConfig config)
     : io_(io), endpoint_(std::move(endpoint)), core_(config), serial_(io), udp_(io), tcp_(io), tick_(io) {}
 
-ClearpathLink::~ClearpathLink() { close(); }
+ClearpathLink::~ClearpathLink() {
+  *alive_ = false;
+  running_ = false;
+  tick_.cancel();
+  close();
+}
 
 void ClearpathLink::start() {
   running_ = true;
@@ -62,28 +67,33 @@ void ClearpathLink::stop() {
 }
 
 void ClearpathLink::send(Message message, ClientCore::CommandCallback done) {
-  asio::post(io_, [this, m = std::move(message), d = std::move(done)]() mutable {
+  asio::post(io_, [this, alive = alive_, m = std::move(message), d = std::move(done)]() mutable {
+    if (!*alive) return;
     core_.send(std::move(m), std::move(d));
     pump();
   });
 }
 
 void ClearpathLink::subscribe(Message request, ClientCore::CommandCallback done) {
-  asio::post(io_, [this, m = std::move(request), d = std::move(done)]() mutable {
+  asio::post(io_, [this, alive = alive_, m = std::move(request), d = std::move(done)]() mutable {
+    if (!*alive) return;
     core_.subscribe(std::move(m), std::move(d));
     pump();
   });
 }
 
 void ClearpathLink::set_setpoint(Message command) {
-  asio::post(io_, [this, m = std::move(command)]() mutable {
+  asio::post(io_, [this, alive = alive_, m = std::move(command)]() mutable {
+    if (!*alive) return;
     core_.set_setpoint(std::move(m));
     pump();
   });
 }
 
 void ClearpathLink::on_data(ClientCore::DataCallback callback) {
-  asio::post(io_, [this, c = std::move(callback)]() mutable { core_.on_data(std::move(c)); });
+  asio::post(io_, [this, alive = alive_, c = std::move(callback)]() mutable {
+    if (*alive) core_.on_data(std::move(c));
+  });
 }
 
 void ClearpathLink::close() {
@@ -128,8 +138,8 @@ void ClearpathLink::open() {
       if (ec) break;
       // Asynchronous so a slow peer never blocks the io thread.
       const auto generation = generation_;
-      tcp_.async_connect({address, endpoint_.port}, [this, generation](const error_code& cec) {
-        if (generation != generation_) return;
+      tcp_.async_connect({address, endpoint_.port}, [this, alive = alive_, generation](const error_code& cec) {
+        if (!*alive || generation != generation_) return;
         if (cec) {
           close();
           core_.open_failed(Clock::now());
@@ -156,8 +166,8 @@ void ClearpathLink::open() {
 
 void ClearpathLink::start_read() {
   const auto generation = generation_;
-  auto handler = [this, generation](const error_code& ec, std::size_t n) {
-    if (generation != generation_) return;
+  auto handler = [this, alive = alive_, generation](const error_code& ec, std::size_t n) {
+    if (!*alive || generation != generation_) return;
     if (ec) return fail(ec);
     core_.on_bytes(std::span(rx_.data(), n), Clock::now());
     pump();
@@ -176,8 +186,8 @@ void ClearpathLink::pump() {
   if (tx_.empty()) return;
   writing_ = true;
   const auto generation = generation_;
-  auto handler = [this, generation](const error_code& ec, std::size_t n) {
-    if (generation != generation_) return;
+  auto handler = [this, alive = alive_, generation](const error_code& ec, std::size_t n) {
+    if (!*alive || generation != generation_) return;
     writing_ = false;
     if (ec) return fail(ec);
     if (on_written_) on_written_(n);
@@ -198,8 +208,8 @@ void ClearpathLink::on_tick() {
   if (core_.wants_reconnect() && now >= core_.reconnect_at()) open();
   pump();
   tick_.expires_after(kTickPeriod);
-  tick_.async_wait([this](const error_code& ec) {
-    if (!ec) on_tick();
+  tick_.async_wait([this, alive = alive_](const error_code& ec) {
+    if (!ec && *alive) on_tick();
   });
 }
 

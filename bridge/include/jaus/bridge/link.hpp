@@ -74,6 +74,8 @@ class ClearpathLink {
   bool running_ = false;
   std::uint64_t generation_ = 0;  // handlers of a closed connection are ignored
   std::function<void(std::size_t)> on_written_;
+  // Aborted handlers may run after destruction: they check this first.
+  std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };
 
 }  // namespace jaus::bridge
