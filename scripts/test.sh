@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the project needs, builds it and runs every test:
-#   1. Debug build (-Wall -Wextra -Werror), whole test suite;
-#   2. optimised build with AddressSanitizer + UndefinedBehaviorSanitizer, whole test suite;
+#   1. Release build (-O3, -Wall -Wextra -Werror), whole test suite and the benchmarks built;
+#   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (-Werror), whole test suite;
 #   3. libFuzzer targets (clang), each run briefly on its seed corpus.
 # Usage: ./scripts/test.sh        (from anywhere; builds go to build/)
 set -euo pipefail
@@ -18,11 +18,11 @@ run_suite() {  # $1 build dir, remaining args: cmake options
   ctest --test-dir "$dir" --output-on-failure -j "$jobs" --timeout 300
 }
 
-echo "== debug build and tests"
-run_suite build/debug -DCMAKE_BUILD_TYPE=Debug
+echo "== release build and tests"
+run_suite build/release -DCMAKE_BUILD_TYPE=Release
 
-echo "== address + undefined-behaviour sanitizer build and tests"
-run_suite build/asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF
+echo "== debug build with address + undefined-behaviour sanitizers, tests"
+run_suite build/asan -DCMAKE_BUILD_TYPE=Debug -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF
 
 if command -v clang++ >/dev/null; then
   echo "== fuzz targets (libFuzzer, short smoke run)"

@@ -8,11 +8,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <optional>
+#include <memory>
 #include <span>
 #include <string_view>
 
 #include "jaus/core/error.hpp"
+
+// Per-field codec steps are a handful of instructions; keeping them inline lets
+// a whole message encode or decode as straight-line code.
+#define JAUS_ALWAYS_INLINE [[gnu::always_inline]] inline
 
 namespace jaus {
 
@@ -43,10 +47,10 @@ void to_little_endian(T value, std::uint8_t* p) {
 class ByteReader {
  public:
   explicit ByteReader(std::span<const std::uint8_t> bytes, std::size_t base_offset = 0)
-      : bytes_(bytes), base_offset_(base_offset) {}
+      : bytes_(bytes), base_offset_(base_offset), limit_(bytes.size()) {}
 
   template <WireScalar T>
-  bool read(T& out) {
+  JAUS_ALWAYS_INLINE bool read(T& out) {
     if (!has_room(sizeof(T))) [[unlikely]]
       return fail_truncated(sizeof(T));
     out = detail::from_little_endian<T>(bytes_.data() + pos_);
@@ -70,20 +74,21 @@ class ByteReader {
   void set_field(std::string_view field) { field_ = field; }
   std::string_view field() const { return field_; }
 
-  void fail(ErrorCode code, std::string detail = {}) {
-    if (error_) return;
-    error_ = Error{code, offset(), field_, std::move(detail)};
-  }
+  void fail(ErrorCode code, std::string detail = {}) { fail_at(code, offset(), std::move(detail)); }
   // Fails naming an earlier absolute offset (e.g. the start of a field already read).
   void fail_at(ErrorCode code, std::size_t absolute_offset, std::string detail = {}) {
     if (error_) return;
-    error_ = Error{code, absolute_offset, field_, std::move(detail)};
+    error_ = std::make_unique<Error>(Error{code, absolute_offset, field_, std::move(detail)});
+    limit_ = pos_;
   }
-  bool failed() const { return error_.has_value(); }
-  const std::optional<Error>& error() const { return error_; }
+  bool failed() const { return error_ != nullptr; }
+  // The first error; only when failed().
+  const Error& error() const { return *error_; }
 
  private:
-  bool has_room(std::size_t n) const { return !error_ && bytes_.size() - pos_ >= n; }
+  // After a failure the limit drops to the current position, so the check
+  // below is the only one on the hot path.
+  bool has_room(std::size_t n) const { return limit_ - pos_ >= n; }
   // Kept out of line: the hot path is the bounds check above.
   [[gnu::noinline]] bool fail_truncated(std::size_t n) {
     if (!failed())
@@ -94,68 +99,73 @@ class ByteReader {
 
   std::span<const std::uint8_t> bytes_;
   std::size_t base_offset_ = 0;
+  std::size_t limit_ = 0;
   std::size_t pos_ = 0;
   std::string_view field_;
-  std::optional<Error> error_;
+  // Allocated only on failure, so that a healthy read or write costs nothing.
+  std::unique_ptr<Error> error_;
 };
 
 class ByteWriter {
  public:
-  explicit ByteWriter(std::span<std::uint8_t> out) : out_(out) {}
+  explicit ByteWriter(std::span<std::uint8_t> out)
+      : begin_(out.data()), cur_(out.data()), end_(out.data() + out.size()) {}
 
   template <WireScalar T>
-  bool write(T value) {
-    if (!has_room(sizeof(T))) [[unlikely]]
+  JAUS_ALWAYS_INLINE bool write(T value) {
+    if (static_cast<std::size_t>(end_ - cur_) < sizeof(T)) [[unlikely]]
       return fail_full();
-    detail::to_little_endian<T>(value, out_.data() + pos_);
-    pos_ += sizeof(T);
+    detail::to_little_endian<T>(value, cur_);
+    cur_ += sizeof(T);
     return true;
   }
 
   bool write_bytes(std::span<const std::uint8_t> bytes) {
-    if (!require(bytes.size())) return false;
-    if (!bytes.empty()) std::memcpy(out_.data() + pos_, bytes.data(), bytes.size());
-    pos_ += bytes.size();
+    if (static_cast<std::size_t>(end_ - cur_) < bytes.size()) return fail_full();
+    if (!bytes.empty()) std::memcpy(cur_, bytes.data(), bytes.size());
+    cur_ += bytes.size();
     return true;
   }
 
   bool write_zeros(std::size_t n) {
-    if (!require(n)) return false;
-    std::memset(out_.data() + pos_, 0, n);
-    pos_ += n;
+    if (static_cast<std::size_t>(end_ - cur_) < n) return fail_full();
+    std::memset(cur_, 0, n);
+    cur_ += n;
     return true;
   }
 
   // Overwrite already-written bytes (e.g. a count or size known only later).
   template <WireScalar T>
   void patch(std::size_t at, T value) {
-    if (!failed() && at + sizeof(T) <= pos_) detail::to_little_endian<T>(value, out_.data() + at);
+    if (!failed() && at + sizeof(T) <= size()) detail::to_little_endian<T>(value, begin_ + at);
   }
 
-  std::size_t size() const { return pos_; }
-  std::span<std::uint8_t> written() const { return out_.first(pos_); }
+  std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }
+  std::span<std::uint8_t> written() const { return {begin_, size()}; }
 
   void set_field(std::string_view field) { field_ = field; }
   std::string_view field() const { return field_; }
   void fail(ErrorCode code, std::string detail = {}) {
     if (error_) return;
-    error_ = Error{code, pos_, field_, std::move(detail)};
+    error_ = std::make_unique<Error>(Error{code, size(), field_, std::move(detail)});
+    end_ = cur_;  // nothing more fits: every later write fails fast
   }
-  bool failed() const { return error_.has_value(); }
-  const std::optional<Error>& error() const { return error_; }
+  bool failed() const { return error_ != nullptr; }
+  // The first error; only when failed().
+  const Error& error() const { return *error_; }
 
  private:
-  bool has_room(std::size_t n) const { return !error_ && out_.size() - pos_ >= n; }
   [[gnu::noinline]] bool fail_full() {
     fail(ErrorCode::output_too_small);
     return false;
   }
-  bool require(std::size_t n) { return has_room(n) || fail_full(); }
 
-  std::span<std::uint8_t> out_;
-  std::size_t pos_ = 0;
+  std::uint8_t* begin_;
+  std::uint8_t* cur_;
+  std::uint8_t* end_;
   std::string_view field_;
-  std::optional<Error> error_;
+  // Allocated only on failure, so that a healthy write costs nothing.
+  std::unique_ptr<Error> error_;
 };
 
 }  // namespace jaus

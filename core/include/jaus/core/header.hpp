@@ -2,7 +2,9 @@
 // little-endian.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <iterator>
 #include <cstdint>
 #include <span>
 
@@ -47,10 +49,57 @@ struct Header {
 
 // Writes the header; fields out of their bit range are an error.
 Expected<std::array<std::uint8_t, kHeaderSize>, Error> encode_header(const Header& header);
-void encode_header_unchecked(const Header& header, std::span<std::uint8_t, kHeaderSize> out);
+
+namespace detail {
+// Why a header was rejected (out of line: only bad packets get here).
+Error header_error(std::span<const std::uint8_t> bytes, const Header& decoded, unsigned data_flag);
+inline bool is_known_data_flag(unsigned flag) { return flag == 0 || flag == 1 || flag == 2 || flag == 4 || flag == 8; }
+}  // namespace detail
+
+// Writes the header as given, masking each field to its bits (hot path; the
+// encoder sets command code and data size itself).
+inline void encode_header_unchecked(const Header& h, std::span<std::uint8_t, kHeaderSize> out) {
+  std::uint8_t* p = out.data();
+  const auto properties = static_cast<std::uint16_t>(
+      (h.priority & 0x0F) | ((static_cast<unsigned>(h.ack_nak) & 0x03) << 4) | (h.service_connection ? 0x40 : 0) |
+      (h.experimental ? 0x80 : 0) | ((h.version & 0x3F) << 8));
+  const auto data_control =
+      static_cast<std::uint16_t>((h.data_size & 0x0FFF) | ((static_cast<unsigned>(h.data_flag) & 0x0F) << 12));
+  // Little-endian, byte by byte; addresses go instance, component, node, subsystem.
+  const std::uint8_t bytes[kHeaderSize] = {
+      static_cast<std::uint8_t>(properties), static_cast<std::uint8_t>(properties >> 8),
+      static_cast<std::uint8_t>(h.command_code), static_cast<std::uint8_t>(h.command_code >> 8),
+      h.destination.instance, h.destination.component, h.destination.node, h.destination.subsystem,
+      h.source.instance, h.source.component, h.source.node, h.source.subsystem,
+      static_cast<std::uint8_t>(data_control), static_cast<std::uint8_t>(data_control >> 8),
+      static_cast<std::uint8_t>(h.sequence), static_cast<std::uint8_t>(h.sequence >> 8)};
+  std::copy(std::begin(bytes), std::end(bytes), p);
+}
 
 // Reads and validates a header: version 1 or 2, known data flag, data size <= 4080.
-Expected<Header, Error> decode_header(std::span<const std::uint8_t> bytes);
+inline Expected<Header, Error> decode_header(std::span<const std::uint8_t> bytes) {
+  Header h;
+  if (bytes.size() < kHeaderSize) return unexpected(detail::header_error(bytes, h, 0));
+  const std::uint8_t* p = bytes.data();
+  const unsigned properties = p[0] | (p[1] << 8);
+  h.priority = properties & 0x0F;
+  h.ack_nak = static_cast<AckNak>((properties >> 4) & 0x03);
+  h.service_connection = (properties & 0x40) != 0;
+  h.experimental = (properties & 0x80) != 0;
+  h.version = static_cast<std::uint8_t>((properties >> 8) & 0x3F);
+  h.command_code = static_cast<std::uint16_t>(p[2] | (p[3] << 8));
+  h.destination = Address{p[7], p[6], p[5], p[4]};
+  h.source = Address{p[11], p[10], p[9], p[8]};
+  const unsigned data_control = p[12] | (p[13] << 8);
+  h.data_size = static_cast<std::uint16_t>(data_control & 0x0FFF);
+  const unsigned flag = data_control >> 12;
+  h.data_flag = static_cast<DataFlag>(flag);
+  h.sequence = static_cast<std::uint16_t>(p[14] | (p[15] << 8));
+  if ((h.version != kVersionRa30 && h.version != kVersionRa32) || !detail::is_known_data_flag(flag) ||
+      h.data_size > kMaxPayloadSize) [[unlikely]]
+    return unexpected(detail::header_error(bytes, h, flag));
+  return h;
+}
 
 // A received message: the header and a view of its payload, whose length the
 // header's data size must match exactly.
@@ -58,6 +107,17 @@ struct PacketView {
   Header header;
   std::span<const std::uint8_t> payload;
 };
-Expected<PacketView, Error> decode_packet(std::span<const std::uint8_t> bytes);
+namespace detail {
+Error packet_size_error(const Header& header, std::size_t payload_size);
+}
+inline Expected<PacketView, Error> decode_packet(std::span<const std::uint8_t> bytes) {
+  auto header = decode_header(bytes);
+  if (!header) [[unlikely]]
+    return unexpected(header.error());
+  const std::size_t payload_size = bytes.size() - kHeaderSize;
+  if (header->data_size != payload_size) [[unlikely]]
+    return unexpected(detail::packet_size_error(*header, payload_size));
+  return PacketView{*header, bytes.subspan(kHeaderSize)};
+}
 
 }  // namespace jaus

@@ -6,6 +6,7 @@
 //   decode: v = integer * scale + bias
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
@@ -39,19 +40,18 @@ struct ScaledRange {
     return static_cast<double>(static_cast<std::int64_t>(x + (x >= 0 ? 0.5 : -0.5)));
   }
 
-  constexpr I encode(double value) const {
-    if (!(value >= lower)) value = lower;  // also maps NaN to the lower limit
-    if (value > upper) value = upper;
-    const double exact = (value - bias()) / scale();
-    double raw = peer_rounding ? static_cast<double>(static_cast<std::int64_t>(exact + 0.5)) : round_half_away(exact);
-    constexpr double lo = std::is_signed_v<I> ? -static_cast<double>(std::numeric_limits<I>::max()) : 0.0;
-    constexpr double hi = static_cast<double>(std::numeric_limits<I>::max());
-    if (raw < lo) raw = lo;
-    if (raw > hi) raw = hi;
+  [[gnu::always_inline]] constexpr I encode(double value) const {
+    // Clamp first (NaN becomes the lower limit); a clamped value lands within
+    // the integer range after rounding, so the result needs no second clamp.
+    value = std::min(upper, std::max(lower, value));
+    // Multiplying by the constant steps-per-unit (folded at compile time)
+    // instead of dividing by the scale keeps the encoder free of divisions.
+    const double exact = (value - bias()) * (steps() / (upper - lower));
+    const double raw = peer_rounding ? static_cast<double>(static_cast<std::int64_t>(exact + 0.5)) : round_half_away(exact);
     return static_cast<I>(raw);
   }
 
-  constexpr double decode(I raw) const {
+  [[gnu::always_inline]] constexpr double decode(I raw) const {
     // The one signed value below -(2^(n-1) - 1) is outside the encoding; read it as the lower limit.
     if constexpr (std::is_signed_v<I>) {
       if (raw == std::numeric_limits<I>::min()) return lower;

@@ -5,8 +5,8 @@
 //
 // Every codec has:
 //   value_type                                    the member's type (engineering units)
-//   encode(const value_type&, ByteWriter&, CodecContext&)
-//   decode(ByteReader&, value_type&, CodecContext&)
+//   encode(const value_type&, ByteWriter&, Context&)
+//   decode(ByteReader&, value_type&, Context&)
 //   to_json<Json>(const value_type&) / from_json<Json>(const Json&, value_type&, std::string& why)
 // JSON members are templates so that this header does not pull in a JSON library.
 #pragma once
@@ -38,10 +38,19 @@ namespace jaus::wire {
 enum class Dialect : std::uint8_t { ra, openjaus };
 
 // State shared by the fields of one message while it is encoded or decoded.
-struct CodecContext {
-  Dialect dialect = Dialect::ra;
+// The dialect is a compile-time constant, so that the codecs' dialect choices
+// fold away: encode_payload/decode_payload_into pick the instantiation once.
+template <Dialect D>
+struct DialectContext {
+  static constexpr Dialect dialect = D;
   // Counts declared once and used by several arrays (e.g. the joint count of
   // Set Joint Motion, used by every pose).
+  std::array<std::uint32_t, 2> dims{};
+};
+
+// The same with the dialect chosen at run time (test generators, tools).
+struct CodecContext {
+  Dialect dialect = Dialect::ra;
   std::array<std::uint32_t, 2> dims{};
 };
 
@@ -122,8 +131,8 @@ struct Int {
   using value_type = T;
   using wire_type = T;
   std::string doc() const { return detail::wire_name<T>(); }
-  void encode(const T& v, ByteWriter& w, CodecContext&) const { w.write(v); }
-  void decode(ByteReader& r, T& v, CodecContext&) const { r.read(v); }
+  JAUS_ALWAYS_INLINE void encode(const T& v, ByteWriter& w, auto&) const { w.write(v); }
+  JAUS_ALWAYS_INLINE void decode(ByteReader& r, T& v, auto&) const { r.read(v); }
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
@@ -135,8 +144,8 @@ template <std::floating_point T>
 struct Real {
   using value_type = T;
   std::string doc() const { return detail::wire_name<T>(); }
-  void encode(const T& v, ByteWriter& w, CodecContext&) const { w.write(v); }
-  void decode(ByteReader& r, T& v, CodecContext&) const { r.read(v); }
+  JAUS_ALWAYS_INLINE void encode(const T& v, ByteWriter& w, auto&) const { w.write(v); }
+  JAUS_ALWAYS_INLINE void decode(ByteReader& r, T& v, auto&) const { r.read(v); }
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
@@ -172,24 +181,24 @@ struct Scaled {
   // as unsigned with bias = lower limit, divides 32-bit unsigned ranges into
   // 2^32 - 2 steps and rounds like that implementation.
   template <class W>
-  constexpr ScaledRange<W> range_for(const CodecContext& ctx) const {
+  constexpr ScaledRange<W> range_for(const auto& ctx) const {
     const bool peer = ctx.dialect == Dialect::openjaus;
     return ScaledRange<W>{lower, upper, peer, peer};
   }
-  bool uses_quirk(const CodecContext& ctx) const {
+  bool uses_quirk(const auto& ctx) const {
     if constexpr (std::is_signed_v<T>) {
       return quirk == Quirk::openjaus_unsigned_bias && ctx.dialect == Dialect::openjaus;
     } else {
       return false;
     }
   }
-  void encode(const double& v, ByteWriter& w, CodecContext& ctx) const {
+  JAUS_ALWAYS_INLINE void encode(const double& v, ByteWriter& w, auto& ctx) const {
     if (uses_quirk(ctx))
       w.write(range_for<std::make_unsigned_t<T>>(ctx).encode(v));
     else
       w.write(range_for<T>(ctx).encode(v));
   }
-  void decode(ByteReader& r, double& v, CodecContext& ctx) const {
+  JAUS_ALWAYS_INLINE void decode(ByteReader& r, double& v, auto& ctx) const {
     if (uses_quirk(ctx)) {
       std::make_unsigned_t<T> raw{};
       if (r.read(raw)) v = range_for<std::make_unsigned_t<T>>(ctx).decode(raw);
@@ -216,13 +225,13 @@ struct Linear {
   constexpr double step() const { return factor; }
   constexpr double lower() const { return static_cast<double>(std::numeric_limits<T>::min()) * factor; }
   constexpr double upper() const { return static_cast<double>(std::numeric_limits<T>::max()) * factor; }
-  void encode(const double& v, ByteWriter& w, CodecContext&) const {
+  void encode(const double& v, ByteWriter& w, auto&) const {
     double raw = ScaledRange<T>::round_half_away(std::isfinite(v) ? v / factor : 0.0);
     raw = std::clamp(raw, static_cast<double>(std::numeric_limits<T>::min()),
                      static_cast<double>(std::numeric_limits<T>::max()));
     w.write(static_cast<T>(raw));
   }
-  void decode(ByteReader& r, double& v, CodecContext&) const {
+  void decode(ByteReader& r, double& v, auto&) const {
     T raw{};
     if (r.read(raw)) v = static_cast<double>(raw) * factor;
   }
@@ -242,7 +251,7 @@ struct Text {
     return "text, " + std::to_string(N) + " bytes NUL padded" + (AcceptShorter ? " (shorter accepted)" : "");
   }
 
-  void encode(const std::string& v, ByteWriter& w, CodecContext&) const {
+  void encode(const std::string& v, ByteWriter& w, auto&) const {
     if (v.size() > N) {
       w.fail(ErrorCode::string_too_long, std::to_string(v.size()) + " > " + std::to_string(N) + " characters");
       return;
@@ -250,7 +259,7 @@ struct Text {
     w.write_bytes({reinterpret_cast<const std::uint8_t*>(v.data()), v.size()});
     w.write_zeros(N - v.size());
   }
-  void decode(ByteReader& r, std::string& v, CodecContext&) const {
+  void decode(ByteReader& r, std::string& v, auto&) const {
     std::span<const std::uint8_t> bytes;
     const std::size_t n = AcceptShorter ? std::min(N, r.remaining()) : N;
     if (!r.read_bytes(n, bytes)) return;
@@ -279,7 +288,7 @@ struct Text {
 struct Time {
   using value_type = TimeStamp;
   std::string doc() const { return "time stamp (u32)"; }
-  void encode(const TimeStamp& v, ByteWriter& w, CodecContext&) const {
+  void encode(const TimeStamp& v, ByteWriter& w, auto&) const {
     const auto raw = v.pack();
     if (!raw) {
       w.fail(ErrorCode::bad_value, "time stamp part out of its bit range");
@@ -287,7 +296,7 @@ struct Time {
     }
     w.write(*raw);
   }
-  void decode(ByteReader& r, TimeStamp& v, CodecContext&) const {
+  void decode(ByteReader& r, TimeStamp& v, auto&) const {
     std::uint32_t raw = 0;
     if (r.read(raw)) v = TimeStamp::unpack(raw);
   }
@@ -328,7 +337,7 @@ struct Time {
 struct Date {
   using value_type = DateStamp;
   std::string doc() const { return "date stamp (u16)"; }
-  void encode(const DateStamp& v, ByteWriter& w, CodecContext& ctx) const {
+  void encode(const DateStamp& v, ByteWriter& w, auto& ctx) const {
     DateStamp wire = v;
     if (ctx.dialect == Dialect::openjaus) {
       wire.month = static_cast<std::uint8_t>(v.month == 0 ? 0 : v.month - 1);
@@ -341,7 +350,7 @@ struct Date {
     }
     w.write(*raw);
   }
-  void decode(ByteReader& r, DateStamp& v, CodecContext& ctx) const {
+  void decode(ByteReader& r, DateStamp& v, auto& ctx) const {
     std::uint16_t raw = 0;
     if (!r.read(raw)) return;
     v = DateStamp::unpack(raw);
@@ -388,7 +397,7 @@ struct Bytes {
     if constexpr (std::is_void_v<SizeT>) return "bytes to the end (hex)";
     else return detail::wire_name<SizeT>() + " size + bytes (hex)";
   }
-  void encode(const value_type& v, ByteWriter& w, CodecContext&) const {
+  void encode(const value_type& v, ByteWriter& w, auto&) const {
     if constexpr (!std::is_void_v<SizeT>) {
       if (v.size() > std::numeric_limits<SizeT>::max()) {
         w.fail(ErrorCode::count_out_of_range, "too many bytes for the size field");
@@ -398,7 +407,7 @@ struct Bytes {
     }
     w.write_bytes(v);
   }
-  void decode(ByteReader& r, value_type& v, CodecContext&) const {
+  void decode(ByteReader& r, value_type& v, auto&) const {
     std::size_t n = r.remaining();
     if constexpr (!std::is_void_v<SizeT>) {
       SizeT size{};
@@ -436,13 +445,13 @@ bool Bytes<SizeT>::from_json(const Json& j, value_type& v, std::string& why) con
 struct AddressCodec {
   using value_type = Address;
   std::string doc() const { return "address S.N.C.I (4 x u8)"; }
-  void encode(const Address& v, ByteWriter& w, CodecContext&) const {
+  void encode(const Address& v, ByteWriter& w, auto&) const {
     w.write(v.subsystem);
     w.write(v.node);
     w.write(v.component);
     w.write(v.instance);
   }
-  void decode(ByteReader& r, Address& v, CodecContext&) const {
+  void decode(ByteReader& r, Address& v, auto&) const {
     r.read(v.subsystem);
     r.read(v.node);
     r.read(v.component);
@@ -481,7 +490,7 @@ struct EventLimit {
 struct EventLimitCodec {
   using value_type = EventLimit;
   std::string doc() const { return "event limit: u8 type + value"; }
-  void encode(const EventLimit& v, ByteWriter& w, CodecContext&) const {
+  void encode(const EventLimit& v, ByteWriter& w, auto&) const {
     const std::size_t n = EventLimit::size_of(v.type);
     if (n == 0) {
       w.fail(ErrorCode::bad_value, "event limit type " + std::to_string(v.type));
@@ -492,7 +501,7 @@ struct EventLimitCodec {
     jaus::detail::to_little_endian<std::uint64_t>(v.bits, raw.data());
     w.write_bytes(std::span<const std::uint8_t>(raw).first(n));
   }
-  void decode(ByteReader& r, EventLimit& v, CodecContext&) const {
+  void decode(ByteReader& r, EventLimit& v, auto&) const {
     if (!r.read(v.type)) return;
     const std::size_t n = EventLimit::size_of(v.type);
     if (n == 0) {
@@ -545,7 +554,7 @@ struct Dimension {
   using value_type = T;
   std::uint32_t min = 0;
   std::string doc() const { return detail::wire_name<T>() + " count (shared)"; }
-  void encode(const T& v, ByteWriter& w, CodecContext& ctx) const {
+  void encode(const T& v, ByteWriter& w, auto& ctx) const {
     if (v < min) {
       w.fail(ErrorCode::count_out_of_range, std::to_string(v) + " < " + std::to_string(min));
       return;
@@ -553,7 +562,7 @@ struct Dimension {
     ctx.dims[K] = v;
     w.write(v);
   }
-  void decode(ByteReader& r, T& v, CodecContext& ctx) const {
+  void decode(ByteReader& r, T& v, auto& ctx) const {
     if (!r.read(v)) return;
     if (v < min) r.fail(ErrorCode::count_out_of_range, std::to_string(v) + " < " + std::to_string(min));
     ctx.dims[K] = v;
@@ -566,7 +575,7 @@ struct Dimension {
 
 namespace detail {
 template <std::size_t K, std::uint32_t Less>
-bool encode_dim_count(const FromDim<K, Less>&, std::size_t n, ByteWriter& w, CodecContext& ctx) {
+bool encode_dim_count(const FromDim<K, Less>&, std::size_t n, ByteWriter& w, auto& ctx) {
   const std::size_t expected = ctx.dims[K] >= Less ? ctx.dims[K] - Less : 0;
   if (n != expected) {
     w.fail(ErrorCode::count_mismatch, std::to_string(n) + " elements, count says " + std::to_string(expected));
@@ -576,12 +585,12 @@ bool encode_dim_count(const FromDim<K, Less>&, std::size_t n, ByteWriter& w, Cod
 }
 
 template <std::size_t K, std::uint32_t Less>
-std::size_t decode_dim_count(const FromDim<K, Less>&, const CodecContext& ctx) {
+std::size_t decode_dim_count(const FromDim<K, Less>&, const auto& ctx) {
   return ctx.dims[K] >= Less ? ctx.dims[K] - Less : 0;
 }
 // Writes the count (Prefix) or checks it (FromDim). False on failure.
 template <class Count>
-bool encode_count(const Count& count, std::size_t n, ByteWriter& w, CodecContext& ctx) {
+bool encode_count(const Count& count, std::size_t n, ByteWriter& w, auto& ctx) {
   if constexpr (requires { typename Count::wire_type; }) {
     if (n < count.min || n > count.max) {
       w.fail(ErrorCode::count_out_of_range, std::to_string(n) + " elements, allowed " + std::to_string(count.min) +
@@ -596,7 +605,7 @@ bool encode_count(const Count& count, std::size_t n, ByteWriter& w, CodecContext
 // Reads or looks up the count; checks that the elements can fit in what is left
 // (each at least `min_element_size` bytes) before anything is allocated.
 template <class Count>
-bool decode_count(const Count& count, std::size_t min_element_size, ByteReader& r, CodecContext& ctx,
+bool decode_count(const Count& count, std::size_t min_element_size, ByteReader& r, auto& ctx,
                   std::size_t& n) {
   if constexpr (requires { typename Count::wire_type; }) {
     typename Count::wire_type raw{};

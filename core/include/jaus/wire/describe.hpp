@@ -125,10 +125,17 @@ std::uint32_t presence_of(const Body& body) {
 
 // ---- binary ----------------------------------------------------------------
 
+namespace detail {
+[[gnu::noinline, gnu::cold]] inline void fail_reserved_bits(ByteReader& r, std::size_t at, std::uint32_t defined,
+                                                             std::uint32_t pv) {
+  r.fail_at(ErrorCode::reserved_presence_bits, at, "defined bits are 0x" + hex_u32(defined) + ", got 0x" + hex_u32(pv));
+}
+}  // namespace detail
+
 template <class Body>
-void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx);
+void encode_fields(const Body& body, ByteWriter& w, auto& ctx);
 template <class Body>
-void decode_fields(ByteReader& r, Body& body, CodecContext& ctx);
+void decode_fields(ByteReader& r, Body& body, auto& ctx);
 
 template <class Codec>
 constexpr std::size_t min_wire_size() {
@@ -154,11 +161,11 @@ struct Array {
   Elem elem;
   std::string doc() const { return count_doc(count) + "each " + elem.doc(); }
 
-  void encode(const value_type& v, ByteWriter& w, CodecContext& ctx) const {
+  void encode(const value_type& v, ByteWriter& w, auto& ctx) const {
     if (!detail::encode_count(count, v.size(), w, ctx)) return;
     for (const auto& e : v) elem.encode(e, w, ctx);
   }
-  void decode(ByteReader& r, value_type& v, CodecContext& ctx) const {
+  void decode(ByteReader& r, value_type& v, auto& ctx) const {
     std::size_t n = 0;
     if (!detail::decode_count(count, min_wire_size<Elem>(), r, ctx, n)) return;
     v.resize(n);
@@ -200,11 +207,11 @@ struct Records {
   Count count;
   std::string doc() const { return count_doc(count) + "records of: " + fields_doc<Record>(""); }
 
-  void encode(const value_type& v, ByteWriter& w, CodecContext& ctx) const {
+  void encode(const value_type& v, ByteWriter& w, auto& ctx) const {
     if (!detail::encode_count(count, v.size(), w, ctx)) return;
     for (const auto& e : v) encode_fields(e, w, ctx);
   }
-  void decode(ByteReader& r, value_type& v, CodecContext& ctx) const {
+  void decode(ByteReader& r, value_type& v, auto& ctx) const {
     std::size_t n = 0;
     if (!detail::decode_count(count, 1, r, ctx, n)) return;
     v.resize(n);
@@ -220,16 +227,21 @@ struct Records {
 };
 
 template <class Body>
-void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx) {
+void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
   // A constant description lets the compiler fold every codec's limits.
   static constexpr auto fields = Body::describe();
+  // The presence vector is written as a placeholder and patched once the
+  // optional fields have been seen: one pass over the fields.
+  std::size_t pv_at = 0;
+  std::uint32_t pv = 0;
   std::apply(
       [&](const auto&... f) {
         (([&] {
            using F = std::decay_t<decltype(f)>;
            if constexpr (is_presence_vector<F>::value) {
              w.set_field("presence_vector");
-             w.write(static_cast<typename F::wire_type>(presence_of(body)));
+             pv_at = w.size();
+             w.write(typename F::wire_type{0});
            } else {
              w.set_field(f.name);
              if constexpr (F::is_optional) {
@@ -237,6 +249,7 @@ void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx) {
                  if (*f.only_in == ctx.dialect)
                    f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
                } else if ((body.*f.member).has_value()) {
+                 pv |= 1u << f.bit;
                  f.codec.encode(*(body.*f.member), w, ctx);
                }
              } else {
@@ -247,10 +260,14 @@ void encode_fields(const Body& body, ByteWriter& w, CodecContext& ctx) {
          ...);
       },
       fields);
+  if constexpr (has_presence_vector<Body>()) {
+    using Pv = typename std::decay_t<decltype(std::get<0>(fields))>::wire_type;
+    w.patch(pv_at, static_cast<Pv>(pv));
+  }
 }
 
 template <class Body>
-void decode_fields(ByteReader& r, Body& body, CodecContext& ctx) {
+void decode_fields(ByteReader& r, Body& body, auto& ctx) {
   static constexpr auto fields = Body::describe();
   std::uint32_t pv = 0;
   std::apply(
@@ -263,10 +280,8 @@ void decode_fields(ByteReader& r, Body& body, CodecContext& ctx) {
              if (!r.read(raw)) return;
              pv = raw;
              constexpr std::uint32_t defined = optional_mask<Body>();
-             if ((pv & ~defined) != 0) {
-               r.fail_at(ErrorCode::reserved_presence_bits, r.offset() - sizeof(raw),
-                         "defined bits are 0x" + detail::hex_u32(defined) + ", got 0x" + detail::hex_u32(pv));
-             }
+             if ((pv & ~defined) != 0) [[unlikely]]
+               detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
            } else {
              if constexpr (F::is_optional) {
                auto& member = body.*f.member;

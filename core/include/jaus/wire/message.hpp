@@ -49,9 +49,14 @@ template <class M>
 Expected<std::size_t, Error> encode_payload(const M& message, std::span<std::uint8_t> out,
                                             Dialect dialect = Dialect::ra) {
   ByteWriter w(out);
-  CodecContext ctx{dialect, {}};
-  encode_fields(message, w, ctx);
-  if (w.failed()) return unexpected(*w.error());
+  if (dialect == Dialect::openjaus) {
+    DialectContext<Dialect::openjaus> ctx;
+    encode_fields(message, w, ctx);
+  } else {
+    DialectContext<Dialect::ra> ctx;
+    encode_fields(message, w, ctx);
+  }
+  if (w.failed()) return unexpected(w.error());
   return w.size();
 }
 
@@ -61,12 +66,18 @@ template <class M>
 std::optional<Error> decode_payload_into(std::span<const std::uint8_t> payload, M& out,
                                          Dialect dialect = Dialect::ra, std::size_t base_offset = 0) {
   ByteReader r(payload, base_offset);
-  CodecContext ctx{dialect, {}};
-  decode_fields(r, out, ctx);
+  if (dialect == Dialect::openjaus) {
+    DialectContext<Dialect::openjaus> ctx;
+    decode_fields(r, out, ctx);
+  } else {
+    DialectContext<Dialect::ra> ctx;
+    decode_fields(r, out, ctx);
+  }
   if (!r.failed() && r.remaining() != 0) {
     r.set_field({});
     r.fail(ErrorCode::trailing_bytes, std::to_string(r.remaining()) + " bytes");
   }
+  if (!r.failed()) return std::nullopt;
   return r.error();
 }
 
