@@ -1,0 +1,42 @@
+// Time as the runtime sees it: injected, never read from the system here.
+// Production code drives the runtime from a Boost.Asio executor (transport/);
+// tests drive it from VirtualTime, so every timing rule runs deterministically.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+
+namespace jaus::rt {
+
+using Duration = std::chrono::nanoseconds;
+
+// Monotonic time since an arbitrary origin (the runtime's start).
+using TimePoint = std::chrono::time_point<std::chrono::steady_clock, Duration>;
+
+using UtcTime = std::chrono::time_point<std::chrono::system_clock, Duration>;
+
+class Clock {
+ public:
+  virtual ~Clock() = default;
+  virtual TimePoint now() const = 0;
+  // Wall-clock UTC, for Report Time and time stamps.
+  virtual UtcTime utc_now() const = 0;
+};
+
+using TimerId = std::uint64_t;
+inline constexpr TimerId kNoTimer = 0;
+
+// Runs callbacks at given times on the runtime's single thread of execution.
+class Scheduler {
+ public:
+  virtual ~Scheduler() = default;
+  // Calls `fn` once at `when` (or as soon as possible if `when` has passed).
+  virtual TimerId call_at(TimePoint when, std::function<void()> fn) = 0;
+  // Cancels a pending call; a no-op for ids that already ran or were cancelled.
+  virtual void cancel(TimerId id) = 0;
+  // Runs `fn` soon, after the current handler returns.
+  TimerId post(std::function<void()> fn, const Clock& clock) { return call_at(clock.now(), std::move(fn)); }
+};
+
+}  // namespace jaus::rt
