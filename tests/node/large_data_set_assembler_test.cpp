@@ -1,0 +1,441 @@
+#include "jaus/node/large_data_set_assembler.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "jaus/node/large_data_set_splitter.hpp"
+#include "jaus/runtime/virtual_time.hpp"
+#include "large_data_set_test_support.hpp"
+
+namespace jaus::node {
+namespace {
+
+using namespace std::chrono_literals;
+using test::image_header;
+using test::patterned_payload;
+
+// One packet with its own copy of the bytes (so tests can alter it).
+struct Packet {
+  Header header;
+  std::vector<std::uint8_t> payload;
+};
+
+std::vector<Packet> split(const Header& header, const std::vector<std::uint8_t>& payload) {
+  auto splitter = LargeDataSetSplitter::create(header, payload);
+  EXPECT_TRUE(splitter);
+  std::vector<Packet> packets;
+  for (const PacketView& view : splitter->packets())
+    packets.push_back({view.header, {view.payload.begin(), view.payload.end()}});
+  return packets;
+}
+
+AssemblyResult feed(LargeDataSetAssembler& assembler, const Packet& packet, rt::TimePoint now = {}) {
+  return assembler.feed(packet.header, packet.payload, now);
+}
+
+Packet retransmission_of(Packet packet) {
+  packet.header.data_flag = DataFlag::retransmitted;
+  return packet;
+}
+
+class LargeDataSetRoundTrip : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(LargeDataSetRoundTrip, SplitThenReassembleGivesThePayloadBack) {
+  const auto payload = patterned_payload(GetParam());
+  const auto packets = split(image_header(40), payload);
+  LargeDataSetAssembler assembler;
+  for (std::size_t i = 0; i + 1 < packets.size(); ++i)
+    EXPECT_EQ(feed(assembler, packets[i]).status, AssemblyStatus::pending) << i;
+  const auto last = feed(assembler, packets.back());
+  if (packets.size() == 1) {
+    EXPECT_EQ(last.status, AssemblyStatus::single);  // the caller uses the packet itself
+    EXPECT_EQ(packets[0].payload, payload);
+    return;
+  }
+  ASSERT_EQ(last.status, AssemblyStatus::complete);
+  ASSERT_TRUE(last.message);
+  EXPECT_EQ(last.message->payload, payload);
+  EXPECT_EQ(last.message->first_header, packets.front().header);
+  EXPECT_EQ(assembler.sets_in_progress(), 0u);
+  EXPECT_EQ(assembler.buffered_bytes(), 0u);
+  EXPECT_EQ(assembler.counters().completed, 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, LargeDataSetRoundTrip,
+                         ::testing::Values(0, 1, kMaxPayloadSize, kMaxPayloadSize + 1, 3 * kMaxPayloadSize + 1,
+                                           1024 * 1024));
+
+// Feeds `packets` in the order given by `order`; expects completion on the last one only.
+void expect_completes_in_order(const std::vector<Packet>& packets, const std::vector<std::size_t>& order,
+                               const std::vector<std::uint8_t>& payload) {
+  LargeDataSetAssembler assembler;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto result = feed(assembler, packets[order[i]]);
+    if (i + 1 < order.size()) {
+      ASSERT_EQ(result.status, AssemblyStatus::pending) << "packet " << order[i];
+    } else {
+      ASSERT_EQ(result.status, AssemblyStatus::complete);
+      EXPECT_EQ(result.message->payload, payload);
+      EXPECT_EQ(result.message->first_header.data_flag, DataFlag::first);
+    }
+  }
+}
+
+TEST(LargeDataSetAssembler, EveryArrivalOrderOfAFourPacketSet) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize + 17);
+  const auto packets = split(image_header(1000), payload);
+  ASSERT_EQ(packets.size(), 4u);
+  std::vector<std::size_t> order{0, 1, 2, 3};
+  int permutations = 0;
+  do {
+    SCOPED_TRACE(::testing::PrintToString(order));
+    expect_completes_in_order(packets, order, payload);
+    ++permutations;
+  } while (std::next_permutation(order.begin(), order.end()));
+  EXPECT_EQ(permutations, 24);
+}
+
+TEST(LargeDataSetAssembler, EveryArrivalOrderAcrossTheSequenceWrap) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize + 17);
+  const auto packets = split(image_header(65534), payload);  // 65534, 65535, 0, 1
+  ASSERT_EQ(packets[2].header.sequence, 0);
+  std::vector<std::size_t> order{0, 1, 2, 3};
+  do {
+    SCOPED_TRACE(::testing::PrintToString(order));
+    expect_completes_in_order(packets, order, payload);
+  } while (std::next_permutation(order.begin(), order.end()));
+}
+
+TEST(LargeDataSetAssembler, DuplicatesAreIgnoredAndCounted) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize);
+  const auto packets = split(image_header(5), payload);
+  LargeDataSetAssembler assembler;
+  EXPECT_EQ(feed(assembler, packets[0]).status, AssemblyStatus::pending);
+  auto duplicate_first = feed(assembler, packets[0]);
+  EXPECT_EQ(duplicate_first.status, AssemblyStatus::dropped);
+  EXPECT_EQ(duplicate_first.issue, AssemblyIssue::duplicate);
+  EXPECT_EQ(feed(assembler, packets[2]).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(assembler, packets[2]).issue, AssemblyIssue::duplicate);
+  // A duplicate with different bytes is still a duplicate: the first copy stays.
+  Packet altered_middle = packets[1];
+  altered_middle.payload[0] ^= 0xFF;
+  EXPECT_EQ(feed(assembler, packets[1]).status, AssemblyStatus::complete);
+  // Late copies of a completed set are recognised, not taken for a new set.
+  EXPECT_EQ(feed(assembler, altered_middle).issue, AssemblyIssue::duplicate);
+  EXPECT_EQ(feed(assembler, packets[2]).issue, AssemblyIssue::duplicate);
+  EXPECT_EQ(feed(assembler, packets[0]).issue, AssemblyIssue::duplicate);
+  EXPECT_EQ(feed(assembler, retransmission_of(packets[1])).issue, AssemblyIssue::duplicate);
+  EXPECT_EQ(assembler.sets_in_progress(), 0u);
+  EXPECT_EQ(assembler.counters().duplicates, 6u);
+  EXPECT_EQ(assembler.counters().completed, 1u);
+}
+
+TEST(LargeDataSetAssembler, DuplicateMiddleBeforeCompletion) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize);
+  const auto packets = split(image_header(5), payload);
+  LargeDataSetAssembler assembler;
+  feed(assembler, packets[1]);
+  EXPECT_EQ(feed(assembler, packets[1]).issue, AssemblyIssue::duplicate);
+  feed(assembler, packets[0]);
+  const auto done = feed(assembler, packets[2]);
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+}
+
+TEST(LargeDataSetAssembler, ARetransmittedPacketReplacesTheOneWithItsNumber) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize);
+  const auto packets = split(image_header(300), payload);
+  LargeDataSetAssembler assembler;
+  Packet corrupted = packets[1];
+  std::fill(corrupted.payload.begin(), corrupted.payload.end(), 0xEE);
+  feed(assembler, packets[0]);
+  feed(assembler, corrupted);
+  const auto replaced = feed(assembler, retransmission_of(packets[1]));
+  EXPECT_EQ(replaced.status, AssemblyStatus::pending);
+  EXPECT_EQ(replaced.issue, AssemblyIssue::replaced);
+  const auto done = feed(assembler, packets[2]);
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+  EXPECT_EQ(assembler.counters().replaced, 1u);
+}
+
+TEST(LargeDataSetAssembler, ARetransmissionFillsAGap) {
+  const auto payload = patterned_payload(4 * kMaxPayloadSize);
+  const auto packets = split(image_header(300), payload);
+  LargeDataSetAssembler assembler;
+  feed(assembler, packets[0]);
+  feed(assembler, packets[1]);
+  feed(assembler, packets[3]);
+  const auto done = feed(assembler, retransmission_of(packets[2]));  // packet 2 was lost
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+}
+
+TEST(LargeDataSetAssembler, ARetransmittedLastPacketBeforeItsOriginalOnlyLacksItsRole) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize);
+  const auto packets = split(image_header(300), payload);
+  LargeDataSetAssembler assembler;
+  feed(assembler, packets[0]);
+  feed(assembler, retransmission_of(packets[2]));
+  feed(assembler, packets[1]);
+  const auto done = feed(assembler, packets[2]);  // the original, late
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+}
+
+TEST(LargeDataSetAssembler, ARetransmissionWithoutASetIsDropped) {
+  const auto packets = split(image_header(0), patterned_payload(2 * kMaxPayloadSize));
+  LargeDataSetAssembler assembler;
+  const auto result = feed(assembler, retransmission_of(packets[1]));
+  EXPECT_EQ(result.status, AssemblyStatus::dropped);
+  EXPECT_EQ(result.issue, AssemblyIssue::unmatched_retransmission);
+  EXPECT_EQ(assembler.counters().unmatched_retransmissions, 1u);
+  EXPECT_EQ(assembler.sets_in_progress(), 0u);
+}
+
+TEST(LargeDataSetAssembler, AnIncompleteSetTimesOutUnderVirtualTime) {
+  rt::VirtualTime time;
+  const auto packets = split(image_header(77), patterned_payload(4 * kMaxPayloadSize));
+  LargeDataSetAssembler assembler;  // default timeout: 5 s
+  feed(assembler, packets[0], time.now());
+  time.advance(2s);
+  feed(assembler, packets[1], time.now());
+  feed(assembler, packets[3], time.now());  // packets[2] never arrives
+  EXPECT_EQ(assembler.next_deadline(), time.now() + 5s);
+
+  time.advance(4999ms);
+  EXPECT_TRUE(assembler.expire(time.now()).empty());
+  // Duplicates are no progress: they do not keep the set alive.
+  EXPECT_EQ(feed(assembler, packets[1], time.now()).issue, AssemblyIssue::duplicate);
+  time.advance(1ms);
+  const auto expired = assembler.expire(time.now());
+  ASSERT_EQ(expired.size(), 1u);
+  EXPECT_EQ(expired[0].key, (LargeDataSetKey{packets[0].header.source, 0x4807}));
+  EXPECT_EQ(expired[0].reason, AssemblyIssue::timed_out);
+  EXPECT_EQ(expired[0].packets, 3u);
+  EXPECT_EQ(expired[0].bytes, 3 * kMaxPayloadSize);
+  EXPECT_EQ(assembler.counters().timed_out, 1u);
+  EXPECT_EQ(assembler.sets_in_progress(), 0u);
+  EXPECT_EQ(assembler.buffered_bytes(), 0u);
+  EXPECT_FALSE(assembler.next_deadline());
+
+  // The straggler arrives too late: it cannot complete anything.
+  const auto late = feed(assembler, packets[2], time.now());
+  EXPECT_EQ(late.status, AssemblyStatus::pending);
+  EXPECT_EQ(assembler.sets_in_progress(), 1u);
+}
+
+TEST(LargeDataSetAssembler, AStaleSetIsDiscardedWhenItsKeyIsSeenAgain) {
+  rt::VirtualTime time;
+  const auto payload = patterned_payload(2 * kMaxPayloadSize);
+  const auto old_packets = split(image_header(10), payload);
+  const auto new_packets = split(image_header(12), payload);
+  LargeDataSetAssembler assembler({.timeout = 1s});
+  feed(assembler, old_packets[0], time.now());
+  time.advance(1s);
+  EXPECT_EQ(feed(assembler, new_packets[0], time.now()).issue, AssemblyIssue::none);  // not "superseded"
+  EXPECT_EQ(assembler.counters().timed_out, 1u);
+  EXPECT_EQ(feed(assembler, new_packets[1], time.now()).status, AssemblyStatus::complete);
+}
+
+TEST(LargeDataSetAssembler, AnOversizeSetIsDiscardedWithItsRest) {
+  const auto packets = split(image_header(0), patterned_payload(4 * kMaxPayloadSize));
+  LargeDataSetAssembler assembler({.max_message_size = 2 * kMaxPayloadSize + 100});
+  EXPECT_EQ(feed(assembler, packets[0]).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(assembler, packets[1]).status, AssemblyStatus::pending);
+  const auto over = feed(assembler, packets[2]);
+  EXPECT_EQ(over.status, AssemblyStatus::dropped);
+  EXPECT_EQ(over.issue, AssemblyIssue::oversize);
+  EXPECT_EQ(assembler.buffered_bytes(), 0u);
+  EXPECT_EQ(assembler.sets_in_progress(), 0u);
+  EXPECT_EQ(feed(assembler, packets[3]).issue, AssemblyIssue::rest_of_discarded_set);
+  EXPECT_EQ(assembler.counters().oversize, 1u);
+  EXPECT_EQ(assembler.counters().rest_of_discarded_sets, 1u);
+
+  // The sender's next message, within the limit, goes through.
+  const auto payload = patterned_payload(2 * kMaxPayloadSize);
+  const auto next = split(image_header(4), payload);
+  feed(assembler, next[0]);
+  const auto done = feed(assembler, next[1]);
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+}
+
+TEST(LargeDataSetAssembler, PacketsPerSetAreBounded) {
+  const auto packets = split(image_header(0), patterned_payload(5 * kMaxPayloadSize + 40));  // 6 packets
+  LargeDataSetAssembler assembler({.max_packets_per_set = 3});
+  feed(assembler, packets[0]);
+  feed(assembler, packets[1]);
+  feed(assembler, packets[2]);
+  // With the first packet known, number 3 lies beyond what a set may span.
+  EXPECT_EQ(feed(assembler, packets[3]).issue, AssemblyIssue::inconsistent);
+
+  // Without it, the fourth packet held outgrows the set.
+  LargeDataSetAssembler headless({.max_packets_per_set = 3});
+  feed(headless, packets[1]);
+  feed(headless, packets[2]);
+  feed(headless, packets[3]);
+  EXPECT_EQ(feed(headless, packets[4]).issue, AssemblyIssue::oversize);
+  EXPECT_EQ(feed(headless, packets[5]).issue, AssemblyIssue::rest_of_discarded_set);
+  EXPECT_EQ(headless.counters().oversize, 1u);
+  EXPECT_EQ(headless.buffered_bytes(), 0u);
+}
+
+TEST(LargeDataSetAssembler, ARetransmissionThatOutgrowsTheLimitDiscardsTheSet) {
+  const auto packets = split(image_header(0), patterned_payload(2 * kMaxPayloadSize + 10));
+  LargeDataSetAssembler assembler({.max_message_size = kMaxPayloadSize + 5});
+  Packet short_first = packets[0];
+  short_first.payload.resize(100);
+  short_first.header.data_size = 100;
+  feed(assembler, short_first);
+  feed(assembler, packets[2]);  // 110 bytes held, the middle one missing
+  EXPECT_EQ(feed(assembler, retransmission_of(packets[0])).issue, AssemblyIssue::oversize);  // would be 4090
+  EXPECT_EQ(assembler.buffered_bytes(), 0u);
+}
+
+TEST(LargeDataSetAssembler, ConcurrentSetsAreBounded) {
+  LargeDataSetAssembler assembler({.max_concurrent_sets = 2});
+  const auto payload = patterned_payload(2 * kMaxPayloadSize);
+  const auto a = split(image_header(0, Address{1, 1, 37, 1}), payload);
+  const auto b = split(image_header(0, Address{1, 1, 37, 2}), payload);
+  const auto c = split(image_header(0, Address{1, 1, 37, 3}), payload);
+  feed(assembler, a[0]);
+  feed(assembler, b[0]);
+  const auto refused = feed(assembler, c[0]);
+  EXPECT_EQ(refused.status, AssemblyStatus::dropped);
+  EXPECT_EQ(refused.issue, AssemblyIssue::too_many_sets);
+  EXPECT_EQ(assembler.counters().too_many_sets, 1u);
+  // Finishing one makes room.
+  EXPECT_EQ(feed(assembler, a[1]).status, AssemblyStatus::complete);
+  EXPECT_EQ(feed(assembler, c[0]).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(assembler, c[1]).status, AssemblyStatus::complete);
+}
+
+TEST(LargeDataSetAssembler, StaleSetsMakeRoomForNewOnes) {
+  rt::VirtualTime time;
+  LargeDataSetAssembler assembler({.max_concurrent_sets = 1, .timeout = 5s});
+  const auto payload = patterned_payload(2 * kMaxPayloadSize);
+  const auto a = split(image_header(0, Address{1, 1, 37, 1}), payload);
+  const auto b = split(image_header(0, Address{1, 1, 37, 2}), payload);
+  feed(assembler, a[0], time.now());
+  EXPECT_EQ(feed(assembler, b[0], time.now()).issue, AssemblyIssue::too_many_sets);
+  time.advance(5s);
+  EXPECT_EQ(feed(assembler, b[0], time.now()).status, AssemblyStatus::pending);
+  EXPECT_EQ(assembler.counters().timed_out, 1u);
+}
+
+TEST(LargeDataSetAssembler, InterleavedSetsFromTwoSources) {
+  const auto payload_a = patterned_payload(3 * kMaxPayloadSize, 1);
+  const auto payload_b = patterned_payload(3 * kMaxPayloadSize - 5, 2);
+  // Same command code and the same sequence numbers: only the source tells them apart.
+  const auto a = split(image_header(20, Address{1, 1, 37, 1}), payload_a);
+  const auto b = split(image_header(20, Address{3, 2, 37, 1}), payload_b);
+  LargeDataSetAssembler assembler;
+  feed(assembler, a[0]);
+  feed(assembler, b[2]);
+  feed(assembler, b[0]);
+  feed(assembler, a[2]);
+  EXPECT_EQ(assembler.sets_in_progress(), 2u);
+  const auto done_b = feed(assembler, b[1]);
+  const auto done_a = feed(assembler, a[1]);
+  ASSERT_EQ(done_a.status, AssemblyStatus::complete);
+  ASSERT_EQ(done_b.status, AssemblyStatus::complete);
+  EXPECT_EQ(done_a.message->payload, payload_a);
+  EXPECT_EQ(done_b.message->payload, payload_b);
+  EXPECT_EQ(done_a.message->first_header.source, (Address{1, 1, 37, 1}));
+  EXPECT_EQ(done_b.message->first_header.source, (Address{3, 2, 37, 1}));
+}
+
+TEST(LargeDataSetAssembler, InterleavedCommandCodesFromOneSource) {
+  const auto image = patterned_payload(2 * kMaxPayloadSize + 1, 3);
+  const auto map = patterned_payload(2 * kMaxPayloadSize + 2, 4);
+  Header map_header = image_header(50);
+  map_header.command_code = 0x4A21;
+  const auto image_packets = split(image_header(47), image);  // numbers 47-49, then the map's 50-52
+  const auto map_packets = split(map_header, map);
+  LargeDataSetAssembler assembler;
+  feed(assembler, image_packets[0]);
+  feed(assembler, map_packets[0]);
+  feed(assembler, map_packets[1]);
+  feed(assembler, image_packets[1]);
+  const auto single = feed(assembler, Packet{image_header(60), {}});  // a single packet passes straight through
+  EXPECT_EQ(single.status, AssemblyStatus::single);
+  const auto done_image = feed(assembler, image_packets[2]);
+  const auto done_map = feed(assembler, map_packets[2]);
+  ASSERT_EQ(done_image.status, AssemblyStatus::complete);
+  ASSERT_EQ(done_map.status, AssemblyStatus::complete);
+  EXPECT_EQ(done_image.message->payload, image);
+  EXPECT_EQ(done_map.message->payload, map);
+  EXPECT_EQ(done_map.message->first_header.command_code, 0x4A21);
+  EXPECT_EQ(assembler.counters().singles, 1u);
+}
+
+TEST(LargeDataSetAssembler, ANewFirstPacketSupersedesAnUnfinishedSet) {
+  const auto abandoned = split(image_header(0), patterned_payload(3 * kMaxPayloadSize, 5));
+  const auto payload = patterned_payload(2 * kMaxPayloadSize, 6);
+  const auto next = split(image_header(3), payload);
+  LargeDataSetAssembler assembler;
+  feed(assembler, abandoned[0]);
+  feed(assembler, abandoned[1]);
+  const auto started = feed(assembler, next[0]);
+  EXPECT_EQ(started.status, AssemblyStatus::pending);
+  EXPECT_EQ(started.issue, AssemblyIssue::superseded);
+  EXPECT_EQ(assembler.counters().superseded, 1u);
+  const auto done = feed(assembler, next[1]);
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+}
+
+TEST(LargeDataSetAssembler, StrayPacketsOutsideTheSetAreDroppedAsInconsistent) {
+  const auto payload = patterned_payload(3 * kMaxPayloadSize);
+  const auto packets = split(image_header(100), payload);
+  LargeDataSetAssembler assembler;
+  Packet stray = packets[1];
+  stray.header.sequence = 90;  // before the first packet: cannot belong to this set
+  feed(assembler, stray);
+  feed(assembler, packets[1]);
+  feed(assembler, packets[0]);  // now 90 is known to lie outside: dropped
+  EXPECT_EQ(assembler.counters().inconsistent, 1u);
+  Packet second_last = packets[2];
+  second_last.header.sequence = 101;
+  feed(assembler, packets[2]);
+  EXPECT_EQ(feed(assembler, second_last).issue, AssemblyIssue::duplicate);  // 101 already held
+  assembler = LargeDataSetAssembler{};
+  feed(assembler, packets[0]);
+  feed(assembler, packets[2]);
+  Packet another_last = packets[2];
+  another_last.header.sequence = 103;
+  EXPECT_EQ(feed(assembler, another_last).issue, AssemblyIssue::inconsistent);
+  Packet beyond_last = packets[1];
+  beyond_last.header.sequence = 103;
+  EXPECT_EQ(feed(assembler, beyond_last).issue, AssemblyIssue::inconsistent);
+  const auto done = feed(assembler, packets[1]);
+  ASSERT_EQ(done.status, AssemblyStatus::complete);
+  EXPECT_EQ(done.message->payload, payload);
+}
+
+TEST(LargeDataSetAssembler, APacketWhoseSizeDisagreesIsDropped) {
+  LargeDataSetAssembler assembler;
+  Header header = image_header(0);
+  header.data_flag = DataFlag::first;
+  header.data_size = 10;
+  const std::vector<std::uint8_t> nine(9);
+  const auto result = assembler.feed(header, nine, {});
+  EXPECT_EQ(result.status, AssemblyStatus::dropped);
+  EXPECT_EQ(result.issue, AssemblyIssue::bad_packet);
+  header.data_size = 9;
+  header.data_flag = static_cast<DataFlag>(3);
+  EXPECT_EQ(assembler.feed(header, nine, {}).issue, AssemblyIssue::bad_packet);
+  EXPECT_EQ(assembler.counters().bad_packets, 2u);
+  EXPECT_EQ(assembler.sets_in_progress(), 0u);
+}
+
+TEST(LargeDataSetAssembler, IssuesHaveNames) {
+  EXPECT_EQ(to_string(AssemblyIssue::timed_out), "large data set incomplete at timeout, discarded");
+  EXPECT_EQ(to_string(AssemblyIssue::duplicate), "duplicate packet");
+}
+
+}  // namespace
+}  // namespace jaus::node

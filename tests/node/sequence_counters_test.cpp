@@ -1,0 +1,53 @@
+#include "jaus/node/sequence_counters.hpp"
+
+#include <gtest/gtest.h>
+
+namespace jaus::node {
+namespace {
+
+const Address kDriver{1, 1, 33, 1};
+const Address kOcu{2, 1, 40, 1};
+const Address kOtherOcu{3, 1, 40, 1};
+
+TEST(SequenceCounters, EachStreamCountsFromZero) {
+  SequenceCounters counters;
+  EXPECT_EQ(counters.take({kDriver, kOcu}), 0);
+  EXPECT_EQ(counters.take({kDriver, kOcu}), 1);
+  EXPECT_EQ(counters.take({kDriver, kOtherOcu}), 0);
+  EXPECT_EQ(counters.take({kOcu, kDriver}), 0);
+  EXPECT_EQ(counters.peek({kDriver, kOcu}), 2);
+  EXPECT_EQ(counters.size(), 3u);
+}
+
+TEST(SequenceCounters, ReservesARunForALargeDataSet) {
+  SequenceCounters counters;
+  EXPECT_EQ(counters.take({kDriver, kOcu}, 5), 0);
+  EXPECT_EQ(counters.take({kDriver, kOcu}), 5);
+}
+
+TEST(SequenceCounters, WrapsAfter65535) {
+  SequenceCounters counters;
+  const SequenceStream stream{kDriver, kOcu};
+  counters.take(stream, 65534);
+  EXPECT_EQ(counters.take(stream), 65534);
+  EXPECT_EQ(counters.take(stream), 65535);
+  EXPECT_EQ(counters.take(stream), 0);
+  counters.take(stream, 65533);
+  EXPECT_EQ(counters.take(stream, 4), 65534);  // a run may straddle the wrap
+  EXPECT_EQ(counters.take(stream), 2);
+}
+
+TEST(SequenceCounters, ForgetsTheLeastRecentlyUsedStreamWhenFull) {
+  SequenceCounters counters(SequenceCounters::Options{.max_streams = 2});
+  counters.take({kDriver, kOcu}, 10);
+  counters.take({kDriver, kOtherOcu}, 20);
+  counters.take({kDriver, kOcu});          // kOcu is now the most recent
+  counters.take({kOcu, kDriver});          // evicts kDriver -> kOtherOcu
+  EXPECT_EQ(counters.size(), 2u);
+  EXPECT_EQ(counters.evicted(), 1u);
+  EXPECT_EQ(counters.peek({kDriver, kOcu}), 11);
+  EXPECT_EQ(counters.peek({kDriver, kOtherOcu}), 0);
+}
+
+}  // namespace
+}  // namespace jaus::node
