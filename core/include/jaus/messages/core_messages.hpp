@@ -2,6 +2,7 @@
 #pragma once
 
 #include "jaus/messages/common.hpp"
+#include "jaus/runtime/primary_status.hpp"
 
 namespace jaus::msg {
 
@@ -109,8 +110,6 @@ struct PresenceQueryBody {
   }
 };
 
-// Primary status codes of Report Component Status (bits 0-3).
-enum class PrimaryStatus : std::uint8_t { initialize = 0, ready = 1, standby = 2, shutdown = 3, failure = 4, emergency = 5 };
 
 struct ComponentStatusBody {
   std::uint8_t primary_status = 0;    // bits 0-3 PrimaryStatus, bits 4-7 available

@@ -1,0 +1,161 @@
+// The behaviour every JAUS component shares: identity and authority, the
+// lifecycle, control arbitration with controller liveness, emergency holders,
+// the core queries, and a handler table by command code that enforces who may
+// command and in which state.
+//
+// Safety (where "the platform is commanded to stop" is kept): a component
+// that drives hardware overrides command_stop(). It is called
+//   - whenever the lifecycle leaves Ready (Standby, Emergency, Reset, Shutdown, Failure),
+//   - whenever control is lost (released, taken over, or controller silent),
+// see Component::enforce_stop(). Commands that move hardware are registered
+// `ready_only`, so nothing moves outside Ready or without a live controller.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "jaus/messages/core_messages.hpp"
+#include "jaus/runtime/control_arbiter.hpp"
+#include "jaus/runtime/emergency_latch.hpp"
+#include "jaus/runtime/environment.hpp"
+#include "jaus/runtime/lifecycle.hpp"
+
+namespace jaus::rt {
+
+struct ComponentConfig {
+  std::string name = "component";
+  Address address;
+  std::uint8_t authority = 0;
+  // Silence from the controller longer than this releases control (0 disables).
+  Duration controller_timeout = std::chrono::seconds(3);
+  // Refused control requests get Reject Component Control instead of Confirm 2.
+  bool reject_refused_requests = false;
+};
+
+struct ComponentCounters {
+  std::uint64_t received = 0;
+  std::uint64_t decode_errors = 0;
+  std::uint64_t unsupported = 0;
+  std::uint64_t refused_not_controller = 0;
+  std::uint64_t refused_wrong_state = 0;
+  std::uint64_t refused_transitions = 0;
+  std::uint64_t refused_clears = 0;
+  std::uint64_t control_changes = 0;
+  std::uint64_t stops_commanded = 0;
+};
+
+class Component {
+ public:
+  Component(ComponentConfig config, Environment env);
+  virtual ~Component();
+  Component(const Component&) = delete;
+  Component& operator=(const Component&) = delete;
+
+  // Runs initialisation: Initialize -> Ready, or Failure.
+  void start();
+  // One received message (header + payload). Never throws; bad payloads are
+  // counted and logged, never acted upon.
+  void receive(const Header& header, std::span<const std::uint8_t> payload,
+               wire::Dialect dialect = wire::Dialect::ra);
+
+  const Address& address() const { return config_.address; }
+  const std::string& name() const { return config_.name; }
+  PrimaryStatus state() const { return lifecycle_.state(); }
+  const ControlArbiter& control() const { return control_; }
+  const EmergencyLatch& emergency() const { return emergency_; }
+  const ComponentCounters& counters() const { return counters_; }
+
+ protected:
+  // Who may have a message executed.
+  enum class Access { anyone, controller };
+
+  template <class M>
+  void handle(Access access, bool ready_only, std::function<void(const Header&, const M&)> fn) {
+    handlers_[M::code] = Handler{access, ready_only, M::name,
+                                 [fn = std::move(fn)](const Header& h, std::span<const std::uint8_t> payload,
+                                                      wire::Dialect dialect) -> std::optional<Error> {
+                                   M message{};
+                                   if (auto error = wire::decode_payload_into(payload, message, dialect, kHeaderSize))
+                                     return error;
+                                   fn(h, message);
+                                   return std::nullopt;
+                                 }};
+  }
+
+  template <class M>
+  void send(const Address& to, const M& message, std::uint8_t priority = priority::kDefault) {
+    std::vector<std::uint8_t> payload(kMaxPayloadSize);
+    auto size = wire::encode_payload(message, payload);
+    if (!size) {
+      log(LogLevel::error, std::string("cannot encode ") + std::string(M::name) + ": " + size.error().message());
+      return;
+    }
+    Header header;
+    header.priority = priority;
+    header.command_code = M::code;
+    header.destination = to;
+    header.source = config_.address;
+    header.data_size = static_cast<std::uint16_t>(*size);
+    env_.outbox.send(header, std::span(payload).first(*size));
+  }
+
+  // Hooks for derived components.
+  virtual bool initialize() { return true; }
+  // Bring the hardware to rest (drive: zero effort; arm: hold). Idempotent.
+  virtual void command_stop(std::string_view /*why*/) {}
+  // Component-specific secondary status bits (16-31 of Report Component Status).
+  virtual std::uint32_t component_status_bits() const { return 0; }
+
+  void log(LogLevel level, const std::string& text) const;
+  Environment& env() { return env_; }
+
+ private:
+  using Invoke = std::function<std::optional<Error>(const Header&, std::span<const std::uint8_t>, wire::Dialect)>;
+  struct Handler {
+    Access access;
+    bool ready_only;
+    std::string_view name;
+    Invoke invoke;
+  };
+
+  void register_core_handlers();
+  void run_initialisation();
+  void transition(LifecycleEvent event, const Address& by);
+  void enforce_stop(std::string_view why);
+  void refuse_not_controller(const Header& header, std::string_view what);
+
+  // Control.
+  void on_request_control(const Header& header, const msg::RequestComponentControl& request);
+  void on_release_control(const Header& header);
+  void take_control_away(std::string_view why);
+  void arm_controller_watch();
+  void check_controller();
+
+  // Emergency.
+  void on_set_emergency(const Header& header, const msg::SetEmergency& message);
+  void on_clear_emergency(const Header& header, const msg::ClearEmergency& message);
+
+  // Time.
+  UtcTime component_time() const;
+  void on_set_time(const msg::SetTime& message);
+
+  ComponentConfig config_;
+  Environment env_;
+  Lifecycle lifecycle_;
+  ControlArbiter control_;
+  EmergencyLatch emergency_;
+  ComponentCounters counters_;
+  std::unordered_map<std::uint16_t, Handler> handlers_;
+  TimePoint controller_last_heard_{};
+  TimerId controller_timer_ = kNoTimer;
+  Duration time_offset_{};  // Set Time moves this component's clock, not the system's
+  std::map<Address, TimePoint> refusal_logged_;  // rate limit of "not the controller" logs
+};
+
+}  // namespace jaus::rt

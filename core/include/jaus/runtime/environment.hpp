@@ -1,0 +1,31 @@
+// What a component is given by its node: time, timers, a way out, a log.
+#pragma once
+
+#include <functional>
+#include <span>
+#include <string>
+
+#include "jaus/core/header.hpp"
+#include "jaus/runtime/time.hpp"
+
+namespace jaus::rt {
+
+// Where a component's messages go: the node in production, a recorder in tests.
+// The node stamps sequence numbers; the component fills everything else.
+class Outbox {
+ public:
+  virtual ~Outbox() = default;
+  virtual void send(const Header& header, std::span<const std::uint8_t> payload) = 0;
+};
+
+enum class LogLevel { debug, info, warn, error };
+using LogFn = std::function<void(LogLevel, const std::string&)>;
+
+struct Environment {
+  Clock& clock;
+  Scheduler& scheduler;
+  Outbox& outbox;
+  LogFn log = [](LogLevel, const std::string&) {};
+};
+
+}  // namespace jaus::rt

@@ -1,0 +1,322 @@
+#include "jaus/runtime/component.hpp"
+
+#include <chrono>
+
+#include "jaus/messages/communications_messages.hpp"
+
+namespace jaus::rt {
+
+namespace {
+// How often a controlled component asks its controller for its status: the
+// reply (or any other traffic) proves the controller is alive.
+constexpr int kControllerQueriesPerTimeout = 3;
+// At most one "not the controller" log line per sender per second.
+constexpr Duration kRefusalLogInterval = std::chrono::seconds(1);
+
+std::string describe(const Controller& c) {
+  return c.address.to_string() + " (authority " + std::to_string(c.authority) + ")";
+}
+}  // namespace
+
+Component::Component(ComponentConfig config, Environment env)
+    : config_(std::move(config)), env_(std::move(env)), control_(config_.authority) {
+  register_core_handlers();
+}
+
+Component::~Component() {
+  if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
+}
+
+void Component::log(LogLevel level, const std::string& text) const {
+  env_.log(level, config_.name + " " + config_.address.to_string() + ": " + text);
+}
+
+void Component::start() { run_initialisation(); }
+
+void Component::run_initialisation() {
+  const bool ok = initialize();
+  transition(ok ? LifecycleEvent::init_succeeded : LifecycleEvent::init_failed, config_.address);
+  // An emergency latched before a reset still holds after it.
+  if (emergency_.active()) transition(LifecycleEvent::emergency_set, config_.address);
+}
+
+void Component::transition(LifecycleEvent event, const Address& by) {
+  const PrimaryStatus before = lifecycle_.state();
+  if (!lifecycle_.process(event)) {
+    ++counters_.refused_transitions;
+    log(LogLevel::warn, std::string(to_string(event)) + " from " + by.to_string() + " refused in " +
+                            std::string(to_string(before)));
+    return;
+  }
+  const PrimaryStatus after = lifecycle_.state();
+  log(LogLevel::info, std::string(to_string(before)) + " -> " + std::string(to_string(after)) + " (" +
+                          std::string(to_string(event)) + " from " + by.to_string() + ")");
+  // Safety: leaving Ready, or re-entering a non-Ready state, always stops the platform.
+  if (after != PrimaryStatus::ready) enforce_stop(std::string("entered ") + std::string(to_string(after)));
+  if (after == PrimaryStatus::shutdown) take_control_away("component shut down");
+}
+
+void Component::enforce_stop(std::string_view why) {
+  ++counters_.stops_commanded;
+  command_stop(why);
+}
+
+// ---- dispatch --------------------------------------------------------------
+
+void Component::receive(const Header& header, std::span<const std::uint8_t> payload, wire::Dialect dialect) {
+  ++counters_.received;
+  if (lifecycle_.state() == PrimaryStatus::shutdown) return;  // a shut-down component answers nothing
+
+  // Any traffic from the controller proves it is alive.
+  if (control_.is_controller(header.source)) controller_last_heard_ = env_.clock.now();
+
+  const auto it = handlers_.find(header.command_code);
+  if (it == handlers_.end()) {
+    ++counters_.unsupported;
+    log(LogLevel::debug, "ignored unsupported message 0x" + wire::detail::hex_u32(header.command_code) + " from " +
+                             header.source.to_string());
+    return;
+  }
+  const Handler& handler = it->second;
+  if (handler.access == Access::controller && !control_.is_controller(header.source)) {
+    refuse_not_controller(header, handler.name);
+    return;
+  }
+  if (handler.ready_only && lifecycle_.state() != PrimaryStatus::ready) {
+    ++counters_.refused_wrong_state;
+    log(LogLevel::warn, std::string(handler.name) + " from " + header.source.to_string() + " not executed in " +
+                            std::string(to_string(lifecycle_.state())));
+    return;
+  }
+  if (auto error = handler.invoke(header, payload, dialect)) {
+    ++counters_.decode_errors;
+    log(LogLevel::warn, "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " +
+                            error->message());
+  }
+}
+
+void Component::refuse_not_controller(const Header& header, std::string_view what) {
+  ++counters_.refused_not_controller;
+  const TimePoint now = env_.clock.now();
+  auto [it, first] = refusal_logged_.try_emplace(header.source, now);
+  if (!first && now - it->second < kRefusalLogInterval) return;
+  it->second = now;
+  const auto& controller = control_.controller();
+  log(LogLevel::warn, std::string(what) + " from " + header.source.to_string() +
+                          " not executed: " + (controller ? "controlled by " + describe(*controller) : "not controlled"));
+}
+
+// ---- core messages -----------------------------------------------------------
+
+void Component::register_core_handlers() {
+  using namespace msg;
+  handle<QueryComponentAuthority>(Access::anyone, false, [this](const Header& h, const QueryComponentAuthority&) {
+    send(h.source, ReportComponentAuthority{{control_.own_authority()}});
+  });
+  handle<QueryComponentStatus>(Access::anyone, false, [this](const Header& h, const QueryComponentStatus&) {
+    ReportComponentStatus report;
+    report.primary_status = static_cast<std::uint8_t>(lifecycle_.state());
+    // Bit 0 of the emergency secondary status: the Stop condition is set.
+    report.secondary_status = (emergency_.active() ? 1u : 0u) | (component_status_bits() & 0xFFFF0000u);
+    send(h.source, report);
+  });
+  handle<QueryComponentControl>(Access::anyone, false, [this](const Header& h, const QueryComponentControl&) {
+    ReportComponentControl report;
+    if (const auto& c = control_.controller()) {
+      report.controller = c->address;
+      report.authority = c->authority;
+    }
+    send(h.source, report);
+  });
+  handle<QueryTime>(Access::anyone, false, [this](const Header& h, const QueryTime& query) {
+    const auto now = component_time();
+    const auto day = std::chrono::floor<std::chrono::days>(now);
+    const std::chrono::year_month_day date{std::chrono::sys_days{day}};
+    const std::chrono::hh_mm_ss time{std::chrono::floor<std::chrono::milliseconds>(now - day)};
+    ReportTime report;
+    if (query.presence_vector & 0x1)
+      report.time = TimeStamp{static_cast<std::uint16_t>(time.subseconds().count()),
+                              static_cast<std::uint8_t>(time.seconds().count()),
+                              static_cast<std::uint8_t>(time.minutes().count()),
+                              static_cast<std::uint8_t>(time.hours().count()),
+                              static_cast<std::uint8_t>(static_cast<unsigned>(date.day()))};
+    // The date stamp holds 2000-2127 only; outside that the date is left out.
+    const int year = static_cast<int>(date.year());
+    if ((query.presence_vector & 0x2) && year >= 2000 && year <= 2127)
+      report.date = DateStamp{static_cast<std::uint8_t>(static_cast<unsigned>(date.day())),
+                              static_cast<std::uint8_t>(static_cast<unsigned>(date.month())),
+                              static_cast<std::uint16_t>(year)};
+    send(h.source, report);
+  });
+  handle<QueryHeartbeatPulse>(Access::anyone, false, [this](const Header& h, const QueryHeartbeatPulse&) {
+    send(h.source, ReportHeartbeatPulse{});
+  });
+
+  handle<SetComponentAuthority>(Access::controller, false, [this](const Header& h, const SetComponentAuthority& m) {
+    log(LogLevel::info, "authority " + std::to_string(control_.own_authority()) + " -> " +
+                            std::to_string(m.authority) + " (by " + h.source.to_string() + ")");
+    control_.set_own_authority(m.authority);
+  });
+  handle<SetTime>(Access::controller, false, [this](const Header&, const SetTime& m) { on_set_time(m); });
+
+  handle<Shutdown>(Access::controller, false,
+                   [this](const Header& h, const Shutdown&) { transition(LifecycleEvent::shutdown, h.source); });
+  handle<Reset>(Access::controller, false, [this](const Header& h, const Reset&) {
+    transition(LifecycleEvent::reset, h.source);
+    if (lifecycle_.state() == PrimaryStatus::initialize) run_initialisation();
+  });
+  handle<Resume>(Access::controller, false,
+                 [this](const Header& h, const Resume&) { transition(LifecycleEvent::resume, h.source); });
+  // Standby and Set Emergency only make the vehicle safer: anyone may send them.
+  handle<Standby>(Access::anyone, false,
+                  [this](const Header& h, const Standby&) { transition(LifecycleEvent::standby, h.source); });
+  handle<SetEmergency>(Access::anyone, false,
+                       [this](const Header& h, const SetEmergency& m) { on_set_emergency(h, m); });
+  handle<ClearEmergency>(Access::anyone, false,
+                         [this](const Header& h, const ClearEmergency& m) { on_clear_emergency(h, m); });
+
+  handle<RequestComponentControl>(Access::anyone, false,
+                                  [this](const Header& h, const RequestComponentControl& m) { on_request_control(h, m); });
+  handle<ReleaseComponentControl>(Access::anyone, false,
+                                  [this](const Header& h, const ReleaseComponentControl&) { on_release_control(h); });
+}
+
+// ---- emergency -----------------------------------------------------------------
+
+void Component::on_set_emergency(const Header& h, const msg::SetEmergency& m) {
+  if ((m.emergency_code & 0x1) == 0) {
+    log(LogLevel::warn, "Set Emergency from " + h.source.to_string() + " without the Stop bit ignored");
+    return;
+  }
+  emergency_.set(h.source);
+  log(LogLevel::warn, "emergency Stop set by " + h.source.to_string());
+  if (lifecycle_.state() != PrimaryStatus::emergency) transition(LifecycleEvent::emergency_set, h.source);
+  // Already in Emergency: the platform is already stopped; nothing changes.
+}
+
+void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m) {
+  if ((m.emergency_code & 0x1) == 0) {
+    log(LogLevel::warn, "Clear Emergency from " + h.source.to_string() + " without the Stop bit ignored");
+    return;
+  }
+  switch (emergency_.clear(h.source)) {
+    case EmergencyLatch::ClearResult::not_a_holder:
+      ++counters_.refused_clears;
+      log(LogLevel::warn, "Clear Emergency from " + h.source.to_string() + " refused: it holds no emergency");
+      return;
+    case EmergencyLatch::ClearResult::still_held: {
+      ++counters_.refused_clears;
+      std::string holders;
+      for (const auto& a : emergency_.holders()) holders += (holders.empty() ? "" : ", ") + a.to_string();
+      log(LogLevel::warn, "emergency cleared by " + h.source.to_string() + "; still held by " + holders);
+      return;
+    }
+    case EmergencyLatch::ClearResult::released_last:
+      transition(LifecycleEvent::emergency_cleared, h.source);
+      return;
+  }
+}
+
+// ---- control -------------------------------------------------------------------
+
+void Component::on_request_control(const Header& h, const msg::RequestComponentControl& m) {
+  const auto previous = control_.controller();
+  const auto outcome = control_.request(h.source, m.authority);
+  if (!outcome.accepted) {
+    log(LogLevel::info, "control request from " + h.source.to_string() + " (authority " +
+                            std::to_string(m.authority) + ") refused: " + std::string(outcome.why));
+    if (config_.reject_refused_requests)
+      send(h.source, msg::RejectComponentControl{});
+    else
+      send(h.source, msg::ConfirmComponentControl{{msg::control_response::kNotAccepted}});
+    return;
+  }
+  send(h.source, msg::ConfirmComponentControl{{msg::control_response::kAccepted}});
+  controller_last_heard_ = env_.clock.now();
+  if (!previous || previous->address != h.source) {
+    ++counters_.control_changes;
+    log(LogLevel::info, "controlled by " + describe(*control_.controller()) + ": " + std::string(outcome.why));
+    arm_controller_watch();
+  }
+  if (outcome.displaced) {
+    send(outcome.displaced->address, msg::RejectComponentControl{});
+    log(LogLevel::info, "control taken from " + describe(*outcome.displaced));
+    // The new controller has not commanded anything yet: stop what the old one commanded.
+    enforce_stop("control changed hands");
+  }
+}
+
+void Component::on_release_control(const Header& h) {
+  if (!control_.release(h.source)) {
+    log(LogLevel::info, "Release Component Control from " + h.source.to_string() + " ignored: not the controller");
+    return;
+  }
+  ++counters_.control_changes;
+  log(LogLevel::info, "released by " + h.source.to_string());
+  if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
+  controller_timer_ = kNoTimer;
+  enforce_stop("control released");
+}
+
+void Component::take_control_away(std::string_view why) {
+  if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
+  controller_timer_ = kNoTimer;
+  if (const auto previous = control_.drop()) {
+    ++counters_.control_changes;
+    log(LogLevel::warn, "control of " + describe(*previous) + " dropped: " + std::string(why));
+    send(previous->address, msg::RejectComponentControl{});
+    enforce_stop(why);
+  }
+}
+
+void Component::arm_controller_watch() {
+  if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
+  controller_timer_ = kNoTimer;
+  if (config_.controller_timeout <= Duration::zero()) return;
+  const Duration period = config_.controller_timeout / kControllerQueriesPerTimeout;
+  controller_timer_ = env_.scheduler.call_at(env_.clock.now() + period, [this] { check_controller(); });
+}
+
+void Component::check_controller() {
+  controller_timer_ = kNoTimer;
+  const auto& controller = control_.controller();
+  if (!controller) return;
+  const Duration silence = env_.clock.now() - controller_last_heard_;
+  if (silence > config_.controller_timeout) {
+    take_control_away("controller silent for " +
+                      std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(silence).count()) + " ms");
+    return;
+  }
+  // Ask for a sign of life; the reply (or any other message) refreshes liveness.
+  send(controller->address, msg::QueryComponentStatus{});
+  const Duration period = config_.controller_timeout / kControllerQueriesPerTimeout;
+  controller_timer_ = env_.scheduler.call_at(env_.clock.now() + period, [this] { check_controller(); });
+}
+
+// ---- time ----------------------------------------------------------------------
+
+UtcTime Component::component_time() const { return env_.clock.utc_now() + time_offset_; }
+
+void Component::on_set_time(const msg::SetTime& m) {
+  using namespace std::chrono;
+  const auto now = component_time();
+  const auto today = floor<days>(now);
+  year_month_day date{sys_days{today}};
+  if (m.date) date = year_month_day{year{m.date->year}, month{m.date->month}, day{m.date->day}};
+  Duration time_of_day = now - today;
+  if (m.time) {
+    // The time stamp carries its own day of month.
+    date = year_month_day{date.year(), date.month(), day{m.time->day}};
+    time_of_day = hours{m.time->hour} + minutes{m.time->minute} + seconds{m.time->second} +
+                  milliseconds{m.time->millisecond};
+  }
+  if (!date.ok()) {
+    log(LogLevel::warn, "Set Time with an invalid date ignored");
+    return;
+  }
+  const UtcTime target = sys_days{date} + time_of_day;
+  time_offset_ += target - now;
+  log(LogLevel::info, "time set (offset " + std::to_string(duration_cast<milliseconds>(time_offset_).count()) + " ms)");
+}
+
+}  // namespace jaus::rt

@@ -1,0 +1,190 @@
+// The component runtime under virtual time: lifecycle commands, emergency
+// holders, core queries in every state, malformed input, time.
+#include "harness.hpp"
+
+namespace jaus::test {
+namespace {
+
+using S = msg::PrimaryStatus;
+
+TEST_F(ComponentTest, StartsReadyOrFailure) {
+  EXPECT_EQ(driver->state(), S::ready);
+  make(5, std::chrono::seconds(3), false, /*init_ok=*/false);
+  EXPECT_EQ(driver->state(), S::failure);
+  EXPECT_FALSE(driver->stops.empty());  // Failure stops the platform
+}
+
+TEST_F(ComponentTest, StandbyFromAnyoneStopsThePlatform) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  drive(kOcuA, 50);
+  ASSERT_TRUE(driver->moving);
+  deliver(kOcuB, msg::Standby{});  // not the controller, still honoured: it only makes things safer
+  EXPECT_EQ(driver->state(), S::standby);
+  EXPECT_FALSE(driver->moving);
+  drive(kOcuA, 50);  // commands do not execute outside Ready
+  EXPECT_EQ(driver->executed.size(), 1u);
+  EXPECT_EQ(driver->counters().refused_wrong_state, 1u);
+  // Resume needs the controller.
+  deliver(kOcuB, msg::Resume{});
+  EXPECT_EQ(driver->state(), S::standby);
+  deliver(kOcuA, msg::Resume{});
+  EXPECT_EQ(driver->state(), S::ready);
+}
+
+TEST_F(ComponentTest, RefusedTransitionsAreCountedAndLogged) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  deliver(kOcuA, msg::Resume{});  // Resume from Ready
+  EXPECT_EQ(driver->state(), S::ready);
+  EXPECT_EQ(driver->counters().refused_transitions, 1u);
+  EXPECT_TRUE(logged("Resume from 2.1.40.1 refused in Ready"));
+  deliver(kOcuA, msg::SetEmergency{});
+  deliver(kOcuA, msg::Standby{});  // Standby while Emergency
+  EXPECT_EQ(driver->state(), S::emergency);
+  EXPECT_EQ(driver->counters().refused_transitions, 2u);
+}
+
+TEST_F(ComponentTest, EmergencyNeedsEveryHolderToClear) {
+  drive(kOcuA, 30);  // not controlled: refused anyway
+  deliver(kOcuA, msg::SetEmergency{});
+  deliver(kOcuB, msg::SetEmergency{});
+  EXPECT_EQ(driver->state(), S::emergency);
+  deliver(kOcuC, msg::ClearEmergency{});  // holds nothing
+  EXPECT_EQ(driver->state(), S::emergency);
+  EXPECT_TRUE(logged("Clear Emergency from 4.1.40.1 refused"));
+  deliver(kOcuA, msg::ClearEmergency{});
+  EXPECT_EQ(driver->state(), S::emergency);
+  EXPECT_TRUE(logged("still held by 3.1.40.1"));
+  deliver(kOcuB, msg::ClearEmergency{});
+  EXPECT_EQ(driver->state(), S::ready);
+  EXPECT_EQ(driver->counters().refused_clears, 2u);
+}
+
+TEST_F(ComponentTest, EmergencyReturnsToStandbyWhenItInterruptedStandby) {
+  deliver(kOcuA, msg::Standby{});
+  deliver(kOcuA, msg::SetEmergency{});
+  deliver(kOcuA, msg::ClearEmergency{});
+  EXPECT_EQ(driver->state(), S::standby);
+}
+
+TEST_F(ComponentTest, EmergencyStaysLatchedThroughReset) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  deliver(kOcuB, msg::SetEmergency{});
+  deliver(kOcuA, msg::Reset{});
+  EXPECT_EQ(driver->state(), S::emergency);
+  deliver(kOcuB, msg::ClearEmergency{});
+  EXPECT_EQ(driver->state(), S::ready);
+}
+
+TEST_F(ComponentTest, EmergencyWithoutStopBitIsIgnored) {
+  deliver(kOcuA, msg::SetEmergency{{0}});
+  EXPECT_EQ(driver->state(), S::ready);
+}
+
+TEST_F(ComponentTest, ShutdownIsFinalAndSilent) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  deliver(kOcuA, msg::Shutdown{});
+  EXPECT_EQ(driver->state(), S::shutdown);
+  EXPECT_FALSE(driver->control().controller());
+  outbox.clear();
+  deliver(kOcuA, msg::QueryComponentStatus{});
+  deliver(kOcuA, msg::Reset{});
+  EXPECT_EQ(driver->state(), S::shutdown);
+  EXPECT_TRUE(outbox.sent.empty());
+}
+
+TEST_F(ComponentTest, CoreQueriesAreAnsweredInEveryState) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  auto check = [&](S expected) {
+    outbox.clear();
+    deliver(kOcuB, msg::QueryComponentStatus{});
+    deliver(kOcuB, msg::QueryComponentAuthority{});
+    deliver(kOcuB, msg::QueryComponentControl{});
+    deliver(kOcuB, msg::QueryTime{{3}});
+    deliver(kOcuB, msg::QueryHeartbeatPulse{});
+    const auto status = outbox.to<msg::ReportComponentStatus>(kOcuB);
+    ASSERT_EQ(status.size(), 1u);
+    EXPECT_EQ(status[0].primary_status, static_cast<std::uint8_t>(expected));
+    EXPECT_EQ(status[0].secondary_status & 1u, expected == S::emergency ? 1u : 0u);
+    EXPECT_EQ(outbox.to<msg::ReportComponentAuthority>(kOcuB).at(0).authority, 5);
+    EXPECT_EQ(outbox.to<msg::ReportComponentControl>(kOcuB).at(0).controller, kOcuA);
+    // The harness clock starts at 1970, before the date stamp's range: time only.
+    const auto time_reports = outbox.to<msg::ReportTime>(kOcuB);
+    ASSERT_EQ(time_reports.size(), 1u);
+    EXPECT_TRUE(time_reports[0].time.has_value());
+    EXPECT_FALSE(time_reports[0].date.has_value());
+    EXPECT_EQ(outbox.count<msg::ReportHeartbeatPulse>(), 1u);
+  };
+  check(S::ready);
+  deliver(kOcuA, msg::Standby{});
+  check(S::standby);
+  deliver(kOcuA, msg::SetEmergency{});
+  check(S::emergency);
+}
+
+TEST_F(ComponentTest, ReportTimeComesFromTheInjectedClock) {
+  using namespace std::chrono;
+  rt::VirtualTime t(sys_days{2026y / November / 21} + hours{13} + minutes{37} + seconds{42} + milliseconds{789});
+  rt::ComponentConfig config;
+  config.address = kDriver;
+  TestDriver d(config, rt::Environment{t, t, outbox});
+  d.start();
+  outbox.clear();
+  Header h;
+  h.command_code = msg::QueryTime::code;
+  h.source = kOcuA;
+  h.destination = kDriver;
+  const std::uint8_t pv[] = {0x03};
+  h.data_size = 1;
+  d.receive(h, pv);
+  const auto reports = outbox.to<msg::ReportTime>(kOcuA);
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_EQ(reports[0].time, (TimeStamp{789, 42, 37, 13, 21}));
+  EXPECT_EQ(reports[0].date, (DateStamp{21, 11, 2026}));
+}
+
+TEST_F(ComponentTest, SetTimeNeedsControlAndMovesOnlyThisComponentsClock) {
+  msg::SetTime set;
+  set.time = TimeStamp{0, 0, 0, 12, 3};
+  set.date = DateStamp{3, 4, 2030};
+  deliver(kOcuA, set);  // not the controller
+  EXPECT_EQ(driver->counters().refused_not_controller, 1u);
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  deliver(kOcuA, set);
+  time.advance(std::chrono::seconds(61));
+  outbox.clear();
+  deliver(kOcuA, msg::QueryTime{{3}});
+  const auto report = outbox.to<msg::ReportTime>(kOcuA).at(0);
+  EXPECT_EQ(report.date, (DateStamp{3, 4, 2030}));
+  EXPECT_EQ(report.time->hour, 12);
+  EXPECT_EQ(report.time->minute, 1);
+  EXPECT_EQ(report.time->second, 1);
+}
+
+TEST_F(ComponentTest, MalformedPayloadsAreCountedNeverActedUpon) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  Header h;
+  h.command_code = msg::SetWrenchEffort::code;
+  h.source = kOcuA;
+  h.destination = kDriver;
+  const std::uint8_t truncated[] = {0x01, 0x00, 0x10};  // pv says effort X follows; one byte of it
+  driver->receive(h, truncated);
+  EXPECT_TRUE(driver->executed.empty());
+  EXPECT_EQ(driver->counters().decode_errors, 1u);
+  EXPECT_TRUE(logged("malformed Set Wrench Effort from 2.1.40.1"));
+}
+
+TEST_F(ComponentTest, UnsupportedMessagesAreCounted) {
+  deliver(kOcuA, msg::SetJointEfforts{{{10.0}}});
+  EXPECT_EQ(driver->counters().unsupported, 1u);
+}
+
+TEST_F(ComponentTest, SetAuthorityNeedsControl) {
+  deliver(kOcuA, msg::SetComponentAuthority{{77}});
+  EXPECT_EQ(driver->control().own_authority(), 5);
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  deliver(kOcuA, msg::SetComponentAuthority{{77}});
+  EXPECT_EQ(driver->control().own_authority(), 77);
+}
+
+}  // namespace
+}  // namespace jaus::test

@@ -1,0 +1,158 @@
+// Control arbitration and controller liveness under virtual time.
+#include "harness.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+// The full matrix: the component's own authority is 5.
+//   state of control x requester (same / other) x authority (lower / equal / higher).
+struct ControlCase {
+  const char* name;
+  std::optional<std::uint8_t> held_by_a;  // authority A holds control with, if controlled
+  Address requester;
+  std::uint8_t authority;
+  std::uint8_t expected_response;         // Confirm Component Control response code
+  Address expected_controller;            // or empty when none
+  bool reject_to_a;                       // A receives Reject Component Control
+};
+
+const Address kNobody{};
+
+class ControlMatrix : public ComponentTest, public ::testing::WithParamInterface<ControlCase> {};
+
+TEST_P(ControlMatrix, Decides) {
+  const auto& c = GetParam();
+  if (c.held_by_a) {
+    ASSERT_EQ(request_control(kOcuA, *c.held_by_a), 0);
+  }
+  const auto response = request_control(c.requester, c.authority);
+  ASSERT_TRUE(response.has_value());
+  EXPECT_EQ(*response, c.expected_response);
+  const auto& controller = driver->control().controller();
+  EXPECT_EQ(controller ? controller->address : kNobody, c.expected_controller);
+  EXPECT_EQ(outbox.count<msg::RejectComponentControl>(), c.reject_to_a ? 1u : 0u);
+  if (c.reject_to_a) {
+    EXPECT_EQ(outbox.to<msg::RejectComponentControl>(kOcuA).size(), 1u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ControlMatrix,
+    ::testing::Values(
+        ControlCase{"uncontrolled_lower", std::nullopt, kOcuA, 4, 2, kNobody, false},
+        ControlCase{"uncontrolled_equal", std::nullopt, kOcuA, 5, 0, kOcuA, false},
+        ControlCase{"uncontrolled_higher", std::nullopt, kOcuA, 6, 0, kOcuA, false},
+        ControlCase{"same_requester_lower", 10, kOcuA, 7, 0, kOcuA, false},
+        ControlCase{"same_requester_equal", 10, kOcuA, 10, 0, kOcuA, false},
+        ControlCase{"same_requester_higher", 10, kOcuA, 12, 0, kOcuA, false},
+        ControlCase{"other_lower", 10, kOcuB, 9, 2, kOcuA, false},
+        ControlCase{"other_equal", 10, kOcuB, 10, 2, kOcuA, false},
+        ControlCase{"other_higher", 10, kOcuB, 11, 0, kOcuB, true}),
+    [](const auto& param_info) { return std::string(param_info.param.name); });
+
+TEST_F(ComponentTest, SameRequesterUpdatesItsAuthority) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  ASSERT_EQ(request_control(kOcuA, 7), 0);
+  EXPECT_EQ(driver->control().controller()->authority, 7);
+  EXPECT_EQ(request_control(kOcuB, 8), 0);  // now higher than A's updated authority
+}
+
+TEST_F(ComponentTest, RefusalCanBeSentAsReject) {
+  make(5, 3s, /*reject=*/true);
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  outbox.clear();
+  deliver(kOcuB, msg::RequestComponentControl{{3}});
+  EXPECT_TRUE(outbox.to<msg::ConfirmComponentControl>(kOcuB).empty());
+  EXPECT_EQ(outbox.to<msg::RejectComponentControl>(kOcuB).size(), 1u);
+}
+
+TEST_F(ComponentTest, ReleaseByTheControllerReleasesAndStops) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  drive(kOcuA, 40);
+  ASSERT_TRUE(driver->moving);
+  deliver(kOcuB, msg::ReleaseComponentControl{});  // not the controller: ignored
+  EXPECT_TRUE(driver->control().is_controller(kOcuA));
+  EXPECT_TRUE(logged("Release Component Control from 3.1.40.1 ignored"));
+  EXPECT_TRUE(driver->moving);
+  deliver(kOcuA, msg::ReleaseComponentControl{});
+  EXPECT_FALSE(driver->control().controller());
+  EXPECT_FALSE(driver->moving);
+}
+
+TEST_F(ComponentTest, TakeoverStopsWhatTheOldControllerCommanded) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  drive(kOcuA, 40);
+  ASSERT_EQ(request_control(kOcuB, 20), 0);
+  EXPECT_FALSE(driver->moving);
+  drive(kOcuA, 40);  // the displaced controller can no longer command
+  EXPECT_EQ(driver->executed.size(), 1u);
+  drive(kOcuB, 10);
+  EXPECT_EQ(driver->executed.size(), 2u);
+}
+
+TEST_F(ComponentTest, NoCommandFromANonControllerEverExecutes) {
+  const Address others[] = {kOcuB, kOcuC, Address{2, 1, 40, 2}, Address{255, 255, 255, 255}};
+  // Uncontrolled, controlled by A, after A released: only A while controlling executes.
+  for (const auto& other : others) drive(other, 10);
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  for (const auto& other : others) drive(other, 10);
+  for (const auto& other : others) deliver(other, msg::Shutdown{});
+  for (const auto& other : others) deliver(other, msg::Reset{});
+  for (const auto& other : others) deliver(other, msg::SetComponentAuthority{{200}});
+  drive(kOcuA, 10);
+  deliver(kOcuA, msg::ReleaseComponentControl{});
+  for (const auto& other : others) drive(other, 10);
+  drive(kOcuA, 10);
+  EXPECT_EQ(driver->executed.size(), 1u);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
+  EXPECT_EQ(driver->control().own_authority(), 5);
+  EXPECT_EQ(driver->counters().refused_not_controller, 4u * 6u + 1u);
+  // Logs are rate limited: one line per sender per second, not one per command.
+  std::size_t refusal_lines = 0;
+  for (const auto& l : logs) refusal_lines += l.find("not executed") != std::string::npos;
+  EXPECT_LE(refusal_lines, 5u + 1u);
+}
+
+TEST_F(ComponentTest, SilentControllerLosesControlAndThePlatformStops) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  drive(kOcuA, 60);
+  ASSERT_TRUE(driver->moving);
+  outbox.clear();
+  time.advance(2900ms);
+  EXPECT_TRUE(driver->control().is_controller(kOcuA));
+  // It asked the controller for a sign of life meanwhile (every timeout / 3).
+  EXPECT_GE(outbox.to<msg::QueryComponentStatus>(kOcuA).size(), 2u);
+  time.advance(1100ms);
+  EXPECT_FALSE(driver->control().controller());
+  EXPECT_FALSE(driver->moving);
+  EXPECT_EQ(outbox.to<msg::RejectComponentControl>(kOcuA).size(), 1u);
+  EXPECT_TRUE(logged("controller silent for"));
+  drive(kOcuA, 60);
+  EXPECT_EQ(driver->executed.size(), 1u);
+}
+
+TEST_F(ComponentTest, AnsweringControllerKeepsControl) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  for (int i = 0; i < 30; ++i) {
+    time.advance(900ms);
+    // The controller answers the liveness query (any message counts).
+    msg::ReportComponentStatus alive;
+    deliver(kOcuA, alive);
+  }
+  EXPECT_TRUE(driver->control().is_controller(kOcuA));
+}
+
+TEST_F(ComponentTest, ZeroTimeoutDisablesTheLivenessCheck) {
+  make(5, rt::Duration::zero());
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  outbox.clear();
+  time.advance(std::chrono::minutes(10));
+  EXPECT_TRUE(driver->control().is_controller(kOcuA));
+  EXPECT_EQ(outbox.count<msg::QueryComponentStatus>(), 0u);
+  EXPECT_EQ(time.pending(), 0u);
+}
+
+}  // namespace
+}  // namespace jaus::test

@@ -1,0 +1,139 @@
+// A component under test: virtual time, an outbox that records what the
+// component sends (decoded on demand), and a driving component that records
+// every command it executes and every stop it is told to make.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jaus/messages/all.hpp"
+#include "jaus/runtime/component.hpp"
+#include "jaus/runtime/virtual_time.hpp"
+
+namespace jaus::test {
+
+struct Sent {
+  Header header;
+  std::vector<std::uint8_t> payload;
+};
+
+class RecordingOutbox : public rt::Outbox {
+ public:
+  void send(const Header& header, std::span<const std::uint8_t> payload) override {
+    sent.push_back({header, {payload.begin(), payload.end()}});
+  }
+  // Messages of type M sent to `to` since the last clear(), decoded.
+  template <class M>
+  std::vector<M> to(const Address& destination) const {
+    std::vector<M> out;
+    for (const auto& s : sent)
+      if (s.header.command_code == M::code && s.header.destination == destination) {
+        auto decoded = wire::decode_payload<M>(s.payload);
+        EXPECT_TRUE(decoded) << M::name;
+        if (decoded) out.push_back(*decoded);
+      }
+    return out;
+  }
+  template <class M>
+  std::size_t count() const {
+    std::size_t n = 0;
+    for (const auto& s : sent) n += s.header.command_code == M::code;
+    return n;
+  }
+  void clear() { sent.clear(); }
+  std::vector<Sent> sent;
+};
+
+// Stands in for a primitive driver: Set Wrench Effort moves the "platform".
+class TestDriver : public rt::Component {
+ public:
+  TestDriver(rt::ComponentConfig config, rt::Environment env, bool init_ok = true)
+      : Component(std::move(config), std::move(env)), init_ok_(init_ok) {
+    handle<msg::SetWrenchEffort>(Access::controller, /*ready_only=*/true,
+                                 [this](const Header&, const msg::SetWrenchEffort& m) {
+                                   executed.push_back(m.propulsive_linear_effort_x_percent.value_or(0));
+                                   moving = executed.back() != 0;
+                                 });
+  }
+  std::vector<double> executed;   // every Set Wrench Effort that ran
+  std::vector<std::string> stops;  // every command_stop, with why
+  bool moving = false;
+  bool init_ok_;
+
+ protected:
+  bool initialize() override { return init_ok_; }
+  void command_stop(std::string_view why) override {
+    stops.emplace_back(why);
+    moving = false;
+  }
+};
+
+inline const Address kDriver{1, 1, 33, 1};
+inline const Address kOcuA{2, 1, 40, 1};
+inline const Address kOcuB{3, 1, 40, 1};
+inline const Address kOcuC{4, 1, 40, 1};
+
+class ComponentTest : public ::testing::Test {
+ protected:
+  ComponentTest() { make(); }
+
+  void make(std::uint8_t authority = 5, rt::Duration timeout = std::chrono::seconds(3), bool reject = false,
+            bool init_ok = true) {
+    driver.reset();
+    rt::ComponentConfig config;
+    config.name = "driver";
+    config.address = kDriver;
+    config.authority = authority;
+    config.controller_timeout = timeout;
+    config.reject_refused_requests = reject;
+    driver = std::make_unique<TestDriver>(
+        config, rt::Environment{time, time, outbox, [this](rt::LogLevel, const std::string& line) { logs.push_back(line); }},
+        init_ok);
+    driver->start();
+  }
+
+  template <class M>
+  void deliver(const Address& from, const M& message, std::uint8_t priority = priority::kDefault) {
+    std::vector<std::uint8_t> payload(kMaxPayloadSize);
+    auto size = wire::encode_payload(message, payload);
+    ASSERT_TRUE(size);
+    Header h;
+    h.priority = priority;
+    h.command_code = M::code;
+    h.source = from;
+    h.destination = kDriver;
+    h.data_size = static_cast<std::uint16_t>(*size);
+    driver->receive(h, std::span(payload).first(*size));
+    time.run_ready();
+  }
+
+  void drive(const Address& from, double effort) {
+    msg::SetWrenchEffort m;
+    m.propulsive_linear_effort_x_percent = effort;
+    deliver(from, m);
+  }
+
+  std::optional<std::uint8_t> request_control(const Address& from, std::uint8_t authority) {
+    outbox.clear();
+    deliver(from, msg::RequestComponentControl{{authority}});
+    const auto confirms = outbox.to<msg::ConfirmComponentControl>(from);
+    if (confirms.empty()) return std::nullopt;
+    return confirms.back().response_code;
+  }
+
+  bool logged(const std::string& text) const {
+    for (const auto& l : logs)
+      if (l.find(text) != std::string::npos) return true;
+    return false;
+  }
+
+  rt::VirtualTime time;
+  RecordingOutbox outbox;
+  std::vector<std::string> logs;
+  std::unique_ptr<TestDriver> driver;
+};
+
+}  // namespace jaus::test
