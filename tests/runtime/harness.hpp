@@ -18,13 +18,15 @@ namespace jaus::test {
 struct Sent {
   Header header;
   std::vector<std::uint8_t> payload;
+  rt::TimePoint at{};
 };
 
 class RecordingOutbox : public rt::Outbox {
  public:
   void send(const Header& header, std::span<const std::uint8_t> payload) override {
-    sent.push_back({header, {payload.begin(), payload.end()}});
+    sent.push_back({header, {payload.begin(), payload.end()}, clock ? clock->now() : rt::TimePoint{}});
   }
+  const rt::Clock* clock = nullptr;  // when set, each message records when it was sent
   // Messages of type M sent to `to` since the last clear(), decoded.
   template <class M>
   std::vector<M> to(const Address& destination) const {
@@ -52,6 +54,19 @@ class TestDriver : public rt::Component {
  public:
   TestDriver(rt::ComponentConfig config, rt::Environment env, bool init_ok = true)
       : Component(std::move(config), std::move(env)), init_ok_(init_ok) {
+    // A pose report with every field but the attitude RMS (bit 7).
+    provide<msg::ReportGlobalPose>(0x017F, [] {
+      msg::ReportGlobalPose pose;
+      pose.latitude_deg = 45.5;
+      pose.longitude_deg = -73.6;
+      pose.elevation_m = 30;
+      pose.position_rms_m = 1;
+      pose.roll_rad = 0.01;
+      pose.pitch_rad = 0.02;
+      pose.yaw_rad = 1.5;
+      pose.time_stamp = TimeStamp{};
+      return pose;
+    });
     handle<msg::SetWrenchEffort>(Access::controller, /*ready_only=*/true,
                                  [this](const Header&, const msg::SetWrenchEffort& m) {
                                    executed.push_back(m.propulsive_linear_effort_x_percent.value_or(0));
@@ -78,7 +93,10 @@ inline const Address kOcuC{4, 1, 40, 1};
 
 class ComponentTest : public ::testing::Test {
  protected:
-  ComponentTest() { make(); }
+  ComponentTest() {
+    outbox.clock = &time;
+    make();
+  }
 
   void make(std::uint8_t authority = 5, rt::Duration timeout = std::chrono::seconds(3), bool reject = false,
             bool init_ok = true) {

@@ -19,7 +19,17 @@ std::string describe(const Controller& c) {
 }  // namespace
 
 Component::Component(ComponentConfig config, Environment env)
-    : config_(std::move(config)), env_(std::move(env)), control_(config_.authority) {
+    : config_(std::move(config)),
+      env_(std::move(env)),
+      control_(config_.authority),
+      services_(
+          env_, config_.address, config_.service_connections,
+          [this](Header h, std::span<const std::uint8_t> payload) { env_.outbox.send(h, payload); },
+          [this](const Address& who, std::uint16_t) { return control_.is_controller(who); },
+          [this](const Address& commander, std::uint16_t code) {
+            enforce_stop("loss of command: service connection 0x" + wire::detail::hex_u32(code) + " from " +
+                         commander.to_string() + " went silent");
+          }) {
   register_core_handlers();
 }
 
@@ -53,7 +63,15 @@ void Component::transition(LifecycleEvent event, const Address& by) {
                           std::string(to_string(event)) + " from " + by.to_string() + ")");
   // Safety: leaving Ready, or re-entering a non-Ready state, always stops the platform.
   if (after != PrimaryStatus::ready) enforce_stop(std::string("entered ") + std::string(to_string(after)));
-  if (after == PrimaryStatus::shutdown) take_control_away("component shut down");
+  if (after == PrimaryStatus::shutdown) {
+    take_control_away("component shut down");
+    services_.end_all("component shut down");
+  }
+}
+
+void Component::peer_lost(const Address& peer) {
+  services_.end_all_from(peer, "requester gone");
+  if (control_.is_controller(peer)) take_control_away("controller " + peer.to_string() + " gone");
 }
 
 void Component::enforce_stop(std::string_view why) {
@@ -88,6 +106,8 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
                             std::string(to_string(lifecycle_.state())));
     return;
   }
+  // A command from the controller feeds the deadman of its service connection.
+  if (handler.access == Access::controller && handler.ready_only) services_.on_command(header);
   if (auto error = handler.invoke(header, payload, dialect)) {
     ++counters_.decode_errors;
     log(LogLevel::warn, "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " +
@@ -174,6 +194,19 @@ void Component::register_core_handlers() {
                        [this](const Header& h, const SetEmergency& m) { on_set_emergency(h, m); });
   handle<ClearEmergency>(Access::anyone, false,
                          [this](const Header& h, const ClearEmergency& m) { on_clear_emergency(h, m); });
+
+  // Service connections: anyone may subscribe to reports; command SCs check
+  // control themselves (response 3 for a non-controller).
+  handle<CreateServiceConnection>(Access::anyone, false, [this](const Header& h, const CreateServiceConnection& m) {
+    services_.on_create(h, m);
+  });
+  handle<ActivateServiceConnection>(Access::anyone, false,
+                                    [this](const Header& h, const ActivateServiceConnection& m) { services_.on_activate(h, m); });
+  handle<SuspendServiceConnection>(Access::anyone, false,
+                                   [this](const Header& h, const SuspendServiceConnection& m) { services_.on_suspend(h, m); });
+  handle<TerminateServiceConnection>(Access::anyone, false, [this](const Header& h, const TerminateServiceConnection& m) {
+    services_.on_terminate(h, m);
+  });
 
   handle<RequestComponentControl>(Access::anyone, false,
                                   [this](const Header& h, const RequestComponentControl& m) { on_request_control(h, m); });

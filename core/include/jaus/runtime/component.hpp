@@ -25,6 +25,7 @@
 #include "jaus/runtime/emergency_latch.hpp"
 #include "jaus/runtime/environment.hpp"
 #include "jaus/runtime/lifecycle.hpp"
+#include "jaus/runtime/service_connections.hpp"
 
 namespace jaus::rt {
 
@@ -36,6 +37,7 @@ struct ComponentConfig {
   Duration controller_timeout = std::chrono::seconds(3);
   // Refused control requests get Reject Component Control instead of Confirm 2.
   bool reject_refused_requests = false;
+  ServiceConnectionLimits service_connections;
 };
 
 struct ComponentCounters {
@@ -70,13 +72,21 @@ class Component {
   const ControlArbiter& control() const { return control_; }
   const EmergencyLatch& emergency() const { return emergency_; }
   const ComponentCounters& counters() const { return counters_; }
+  const ServiceConnectionProvider& service_connections() const { return services_; }
+
+  // The node's liveness table says `peer` is gone: its service connections
+  // end, and if it was the controller, control is dropped (platform stops).
+  void peer_lost(const Address& peer);
 
  protected:
   // Who may have a message executed.
   enum class Access { anyone, controller };
 
+  // Registers the handler of M. Controller-only, Ready-only messages are the
+  // ones that move things; they may also arrive on command service connections.
   template <class M>
   void handle(Access access, bool ready_only, std::function<void(const Header&, const M&)> fn) {
+    if (access == Access::controller && ready_only) services_.accept_commands(M::code);
     handlers_[M::code] = Handler{access, ready_only, M::name,
                                  [fn = std::move(fn)](const Header& h, std::span<const std::uint8_t> payload,
                                                       wire::Dialect dialect) -> std::optional<Error> {
@@ -103,6 +113,28 @@ class Component {
     header.source = config_.address;
     header.data_size = static_cast<std::uint16_t>(*size);
     env_.outbox.send(header, std::span(payload).first(*size));
+  }
+
+  // A report this component can send on service connections: `produce`
+  // returns the report with every field it has; fields outside the requested
+  // presence vector are removed before sending.
+  template <class M>
+  void provide(std::uint32_t available_presence, std::function<M()> produce) {
+    services_.provide(M::code, available_presence,
+                      [this, produce = std::move(produce)](std::uint32_t mask)
+                          -> std::optional<std::vector<std::uint8_t>> {
+                        M report = produce();
+                        wire::mask_presence(report, mask);
+                        std::vector<std::uint8_t> payload(kMaxPayloadSize);
+                        auto size = wire::encode_payload(report, payload);
+                        if (!size) {
+                          log(LogLevel::error, std::string("cannot encode ") + std::string(M::name) + ": " +
+                                                   size.error().message());
+                          return std::nullopt;
+                        }
+                        payload.resize(*size);
+                        return payload;
+                      });
   }
 
   // Hooks for derived components.
@@ -152,6 +184,7 @@ class Component {
   EmergencyLatch emergency_;
   ComponentCounters counters_;
   std::unordered_map<std::uint16_t, Handler> handlers_;
+  ServiceConnectionProvider services_;
   TimePoint controller_last_heard_{};
   TimerId controller_timer_ = kNoTimer;
   Duration time_offset_{};  // Set Time moves this component's clock, not the system's

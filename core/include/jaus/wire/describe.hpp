@@ -123,6 +123,24 @@ std::uint32_t presence_of(const Body& body) {
   return pv;
 }
 
+// Keeps only the optional fields whose presence bit is in `mask` (a query's
+// or service connection's request ANDed with what the responder has).
+template <class Body>
+void mask_presence(Body& body, std::uint32_t mask) {
+  std::apply(
+      [&](const auto&... f) {
+        (([&] {
+           using F = std::decay_t<decltype(f)>;
+           if constexpr (!is_presence_vector<F>::value) {
+             if constexpr (F::is_optional)
+               if (f.bit >= 0 && !((mask >> f.bit) & 1u)) (body.*f.member).reset();
+           }
+         }()),
+         ...);
+      },
+      Body::describe());
+}
+
 // ---- binary ----------------------------------------------------------------
 
 namespace detail {

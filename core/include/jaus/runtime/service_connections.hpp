@@ -1,0 +1,124 @@
+// Service connections, provider side (Create/Confirm/Activate/Suspend/
+// Terminate Service Connection, Part 3 0x0008-0x000C).
+//
+// - Inform SCs: a requester asks for a report at a rate; reports go out with
+//   the SC flag and a per-SC sequence number, at ideal times start + k * period
+//   (no cumulative drift). Inform SCs with the same command code and presence
+//   vector share one instance ID; a repeat Create from the same requester
+//   updates its SC. The presence vector sent is the AND of the requested one
+//   and what the component provides.
+// - Command SCs: the controller announces it will send a command at a rate.
+//   The provider watches it as a deadman: no command for several periods is a
+//   loss of command, reported to the component (a driver stops).
+// - SCs end on Terminate, when their requester is gone, and at shutdown.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "jaus/core/header.hpp"
+#include "jaus/messages/core_messages.hpp"
+#include "jaus/runtime/environment.hpp"
+
+namespace jaus::rt {
+
+struct ServiceConnectionLimits {
+  double max_rate_hz = 1092;         // confirmed rate is at most this
+  std::size_t max_connections = 64;  // beyond this, Create is refused (response 4)
+  // A command SC is lost after this many periods without its command...
+  double deadman_periods = 3;
+  // ...and never sooner than this.
+  Duration deadman_minimum = std::chrono::milliseconds(200);
+};
+
+struct ServiceConnectionCounters {
+  std::uint64_t created = 0;
+  std::uint64_t refused = 0;
+  std::uint64_t terminated = 0;
+  std::uint64_t reports_sent = 0;
+  std::uint64_t commands_lost = 0;
+};
+
+class ServiceConnectionProvider {
+ public:
+  // Produces the payload of a report for the given presence mask.
+  using Producer = std::function<std::optional<std::vector<std::uint8_t>>(std::uint32_t presence_mask)>;
+  // Sends one SC message (header prepared by the provider: SC flag, sequence).
+  using Send = std::function<void(Header header, std::span<const std::uint8_t> payload)>;
+  // Asks the component whether `who` may command it with `code` (command SCs).
+  using MayCommand = std::function<bool(const Address& who, std::uint16_t code)>;
+  using CommandLost = std::function<void(const Address& commander, std::uint16_t code)>;
+
+  ServiceConnectionProvider(Environment& env, Address self, ServiceConnectionLimits limits, Send send,
+                            MayCommand may_command, CommandLost command_lost);
+  ~ServiceConnectionProvider();
+
+  // Reports this component can send on inform SCs, with the fields it has.
+  void provide(std::uint16_t report_code, std::uint32_t available_presence, Producer producer);
+  // Commands this component accepts on command SCs.
+  void accept_commands(std::uint16_t command_code) { command_codes_.push_back(command_code); }
+
+  void on_create(const Header& h, const msg::CreateServiceConnection& m);
+  void on_activate(const Header& h, const msg::ActivateServiceConnection& m);
+  void on_suspend(const Header& h, const msg::SuspendServiceConnection& m);
+  void on_terminate(const Header& h, const msg::TerminateServiceConnection& m);
+  // Any command received: feeds the deadman of a matching command SC.
+  void on_command(const Header& h);
+
+  // The requester is gone (liveness) or the component shuts down.
+  void end_all_from(const Address& requester, std::string_view why);
+  void end_all(std::string_view why);
+
+  std::size_t active() const { return connections_.size(); }
+  const ServiceConnectionCounters& counters() const { return counters_; }
+
+ private:
+  struct Key {
+    Address requester;
+    std::uint16_t code;
+    std::uint8_t instance;
+    auto operator<=>(const Key&) const = default;
+  };
+  struct Connection {
+    bool command = false;
+    bool active = true;
+    std::uint32_t presence = 0;  // requested AND available
+    double rate_hz = 0;
+    Duration period{};
+    TimePoint start{};
+    std::uint64_t sent = 0;      // reports sent: next ideal time is start + (sent + 1) * period
+    std::uint16_t sequence = 0;
+    TimePoint last_command{};
+    bool command_lost = false;
+    TimerId timer = kNoTimer;
+  };
+  struct Provided {
+    std::uint32_t available = 0;
+    Producer produce;
+  };
+
+  void confirm(const Header& h, std::uint16_t code, std::uint8_t instance, double rate, std::uint8_t response);
+  std::uint8_t instance_for(std::uint16_t code, std::uint32_t presence, bool command, const Address& requester);
+  void schedule(const Key& key, Connection& c);
+  void fire(const Key& key);
+  void stop(std::map<Key, Connection>::iterator it, std::string_view why);
+  void log(LogLevel level, const std::string& text) const;
+
+  Environment& env_;
+  Address self_;
+  ServiceConnectionLimits limits_;
+  Send send_;
+  MayCommand may_command_;
+  CommandLost command_lost_;
+  std::map<std::uint16_t, Provided> provided_;
+  std::vector<std::uint16_t> command_codes_;
+  std::map<Key, Connection> connections_;
+  ServiceConnectionCounters counters_;
+};
+
+}  // namespace jaus::rt

@@ -1,0 +1,165 @@
+// Service connections, provider side, under virtual time.
+#include "harness.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+class ServiceConnectionTest : public ComponentTest {
+ protected:
+  msg::ConfirmServiceConnection create(const Address& from, std::uint16_t code, double rate, std::uint32_t pv) {
+    outbox.clear();
+    msg::CreateServiceConnection m;
+    m.command_code = code;
+    m.periodic_rate_hz = rate;
+    m.presence_vector = pv;
+    deliver(from, m);
+    const auto confirms = outbox.to<msg::ConfirmServiceConnection>(from);
+    EXPECT_EQ(confirms.size(), 1u);
+    return confirms.empty() ? msg::ConfirmServiceConnection{} : confirms.back();
+  }
+  // Reports are scheduled from ideal times: no drift over 10,000 periods.
+  void expect_exact_rate(double requested_hz) {
+    const auto confirm = create(kOcuA, msg::ReportGlobalPose::code, requested_hz, 0x1FF);
+    ASSERT_EQ(confirm.response_code, msg::sc_response::kCreated);
+    const double rate = confirm.confirmed_rate_hz;
+    const rt::TimePoint start = time.now();
+    time.advance(std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(10'000.5 / rate)));
+    const auto reports = reports_to(kOcuA);
+    ASSERT_EQ(reports.size(), 10'001u);
+    const double period_ns = 1e9 / rate;
+    double worst_offset_ns = 0;
+    for (std::size_t k = 0; k < reports.size(); ++k) {
+      const double ideal = static_cast<double>(k) * period_ns;
+      const double actual = static_cast<double>((reports[k].at - start).count());
+      worst_offset_ns = std::max(worst_offset_ns, std::abs(actual - ideal));
+    }
+    const double mean_period_ns =
+        static_cast<double>((reports.back().at - reports.front().at).count()) / static_cast<double>(reports.size() - 1);
+    EXPECT_LT(std::abs(mean_period_ns - period_ns) / period_ns, 0.001);
+    EXPECT_LE(worst_offset_ns, 1.0);  // rounding to the nanosecond, never accumulated
+  }
+
+  std::vector<Sent> reports_to(const Address& to) const {
+    std::vector<Sent> out;
+    for (const auto& s : outbox.sent)
+      if (s.header.command_code == msg::ReportGlobalPose::code && s.header.destination == to) out.push_back(s);
+    return out;
+  }
+};
+
+TEST_F(ServiceConnectionTest, ReportsCarryTheFlagASequenceAndTheAndedPresenceVector) {
+  const auto confirm = create(kOcuA, msg::ReportGlobalPose::code, 10, 0x0181);  // lat, att RMS, time
+  EXPECT_EQ(confirm.response_code, msg::sc_response::kCreated);
+  EXPECT_EQ(confirm.instance_id, 0);
+  EXPECT_NEAR(confirm.confirmed_rate_hz, 10, 0.02);
+  time.advance(1050ms);
+  const auto reports = reports_to(kOcuA);
+  ASSERT_EQ(reports.size(), 11u);  // at 0, 0.1, ..., 1.0 s (the rate travels quantised: 9.998 Hz)
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    EXPECT_TRUE(reports[i].header.service_connection);
+    EXPECT_EQ(reports[i].header.sequence, i);
+    auto pose = wire::decode_payload<msg::ReportGlobalPose>(reports[i].payload);
+    ASSERT_TRUE(pose);
+    // Requested 0x0181 AND available 0x017F = 0x0101: latitude and time stamp.
+    EXPECT_EQ(wire::presence_of(*pose), 0x0101u);
+  }
+}
+
+TEST_F(ServiceConnectionTest, RefusesWhatItCannotServe) {
+  EXPECT_EQ(create(kOcuA, msg::ReportVelocityState::code, 10, 0xFF).response_code,
+            msg::sc_response::kCommandNotSupported);
+  EXPECT_EQ(create(kOcuA, msg::ReportGlobalPose::code, 0, 0xFF).response_code, msg::sc_response::kInvalidParameters);
+  // A command SC needs control.
+  EXPECT_EQ(create(kOcuA, msg::SetWrenchEffort::code, 10, 0).response_code, msg::sc_response::kInsufficientAuthority);
+  EXPECT_EQ(driver->service_connections().active(), 0u);
+}
+
+TEST_F(ServiceConnectionTest, ConfirmedRateIsCappedByTheLimit) {
+  rt::ComponentConfig config;
+  config.address = kDriver;
+  config.service_connections.max_rate_hz = 50;
+  config.service_connections.max_connections = 1;
+  TestDriver d(config, rt::Environment{time, time, outbox});
+  d.start();
+  outbox.clear();
+  msg::CreateServiceConnection m;
+  m.command_code = msg::ReportGlobalPose::code;
+  m.periodic_rate_hz = 200;
+  m.presence_vector = 0x1FF;
+  Header h;
+  h.command_code = m.code;
+  h.source = kOcuA;
+  h.destination = kDriver;
+  std::vector<std::uint8_t> payload(16);
+  const auto size = wire::encode_payload(m, payload);
+  d.receive(h, std::span(payload).first(*size));
+  EXPECT_NEAR(outbox.to<msg::ConfirmServiceConnection>(kOcuA).at(0).confirmed_rate_hz, 50, 0.02);
+  h.source = kOcuB;  // a second SC is beyond the limit
+  d.receive(h, std::span(payload).first(*size));
+  EXPECT_EQ(outbox.to<msg::ConfirmServiceConnection>(kOcuB).at(0).response_code, msg::sc_response::kRefused);
+}
+
+TEST_F(ServiceConnectionTest, SameCodeAndPresenceShareAnInstance) {
+  const auto a = create(kOcuA, msg::ReportGlobalPose::code, 5, 0x0003);
+  const auto b = create(kOcuB, msg::ReportGlobalPose::code, 2, 0x0003);
+  const auto c = create(kOcuC, msg::ReportGlobalPose::code, 2, 0x0007);
+  EXPECT_EQ(a.instance_id, b.instance_id);
+  EXPECT_NE(a.instance_id, c.instance_id);
+  // A repeat Create from the same requester updates its SC rather than adding one.
+  const auto again = create(kOcuA, msg::ReportGlobalPose::code, 1, 0x0003);
+  EXPECT_EQ(again.instance_id, a.instance_id);
+  EXPECT_EQ(driver->service_connections().active(), 3u);
+}
+
+TEST_F(ServiceConnectionTest, TerminateSuspendAndRequesterLossEndReports) {
+  const auto a = create(kOcuA, msg::ReportGlobalPose::code, 10, 0x1FF);
+  const auto b = create(kOcuB, msg::ReportGlobalPose::code, 10, 0x1FF);
+  create(kOcuC, msg::ReportGlobalPose::code, 10, 0x1FF);
+  deliver(kOcuA, msg::TerminateServiceConnection{{msg::ReportGlobalPose::code, a.instance_id}});
+  deliver(kOcuB, msg::SuspendServiceConnection{{msg::ReportGlobalPose::code, b.instance_id}});
+  driver->peer_lost(kOcuC);
+  outbox.clear();
+  time.advance(2s);
+  EXPECT_TRUE(reports_to(kOcuA).empty());
+  EXPECT_TRUE(reports_to(kOcuB).empty());
+  EXPECT_TRUE(reports_to(kOcuC).empty());
+  EXPECT_EQ(driver->service_connections().active(), 1u);  // B's, suspended
+}
+
+TEST_F(ServiceConnectionTest, ShutdownEndsEveryConnection) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  create(kOcuB, msg::ReportGlobalPose::code, 10, 0x1FF);
+  deliver(kOcuA, msg::Shutdown{});
+  EXPECT_EQ(driver->service_connections().active(), 0u);
+  outbox.clear();
+  time.advance(1s);
+  EXPECT_TRUE(outbox.sent.empty());
+}
+
+TEST_F(ServiceConnectionTest, RateIsExactAt1092Hz) { expect_exact_rate(1092); }
+TEST_F(ServiceConnectionTest, RateIsExactAtOneReportAMinute) { expect_exact_rate(0.0167); }
+
+TEST_F(ServiceConnectionTest, CommandServiceConnectionIsADeadman) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  ASSERT_EQ(create(kOcuA, msg::SetWrenchEffort::code, 10, 0).response_code, msg::sc_response::kCreated);
+  // The controller commands at 10 Hz for a second: the platform moves.
+  for (int i = 0; i < 10; ++i) {
+    drive(kOcuA, 40);
+    time.advance(100ms);
+  }
+  ASSERT_TRUE(driver->moving);
+  // Commands stop (the last one 100 ms ago); the controller is otherwise alive.
+  const auto stops_before = driver->stops.size();
+  time.advance(150ms);  // 250 ms of silence: within 3 periods
+  EXPECT_TRUE(driver->moving);
+  time.advance(200ms);  // 450 ms: more than 3 periods
+  EXPECT_FALSE(driver->moving);
+  EXPECT_GT(driver->stops.size(), stops_before);
+  EXPECT_TRUE(logged("loss of command"));
+  EXPECT_EQ(driver->service_connections().counters().commands_lost, 1u);
+}
+
+}  // namespace
+}  // namespace jaus::test
