@@ -163,3 +163,76 @@ TEST_F(ServiceConnectionTest, CommandServiceConnectionIsADeadman) {
 
 }  // namespace
 }  // namespace jaus::test
+
+namespace jaus::test {
+namespace {
+
+// Requester side: two components wired back to back through a loopback outbox.
+class Loopback : public rt::Outbox {
+ public:
+  void send(const Header& header, std::span<const std::uint8_t> payload) override {
+    if (!connected) return;
+    std::vector<std::uint8_t> copy(payload.begin(), payload.end());
+    time->call_at(time->now(), [this, header, copy] {
+      for (auto* c : components)
+        if (header.destination.matches(c->address())) c->receive(header, copy);
+    });
+  }
+  rt::VirtualTime* time = nullptr;
+  std::vector<rt::Component*> components;
+  bool connected = true;
+};
+
+class PoseUser : public rt::Component {
+ public:
+  using Component::Component;
+  using Component::subscribe;
+  using Component::unsubscribe;
+};
+
+TEST(ServiceConnectionClient, DeliversReportsAndRecreatesWhenTheyStop) {
+  rt::VirtualTime time;
+  Loopback wire_link;
+  wire_link.time = &time;
+  rt::ComponentConfig provider_config;
+  provider_config.address = kDriver;
+  auto provider = std::make_unique<TestDriver>(provider_config, rt::Environment{time, time, wire_link});
+  rt::ComponentConfig user_config;
+  user_config.address = kOcuA;
+  PoseUser user(user_config, rt::Environment{time, time, wire_link});
+  wire_link.components = {provider.get(), &user};
+  provider->start();
+  user.start();
+
+  std::vector<double> latitudes;
+  const auto id = user.subscribe<msg::ReportGlobalPose>(
+      kDriver, 20, 0x0001, [&](const Header&, const msg::ReportGlobalPose& pose) {
+        latitudes.push_back(pose.latitude_deg.value_or(-1));
+      });
+  time.advance(std::chrono::milliseconds(1020));
+  ASSERT_NE(user.subscription(id), nullptr);
+  EXPECT_TRUE(user.subscription(id)->confirmed);
+  EXPECT_EQ(latitudes.size(), 21u);  // at 0, 50, ..., 1000 ms
+  EXPECT_NEAR(latitudes.back(), 45.5, 1e-6);
+
+  // The provider restarts and forgets the SC: reports stop, the user creates it again.
+  wire_link.components = {&user};
+  provider = std::make_unique<TestDriver>(provider_config, rt::Environment{time, time, wire_link});
+  provider->start();
+  wire_link.components = {provider.get(), &user};
+  const auto before = latitudes.size();
+  time.advance(std::chrono::seconds(3));
+  EXPECT_GE(user.subscription(id)->recreated, 1u);
+  EXPECT_GT(latitudes.size(), before + 20);
+
+  // Unsubscribing terminates the provider's SC.
+  user.unsubscribe(id);
+  time.run_ready();
+  EXPECT_EQ(provider->service_connections().active(), 0u);
+  const auto after = latitudes.size();
+  time.advance(std::chrono::seconds(1));
+  EXPECT_EQ(latitudes.size(), after);
+}
+
+}  // namespace
+}  // namespace jaus::test

@@ -29,7 +29,11 @@ Component::Component(ComponentConfig config, Environment env)
           [this](const Address& commander, std::uint16_t code) {
             enforce_stop("loss of command: service connection 0x" + wire::detail::hex_u32(code) + " from " +
                          commander.to_string() + " went silent");
-          }) {
+          }),
+      subscriptions_(
+          env_, ServiceConnectionClient::Options{},
+          [this](const Address& provider, const msg::CreateServiceConnection& m) { send(provider, m); },
+          [this](const Address& provider, const msg::TerminateServiceConnection& m) { send(provider, m); }) {
   register_core_handlers();
 }
 
@@ -87,6 +91,9 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
 
   // Any traffic from the controller proves it is alive.
   if (control_.is_controller(header.source)) controller_last_heard_ = env_.clock.now();
+
+  // Reports on our own service connections go to their subscribers.
+  if (subscriptions_.on_report(header, payload)) return;
 
   const auto it = handlers_.find(header.command_code);
   if (it == handlers_.end()) {
@@ -199,6 +206,9 @@ void Component::register_core_handlers() {
   // control themselves (response 3 for a non-controller).
   handle<CreateServiceConnection>(Access::anyone, false, [this](const Header& h, const CreateServiceConnection& m) {
     services_.on_create(h, m);
+  });
+  handle<ConfirmServiceConnection>(Access::anyone, false, [this](const Header& h, const ConfirmServiceConnection& m) {
+    subscriptions_.on_confirm(h, m);
   });
   handle<ActivateServiceConnection>(Access::anyone, false,
                                     [this](const Header& h, const ActivateServiceConnection& m) { services_.on_activate(h, m); });

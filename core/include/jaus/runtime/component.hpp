@@ -25,6 +25,7 @@
 #include "jaus/runtime/emergency_latch.hpp"
 #include "jaus/runtime/environment.hpp"
 #include "jaus/runtime/lifecycle.hpp"
+#include "jaus/runtime/service_connection_client.hpp"
 #include "jaus/runtime/service_connections.hpp"
 
 namespace jaus::rt {
@@ -73,6 +74,28 @@ class Component {
   const EmergencyLatch& emergency() const { return emergency_; }
   const ComponentCounters& counters() const { return counters_; }
   const ServiceConnectionProvider& service_connections() const { return services_; }
+
+  // Opens a service connection to `provider` for report M; each report is
+  // decoded and handed to `on_report`. The SC is created again when reports
+  // stop. Returns an id for unsubscribe() and subscription().
+  template <class M>
+  SubscriptionId subscribe(const Address& provider, double rate_hz, std::uint32_t presence_vector,
+                           std::function<void(const Header&, const M&)> on_report) {
+    return subscriptions_.subscribe(
+        provider, M::code, rate_hz, presence_vector,
+        [this, on_report = std::move(on_report)](const Header& h, std::span<const std::uint8_t> payload) {
+          M report{};
+          if (auto error = wire::decode_payload_into(payload, report, wire::Dialect::ra, kHeaderSize)) {
+            ++counters_.decode_errors;
+            log(LogLevel::warn, "malformed " + std::string(M::name) + " from " + h.source.to_string() + ": " +
+                                    error->message());
+            return;
+          }
+          on_report(h, report);
+        });
+  }
+  void unsubscribe(SubscriptionId id) { subscriptions_.unsubscribe(id); }
+  const SubscriptionStatus* subscription(SubscriptionId id) const { return subscriptions_.status(id); }
 
   // The node's liveness table says `peer` is gone: its service connections
   // end, and if it was the controller, control is dropped (platform stops).
@@ -185,6 +208,7 @@ class Component {
   ComponentCounters counters_;
   std::unordered_map<std::uint16_t, Handler> handlers_;
   ServiceConnectionProvider services_;
+  ServiceConnectionClient subscriptions_;
   TimePoint controller_last_heard_{};
   TimerId controller_timer_ = kNoTimer;
   Duration time_offset_{};  // Set Time moves this component's clock, not the system's
