@@ -1,5 +1,6 @@
 #include "jaus/runtime/component.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "jaus/messages/communications_messages.hpp"
@@ -71,6 +72,13 @@ void Component::transition(LifecycleEvent event, const Address& by) {
     take_control_away("component shut down");
     services_.end_all("component shut down");
   }
+}
+
+std::vector<std::uint16_t> Component::input_codes() const {
+  std::vector<std::uint16_t> codes;
+  for (const auto& [code, handler] : handlers_) codes.push_back(code);
+  std::sort(codes.begin(), codes.end());
+  return codes;
 }
 
 void Component::peer_lost(const Address& peer) {

@@ -97,6 +97,12 @@ class Component {
   void unsubscribe(SubscriptionId id) { subscriptions_.unsubscribe(id); }
   const SubscriptionStatus* subscription(SubscriptionId id) const { return subscriptions_.status(id); }
 
+  // What this component accepts (command codes with a handler) and offers on
+  // service connections (report code -> available presence vector), for
+  // Report Services.
+  std::vector<std::uint16_t> input_codes() const;
+  std::map<std::uint16_t, std::uint32_t> output_codes() const { return services_.provided(); }
+
   // The node's liveness table says `peer` is gone: its service connections
   // end, and if it was the controller, control is dropped (platform stops).
   void peer_lost(const Address& peer);

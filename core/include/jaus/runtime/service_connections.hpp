@@ -75,6 +75,12 @@ class ServiceConnectionProvider {
   void end_all(std::string_view why);
 
   std::size_t active() const { return connections_.size(); }
+  // Report code -> available presence vector of everything provided.
+  std::map<std::uint16_t, std::uint32_t> provided() const {
+    std::map<std::uint16_t, std::uint32_t> out;
+    for (const auto& [code, p] : provided_) out[code] = p.available;
+    return out;
+  }
   const ServiceConnectionCounters& counters() const { return counters_; }
 
  private:

@@ -1,0 +1,183 @@
+// Node manager (discovery, heartbeats, configuration events) and communicator.
+#include "harness.hpp"
+#include "jaus/runtime/communicator.hpp"
+#include "jaus/runtime/node_manager.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+const Address kNodeManager{1, 1, 1, 1};
+
+class FakeDirectory : public rt::NodeDirectory {
+ public:
+  std::vector<const rt::Component*> local_components() const override { return components; }
+  std::vector<Address> known_subsystems() const override { return subsystems; }
+  std::vector<const rt::Component*> components;
+  std::vector<Address> subsystems;
+};
+
+class NodeManagerTest : public ::testing::Test {
+ protected:
+  NodeManagerTest() {
+    outbox.clock = &time;
+    rt::ComponentConfig nm_config;
+    nm_config.name = "node manager";
+    nm_config.address = kNodeManager;
+    rt::NodeManagerConfig nm;
+    nm.subsystem_name = "Husky A200";
+    nm.node_name = "onboard";
+    manager = std::make_unique<rt::NodeManager>(nm_config, rt::Environment{time, time, outbox}, directory, nm);
+    rt::ComponentConfig driver_config;
+    driver_config.name = "primitive driver";
+    driver_config.address = kDriver;
+    driver = std::make_unique<TestDriver>(driver_config, rt::Environment{time, time, outbox});
+    directory.components = {manager.get(), driver.get()};
+    directory.subsystems = {kNodeManager, Address{7, 2, 1, 1}};
+    manager->start();
+    driver->start();
+  }
+
+  template <class M>
+  void deliver(const Address& from, const M& message) {
+    std::vector<std::uint8_t> payload(kMaxPayloadSize);
+    const auto size = wire::encode_payload(message, payload);
+    ASSERT_TRUE(size);
+    Header h;
+    h.command_code = M::code;
+    h.source = from;
+    h.destination = kNodeManager;
+    manager->receive(h, std::span(payload).first(*size));
+  }
+
+  rt::VirtualTime time;
+  RecordingOutbox outbox;
+  FakeDirectory directory;
+  std::unique_ptr<rt::NodeManager> manager;
+  std::unique_ptr<TestDriver> driver;
+};
+
+TEST_F(NodeManagerTest, SendsHeartbeatsToTheSubsystemAndTheNode) {
+  outbox.clear();
+  time.advance(3500ms);
+  EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{1, 255, 1, 1}).size(), 3u);
+  EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{1, 1, 255, 255}).size(), 3u);
+}
+
+TEST_F(NodeManagerTest, AnswersIdentificationAtEachLevel) {
+  deliver(kOcuA, msg::QueryIdentification{{msg::identification::kSubsystem}});
+  deliver(kOcuA, msg::QueryIdentification{{msg::identification::kNode}});
+  deliver(kOcuA, msg::QueryIdentification{{msg::identification::kComponent}});
+  deliver(kOcuA, msg::QueryIdentification{{msg::identification::kSystem}});
+  const auto reports = outbox.to<msg::ReportIdentification>(kOcuA);
+  ASSERT_EQ(reports.size(), 3u);
+  EXPECT_EQ(reports[0].identification, "Husky A200");
+  EXPECT_EQ(reports[0].type, 10001);
+  EXPECT_EQ(reports[1].identification, "onboard");
+  EXPECT_EQ(reports[1].type, 40001);
+  EXPECT_EQ(reports[2].identification, "node manager");
+}
+
+TEST_F(NodeManagerTest, AnswersConfigurationSubsystemListAndServices) {
+  deliver(kOcuA, msg::QueryConfiguration{{msg::identification::kNode}});
+  deliver(kOcuA, msg::QuerySubsystemList{});
+  deliver(kOcuA, msg::QueryServices{});
+  const auto config = outbox.to<msg::ReportConfiguration>(kOcuA).at(0);
+  ASSERT_EQ(config.nodes.size(), 1u);
+  EXPECT_EQ(config.nodes[0].node_id, 1);
+  ASSERT_EQ(config.nodes[0].components.size(), 2u);
+  EXPECT_EQ(config.nodes[0].components[1].component_id, 33);
+  EXPECT_EQ(outbox.to<msg::ReportSubsystemList>(kOcuA).at(0).subsystems, directory.subsystems);
+  const auto services = outbox.to<msg::ReportServices>(kOcuA).at(0).services;
+  ASSERT_EQ(services.size(), 2u);
+  EXPECT_EQ(services[1].type, 33);
+  bool takes_wrench = false;
+  for (const auto& in : services[1].inputs) takes_wrench |= in.command_code == msg::SetWrenchEffort::code;
+  EXPECT_TRUE(takes_wrench);
+  ASSERT_EQ(services[1].outputs.size(), 1u);
+  EXPECT_EQ(services[1].outputs[0].command_code, msg::ReportGlobalPose::code);
+  EXPECT_EQ(services[1].outputs[0].presence_vector, 0x017Fu);
+}
+
+TEST_F(NodeManagerTest, ConfigurationEventsOnEveryChange) {
+  msg::CreateEvent create;
+  create.request_id = 9;
+  create.report_code = msg::ReportConfiguration::code;
+  create.event_type = 1;
+  create.query_message = std::vector<std::uint8_t>{msg::identification::kSubsystem};
+  deliver(kOcuA, create);
+  const auto confirm = outbox.to<msg::ConfirmEventRequest>(kOcuA).at(0);
+  EXPECT_EQ(confirm.request_id, 9);
+  EXPECT_EQ(confirm.response_code, rt::event_response::kSuccessful);
+  EXPECT_EQ(manager->event_subscriptions(), 1u);
+
+  directory.components = {manager.get()};  // the driver went away
+  manager->configuration_changed();
+  const auto events = outbox.to<msg::Event>(kOcuA);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].event_id, confirm.event_id);
+  EXPECT_EQ(events[0].report_code, msg::ReportConfiguration::code);
+  auto config = wire::decode_payload<msg::ReportConfiguration>(events[0].report_message);
+  ASSERT_TRUE(config);
+  EXPECT_EQ(config->nodes.at(0).components.size(), 1u);
+
+  msg::CancelEvent cancel;
+  cancel.request_id = 10;
+  cancel.message_code = msg::ReportConfiguration::code;
+  cancel.event_id = confirm.event_id;
+  deliver(kOcuA, cancel);
+  EXPECT_EQ(manager->event_subscriptions(), 0u);
+  manager->configuration_changed();
+  EXPECT_EQ(outbox.to<msg::Event>(kOcuA).size(), 1u);
+}
+
+TEST_F(NodeManagerTest, PeriodicConfigurationEventsAndRefusals) {
+  msg::CreateEvent periodic;
+  periodic.request_id = 1;
+  periodic.report_code = msg::ReportConfiguration::code;
+  periodic.event_type = 0;
+  periodic.requested_rate_hz = 2;
+  deliver(kOcuA, periodic);
+  time.advance(2200ms);
+  EXPECT_EQ(outbox.to<msg::Event>(kOcuA).size(), 5u);  // at 0, 0.5, 1, 1.5, 2 s
+
+  msg::CreateEvent other = periodic;
+  other.report_code = msg::ReportGlobalPose::code;
+  deliver(kOcuB, other);
+  EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code,
+            rt::event_response::kMessageNotSupported);
+}
+
+TEST(Communicator, ReportsAndSetsDataLinks) {
+  rt::VirtualTime time;
+  RecordingOutbox outbox;
+  rt::ComponentConfig config;
+  config.address = Address{1, 1, 35, 1};
+  config.authority = 0;
+  rt::Communicator communicator(config, rt::Environment{time, time, outbox}, 2);
+  communicator.start();
+  auto deliver = [&](const Address& from, auto message) {
+    std::vector<std::uint8_t> payload(64);
+    const auto size = wire::encode_payload(message, payload);
+    Header h;
+    h.command_code = decltype(message)::code;
+    h.source = from;
+    h.destination = config.address;
+    communicator.receive(h, std::span(payload).first(*size));
+  };
+  deliver(kOcuA, msg::SetDataLinkSelect{{1}});  // not the controller
+  EXPECT_EQ(communicator.selected_link(), 0);
+  deliver(kOcuA, msg::RequestComponentControl{{10}});
+  deliver(kOcuA, msg::SetDataLinkSelect{{1}});
+  deliver(kOcuA, msg::SetDataLinkStatus{{rt::data_link::kStandby}});
+  deliver(kOcuA, msg::SetDataLinkSelect{{7}});  // no such link
+  EXPECT_EQ(communicator.selected_link(), 1);
+  deliver(kOcuB, msg::QueryDataLinkStatus{{1}});
+  deliver(kOcuB, msg::QuerySelectedDataLinkStatus{});
+  EXPECT_EQ(outbox.to<msg::ReportDataLinkStatus>(kOcuB).at(0).state, rt::data_link::kStandby);
+  EXPECT_EQ(outbox.to<msg::ReportSelectedDataLinkStatus>(kOcuB).at(0).data_link_id, 1);
+}
+
+}  // namespace
+}  // namespace jaus::test
