@@ -66,9 +66,13 @@ AssemblyResult LargeDataSetAssembler::feed_finished_set(Sets::iterator it, const
                                                         std::span<const std::uint8_t> payload, rt::TimePoint now) {
   const Set& set = it->second;
   if (set.state == SetState::completed) {
+    // Late copies of its packets are dropped. A first packet always starts a
+    // new message, even with a number of the completed range: senders that
+    // number every set from 0 reuse the range each time.
     const std::uint16_t first = set.first_header->sequence;
     const auto offset = static_cast<std::uint16_t>(header.sequence - first);
-    if (offset <= static_cast<std::uint16_t>(*set.last_sequence - first)) return drop(AssemblyIssue::duplicate);
+    if (header.data_flag != DataFlag::first && offset <= static_cast<std::uint16_t>(*set.last_sequence - first))
+      return drop(AssemblyIssue::duplicate);
   } else if (header.data_flag != DataFlag::first) {
     // Discarding: only a new first packet starts over; the old set's last one ends it.
     if (header.data_flag == DataFlag::last) sets_.erase(it);
@@ -85,19 +89,33 @@ AssemblyResult LargeDataSetAssembler::feed_assembling_set(Sets::iterator it, con
   Set& set = it->second;
   const std::uint16_t sequence = header.sequence;
   const auto held = set.packets.find(sequence);
+  if (header.data_flag == DataFlag::retransmitted) {
+    if (held == set.packets.end()) {
+      if (!fits(set, sequence)) return drop(AssemblyIssue::inconsistent);
+      return store(it, sequence, payload, now, AssemblyIssue::none);  // fills a gap
+    }
+    const std::size_t bytes = set.bytes - held->second.size() + payload.size();
+    if (bytes > options_.max_message_size) return discard_as_oversize(set, now);
+    held->second.assign(payload.begin(), payload.end());
+    set.bytes = bytes;
+    set.last_activity = now;
+    ++counters_.replaced;
+    return {AssemblyStatus::pending, AssemblyIssue::replaced, std::nullopt};
+  }
+  // A number already held with other bytes is no copy: it belongs to a newer
+  // message from a sender that numbers every set from 0 (OpenJAUS does).
+  // Mixing the two would deliver a corrupt message.
+  const bool held_already = held != set.packets.end();
+  if (held_already && !std::ranges::equal(held->second, payload)) return supersede(it, header, payload, now);
   switch (header.data_flag) {
     case DataFlag::first: {
-      if (set.first_header && set.first_header->sequence == sequence) return drop(AssemblyIssue::duplicate);
-      const bool other_first = set.first_header.has_value();
-      const bool last_out_of_reach = set.last_sequence && static_cast<std::uint16_t>(*set.last_sequence - sequence) >=
-                                                              options_.max_packets_per_set;
-      if (other_first || last_out_of_reach) {
-        // A new message from the same sender: the unfinished one will not be completed.
-        ++counters_.superseded;
-        const LargeDataSetKey key = it->first;
-        sets_.erase(it);
-        return feed_new_set(key, header, payload, now, AssemblyIssue::superseded);
+      if (set.first_header) {
+        if (set.first_header->sequence == sequence) return drop(AssemblyIssue::duplicate);
+        return supersede(it, header, payload, now);  // the sender started another message
       }
+      if (set.last_sequence &&
+          static_cast<std::uint16_t>(*set.last_sequence - sequence) >= options_.max_packets_per_set)
+        return supersede(it, header, payload, now);
       set.first_header = header;
       drop_packets_outside_range(set);
       break;
@@ -113,27 +131,25 @@ AssemblyResult LargeDataSetAssembler::feed_assembling_set(Sets::iterator it, con
       drop_packets_outside_range(set);
       break;
     }
-    case DataFlag::retransmitted: {
-      if (held == set.packets.end()) break;  // fills a gap, if it fits (below)
-      const std::size_t bytes = set.bytes - held->second.size() + payload.size();
-      if (bytes > options_.max_message_size) return discard_as_oversize(set, now);
-      held->second.assign(payload.begin(), payload.end());
-      set.bytes = bytes;
-      set.last_activity = now;
-      ++counters_.replaced;
-      return {AssemblyStatus::pending, AssemblyIssue::replaced, std::nullopt};
-    }
     default:  // middle
-      if (held != set.packets.end()) return drop(AssemblyIssue::duplicate);
+      if (held_already) return drop(AssemblyIssue::duplicate);
       break;
   }
-  if (set.packets.contains(sequence)) {
+  if (held_already) {
     // A retransmission of this first or last packet came before it: only its role was missing.
     set.last_activity = now;
     return complete_if_whole(it, now, AssemblyIssue::none);
   }
   if (!fits(set, sequence)) return drop(AssemblyIssue::inconsistent);
   return store(it, sequence, payload, now, AssemblyIssue::none);
+}
+
+AssemblyResult LargeDataSetAssembler::supersede(Sets::iterator it, const Header& header,
+                                                std::span<const std::uint8_t> payload, rt::TimePoint now) {
+  ++counters_.superseded;
+  const LargeDataSetKey key = it->first;
+  sets_.erase(it);
+  return feed_new_set(key, header, payload, now, AssemblyIssue::superseded);
 }
 
 AssemblyResult LargeDataSetAssembler::store(Sets::iterator it, std::uint16_t sequence,

@@ -2,7 +2,10 @@
 // received packets, by (source, command code) and sequence number.
 //
 // Packets may arrive in any order; a duplicate is ignored, a retransmitted
-// packet (flag 4) replaces the one with its sequence number. A set finishes
+// packet (flag 4) replaces the one with its sequence number. Senders may
+// number sets continuously or restart every set at 0 (OpenJAUS does): a
+// packet whose number is held with other bytes starts a new message rather
+// than being mixed into the old one. A set finishes
 // when its first (1) and last (8) packets and every number between them are
 // held. Everything is bounded: bytes and packets per set, sets in progress,
 // and time (a set that receives nothing new for `timeout` is discarded).
@@ -48,7 +51,7 @@ enum class AssemblyIssue : std::uint8_t {
   none,
   // The packet was dropped:
   bad_packet,                // data size disagrees with the payload, or unknown data flag
-  duplicate,                 // its sequence number is already held, or belongs to a set just completed
+  duplicate,                 // same number and bytes as a held packet, or a late copy from a set just completed
   inconsistent,              // contradicts its set (a second last packet, a number outside first..last)
   oversize,                  // its set outgrew the byte or packet limit: the whole set was discarded
   too_many_sets,             // it would start a set while max_concurrent_sets are in progress
@@ -56,7 +59,8 @@ enum class AssemblyIssue : std::uint8_t {
   rest_of_discarded_set,     // belongs to a set already discarded as oversize
   // The packet was kept, and:
   replaced,    // as a retransmission, it replaced the packet held under its number
-  superseded,  // as a new first packet, it ended the unfinished set before it (discarded)
+  superseded,  // it starts a newer message (a first packet with another number, or a number held
+               // with other bytes): the unfinished set before it was discarded
   // A whole set was discarded:
   timed_out,  // nothing new arrived for `timeout`
 };
@@ -140,6 +144,8 @@ class LargeDataSetAssembler {
                                    rt::TimePoint now);
   AssemblyResult feed_assembling_set(Sets::iterator it, const Header& header, std::span<const std::uint8_t> payload,
                                      rt::TimePoint now);
+  AssemblyResult supersede(Sets::iterator it, const Header& header, std::span<const std::uint8_t> payload,
+                           rt::TimePoint now);
   AssemblyResult store(Sets::iterator it, std::uint16_t sequence, std::span<const std::uint8_t> payload,
                        rt::TimePoint now, AssemblyIssue issue);
   AssemblyResult complete_if_whole(Sets::iterator it, rt::TimePoint now, AssemblyIssue issue);
