@@ -30,6 +30,9 @@
 
 namespace jaus::rt {
 
+// The largest message a component sends (as a large data set when over 4080 bytes).
+inline constexpr std::size_t kMaxLargeDataSetSize = 1024 * 1024;
+
 struct ComponentConfig {
   std::string name = "component";
   Address address;
@@ -131,6 +134,11 @@ class Component {
   void send(const Address& to, const M& message, std::uint8_t priority = priority::kDefault) {
     std::vector<std::uint8_t> payload(kMaxPayloadSize);
     auto size = wire::encode_payload(message, payload);
+    if (!size && size.error().code == ErrorCode::output_too_small) {
+      // Larger than one packet (Report Image): the node sends a large data set.
+      payload.resize(kMaxLargeDataSetSize);
+      size = wire::encode_payload(message, payload);
+    }
     if (!size) {
       log(LogLevel::error, std::string("cannot encode ") + std::string(M::name) + ": " + size.error().message());
       return;

@@ -1,0 +1,254 @@
+// The node: routing between local components and the network, priority
+// dispatch, ACK/NAK, large data sets, liveness. Two nodes are joined by an
+// in-memory link under virtual time.
+#include "harness.hpp"
+#include "jaus/core/hex.hpp"
+#include "jaus/node/node.hpp"
+#include "jaus/runtime/node_manager.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+class MemoryLink : public node::Link {
+ public:
+  explicit MemoryLink(rt::VirtualTime& t) : time(t) {}
+  void transmit(std::span<const std::uint8_t> packet) override {
+    packets.emplace_back(packet.begin(), packet.end());
+    if (peer && connected) {
+      std::vector<std::uint8_t> copy(packet.begin(), packet.end());
+      time.call_at(time.now() + 1ms, [this, copy] { peer->receive(copy); });
+    }
+  }
+  std::vector<Header> headers() const {
+    std::vector<Header> out;
+    for (const auto& p : packets) out.push_back(*decode_header(p));
+    return out;
+  }
+  rt::VirtualTime& time;
+  node::Node* peer = nullptr;
+  bool connected = true;
+  std::vector<std::vector<std::uint8_t>> packets;
+};
+
+class ImageSink : public rt::Component {
+ public:
+  ImageSink(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    handle<msg::ReportImage>(Access::anyone, false,
+                             [this](const Header&, const msg::ReportImage& m) { images.push_back(m.data); });
+  }
+  std::vector<std::vector<std::uint8_t>> images;
+  template <class M>
+  void send_to(const Address& to, const M& m, std::uint8_t priority = jaus::priority::kDefault) {
+    send(to, m, priority);
+  }
+};
+
+rt::ComponentConfig config_for(const Address& address, const char* name) {
+  rt::ComponentConfig c;
+  c.address = address;
+  c.name = name;
+  c.authority = 5;
+  return c;
+}
+
+class NodeTest : public ::testing::Test {
+ protected:
+  NodeTest() : link_a(time), link_b(time) {
+    node::NodeConfig ca;
+    ca.subsystem = 1;
+    ca.node = 1;
+    node::NodeConfig cb;
+    cb.subsystem = 2;
+    cb.node = 1;
+    a = std::make_unique<node::Node>(ca, time, time, link_a, [this](rt::LogLevel, const std::string& l) { logs.push_back(l); });
+    b = std::make_unique<node::Node>(cb, time, time, link_b, [this](rt::LogLevel, const std::string& l) { logs.push_back(l); });
+    link_a.peer = b.get();
+    link_b.peer = a.get();
+    driver = static_cast<TestDriver*>(&a->add(std::make_unique<TestDriver>(config_for(kDriver, "driver"), a->environment())));
+    ocu = static_cast<ImageSink*>(&b->add(std::make_unique<ImageSink>(config_for(kOcu, "ocu"), b->environment())));
+  }
+
+  std::vector<std::uint8_t> packet(const Header& header, std::span<const std::uint8_t> payload) {
+    std::vector<std::uint8_t> out(kHeaderSize + payload.size());
+    Header h = header;
+    h.data_size = static_cast<std::uint16_t>(payload.size());
+    encode_header_unchecked(h, std::span(out).first<kHeaderSize>());
+    std::copy(payload.begin(), payload.end(), out.begin() + kHeaderSize);
+    return out;
+  }
+  template <class M>
+  std::vector<std::uint8_t> packet_of(const Address& from, const Address& to, const M& m,
+                                      std::uint8_t priority = jaus::priority::kDefault,
+                                      AckNak ack = AckNak::none) {
+    std::vector<std::uint8_t> payload(kMaxPayloadSize);
+    const auto size = wire::encode_payload(m, payload);
+    Header h;
+    h.command_code = M::code;
+    h.source = from;
+    h.destination = to;
+    h.priority = priority;
+    h.ack_nak = ack;
+    return packet(h, std::span(payload).first(*size));
+  }
+  bool logged(const std::string& text) const {
+    for (const auto& l : logs)
+      if (l.find(text) != std::string::npos) return true;
+    return false;
+  }
+
+  static inline const Address kOcu{2, 1, 40, 1};
+  rt::VirtualTime time;
+  MemoryLink link_a, link_b;
+  std::vector<std::string> logs;
+  std::unique_ptr<node::Node> a, b;
+  TestDriver* driver = nullptr;
+  ImageSink* ocu = nullptr;
+};
+
+TEST_F(NodeTest, RoutesBetweenNodesAndStampsSequenceNumbers) {
+  ocu->send_to(kDriver, msg::RequestComponentControl{{10}});
+  ocu->send_to(kDriver, msg::QueryComponentControl{});
+  time.advance(10ms);
+  EXPECT_TRUE(driver->control().is_controller(kOcu));
+  const auto sent = link_b.headers();
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0].sequence, 0);
+  EXPECT_EQ(sent[1].sequence, 1);
+  // The replies came back over a's link.
+  std::size_t confirms = 0;
+  for (const auto& h : link_a.headers()) confirms += h.command_code == msg::ConfirmComponentControl::code;
+  EXPECT_EQ(confirms, 1u);
+  EXPECT_TRUE(b->liveness().find_component(kDriver).has_value());
+}
+
+TEST_F(NodeTest, BroadcastReachesEveryLocalComponentButTheSender) {
+  auto& second = a->add(std::make_unique<TestDriver>(config_for(Address{1, 1, 33, 2}, "driver 2"), a->environment()));
+  a->receive(packet_of(kOcu, Address{1, 1, 255, 255}, msg::SetEmergency{}));
+  time.advance(1ms);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::emergency);
+  EXPECT_EQ(second.state(), msg::PrimaryStatus::emergency);
+  // Another subsystem's broadcast is not for this node.
+  a->receive(packet_of(kOcu, Address{3, 255, 255, 255}, msg::Standby{}));
+  time.advance(1ms);
+  EXPECT_EQ(a->counters().not_for_this_node, 1u);
+}
+
+TEST_F(NodeTest, SafetyCriticalMessagesOvertakeQueuedOnes) {
+  link_a.packets.clear();
+  a->receive(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
+  a->receive(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
+  a->receive(packet_of(kOcu, kDriver, msg::SetEmergency{}, 12));
+  time.advance(1ms);
+  // Both status reports were produced after the emergency was handled.
+  std::size_t in_emergency = 0;
+  for (const auto& p : link_a.packets) {
+    auto view = decode_packet(p);
+    if (view->header.command_code != msg::ReportComponentStatus::code) continue;
+    auto report = wire::decode_payload<msg::ReportComponentStatus>(view->payload);
+    in_emergency += report->primary_status == static_cast<std::uint8_t>(msg::PrimaryStatus::emergency);
+  }
+  EXPECT_EQ(in_emergency, 2u);
+}
+
+TEST_F(NodeTest, AnswersAckRequestsWithAckOrNak) {
+  link_a.packets.clear();
+  a->receive(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
+  a->receive(packet_of(kOcu, Address{1, 1, 50, 1}, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
+  time.advance(1ms);
+  std::vector<AckNak> replies;
+  for (const auto& h : link_a.headers())
+    if (h.command_code == msg::QueryComponentStatus::code) replies.push_back(h.ack_nak);
+  EXPECT_EQ(replies, (std::vector<AckNak>{AckNak::ack, AckNak::nak}));
+  EXPECT_EQ(a->counters().acks_sent, 1u);
+  EXPECT_EQ(a->counters().naks_sent, 1u);
+}
+
+TEST_F(NodeTest, RetransmitsItsOwnAckRequestsABoundedNumberOfTimes) {
+  link_b.connected = false;  // nothing reaches node a
+  std::vector<std::uint8_t> payload(8);
+  Header h;
+  h.command_code = msg::QueryComponentStatus::code;
+  h.source = kOcu;
+  h.destination = kDriver;
+  h.ack_nak = AckNak::ack_requested;
+  b->send(h, {});
+  time.advance(10s);
+  std::size_t transmissions = 0;
+  for (const auto& sent : link_b.headers()) transmissions += sent.command_code == msg::QueryComponentStatus::code;
+  EXPECT_EQ(transmissions, 3u);
+  EXPECT_TRUE(logged("no ACK for 0x2002 to 1.1.33.1 after 3 transmissions"));
+}
+
+TEST_F(NodeTest, LargePayloadsTravelAsLargeDataSets) {
+  msg::ReportImage image;
+  image.data.resize(10'000);
+  for (std::size_t i = 0; i < image.data.size(); ++i) image.data[i] = static_cast<std::uint8_t>(i * 7);
+  auto* camera = static_cast<ImageSink*>(
+      &a->add(std::make_unique<ImageSink>(config_for(Address{1, 1, 37, 1}, "camera"), a->environment())));
+  link_a.packets.clear();
+  camera->send_to(kOcu, image);
+  time.advance(10ms);
+  const auto sent = link_a.headers();
+  ASSERT_EQ(sent.size(), 3u);
+  EXPECT_EQ(sent[0].data_flag, DataFlag::first);
+  EXPECT_EQ(sent[1].data_flag, DataFlag::middle);
+  EXPECT_EQ(sent[2].data_flag, DataFlag::last);
+  EXPECT_EQ(sent[1].sequence, static_cast<std::uint16_t>(sent[0].sequence + 1));
+  ASSERT_EQ(ocu->images.size(), 1u);
+  EXPECT_EQ(ocu->images[0], image.data);
+}
+
+TEST_F(NodeTest, BadPacketsAreCountedNeverDelivered) {
+  a->receive(std::vector<std::uint8_t>{0x06, 0x02, 0x02});
+  auto wrong_size = packet_of(kOcu, kDriver, msg::SetEmergency{});
+  wrong_size.push_back(0);
+  a->receive(wrong_size);
+  a->receive(packet_of(Address{0, 1, 40, 1}, kDriver, msg::SetEmergency{}));
+  time.advance(1ms);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
+  EXPECT_EQ(a->counters().malformed, 2u);
+  EXPECT_EQ(a->counters().invalid_source, 1u);
+}
+
+TEST_F(NodeTest, SilentPeersLoseControlAndServiceConnections) {
+  rt::ComponentConfig config = config_for(Address{1, 1, 33, 3}, "patient driver");
+  config.controller_timeout = rt::Duration::zero();  // only the node's liveness table can notice
+  auto& patient = a->add(std::make_unique<TestDriver>(config, a->environment()));
+  ocu->send_to(patient.address(), msg::RequestComponentControl{{10}});
+  msg::CreateServiceConnection sc;
+  sc.command_code = msg::ReportGlobalPose::code;
+  sc.periodic_rate_hz = 5;
+  sc.presence_vector = 0x1FF;
+  ocu->send_to(patient.address(), sc);
+  time.advance(100ms);
+  ASSERT_TRUE(patient.control().is_controller(kOcu));
+  ASSERT_EQ(patient.service_connections().active(), 1u);
+  link_b.connected = false;  // the OCU's node falls silent
+  time.advance(4s);
+  EXPECT_FALSE(patient.control().controller());
+  EXPECT_EQ(patient.service_connections().active(), 0u);
+}
+
+TEST(NodeWithManager, PeersDiscoverEachOtherFromHeartbeats) {
+  rt::VirtualTime time;
+  MemoryLink link_a(time), link_b(time);
+  node::NodeConfig ca, cb;
+  cb.subsystem = 2;
+  node::Node a(ca, time, time, link_a), b(cb, time, time, link_b);
+  link_a.peer = &b;
+  link_b.peer = &a;
+  for (auto* n : {&a, &b}) {
+    rt::ComponentConfig config;
+    config.name = "node manager";
+    config.address = Address{n == &a ? std::uint8_t{1} : std::uint8_t{2}, 1, 1, 1};
+    auto& manager = n->add(std::make_unique<rt::NodeManager>(config, n->environment(), *n, rt::NodeManagerConfig{}));
+    n->set_node_manager(static_cast<rt::NodeManager*>(&manager));
+  }
+  time.advance(2500ms);
+  EXPECT_EQ(b.known_subsystems(), (std::vector<Address>{{2, 1, 1, 1}, {1, 1, 1, 1}}));
+}
+
+}  // namespace
+}  // namespace jaus::test
