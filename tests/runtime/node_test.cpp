@@ -200,6 +200,14 @@ TEST_F(NodeTest, LargePayloadsTravelAsLargeDataSets) {
   EXPECT_EQ(ocu->images[0], image.data);
 }
 
+TEST_F(NodeTest, AShutDownComponentLeavesTheNode) {
+  ocu->send_to(kDriver, msg::RequestComponentControl{{10}});
+  ocu->send_to(kDriver, msg::Shutdown{});
+  time.advance(10ms);
+  EXPECT_EQ(a->find(kDriver), nullptr);
+  EXPECT_EQ(a->local_components().size(), 0u);
+}
+
 TEST_F(NodeTest, BadPacketsAreCountedNeverDelivered) {
   a->receive(std::vector<std::uint8_t>{0x06, 0x02, 0x02});
   auto wrong_size = packet_of(kOcu, kDriver, msg::SetEmergency{});

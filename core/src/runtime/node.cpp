@@ -165,6 +165,11 @@ void Node::drain() {
       c->receive(h, message->payload, config_.dialect);
       delivered = true;
       ++counters_.delivered;
+      // A component that shut down leaves the node (after this message).
+      if (c->state() == msg::PrimaryStatus::shutdown) {
+        const Address gone = c->address();
+        scheduler_.call_at(clock_.now(), [this, gone] { remove(gone); });
+      }
     }
     if (!delivered && !h.destination.is_broadcast()) {
       ++counters_.undeliverable;
