@@ -370,6 +370,22 @@ TEST(LargeDataSetAssembler, ConcurrentSetsAreBounded) {
   EXPECT_EQ(feed(assembler, c[1]).status, AssemblyStatus::complete);
 }
 
+TEST(LargeDataSetAssembler, CompletedSetsAreRememberedWithinBounds) {
+  LargeDataSetAssembler assembler({.max_concurrent_sets = 2});
+  const auto payload = patterned_payload(3 * kMaxPayloadSize);
+  std::vector<std::vector<Packet>> sets;
+  for (std::uint8_t instance = 1; instance <= 10; ++instance) {
+    sets.push_back(split(image_header(0, Address{1, 1, 37, instance}), payload));
+    for (const Packet& packet : sets.back()) feed(assembler, packet);
+  }
+  EXPECT_EQ(assembler.counters().completed, 10u);
+  // The most recent sets are remembered: their late copies are duplicates.
+  EXPECT_EQ(feed(assembler, sets[9][1]).issue, AssemblyIssue::duplicate);
+  // The oldest were forgotten (at most 2 x max_concurrent_sets entries): a late copy opens a set.
+  EXPECT_EQ(feed(assembler, sets[0][1]).status, AssemblyStatus::pending);
+  EXPECT_EQ(assembler.sets_in_progress(), 1u);
+}
+
 TEST(LargeDataSetAssembler, StaleSetsMakeRoomForNewOnes) {
   rt::VirtualTime time;
   LargeDataSetAssembler assembler({.max_concurrent_sets = 1, .timeout = 5s});
