@@ -217,6 +217,9 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
     transmit(h, payload);
     return;
   }
+  // The common RA 3.3 peer drops a large data set whose first packet is not
+  // numbered 0 (the RA leaves the start free): for it, every set starts at 0.
+  if (config_.dialect == wire::Dialect::openjaus) h.sequence = 0;
   auto splitter = LargeDataSetSplitter::create(h, payload);
   if (!splitter) {
     ++counters_.send_failures;
@@ -225,7 +228,7 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
     return;
   }
   // A large data set numbers its packets s, s+1, ...: reserve the rest.
-  if (splitter->packet_count() > 1)
+  if (splitter->packet_count() > 1 && config_.dialect == wire::Dialect::ra)
     sequences_.take({h.source, h.destination}, static_cast<std::uint16_t>(splitter->packet_count() - 1));
   std::vector<std::uint8_t> buffer(kHeaderSize + kMaxPayloadSize);
   for (std::size_t i = 0; i < splitter->packet_count(); ++i) {
