@@ -39,7 +39,7 @@ if command -v clang++ >/dev/null; then
       grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
         while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done
     fi
-    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 2>&1 | tail -n 2
+    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/build/fuzz/" 2>&1 | tail -n 2
     rm -rf "$corpus"
   done
 else

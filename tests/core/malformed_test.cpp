@@ -105,6 +105,19 @@ TEST(Malformed, UnknownCommandCodeIsAnError) {
   EXPECT_EQ(result.error().code, ErrorCode::unknown_message);
 }
 
+TEST(Malformed, OddDatesSurviveJsonInTheirDialect) {
+  // Found by the fuzzer: raw month 15 reads as 16 in the openjaus dialect
+  // (0-based months); its JSON must encode again in that dialect.
+  const Bytes set_time = hex("06021100012101010128010207000B0A0315AB65ABE0D1");
+  for (const auto dialect : {wire::Dialect::ra, wire::Dialect::openjaus}) {
+    auto json = msg::message_to_json(set_time, dialect);
+    ASSERT_TRUE(json) << json.error().message();
+    auto again = msg::message_from_json(*json, dialect);
+    ASSERT_TRUE(again) << again.error().message();
+    EXPECT_EQ(*again, set_time);
+  }
+}
+
 TEST(Malformed, RandomByteFlipsNeverCrash) {
   std::mt19937 rng(20261121);
   std::size_t rejected = 0, total = 0;

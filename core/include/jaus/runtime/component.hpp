@@ -132,7 +132,9 @@ class Component {
 
   template <class M>
   void send(const Address& to, const M& message, std::uint8_t priority = priority::kDefault) {
-    std::vector<std::uint8_t> payload(kMaxPayloadSize);
+    // One buffer per component, reused: the outbox copies what it keeps.
+    std::vector<std::uint8_t>& payload = send_buffer_;
+    if (payload.size() < kMaxPayloadSize) payload.resize(kMaxPayloadSize);
     auto size = wire::encode_payload(message, payload);
     if (!size && size.error().code == ErrorCode::output_too_small) {
       // Larger than one packet (Report Image): the node sends a large data set.
@@ -227,6 +229,7 @@ class Component {
   TimerId controller_timer_ = kNoTimer;
   Duration time_offset_{};  // Set Time moves this component's clock, not the system's
   std::map<Address, TimePoint> refusal_logged_;  // rate limit of "not the controller" logs
+  std::vector<std::uint8_t> send_buffer_;
 };
 
 }  // namespace jaus::rt

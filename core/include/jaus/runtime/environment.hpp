@@ -12,6 +12,8 @@ namespace jaus::rt {
 
 // Where a component's messages go: the node in production, a recorder in tests.
 // The node stamps sequence numbers; the component fills everything else.
+// send() copies what it keeps and never delivers back into a component before
+// it returns (delivery is queued), so callers may reuse their buffers.
 class Outbox {
  public:
   virtual ~Outbox() = default;

@@ -380,8 +380,10 @@ struct Date {
       }
       if (!ok) return false;
     }
-    if (!v.pack()) {
-      why = "date stamp part out of range (year 2000-2127, month 0-15, day 0-31)";
+    // Bit ranges are checked when encoding, per dialect: the openjaus dialect
+    // reads month 16 from its 0-based 15, which the RA form cannot carry.
+    if (v.day > 31 || v.month > 16 || v.year < 2000 || v.year > 2127) {
+      why = "date stamp part out of range (year 2000-2127, month 0-16, day 0-31)";
       return false;
     }
     return true;
