@@ -230,26 +230,28 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
   // A large data set numbers its packets s, s+1, ...: reserve the rest.
   if (splitter->packet_count() > 1 && config_.dialect == wire::Dialect::ra)
     sequences_.take({h.source, h.destination}, static_cast<std::uint16_t>(splitter->packet_count() - 1));
-  std::vector<std::uint8_t> buffer(kHeaderSize + kMaxPayloadSize);
   for (std::size_t i = 0; i < splitter->packet_count(); ++i) {
-    auto size = splitter->encode(i, buffer);
+    auto size = splitter->encode(i, tx_buffer_);
     if (!size) {
       ++counters_.send_failures;
       return;
     }
     ++counters_.packets_sent;
-    link_.transmit(std::span(buffer).first(*size));
+    link_.transmit(std::span(tx_buffer_).first(*size));
   }
 }
 
 void Node::transmit(const Header& header, std::span<const std::uint8_t> payload) {
-  std::vector<std::uint8_t> packet(kHeaderSize + payload.size());
+  if (payload.size() > kMaxPayloadSize) {  // callers split first; never write past the buffer
+    ++counters_.send_failures;
+    return;
+  }
   Header h = header;
   h.data_size = static_cast<std::uint16_t>(payload.size());
-  encode_header_unchecked(h, std::span(packet).first<kHeaderSize>());
-  std::copy(payload.begin(), payload.end(), packet.begin() + kHeaderSize);
+  encode_header_unchecked(h, std::span(tx_buffer_).first<kHeaderSize>());
+  std::copy(payload.begin(), payload.end(), tx_buffer_.begin() + kHeaderSize);
   ++counters_.packets_sent;
-  link_.transmit(packet);
+  link_.transmit(std::span(tx_buffer_).first(kHeaderSize + payload.size()));
 }
 
 // ---- timers ----------------------------------------------------------------------

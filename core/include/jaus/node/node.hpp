@@ -32,7 +32,8 @@ namespace jaus::node {
 class Link {
  public:
   virtual ~Link() = default;
-  // One JAUS message: 16-byte header and payload (at most 4080 bytes).
+  // One JAUS message: 16-byte header and payload (at most 4080 bytes). The
+  // bytes are valid only during the call: copy what is kept.
   virtual void transmit(std::span<const std::uint8_t> packet) = 0;
 };
 
@@ -125,6 +126,9 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   LivenessTable liveness_;
   SequenceCounters sequences_;
   NodeCounters counters_;
+  // One packet at a time is built here: the link copies or sends before
+  // transmit() returns, so no packet allocates.
+  std::vector<std::uint8_t> tx_buffer_ = std::vector<std::uint8_t>(kHeaderSize + kMaxPayloadSize);
 };
 
 }  // namespace jaus::node

@@ -35,8 +35,6 @@ class Scheduler {
   virtual TimerId call_at(TimePoint when, std::function<void()> fn) = 0;
   // Cancels a pending call; a no-op for ids that already ran or were cancelled.
   virtual void cancel(TimerId id) = 0;
-  // Runs `fn` soon, after the current handler returns.
-  TimerId post(std::function<void()> fn, const Clock& clock) { return call_at(clock.now(), std::move(fn)); }
 };
 
 }  // namespace jaus::rt
