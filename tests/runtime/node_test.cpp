@@ -234,9 +234,35 @@ TEST_F(NodeTest, SilentPeersLoseControlAndServiceConnections) {
   ASSERT_TRUE(patient.control().is_controller(kOcu));
   ASSERT_EQ(patient.service_connections().active(), 1u);
   link_b.connected = false;  // the OCU's node falls silent
-  time.advance(4s);
+  time.advance(4s);  // the component's 3 s are over, its node's 5 s are not
+  EXPECT_TRUE(patient.control().is_controller(kOcu));
+  time.advance(2s);
   EXPECT_FALSE(patient.control().controller());
   EXPECT_EQ(patient.service_connections().active(), 0u);
+  EXPECT_TRUE(logged("node 2.1.0.0 silent: lost"));
+}
+
+TEST_F(NodeTest, AReceivingOnlyComponentOnALiveNodeKeepsItsServiceConnection) {
+  msg::CreateServiceConnection sc;
+  sc.command_code = msg::ReportGlobalPose::code;
+  sc.periodic_rate_hz = 5;
+  sc.presence_vector = 0x1FF;
+  ocu->send_to(kDriver, sc);
+  // Another component of the OCU's node keeps talking (as its node manager's
+  // heartbeats would); the subscriber itself only listens.
+  const Address other{2, 1, 1, 1};
+  for (int second = 0; second < 10; ++second) {
+    a->receive(packet_of(other, Address{1, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+    time.advance(1s);
+  }
+  EXPECT_EQ(driver->service_connections().active(), 1u);
+}
+
+TEST_F(NodeTest, OwnLoopedBackBroadcastsAreDropped) {
+  a->receive(packet_of(Address{1, 1, 40, 1}, Address{1, 255, 255, 255}, msg::QueryHeartbeatPulse{}));
+  time.advance(1ms);
+  EXPECT_EQ(a->counters().from_self, 1u);
+  EXPECT_EQ(driver->counters().received, 0u);
 }
 
 TEST(NodeWithManager, PeersDiscoverEachOtherFromHeartbeats) {

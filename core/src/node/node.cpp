@@ -112,6 +112,11 @@ void Node::receive(std::span<const std::uint8_t> packet) {
     log(rt::LogLevel::warn, "dropped a packet from invalid source " + s.to_string());
     return;
   }
+  if (s.subsystem == config_.subsystem && s.node == config_.node) {
+    // Our own broadcast looped back (multicast), or a peer misconfigured with our ID.
+    ++counters_.from_self;
+    return;
+  }
   const rt::TimePoint now = clock_.now();
   liveness_.heard(s, now);
   if (!is_local(h.destination)) {
@@ -264,8 +269,17 @@ void Node::housekeeping() {
   housekeeping_timer_ = rt::kNoTimer;
   const rt::TimePoint now = clock_.now();
   for (const auto& gone : liveness_.expire(now)) {
-    if (gone.level != LivenessLevel::component) continue;
-    log(rt::LogLevel::info, gone.address.to_string() + " silent: forgotten");
+    // A silent component whose node still heartbeats is normal: an OCU that
+    // only receives reports sends nothing from its component. Losing its node
+    // (or subsystem) is what ends its service connections and control; a
+    // silent controller on a live node is caught by the component's own
+    // controller liveness check (Query Component Status).
+    if (gone.level == LivenessLevel::component) {
+      log(rt::LogLevel::debug, gone.address.to_string() + " silent: forgotten");
+      continue;
+    }
+    log(rt::LogLevel::info, std::string(gone.level == LivenessLevel::node ? "node " : "subsystem ") +
+                                gone.address.to_string() + " silent: lost");
     for (const auto& c : components_) c->peer_lost(gone.address);
   }
   for (const auto& discarded : assembler_.expire(now))

@@ -83,7 +83,8 @@ std::vector<std::uint16_t> Component::input_codes() const {
 
 void Component::peer_lost(const Address& peer) {
   services_.end_all_from(peer, "requester gone");
-  if (control_.is_controller(peer)) take_control_away("controller " + peer.to_string() + " gone");
+  if (const auto& controller = control_.controller(); controller && peer.covers(controller->address))
+    take_control_away("controller " + controller->address.to_string() + " gone");
 }
 
 void Component::enforce_stop(std::string_view why) {

@@ -211,7 +211,7 @@ void ServiceConnectionProvider::stop(std::map<Key, Connection>::iterator it, std
 void ServiceConnectionProvider::end_all_from(const Address& requester, std::string_view why) {
   for (auto it = connections_.begin(); it != connections_.end();) {
     auto next = std::next(it);
-    if (it->first.requester == requester) stop(it, why);
+    if (requester.covers(it->first.requester)) stop(it, why);
     it = next;
   }
 }

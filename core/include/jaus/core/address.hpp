@@ -26,6 +26,18 @@ struct Address {
   }
   // True when a message sent to *this should reach `target` (255 matches any ID at that level).
   bool matches(const Address& target) const;
+  // True when `other` is *this or lies under it: octets of 0 from some level
+  // down name everything below (5.2.0.0 is node 2 of subsystem 5 and all its
+  // components, as the liveness table keys nodes and subsystems).
+  bool covers(const Address& other) const {
+    const std::uint8_t mine[] = {subsystem, node, component, instance};
+    const std::uint8_t theirs[] = {other.subsystem, other.node, other.component, other.instance};
+    for (int level = 0; level < 4; ++level) {
+      if (mine[level] == 0) return true;
+      if (mine[level] != theirs[level]) return false;
+    }
+    return true;
+  }
 
   std::string to_string() const;                            // "1.1.33.1"
   static std::optional<Address> parse(std::string_view s);  // accepts "S.N.C.I"

@@ -52,6 +52,7 @@ struct NodeCounters {
   std::uint64_t packets_received = 0;
   std::uint64_t malformed = 0;           // header or length wrong
   std::uint64_t invalid_source = 0;      // source address with 0 or 255
+  std::uint64_t from_self = 0;           // source is this node (looped-back broadcast)
   std::uint64_t not_for_this_node = 0;
   std::uint64_t delivered = 0;           // messages handed to a local component
   std::uint64_t undeliverable = 0;       // addressed here, no such component

@@ -106,8 +106,10 @@ class Component {
   std::vector<std::uint16_t> input_codes() const;
   std::map<std::uint16_t, std::uint32_t> output_codes() const { return services_.provided(); }
 
-  // The node's liveness table says `peer` is gone: its service connections
-  // end, and if it was the controller, control is dropped (platform stops).
+  // The node's liveness table says `peer` is gone (a node or subsystem, with
+  // 0 below its level: every component under it is gone too): their service
+  // connections end, and if the controller was among them, control is dropped
+  // (platform stops).
   void peer_lost(const Address& peer);
 
  protected:

@@ -71,6 +71,7 @@ class ServiceConnectionProvider {
   void on_command(const Header& h);
 
   // The requester is gone (liveness) or the component shuts down.
+  // Ends every connection whose requester `requester` covers (Address::covers).
   void end_all_from(const Address& requester, std::string_view why);
   void end_all(std::string_view why);
 

@@ -1,0 +1,82 @@
+// Routes learnt from where datagrams come from, static peers, expiry and the
+// bound on entries, under virtual time.
+#include <gtest/gtest.h>
+
+#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/transport/route_table.hpp"
+
+namespace jaus::transport {
+namespace {
+
+using namespace std::chrono_literals;
+
+const Ipv4Endpoint kPeerA{0x7F000002, 3794};  // 127.0.0.2:3794
+const Ipv4Endpoint kPeerB{0x7F000003, 3794};
+
+TEST(RouteTable, LearnsWhereANodeLivesAndHowItSpeaks) {
+  rt::VirtualTime time;
+  RouteTable table;
+  EXPECT_FALSE(table.route(2, 1));
+  table.learn(2, 1, kPeerA, Framing::judp, time.now());
+  auto route = table.route(2, 1);
+  ASSERT_TRUE(route);
+  EXPECT_EQ(route->endpoint, kPeerA);
+  EXPECT_EQ(route->framing, Framing::judp);
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());  // the peer switched framing: follow it
+  EXPECT_EQ(table.route(2, 1)->framing, Framing::opc);
+  table.learn(2, 1, kPeerB, Framing::opc, time.now());  // the node restarted elsewhere
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerB);
+  EXPECT_EQ(table.counters().learnt, 1u);
+  EXPECT_EQ(table.counters().moved, 1u);
+  EXPECT_EQ(table.peers().size(), 2u);
+}
+
+TEST(RouteTable, SilentLearntRoutesExpireStaticPeersStay) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{256, 4, 10s});
+  table.add_static_peer(kPeerB, Framing::judp);
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  table.learn(3, 1, kPeerB, Framing::judp, time.now());
+  time.advance(9s);
+  table.expire(time.now());
+  EXPECT_TRUE(table.route(2, 1));
+  EXPECT_TRUE(table.route(3, 1));
+  time.advance(2s);
+  table.expire(time.now());
+  EXPECT_FALSE(table.route(2, 1));
+  EXPECT_FALSE(table.route(3, 1));  // silent too, though its endpoint stays
+  ASSERT_EQ(table.peers().size(), 1u);
+  EXPECT_TRUE(table.peers().begin()->second.is_static);
+  EXPECT_EQ(table.counters().expired, 2u);
+}
+
+TEST(RouteTable, AFloodOfNewSourcesCannotPushOutKnownPeers) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{4, 4, 30s});
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  for (std::uint32_t i = 0; i < 1000; ++i)
+    table.learn(static_cast<std::uint8_t>(10 + i % 200), 1, Ipv4Endpoint{0x0A000000 + i, 3794}, Framing::opc,
+                time.now());
+  EXPECT_LE(table.peers().size(), 4u);
+  EXPECT_LE(table.route_count(), 4u);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerA);
+  EXPECT_GT(table.counters().rejected_full, 0u);
+}
+
+TEST(RouteTable, OneEndpointClaimingManyNodesKeepsOnlyItsNewest) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{256, 2, 30s});
+  for (std::uint8_t subsystem = 10; subsystem < 200; ++subsystem) {
+    table.learn(subsystem, 1, kPeerB, Framing::opc, time.now());
+    time.advance(1ms);
+  }
+  EXPECT_EQ(table.route_count(), 2u);
+  EXPECT_TRUE(table.route(199, 1));
+  EXPECT_TRUE(table.route(198, 1));
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());  // a newcomer still finds room
+  EXPECT_TRUE(table.route(2, 1));
+  EXPECT_EQ(table.peers().at(kPeerB).routes, 2u);
+}
+
+}  // namespace
+}  // namespace jaus::transport

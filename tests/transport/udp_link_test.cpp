@@ -1,0 +1,306 @@
+// The UDP link on loopback with real sockets: a node behind it is found,
+// queried and answered in the framing each peer speaks; what is not JAUS is
+// dropped and counted by reason; floods leave it answering with bounded
+// tables. Ports are ephemeral (bind to :0) so tests never collide with a
+// running jausd; only order and presence are asserted, never durations.
+#include <gtest/gtest.h>
+
+#include <boost/asio/ip/udp.hpp>
+#include <atomic>
+#include <random>
+#include <thread>
+
+#include "../core/vector_file.hpp"
+#include "jaus/core/hex.hpp"
+#include "jaus/messages/all.hpp"
+#include "jaus/node/node.hpp"
+#include "jaus/runtime/communicator.hpp"
+#include "jaus/runtime/node_manager.hpp"
+#include "jaus/transport/asio_runtime.hpp"
+#include "jaus/transport/udp_link.hpp"
+
+namespace jaus::transport {
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::udp;
+using namespace std::chrono_literals;
+
+constexpr std::uint32_t kLoopback1 = 0x7F000001;
+const Address kManager{1, 1, 1, 1};
+const Address kOcu{2, 1, 40, 1};
+
+std::vector<std::uint8_t> bytes_of(const std::string& hex) {
+  std::vector<std::uint8_t> out;
+  std::string why;
+  EXPECT_TRUE(parse_hex(hex, out, why)) << why;
+  return out;
+}
+
+template <class M>
+std::vector<std::uint8_t> packet_of(const Address& from, const Address& to, const M& message) {
+  std::vector<std::uint8_t> out(kHeaderSize + kMaxPayloadSize);
+  auto size = wire::encode_payload(message, std::span(out).subspan(kHeaderSize));
+  Header h;
+  h.command_code = M::code;
+  h.source = from;
+  h.destination = to;
+  h.data_size = static_cast<std::uint16_t>(*size);
+  encode_header_unchecked(h, std::span<std::uint8_t, kHeaderSize>(out.data(), kHeaderSize));
+  out.resize(kHeaderSize + *size);
+  return out;
+}
+
+std::vector<std::uint8_t> framed(Framing framing, std::span<const std::uint8_t> message) {
+  const Prefix prefix = frame_prefix(framing, message.size());
+  std::vector<std::uint8_t> out(prefix.view().begin(), prefix.view().end());
+  out.insert(out.end(), message.begin(), message.end());
+  return out;
+}
+
+// A node (node manager + communicator) behind a UDP link, and a bare socket
+// playing the peer, on one io_context.
+class UdpNodeTest : public ::testing::Test {
+ protected:
+  void SetUp() override { open_node({}); }
+
+  void open_node(UdpLinkOptions options) {
+    options.subsystem = 1;
+    options.node = 1;
+    options.bind = Ipv4Endpoint{kLoopback1, 0};
+    auto opened = UdpLink::open(io, runtime, runtime, options, [this](rt::LogLevel, const std::string& line) {
+      logs.push_back(line);
+    });
+    ASSERT_TRUE(opened) << opened.error();
+    link = std::move(*opened);
+    node = std::make_unique<node::Node>(node::NodeConfig{}, runtime, runtime, *link);
+    link->on_packet([this](std::span<const std::uint8_t> packet) { node->receive(packet); });
+    rt::ComponentConfig manager_config;
+    manager_config.name = "node manager";
+    manager_config.address = kManager;
+    manager = static_cast<rt::NodeManager*>(&node->add(std::make_unique<rt::NodeManager>(
+        manager_config, node->environment(), *node, rt::NodeManagerConfig{})));
+    node->set_node_manager(manager);
+    link->start();
+    peer.open(udp::v4());
+    peer.bind(udp::endpoint(asio::ip::make_address_v4("127.0.0.1"), 0));
+    peer.non_blocking(true);
+  }
+
+  udp::endpoint node_endpoint() const {
+    return udp::endpoint(asio::ip::address_v4(link->local_endpoint().address), link->local_endpoint().port);
+  }
+  void send(std::span<const std::uint8_t> datagram) { peer.send_to(asio::buffer(datagram.data(), datagram.size()), node_endpoint()); }
+
+  // Runs the io_context until `done` or 2 s pass.
+  bool run_until(const std::function<bool()>& done) {
+    const auto deadline = std::chrono::steady_clock::now() + 2s;
+    while (!done()) {
+      if (std::chrono::steady_clock::now() > deadline) return false;
+      io.run_for(5ms);
+      drain_peer();
+    }
+    return true;
+  }
+  void drain_peer() {
+    std::array<std::uint8_t, 9000> buffer;
+    boost::system::error_code ec;
+    for (;;) {
+      udp::endpoint from;
+      const std::size_t size = peer.receive_from(asio::buffer(buffer), from, 0, ec);
+      if (ec) return;
+      received.emplace_back(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(size));
+    }
+  }
+  // Replies to the peer with this command code, in this framing.
+  std::size_t replies(std::uint16_t code, Framing framing) const {
+    std::size_t n = 0;
+    for (const auto& datagram : received) {
+      auto unframed = unframe(datagram);
+      if (unframed && unframed->framing == framing && unframed->packet.header.command_code == code) ++n;
+    }
+    return n;
+  }
+
+  asio::io_context io;
+  AsioRuntime runtime{io};
+  std::vector<std::string> logs;
+  std::unique_ptr<UdpLink> link;
+  std::unique_ptr<node::Node> node;
+  rt::NodeManager* manager = nullptr;
+  udp::socket peer{io};
+  std::vector<std::vector<std::uint8_t>> received;
+};
+
+TEST_F(UdpNodeTest, ABusyPortIsOneClearError) {
+  UdpLinkOptions options;
+  options.bind = link->local_endpoint();
+  auto second = UdpLink::open(io, runtime, runtime, options);
+  ASSERT_FALSE(second);
+  EXPECT_EQ(second.error(), to_string(link->local_endpoint()) + " is already in use");
+  options.bind = Ipv4Endpoint{0xC0000201, 3794};  // 192.0.2.1 (TEST-NET): not ours
+  auto foreign = UdpLink::open(io, runtime, runtime, options);
+  ASSERT_FALSE(foreign);
+  EXPECT_EQ(foreign.error(), "192.0.2.1:3794 is not an address of this machine");
+}
+
+TEST_F(UdpNodeTest, EachPeerIsAnsweredInTheFramingItUses) {
+  const auto query = packet_of(kOcu, kManager, msg::QueryIdentification{});
+  send(framed(Framing::judp, query));
+  ASSERT_TRUE(run_until([&] { return replies(msg::ReportIdentification::code, Framing::judp) == 1; }));
+  send(framed(Framing::opc, query));
+  ASSERT_TRUE(run_until([&] { return replies(msg::ReportIdentification::code, Framing::opc) == 1; }));
+  const auto route = link->routes().route(2, 1);
+  ASSERT_TRUE(route);
+  EXPECT_EQ(route->endpoint.port, peer.local_endpoint().port());
+  EXPECT_EQ(link->counters().dropped_total(), 0u);
+}
+
+// Every vector of the other implementation, in both framings, addressed to
+// the node manager: each is delivered, and each query the node manager
+// answers gets its report back, in the framing it came in.
+TEST_F(UdpNodeTest, VectorsAsDatagramsAreDecodedAndAnswered) {
+  const auto answered = manager->input_codes();
+  for (const Framing framing : {Framing::opc, Framing::judp}) {
+    received.clear();
+    std::size_t expected_replies = 0;
+    std::vector<std::uint16_t> queries;
+    for (const auto& vector : test::all_vectors()) {
+      auto message = bytes_of(vector.hex);
+      Header header = *decode_header(message);
+      header.destination = kManager;
+      header.ack_nak = AckNak::none;
+      encode_header_unchecked(header, std::span(message).first<kHeaderSize>());
+      const std::uint16_t code = header.command_code;
+      const bool is_query = code >= 0x2000 && code < 0x4000;
+      if (is_query && std::find(answered.begin(), answered.end(), code) != answered.end()) {
+        ++expected_replies;
+        queries.push_back(code);
+      }
+      send(framed(framing, message));
+    }
+    ASSERT_TRUE(run_until([&] {
+      std::size_t n = 0;
+      for (const auto q : queries) n += replies(static_cast<std::uint16_t>(q + 0x2000), framing) > 0;
+      return n == queries.size();
+    })) << to_string(framing) << ": " << received.size() << " datagrams back";
+    EXPECT_GE(received.size(), expected_replies);
+  }
+  EXPECT_EQ(link->counters().dropped_total(), 0u);
+  EXPECT_EQ(node->counters().malformed, 0u);
+  EXPECT_EQ(manager->counters().decode_errors, 0u);
+  EXPECT_EQ(link->counters().packets_delivered, 2 * test::all_vectors().size());
+}
+
+TEST_F(UdpNodeTest, NonJausDatagramsAreCountedByReasonAndTheNodeKeepsAnswering) {
+  send(bytes_of("DEADBEEF"));
+  send(bytes_of("4A41555330312E30060202"));  // OPC, header cut
+  send(bytes_of("0100000030" "0602002B012101010128010201000B0A02"));  // JUDP length says 48, carries 17
+  send(std::vector<std::uint8_t>(kMaxDatagramSize + 100, 0x4A));
+  const auto query = packet_of(kOcu, kManager, msg::QueryIdentification{});
+  send(framed(Framing::opc, query));
+  ASSERT_TRUE(run_until([&] { return replies(msg::ReportIdentification::code, Framing::opc) == 1; }));
+  const auto& c = link->counters();
+  EXPECT_EQ(c.dropped_for(DropReason::unknown_framing), 1u);
+  EXPECT_EQ(c.dropped_for(DropReason::truncated), 1u);
+  EXPECT_EQ(c.dropped_for(DropReason::length_mismatch), 1u);
+  EXPECT_EQ(c.dropped_for(DropReason::oversized), 1u);
+  EXPECT_EQ(c.packets_delivered, 1u);
+  bool logged_reason = false;
+  for (const auto& line : logs) logged_reason |= line.find("JUDP length 48, datagram carries 17 bytes") != std::string::npos;
+  EXPECT_TRUE(logged_reason);
+}
+
+TEST_F(UdpNodeTest, TheAllowListKeepsStrangersOut) {
+  link.reset();
+  node.reset();
+  peer.close();
+  UdpLinkOptions options;
+  options.allow = {*parse_cidr("10.0.0.0/8")};
+  open_node(options);
+  send(framed(Framing::opc, packet_of(kOcu, kManager, msg::QueryIdentification{})));
+  ASSERT_TRUE(run_until([&] { return link->counters().dropped_for(DropReason::not_allowed) == 1; }));
+  EXPECT_EQ(node->counters().packets_received, 0u);
+  EXPECT_FALSE(link->routes().route(2, 1));
+}
+
+// 100,000 datagrams, half garbage, half valid packets from ever-new JAUS
+// sources (subsystems 100-249, never the OCU's), from another thread as fast as it can: the routes and the
+// liveness table stay within their bounds and the node still answers.
+TEST_F(UdpNodeTest, AFloodLeavesTheNodeAnsweringWithBoundedTables) {
+  constexpr int kDatagrams = 100000;
+  const udp::endpoint target = node_endpoint();
+  std::atomic<bool> finished{false};
+  std::thread flooder([target, &finished] {
+    asio::io_context flood_io;
+    udp::socket socket(flood_io, udp::endpoint(asio::ip::make_address_v4("127.0.0.1"), 0));
+    std::mt19937 random(7);
+    const std::vector<std::uint8_t> garbage = {0xDE, 0xAD, 0xBE, 0xEF, 0x00, 0x01};
+    for (int i = 0; i < kDatagrams; ++i) {
+      boost::system::error_code ec;
+      if (i % 2) {
+        socket.send_to(asio::buffer(garbage), target, 0, ec);
+      } else {
+        const Address source{static_cast<std::uint8_t>(100 + random() % 150), static_cast<std::uint8_t>(1 + random() % 250), 40, 1};
+        socket.send_to(asio::buffer(framed(Framing::opc, packet_of(source, Address{1, 1, 35, 1}, msg::QueryHeartbeatPulse{}))), target, 0, ec);
+      }
+      if (i % 5000 == 0) std::this_thread::sleep_for(1ms);  // give the receiver a chance
+    }
+    finished = true;
+  });
+  while (!finished) io.run_for(20ms);
+  flooder.join();
+  io.run_for(200ms);
+  const auto& c = link->counters();
+  EXPECT_GT(c.datagrams_received, 1000u);  // the kernel may drop some; most arrive
+  EXPECT_GT(c.dropped_for(DropReason::unknown_framing), 0u);
+  EXPECT_LE(link->routes().route_count(), RouteTableOptions{}.max_entries);
+  EXPECT_LE(link->routes().peers().size(), RouteTableOptions{}.max_entries);
+  EXPECT_LE(node->liveness().size(), node::LivenessTable::Options{}.max_entries);
+  received.clear();
+  send(framed(Framing::opc, packet_of(kOcu, kManager, msg::QueryIdentification{})));
+  EXPECT_TRUE(run_until([&] { return replies(msg::ReportIdentification::code, Framing::opc) == 1; }))
+      << "received " << c.datagrams_received << ", delivered " << c.packets_delivered << ", node queue drops "
+      << node->counters().queue_dropped << ", sent " << c.datagrams_sent << ", send errors " << c.send_errors
+      << ", replies seen " << received.size() << ", last log: " << (logs.empty() ? "" : logs.back());
+}
+
+TEST(UdpLinks, BroadcastsReachStaticPeersWhichThenLearnTheRouteBack) {
+  asio::io_context io;
+  AsioRuntime runtime(io);
+  UdpLinkOptions options_b;
+  options_b.subsystem = 2;
+  options_b.node = 1;
+  options_b.bind = Ipv4Endpoint{kLoopback1, 0};
+  auto b = UdpLink::open(io, runtime, runtime, options_b);
+  ASSERT_TRUE(b) << b.error();
+  UdpLinkOptions options_a;
+  options_a.subsystem = 1;
+  options_a.node = 1;
+  options_a.bind = Ipv4Endpoint{kLoopback1, 0};
+  options_a.peers = {StaticPeer{(*b)->local_endpoint(), Framing::judp}};
+  auto a = UdpLink::open(io, runtime, runtime, options_a);
+  ASSERT_TRUE(a) << a.error();
+  std::vector<std::vector<std::uint8_t>> at_a, at_b;
+  (*a)->on_packet([&](std::span<const std::uint8_t> p) { at_a.emplace_back(p.begin(), p.end()); });
+  (*b)->on_packet([&](std::span<const std::uint8_t> p) { at_b.emplace_back(p.begin(), p.end()); });
+  (*a)->start();
+  (*b)->start();
+  (*a)->transmit(packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  for (int i = 0; i < 400 && at_b.empty(); ++i) io.run_for(5ms);
+  ASSERT_EQ(at_b.size(), 1u);
+  const auto route = (*b)->routes().route(1, 1);
+  ASSERT_TRUE(route);
+  EXPECT_EQ(route->endpoint, (*a)->local_endpoint());
+  EXPECT_EQ(route->framing, Framing::judp);  // A spoke JUDP to B, so B answers in JUDP
+  (*b)->transmit(packet_of(Address{2, 1, 1, 1}, kManager, msg::QueryIdentification{}));
+  for (int i = 0; i < 400 && at_a.empty(); ++i) io.run_for(5ms);
+  ASSERT_EQ(at_a.size(), 1u);
+  EXPECT_EQ(decode_header(at_a[0])->command_code, msg::QueryIdentification::code);
+  // Unicast to a node nobody has heard of, with no static peer and no multicast: dropped, counted.
+  (*b)->transmit(packet_of(Address{2, 1, 1, 1}, Address{9, 9, 1, 1}, msg::QueryIdentification{}));
+  EXPECT_EQ((*b)->counters().no_route, 1u);
+}
+
+}  // namespace
+}  // namespace jaus::transport

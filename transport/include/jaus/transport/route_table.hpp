@@ -1,0 +1,82 @@
+// Where other JAUS nodes live on the network. Sans-I/O: the UDP link feeds it
+// what it receives and asks it where to send.
+//
+// A route (subsystem, node) -> endpoint is learnt from the source endpoint of
+// every datagram a node sends, together with the framing it used, so each
+// peer is answered the way it speaks. Static peers from the configuration are
+// always there (broadcasts and not-yet-routed messages reach them). Learnt
+// entries are forgotten after a silence of `route_timeout`; when the table is
+// full, newcomers are not recorded, so a flood of forged sources cannot push
+// out peers already known. One endpoint is one node in RA 3.x, so a single
+// endpoint may hold only a few routes (its newest replace its oldest): a flood
+// of forged JAUS sources from one socket cannot fill the table either.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+
+#include "jaus/runtime/time.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+namespace jaus::transport {
+
+struct Peer {
+  Ipv4Endpoint endpoint;
+  Framing framing = Framing::opc;
+  bool is_static = false;
+  rt::TimePoint last_heard{};
+  std::size_t routes = 0;  // routes through this endpoint
+};
+
+struct RouteTableOptions {
+  std::size_t max_entries = 256;  // learnt routes, and learnt peer endpoints, each
+  std::size_t max_routes_per_endpoint = 4;
+  rt::Duration route_timeout = std::chrono::seconds(30);
+};
+
+struct RouteTableCounters {
+  std::uint64_t learnt = 0;          // new routes
+  std::uint64_t moved = 0;           // a node heard from a new endpoint
+  std::uint64_t rejected_full = 0;   // newcomers not recorded
+  std::uint64_t replaced = 0;        // an endpoint's oldest route gave way to its newest
+  std::uint64_t expired = 0;
+};
+
+class RouteTable {
+ public:
+  explicit RouteTable(RouteTableOptions options = {}) : options_(options) {}
+
+  void add_static_peer(const Ipv4Endpoint& endpoint, Framing framing);
+  // A datagram from `from`, framed in `framing`, whose JAUS source is subsystem.node.
+  void learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing, rt::TimePoint now);
+  // Where (subsystem, node) lives, if known.
+  std::optional<Peer> route(std::uint8_t subsystem, std::uint8_t node) const;
+  // Every distinct peer endpoint (static and learnt), for broadcasts.
+  const std::map<Ipv4Endpoint, Peer>& peers() const { return peers_; }
+  // Forgets learnt routes and peers silent for longer than route_timeout.
+  void expire(rt::TimePoint now);
+
+  std::size_t route_count() const { return routes_.size(); }
+  const RouteTableCounters& counters() const { return counters_; }
+
+ private:
+  static std::uint16_t key(std::uint8_t subsystem, std::uint8_t node) {
+    return static_cast<std::uint16_t>((subsystem << 8) | node);
+  }
+
+  struct Route {
+    Ipv4Endpoint endpoint;
+    rt::TimePoint last_heard{};
+  };
+  void erase_route(std::map<std::uint16_t, Route>::iterator route);
+
+  RouteTableOptions options_;
+  std::map<std::uint16_t, Route> routes_;         // (subsystem, node) -> endpoint
+  std::map<Ipv4Endpoint, Peer> peers_;            // endpoint -> framing, liveness
+  std::size_t learnt_peers_ = 0;
+  RouteTableCounters counters_;
+};
+
+}  // namespace jaus::transport

@@ -1,0 +1,122 @@
+// The node's UDP transport (jaus-wire-notes.md, "Node-to-node transport"):
+// one JAUS message per datagram, OPC or JUDP framing, routes learnt from the
+// source endpoint of what arrives, static peers, multicast for broadcasts.
+//
+// One socket sends and receives, bound to the configured address and port
+// (3794 by default), so replies leave from the port peers expect: two nodes on
+// one host bind 127.0.0.1:3794 and 127.0.0.2:3794. Sending is synchronous and
+// non-blocking (the node's bytes are only valid during transmit()); a full
+// socket buffer drops the datagram and counts it, never blocks the node.
+// Everything runs on the io_context's thread.
+#pragma once
+
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <array>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jaus/node/node.hpp"
+#include "jaus/runtime/environment.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/transport/ipv4.hpp"
+#include "jaus/transport/route_table.hpp"
+
+namespace jaus::transport {
+
+struct StaticPeer {
+  Ipv4Endpoint endpoint;
+  Framing framing = Framing::opc;
+};
+
+struct UdpLinkOptions {
+  // This node: datagrams from it (its own multicast looped back) are dropped.
+  std::uint8_t subsystem = 0;
+  std::uint8_t node = 0;
+  Ipv4Endpoint bind{0, kJausPort};
+  Framing framing = Framing::opc;           // for peers not heard from yet
+  std::optional<Ipv4Endpoint> multicast;    // broadcasts go here (e.g. 224.1.0.1:3794)
+  std::uint8_t multicast_ttl = 1;
+  bool broadcast_to_peers = true;           // broadcasts also go to every known peer
+  std::vector<StaticPeer> peers;
+  std::vector<Cidr> allow;                  // empty: anyone may talk to the node
+  RouteTableOptions routes;
+};
+
+struct UdpLinkCounters {
+  std::uint64_t datagrams_received = 0;
+  std::uint64_t packets_delivered = 0;  // handed to the node
+  std::array<std::uint64_t, static_cast<std::size_t>(DropReason::count_)> dropped{};
+  std::uint64_t datagrams_sent = 0;
+  std::uint64_t send_errors = 0;        // the socket refused (buffer full, unreachable, ...)
+  std::uint64_t unrouted = 0;           // unicast to an unknown node: sent to static peers and multicast
+  std::uint64_t no_route = 0;           // ...and nowhere to send it: dropped
+  std::uint64_t dropped_total() const;
+  std::uint64_t dropped_for(DropReason reason) const { return dropped[static_cast<std::size_t>(reason)]; }
+};
+
+class UdpLink final : public node::Link {
+ public:
+  using PacketHandler = std::function<void(std::span<const std::uint8_t> packet)>;
+
+  // Opens and binds the sockets. A failure is one readable line, e.g.
+  // "127.0.0.1:3794 is already in use".
+  static Expected<std::unique_ptr<UdpLink>, std::string> open(boost::asio::io_context& io, rt::Clock& clock,
+                                                               rt::Scheduler& scheduler, UdpLinkOptions options,
+                                                               rt::LogFn log = {});
+  ~UdpLink() override;
+  UdpLink(const UdpLink&) = delete;
+  UdpLink& operator=(const UdpLink&) = delete;
+
+  // Where received JAUS messages (header + payload) go; typically Node::receive.
+  void on_packet(PacketHandler handler) { handler_ = std::move(handler); }
+  // Starts receiving.
+  void start();
+  // Stops receiving and sending (pending handlers are cancelled).
+  void close();
+
+  // node::Link: routes one message by its destination.
+  void transmit(std::span<const std::uint8_t> packet) override;
+  // Sends one message to an endpoint in a framing, outside routing (tools).
+  void send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
+
+  Ipv4Endpoint local_endpoint() const;
+  const UdpLinkCounters& counters() const { return counters_; }
+  const RouteTable& routes() const { return routes_; }
+
+ private:
+  struct Socket;
+  UdpLink(boost::asio::io_context& io, rt::Clock& clock, rt::Scheduler& scheduler, UdpLinkOptions options,
+          rt::LogFn log);
+  Expected<bool, std::string> bind_sockets();
+  void receive_next(Socket& socket);
+  void on_datagram(const boost::asio::ip::udp::endpoint& from, std::span<const std::uint8_t> datagram);
+  void drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail);
+  bool allowed(std::uint32_t address) const;
+  void schedule_expiry();
+
+  boost::asio::io_context& io_;
+  rt::Clock& clock_;
+  rt::Scheduler& scheduler_;
+  UdpLinkOptions options_;
+  rt::LogFn log_;
+  std::unique_ptr<Socket> main_;
+  std::unique_ptr<Socket> multicast_;  // bound to the group when the main socket is bound to one address
+  RouteTable routes_;
+  PacketHandler handler_;
+  UdpLinkCounters counters_;
+  rt::TimerId expiry_timer_ = rt::kNoTimer;
+  // Rate limit of drop logs: one line per reason per second.
+  std::array<rt::TimePoint, static_cast<std::size_t>(DropReason::count_)> last_drop_log_{};
+  bool closed_ = false;
+  // Completion handlers can run after the link is destroyed (the io_context
+  // outlives it); they hold a weak reference to this and do nothing once it expires.
+  std::shared_ptr<int> alive_ = std::make_shared<int>(0);
+};
+
+}  // namespace jaus::transport

@@ -1,0 +1,245 @@
+#include "jaus/transport/udp_link.hpp"
+
+#include <boost/asio/ip/multicast.hpp>
+#include <numeric>
+
+namespace jaus::transport {
+
+namespace asio = boost::asio;
+using asio::ip::udp;
+
+namespace {
+
+udp::endpoint to_asio(const Ipv4Endpoint& e) { return udp::endpoint(asio::ip::address_v4(e.address), e.port); }
+
+Ipv4Endpoint from_asio(const udp::endpoint& e) {
+  if (!e.address().is_v4()) return Ipv4Endpoint{0, e.port()};
+  return Ipv4Endpoint{e.address().to_v4().to_uint(), e.port()};
+}
+
+std::string bind_error(const Ipv4Endpoint& endpoint, const boost::system::error_code& ec) {
+  if (ec == asio::error::address_in_use) return to_string(endpoint) + " is already in use";
+  if (ec == boost::system::errc::address_not_available) return to_string(endpoint) + " is not an address of this machine";
+  if (ec == boost::system::errc::permission_denied) return "not allowed to bind " + to_string(endpoint) + " (" + ec.message() + ")";
+  return "cannot bind " + to_string(endpoint) + ": " + ec.message();
+}
+
+constexpr rt::Duration kExpiryPeriod = std::chrono::seconds(1);
+constexpr rt::Duration kDropLogInterval = std::chrono::seconds(1);
+
+}  // namespace
+
+std::uint64_t UdpLinkCounters::dropped_total() const {
+  return std::accumulate(dropped.begin(), dropped.end(), std::uint64_t{0});
+}
+
+struct UdpLink::Socket {
+  explicit Socket(asio::io_context& io) : socket(io) {}
+  udp::socket socket;
+  udp::endpoint sender;
+  // One byte more than any JAUS datagram, so a larger one shows as oversized
+  // instead of being silently cut to a plausible length.
+  std::array<std::uint8_t, kMaxDatagramSize + 1> buffer{};
+};
+
+UdpLink::UdpLink(asio::io_context& io, rt::Clock& clock, rt::Scheduler& scheduler, UdpLinkOptions options,
+                 rt::LogFn log)
+    : io_(io),
+      clock_(clock),
+      scheduler_(scheduler),
+      options_(std::move(options)),
+      log_(log ? std::move(log) : [](rt::LogLevel, const std::string&) {}),
+      routes_(options_.routes) {
+  for (const auto& peer : options_.peers) routes_.add_static_peer(peer.endpoint, peer.framing);
+}
+
+Expected<std::unique_ptr<UdpLink>, std::string> UdpLink::open(asio::io_context& io, rt::Clock& clock,
+                                                              rt::Scheduler& scheduler, UdpLinkOptions options,
+                                                              rt::LogFn log) {
+  std::unique_ptr<UdpLink> link(new UdpLink(io, clock, scheduler, std::move(options), std::move(log)));
+  auto bound = link->bind_sockets();
+  if (!bound) return unexpected(bound.error());
+  return link;
+}
+
+Expected<bool, std::string> UdpLink::bind_sockets() {
+  boost::system::error_code ec;
+  main_ = std::make_unique<Socket>(io_);
+  main_->socket.open(udp::v4(), ec);
+  if (ec) return unexpected("cannot open a UDP socket: " + ec.message());
+  // No SO_REUSEADDR on the main socket: a second node on the same address and
+  // port must fail loudly instead of silently sharing the traffic.
+  main_->socket.bind(to_asio(options_.bind), ec);
+  if (ec) return unexpected(bind_error(options_.bind, ec));
+  main_->socket.non_blocking(true, ec);
+  if (ec) return unexpected("cannot make the socket non-blocking: " + ec.message());
+
+  if (!options_.multicast) return true;
+  const Ipv4Endpoint group = *options_.multicast;
+  if (!group.is_multicast()) return unexpected(to_string(group) + " is not a multicast address (224.0.0.0/4)");
+  const auto interface = asio::ip::address_v4(options_.bind.address);
+  // Multicast is best effort: a host without a multicast route still talks to
+  // its known and static peers.
+  auto degrade = [&](const std::string& what, const boost::system::error_code& error) {
+    log_(rt::LogLevel::warn, "multicast " + to_string(group) + ": " + what + ": " + error.message() +
+                                 "; broadcasts go to known peers only");
+    options_.multicast.reset();
+    multicast_.reset();
+    return true;
+  };
+  if (!options_.bind.is_any()) main_->socket.set_option(asio::ip::multicast::outbound_interface(interface), ec);
+  if (!ec) main_->socket.set_option(asio::ip::multicast::enable_loopback(true), ec);
+  if (!ec) main_->socket.set_option(asio::ip::multicast::hops(options_.multicast_ttl), ec);
+  if (ec) return degrade("cannot send", ec);
+
+  const auto group_address = asio::ip::address_v4(group.address);
+  if (options_.bind.is_any() && options_.bind.port == group.port) {
+    // The main socket already receives everything sent to its port.
+    main_->socket.set_option(asio::ip::multicast::join_group(group_address), ec);
+    if (ec) return degrade("cannot join", ec);
+    return true;
+  }
+  // A socket bound to one address does not see the group's datagrams: a
+  // second socket, bound to the group, receives them. Several nodes on one
+  // host share the group, hence SO_REUSEADDR here.
+  multicast_ = std::make_unique<Socket>(io_);
+  multicast_->socket.open(udp::v4(), ec);
+  if (!ec) multicast_->socket.set_option(udp::socket::reuse_address(true), ec);
+  if (!ec) multicast_->socket.bind(to_asio(group), ec);
+  if (!ec) multicast_->socket.set_option(asio::ip::multicast::join_group(group_address, interface), ec);
+  if (ec) return degrade("cannot receive", ec);
+  return true;
+}
+
+UdpLink::~UdpLink() { close(); }
+
+void UdpLink::start() {
+  if (closed_) return;
+  receive_next(*main_);
+  if (multicast_) receive_next(*multicast_);
+  schedule_expiry();
+}
+
+void UdpLink::close() {
+  if (closed_) return;
+  closed_ = true;
+  if (expiry_timer_ != rt::kNoTimer) scheduler_.cancel(expiry_timer_);
+  expiry_timer_ = rt::kNoTimer;
+  boost::system::error_code ignored;
+  if (main_) main_->socket.close(ignored);
+  if (multicast_) multicast_->socket.close(ignored);
+}
+
+Ipv4Endpoint UdpLink::local_endpoint() const {
+  boost::system::error_code ec;
+  const auto endpoint = main_->socket.local_endpoint(ec);
+  return ec ? options_.bind : from_asio(endpoint);
+}
+
+void UdpLink::schedule_expiry() {
+  expiry_timer_ = scheduler_.call_at(clock_.now() + kExpiryPeriod, [this] {
+    expiry_timer_ = rt::kNoTimer;
+    routes_.expire(clock_.now());
+    schedule_expiry();
+  });
+}
+
+void UdpLink::receive_next(Socket& socket) {
+  socket.socket.async_receive_from(asio::buffer(socket.buffer), socket.sender,
+                                   [this, &socket, alive = std::weak_ptr<int>(alive_)](
+                                       const boost::system::error_code& ec, std::size_t size) {
+                                     if (alive.expired() || ec == asio::error::operation_aborted || closed_) return;
+                                     if (!ec) on_datagram(socket.sender, std::span(socket.buffer).first(size));
+                                     // Other errors (ICMP unreachable reported on the socket) are transient.
+                                     receive_next(socket);
+                                   });
+}
+
+bool UdpLink::allowed(std::uint32_t address) const {
+  if (options_.allow.empty()) return true;
+  for (const auto& cidr : options_.allow)
+    if (cidr.contains(address)) return true;
+  return false;
+}
+
+void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint8_t> datagram) {
+  ++counters_.datagrams_received;
+  const Ipv4Endpoint from = from_asio(sender);
+  if (!allowed(from.address)) return drop(DropReason::not_allowed, from, "");
+  if (!options_.bind.is_any() && from == options_.bind) return drop(DropReason::from_self, from, "");
+  auto unframed = unframe(datagram);
+  if (!unframed) return drop(unframed.error().reason, from, unframed.error().detail);
+  const Header& header = unframed->packet.header;
+  if (header.source.subsystem == options_.subsystem && header.source.node == options_.node)
+    return drop(DropReason::from_self, from, "");
+  if (header.source.is_valid() && !header.source.is_broadcast())
+    routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
+  ++counters_.packets_delivered;
+  const std::size_t prefix = unframed->framing == Framing::opc ? kOpcPrefix.size() : kJudpPrefixSize;
+  if (handler_) handler_(datagram.subspan(prefix));
+}
+
+void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail) {
+  const auto index = static_cast<std::size_t>(reason);
+  ++counters_.dropped[index];
+  // Own multicast coming back is expected, not worth a line.
+  if (reason == DropReason::from_self) return;
+  const rt::TimePoint now = clock_.now();
+  if (counters_.dropped[index] > 1 && now - last_drop_log_[index] < kDropLogInterval) return;
+  last_drop_log_[index] = now;
+  log_(rt::LogLevel::warn, "dropped a datagram from " + to_string(from) + ": " + std::string(to_string(reason)) +
+                               (detail.empty() ? "" : " (" + detail + ")") + " [" +
+                               std::to_string(counters_.dropped[index]) + " so far]");
+}
+
+void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
+  if (closed_) return;
+  const Prefix prefix = frame_prefix(framing, packet.size());
+  const std::array<asio::const_buffer, 2> buffers = {asio::buffer(prefix.bytes.data(), prefix.size),
+                                                     asio::buffer(packet.data(), packet.size())};
+  boost::system::error_code ec;
+  main_->socket.send_to(buffers, to_asio(to), 0, ec);
+  if (ec) {
+    ++counters_.send_errors;
+    if (counters_.send_errors == 1 || counters_.send_errors % 1000 == 0)
+      log_(rt::LogLevel::warn, "cannot send to " + to_string(to) + ": " + ec.message() + " [" +
+                                   std::to_string(counters_.send_errors) + " send errors so far]");
+    return;
+  }
+  ++counters_.datagrams_sent;
+}
+
+void UdpLink::transmit(std::span<const std::uint8_t> packet) {
+  auto header = decode_header(packet);
+  if (!header) {
+    ++counters_.send_errors;
+    log_(rt::LogLevel::error, "refused to send a malformed packet: " + header.error().message());
+    return;
+  }
+  const Address& to = header->destination;
+  const bool broadcast = to.subsystem == Address::kBroadcast || to.node == Address::kBroadcast;
+  if (!broadcast) {
+    if (auto peer = routes_.route(to.subsystem, to.node)) return send_to(peer->endpoint, peer->framing, packet);
+    ++counters_.unrouted;
+  }
+  // Broadcast, or a node not heard from yet: the multicast group and the
+  // static peers (and, for broadcasts, every known peer) may reach it.
+  bool sent = false;
+  if (options_.multicast) {
+    send_to(*options_.multicast, options_.framing, packet);
+    sent = true;
+  }
+  for (const auto& [endpoint, peer] : routes_.peers()) {
+    if (!peer.is_static && !(broadcast && options_.broadcast_to_peers)) continue;
+    send_to(endpoint, peer.framing, packet);
+    sent = true;
+  }
+  if (!sent && !broadcast) {
+    ++counters_.no_route;
+    if (counters_.no_route == 1 || counters_.no_route % 1000 == 0)
+      log_(rt::LogLevel::warn, "no route to " + to.to_string() + ": dropped [" + std::to_string(counters_.no_route) +
+                                   " so far]");
+  }
+}
+
+}  // namespace jaus::transport
