@@ -106,6 +106,7 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
 
   const auto it = handlers_.find(header.command_code);
   if (it == handlers_.end()) {
+    if (unhandled(header, payload)) return;
     ++counters_.unsupported;
     log(LogLevel::debug, "ignored unsupported message 0x" + wire::detail::hex_u32(header.command_code) + " from " +
                              header.source.to_string());

@@ -97,6 +97,13 @@ class Component {
           on_report(h, report);
         });
   }
+  // The same for a report known only by its code (tools, bridges): each
+  // report's payload is handed over undecoded.
+  SubscriptionId subscribe_code(const Address& provider, std::uint16_t report_code, double rate_hz,
+                                std::uint32_t presence_vector,
+                                std::function<void(const Header&, std::span<const std::uint8_t>)> on_report) {
+    return subscriptions_.subscribe(provider, report_code, rate_hz, presence_vector, std::move(on_report));
+  }
   void unsubscribe(SubscriptionId id) { subscriptions_.unsubscribe(id); }
   const SubscriptionStatus* subscription(SubscriptionId id) const { return subscriptions_.status(id); }
 
@@ -182,6 +189,9 @@ class Component {
   virtual bool initialize() { return true; }
   // Bring the hardware to rest (drive: zero effort; arm: hold). Idempotent.
   virtual void command_stop(std::string_view /*why*/) {}
+  // A message no handler is registered for (reports to an OCU, say). Return
+  // true when taken; otherwise it is counted as unsupported.
+  virtual bool unhandled(const Header& /*header*/, std::span<const std::uint8_t> /*payload*/) { return false; }
   // Component-specific secondary status bits (16-31 of Report Component Status).
   virtual std::uint32_t component_status_bits() const { return 0; }
 
