@@ -1,0 +1,734 @@
+#include "jausd_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <system_error>
+
+namespace jausd {
+
+// ---------------------------------------------------------------- registry
+
+namespace {
+
+// Component kinds the node can host. Adding one is one line: name, RA 3.x
+// component ID (../shared/spec/jaus-wire-notes.md), allowed option keys.
+// Register a kind only once main.cpp can build it.
+const std::vector<ComponentKind>& kinds() {
+  static const std::vector<ComponentKind> registry{
+      {"node_manager", 1, {}},
+      {"communicator", 35, {}},
+  };
+  return registry;
+}
+
+}  // namespace
+
+std::span<const ComponentKind> component_kinds() { return kinds(); }
+
+const ComponentKind* find_component_kind(std::string_view name) {
+  for (const auto& kind : kinds())
+    if (kind.name == name) return &kind;
+  return nullptr;
+}
+
+std::vector<ComponentSpec> JausdConfig::default_components() {
+  return {ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0},
+          ComponentSpec{"communicator", 35, 1, 0, "communicator", {}, 0}};
+}
+
+// ---------------------------------------------------------------- limits
+
+namespace {
+
+// Ranges shared by the file reader (which reports the line) and validate().
+constexpr long long kAddressMin = 1, kAddressMax = 254;  // subsystem, node, component ID, instance
+constexpr std::size_t kMaxIdentification = 80;           // Report Identification carries 80 bytes
+constexpr double kMaxSeconds = 86400;                     // keeps every duration representable
+constexpr std::size_t kMaxConnectionsLimit = 255;
+constexpr std::size_t kMaxPeersLimit = 65535;
+
+constexpr std::array<std::string_view, 4> kLogLevels{"debug", "info", "warn", "error"};
+constexpr std::array<std::string_view, 2> kDialects{"ra", "openjaus"};
+constexpr std::array<std::string_view, 2> kFramings{"opc", "judp"};
+
+// A closed or half-open interval of doubles with its wording for errors.
+struct NumberRange {
+  double min;
+  bool min_inclusive;
+  double max;
+  std::string_view text;  // "a number > 0 and <= 100"
+  bool contains(double v) const {
+    return std::isfinite(v) && (min_inclusive ? v >= min : v > min) && v <= max;
+  }
+};
+constexpr NumberRange kHeartbeatRange{0, false, 100, "a number > 0 and <= 100"};
+constexpr NumberRange kTimeoutRange{0, true, kMaxSeconds, "a number of seconds 0..86400"};
+constexpr NumberRange kPositiveTimeoutRange{0, false, kMaxSeconds, "a number of seconds > 0 and <= 86400"};
+constexpr NumberRange kRateRange{0, false, 1092, "a number > 0 and <= 1092"};
+constexpr NumberRange kDeadmanPeriodsRange{1, true, 1000, "a number 1..1000"};
+
+std::string join(auto const& names) {
+  std::string out;
+  for (const auto& name : names) {
+    if (!out.empty()) out += ", ";
+    out += name;
+  }
+  return out.empty() ? "none" : out;
+}
+
+// A value for an error message: quoted, on one line, not too long.
+std::string in_quotes(std::string_view text) {
+  constexpr std::size_t kMax = 60;
+  std::string out = "'";
+  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7F) out += '?';
+    else out += static_cast<char>(c);
+  }
+  if (text.size() > kMax) out += "...";
+  return out + "'";
+}
+
+std::string number_text(double v) {
+  std::array<char, 32> buf{};
+  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return std::string(buf.data(), r.ptr);
+}
+
+// A leading '+' is allowed (YAML's own integers allow it), one sign only.
+std::string_view without_plus(std::string_view text) {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
+  return text;
+}
+
+std::optional<long long> to_integer(std::string_view text) {
+  text = without_plus(text);
+  long long v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
+std::optional<double> to_number(std::string_view text) {
+  text = without_plus(text);
+  double v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v, std::chars_format::general);
+  if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size() || !std::isfinite(v))
+    return std::nullopt;
+  return v;
+}
+
+bool one_of(std::string_view value, auto const& choices) {
+  return std::find(choices.begin(), choices.end(), value) != choices.end();
+}
+
+// Empty when `text` is a valid identification string, else what is wrong.
+std::string identification_problem(std::string_view key, std::string_view text) {
+  const bool printable = std::all_of(text.begin(), text.end(), [](char ch) {
+    const auto c = static_cast<unsigned char>(ch);
+    return c >= 0x20 && c <= 0x7E;
+  });
+  if (text.empty() || text.size() > kMaxIdentification || !printable)
+    return "'" + std::string(key) + "' must be 1..80 printable ASCII characters, got " + in_quotes(text) + " (" +
+           std::to_string(text.size()) + " bytes" + (printable ? "" : ", not all printable ASCII") + ")";
+  return {};
+}
+
+bool is_multicast(std::uint32_t ip) { return (ip >> 28) == 0xE; }  // 224.0.0.0/4
+
+}  // namespace
+
+// ---------------------------------------------------------------- addresses
+
+std::string_view to_string(Framing framing) { return framing == Framing::judp ? "judp" : "opc"; }
+
+std::optional<std::uint32_t> parse_ipv4(std::string_view text) {
+  std::uint32_t ip = 0;
+  int octets = 0;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t end = std::min(text.find('.', pos), text.size());
+    const std::string_view part = text.substr(pos, end - pos);
+    if (part.empty() || part.size() > 3 || (part.size() > 1 && part.front() == '0')) return std::nullopt;
+    if (!std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+    unsigned value = 0;
+    std::from_chars(part.data(), part.data() + part.size(), value);
+    if (value > 255 || ++octets > 4) return std::nullopt;
+    ip = (ip << 8) | value;
+    if (end == text.size()) break;
+    pos = end + 1;
+  }
+  if (octets != 4) return std::nullopt;
+  return ip;
+}
+
+namespace {
+
+std::string ipv4_text(std::uint32_t ip) {
+  return std::to_string(ip >> 24) + "." + std::to_string((ip >> 16) & 0xFF) + "." + std::to_string((ip >> 8) & 0xFF) +
+         "." + std::to_string(ip & 0xFF);
+}
+
+std::string not_ipv4(std::string_view host) {
+  return in_quotes(host) + " is not an IPv4 address a.b.c.d (host names are not resolved)";
+}
+
+}  // namespace
+
+std::string Endpoint::to_string() const { return host + ":" + std::to_string(port); }
+
+std::string Cidr::to_string() const { return ipv4_text(network) + "/" + std::to_string(prefix_length); }
+
+jaus::Expected<Endpoint, std::string> parse_endpoint(std::string_view text) {
+  if (text.empty()) return jaus::unexpected(std::string("empty address (expected a.b.c.d[:port])"));
+  const std::size_t colon = text.find(':');
+  const std::string_view host = text.substr(0, colon);
+  if (!parse_ipv4(host)) return jaus::unexpected(not_ipv4(colon == std::string_view::npos ? text : host));
+  Endpoint endpoint{std::string(host), kJausPort};
+  if (colon != std::string_view::npos) {
+    const std::string_view port = text.substr(colon + 1);
+    const bool digits = !port.empty() && port.size() <= 5 &&
+                        std::all_of(port.begin(), port.end(), [](char c) { return c >= '0' && c <= '9'; });
+    unsigned value = 0;
+    if (digits) std::from_chars(port.data(), port.data() + port.size(), value);
+    if (!digits || value < 1 || value > 65535)
+      return jaus::unexpected("port " + in_quotes(port) + " of " + in_quotes(text) + " must be 1..65535");
+    endpoint.port = static_cast<std::uint16_t>(value);
+  }
+  return endpoint;
+}
+
+jaus::Expected<Cidr, std::string> parse_cidr(std::string_view text) {
+  if (text.empty()) return jaus::unexpected(std::string("empty network (expected a.b.c.d/prefix)"));
+  const std::size_t slash = text.find('/');
+  const std::string_view host = text.substr(0, slash);
+  const auto ip = parse_ipv4(host);
+  if (!ip) return jaus::unexpected(not_ipv4(host));
+  Cidr cidr{*ip, 32};
+  if (slash != std::string_view::npos) {
+    const std::string_view prefix = text.substr(slash + 1);
+    const bool digits = !prefix.empty() && prefix.size() <= 2 &&
+                        std::all_of(prefix.begin(), prefix.end(), [](char c) { return c >= '0' && c <= '9'; });
+    unsigned value = 0;
+    if (digits) std::from_chars(prefix.data(), prefix.data() + prefix.size(), value);
+    if (!digits || value > 32)
+      return jaus::unexpected("prefix length " + in_quotes(prefix) + " of " + in_quotes(text) + " must be 0..32");
+    cidr.prefix_length = static_cast<std::uint8_t>(value);
+  }
+  const std::uint32_t mask = cidr.prefix_length == 0 ? 0 : ~std::uint32_t{0} << (32 - cidr.prefix_length);
+  if ((cidr.network & mask) != cidr.network)
+    return jaus::unexpected(in_quotes(text) + " has host bits set below the prefix (the network is " +
+                            ipv4_text(cidr.network & mask) + "/" + std::to_string(cidr.prefix_length) + ")");
+  return cidr;
+}
+
+bool cidr_contains(const Cidr& cidr, std::uint32_t ipv4_host_order) {
+  if (cidr.prefix_length == 0) return true;
+  const std::uint8_t prefix = std::min<std::uint8_t>(cidr.prefix_length, 32);
+  const std::uint32_t mask = ~std::uint32_t{0} << (32 - prefix);
+  return (ipv4_host_order & mask) == (cidr.network & mask);
+}
+
+std::string ConfigError::to_string() const {
+  return line > 0 ? file + ":" + std::to_string(line) + ": " + what : file + ": " + what;
+}
+
+// ---------------------------------------------------------------- validation
+
+namespace {
+
+struct Issue {
+  int line = 0;
+  std::string what;
+};
+
+// Lines of what the file declared, for cross-field errors (0 = unknown).
+struct SourceLines {
+  int components = 0;       // the 'components' key
+  std::vector<int> peers;   // one per transport.peers entry
+};
+
+int line_at(const std::vector<int>& lines, std::size_t i) { return i < lines.size() ? lines[i] : 0; }
+
+std::string first_at(int line) { return line > 0 ? " (first at line " + std::to_string(line) + ")" : ""; }
+
+std::optional<Issue> check_number(std::string_view key, double v, const NumberRange& range) {
+  if (range.contains(v)) return std::nullopt;
+  return Issue{0, "'" + std::string(key) + "' must be " + std::string(range.text) + ", got " + number_text(v)};
+}
+
+std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& lines) {
+  const ComponentSpec* node_manager = nullptr;
+  std::map<std::pair<int, int>, int> seen;  // (id, instance) -> line
+  for (const auto& spec : c.components) {
+    const ComponentKind* kind = find_component_kind(spec.kind);
+    if (!kind) {
+      std::vector<std::string_view> names;
+      for (const auto& k : component_kinds()) names.push_back(k.name);
+      return Issue{spec.line, "unknown component kind " + in_quotes(spec.kind) + " (known: " + join(names) + ")"};
+    }
+    for (const auto& [key, value] : spec.options)
+      if (!one_of(key, kind->options))
+        return Issue{spec.line, "unknown option " + in_quotes(key) + " for " + spec.kind + " (known: " +
+                                    join(kind->options) + ")"};
+    if (spec.id < kAddressMin || spec.id > kAddressMax)
+      return Issue{spec.line, "component 'id' must be an integer 1..254, got " + std::to_string(spec.id)};
+    if (spec.instance < kAddressMin || spec.instance > kAddressMax)
+      return Issue{spec.line, "component 'instance' must be an integer 1..254, got " + std::to_string(spec.instance)};
+    if (auto problem = identification_problem("name", spec.name); !problem.empty()) return Issue{spec.line, problem};
+    if (spec.kind == "node_manager") {
+      if (node_manager)
+        return Issue{spec.line, "only one node_manager per node" + first_at(node_manager->line)};
+      if (spec.id != 1 || spec.instance != 1)
+        return Issue{spec.line, "the node_manager must have id 1 and instance 1, got id " + std::to_string(spec.id) +
+                                    " instance " + std::to_string(spec.instance)};
+      node_manager = &spec;
+    } else if (spec.id == 1) {
+      return Issue{spec.line, "component id 1 is the node_manager's (" + spec.kind + " has RA id " +
+                                  std::to_string(kind->default_id) + ")"};
+    }
+    const auto [it, inserted] = seen.emplace(std::pair<int, int>{spec.id, spec.instance}, spec.line);
+    if (!inserted)
+      return Issue{spec.line, "duplicate component id " + std::to_string(spec.id) + " instance " +
+                                  std::to_string(spec.instance) + first_at(it->second)};
+  }
+  if (!node_manager) return Issue{lines.components, "a node_manager component is required (id 1, instance 1)"};
+  return std::nullopt;
+}
+
+std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines& lines) {
+  const auto bind_ip = parse_ipv4(t.bind.host);
+  if (!bind_ip) return Issue{0, "'bind': " + not_ipv4(t.bind.host)};
+  if (t.bind.port == 0) return Issue{0, "'bind' port must be 1..65535, got 0"};
+  if (t.multicast) {
+    const auto ip = parse_ipv4(t.multicast->host);
+    if (!ip) return Issue{0, "'multicast': " + not_ipv4(t.multicast->host)};
+    if (!is_multicast(*ip))
+      return Issue{0, "'multicast' must be a group 224.0.0.0..239.255.255.255, got " + in_quotes(t.multicast->host)};
+    if (t.multicast->port == 0) return Issue{0, "'multicast' port must be 1..65535, got 0"};
+  }
+  if (t.max_peers < 1 || t.max_peers > kMaxPeersLimit)
+    return Issue{0, "'max_peers' must be an integer 1..65535, got " + std::to_string(t.max_peers)};
+  for (const auto& cidr : t.allow)
+    if (cidr.prefix_length > 32) return Issue{0, "'allow' prefix length must be 0..32, got " +
+                                                     std::to_string(cidr.prefix_length)};
+  std::map<std::string, int> seen;  // "host:port" -> line
+  for (std::size_t i = 0; i < t.peers.size(); ++i) {
+    const Endpoint& peer = t.peers[i].endpoint;
+    const int line = line_at(lines.peers, i);
+    const auto ip = parse_ipv4(peer.host);
+    if (!ip) return Issue{line, "'address': " + not_ipv4(peer.host)};
+    if (*ip == 0 || is_multicast(*ip))
+      return Issue{line, "peer 'address' must be a unicast IPv4 address, got " + in_quotes(peer.host) +
+                             (*ip == 0 ? "" : " (multicast groups go in transport.multicast)")};
+    if (peer.port == 0) return Issue{line, "peer 'address' port must be 1..65535, got 0"};
+    if (peer == t.bind) return Issue{line, "peer " + peer.to_string() + " is this node's own bind address"};
+    if (!t.allow.empty() &&
+        std::none_of(t.allow.begin(), t.allow.end(), [&](const Cidr& cidr) { return cidr_contains(cidr, *ip); }))
+      return Issue{line, "peer " + peer.to_string() + " is not in 'allow': its datagrams would be dropped"};
+    const auto [it, inserted] = seen.emplace(peer.to_string(), line);
+    if (!inserted) return Issue{line, "duplicate peer " + peer.to_string() + first_at(it->second)};
+  }
+  return std::nullopt;
+}
+
+std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
+  if (c.subsystem < kAddressMin || c.subsystem > kAddressMax)
+    return Issue{0, "'subsystem' must be an integer 1..254, got " + std::to_string(c.subsystem)};
+  if (c.node < kAddressMin || c.node > kAddressMax)
+    return Issue{0, "'node' must be an integer 1..254, got " + std::to_string(c.node)};
+  if (auto problem = identification_problem("subsystem_name", c.subsystem_name); !problem.empty())
+    return Issue{0, problem};
+  if (auto problem = identification_problem("node_name", c.node_name); !problem.empty()) return Issue{0, problem};
+  struct NumberCheck {
+    std::string_view key;
+    double value;
+    const NumberRange* range;
+  };
+  const auto& sc = c.service_connections;
+  const NumberCheck numbers[] = {
+      {"heartbeat_hz", c.heartbeat_hz, &kHeartbeatRange},
+      {"controller_timeout_s", c.controller_timeout_s, &kTimeoutRange},
+      {"max_rate_hz", sc.max_rate_hz, &kRateRange},
+      {"deadman_periods", sc.deadman_periods, &kDeadmanPeriodsRange},
+      {"deadman_minimum_s", sc.deadman_minimum_s, &kTimeoutRange},
+      {"component_timeout_s", c.liveness.component_timeout_s, &kPositiveTimeoutRange},
+      {"node_timeout_s", c.liveness.node_timeout_s, &kPositiveTimeoutRange},
+      {"subsystem_timeout_s", c.liveness.subsystem_timeout_s, &kPositiveTimeoutRange},
+  };
+  for (const auto& n : numbers)
+    if (auto issue = check_number(n.key, n.value, *n.range)) return issue;
+  if (sc.max_connections < 1 || sc.max_connections > kMaxConnectionsLimit)
+    return Issue{0, "'max_connections' must be an integer 1..255, got " + std::to_string(sc.max_connections)};
+  if (!one_of(c.dialect, kDialects))
+    return Issue{0, "'dialect' must be one of " + join(kDialects) + ", got " + in_quotes(c.dialect)};
+  if (!one_of(c.log_level, kLogLevels))
+    return Issue{0, "'level' must be one of " + join(kLogLevels) + ", got " + in_quotes(c.log_level)};
+  if (auto issue = check_transport(c.transport, lines)) return issue;
+  return check_components(c, lines);
+}
+
+}  // namespace
+
+std::optional<std::string> validate(const JausdConfig& config) {
+  if (auto issue = check(config, SourceLines{})) return issue->what;
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------- YAML reader
+
+namespace {
+
+// The first error found; thrown inside the reader only, caught in load_config_string.
+struct Failure {
+  int line;
+  std::string what;
+};
+
+[[noreturn]] void fail(int line, std::string what) { throw Failure{line, std::move(what)}; }
+
+int line_of(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() ? 0 : mark.line + 1;
+}
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return in_quotes(node.Scalar());
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    default: return "nothing";
+  }
+}
+
+// One key of a map and its value.
+struct Entry {
+  std::string key;
+  int key_line;
+  YAML::Node value;
+  bool is_null() const { return !value.IsDefined() || value.IsNull(); }
+  // Errors about the value point at it; a missing value has no line of its own.
+  int value_line() const { return is_null() ? key_line : line_of(value); }
+  [[noreturn]] void must_be(std::string_view what) const {
+    fail(value_line(), "'" + key + "' must be " + std::string(what) + ", got " + describe(value));
+  }
+  const std::string& scalar(std::string_view what) const {
+    if (!value.IsScalar()) must_be(what);
+    return value.Scalar();
+  }
+};
+
+struct Key {
+  std::string_view name;
+  std::function<void(const Entry&)> read;
+};
+
+std::string in(std::string_view where) { return where.empty() ? "" : " in " + std::string(where); }
+
+// Reads a map in file order: every key must be one of `keys` and appear once.
+// A missing or empty (null) map reads as all defaults.
+void read_map(const YAML::Node& node, std::string_view where, int where_line, std::initializer_list<Key> keys) {
+  if (!node.IsDefined() || node.IsNull()) return;
+  if (!node.IsMap()) {
+    if (where.empty()) fail(line_of(node), "the configuration must be a map of keys, got " + describe(node));
+    fail(where_line, "'" + std::string(where) + "' must be a map of keys, got " + describe(node));
+  }
+  std::map<std::string, int> seen;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    // Copies: the iterator's pair is a temporary proxy.
+    const YAML::Node key = it->first;
+    const YAML::Node value = it->second;
+    if (!key.IsScalar()) fail(line_of(key), "keys must be plain names, got " + describe(key) + in(where));
+    const std::string& name = key.Scalar();
+    const int line = line_of(key);
+    if (const auto [first, inserted] = seen.emplace(name, line); !inserted)
+      fail(line, "duplicate key " + in_quotes(name) + in(where) + first_at(first->second));
+    const auto handler = std::find_if(keys.begin(), keys.end(), [&](const Key& k) { return k.name == name; });
+    if (handler == keys.end()) {
+      std::vector<std::string_view> names;
+      for (const auto& k : keys) names.push_back(k.name);
+      fail(line, "unknown key " + in_quotes(name) + in(where) + " (known: " + join(names) + ")");
+    }
+    handler->read(Entry{name, line, value});
+  }
+}
+
+// A list; null reads as empty.
+std::vector<YAML::Node> read_list(const Entry& e) {
+  if (e.is_null()) return {};
+  if (!e.value.IsSequence()) e.must_be("a list");
+  return {e.value.begin(), e.value.end()};
+}
+
+template <class T>
+T integer(const Entry& e, long long min, long long max) {
+  const std::string what = "an integer " + std::to_string(min) + ".." + std::to_string(max);
+  const auto v = to_integer(e.scalar(what));
+  if (!v || *v < min || *v > max) e.must_be(what);
+  return static_cast<T>(*v);
+}
+
+double number(const Entry& e, const NumberRange& range) {
+  const auto v = to_number(e.scalar(range.text));
+  if (!v || !range.contains(*v)) e.must_be(range.text);
+  return *v;
+}
+
+bool boolean(const Entry& e) {
+  bool v = false;
+  if (!YAML::convert<bool>::decode(e.value, v)) e.must_be("true or false");
+  return v;
+}
+
+std::string identification(const Entry& e) {
+  const std::string& text = e.scalar("1..80 printable ASCII characters");
+  if (auto problem = identification_problem(e.key, text); !problem.empty()) fail(e.value_line(), problem);
+  return text;
+}
+
+std::string choice(const Entry& e, auto const& choices) {
+  const std::string what = "one of " + join(choices);
+  const std::string& text = e.scalar(what);
+  if (!one_of(text, choices)) e.must_be(what);
+  return text;
+}
+
+Framing framing(const Entry& e) { return choice(e, kFramings) == "judp" ? Framing::judp : Framing::opc; }
+
+Endpoint endpoint(const Entry& e) {
+  auto parsed = parse_endpoint(e.scalar("an IPv4 address a.b.c.d[:port]"));
+  if (!parsed) fail(e.value_line(), "'" + e.key + "': " + parsed.error());
+  return *parsed;
+}
+
+// One entry of transport.peers: {address: a.b.c.d[:port], framing: opc|judp},
+// or just the address. The framing defaults to transport.framing, read later.
+struct PeerEntry {
+  Endpoint endpoint;
+  std::optional<Framing> framing;
+  int line;
+};
+
+PeerEntry peer(const YAML::Node& node) {
+  PeerEntry p{{}, std::nullopt, line_of(node)};
+  if (node.IsScalar()) {
+    p.endpoint = endpoint(Entry{"peers", p.line, node});
+    return p;
+  }
+  if (!node.IsMap()) fail(p.line, "a peer must be an address or a map with 'address', got " + describe(node));
+  bool has_address = false;
+  read_map(node, "transport.peers", p.line,
+           {{"address", [&](const Entry& e) { p.endpoint = endpoint(e), has_address = true; }},
+            {"framing", [&](const Entry& e) { p.framing = framing(e); }}});
+  if (!has_address) fail(p.line, "a peer needs an 'address'");
+  return p;
+}
+
+ComponentSpec component(const YAML::Node& node) {
+  ComponentSpec spec;
+  spec.line = line_of(node);
+  if (!node.IsMap()) fail(spec.line, "a component must be a map with a 'kind', got " + describe(node));
+  std::optional<std::uint8_t> id;
+  std::optional<std::string> name;
+  YAML::Node options;
+  int options_line = 0;
+  read_map(node, "components", spec.line,
+           {{"kind",
+             [&](const Entry& e) {
+               spec.kind = e.scalar("a component kind");
+               if (!find_component_kind(spec.kind)) {
+                 std::vector<std::string_view> names;
+                 for (const auto& k : component_kinds()) names.push_back(k.name);
+                 fail(e.value_line(),
+                      "unknown component kind " + in_quotes(spec.kind) + " (known: " + join(names) + ")");
+               }
+             }},
+            {"id", [&](const Entry& e) { id = integer<std::uint8_t>(e, kAddressMin, kAddressMax); }},
+            {"instance", [&](const Entry& e) { spec.instance = integer<std::uint8_t>(e, kAddressMin, kAddressMax); }},
+            {"authority", [&](const Entry& e) { spec.authority = integer<std::uint8_t>(e, 0, 255); }},
+            {"name", [&](const Entry& e) { name = identification(e); }},
+            {"options", [&](const Entry& e) { options = e.value, options_line = e.key_line; }}});
+  const ComponentKind* kind = find_component_kind(spec.kind);
+  if (!kind) {
+    std::vector<std::string_view> names;
+    for (const auto& k : component_kinds()) names.push_back(k.name);
+    fail(spec.line, "a component needs a 'kind' (one of " + join(names) + ")");
+  }
+  spec.id = id.value_or(kind->default_id);
+  spec.name = name.value_or(std::string(kind->name));
+  // Option keys depend on the kind, so the map is read here.
+  if (options.IsDefined() && !options.IsNull()) {
+    if (!options.IsMap()) fail(options_line, "'options' must be a map of keys, got " + describe(options));
+    for (auto it = options.begin(); it != options.end(); ++it) {
+      const YAML::Node key_node = it->first;
+      const YAML::Node value = it->second;
+      const int line = line_of(key_node);
+      const std::string key = key_node.IsScalar() ? key_node.Scalar() : "";
+      if (key.empty() || !one_of(key, kind->options))
+        fail(line, "unknown option " + in_quotes(key) + " for " + spec.kind + " (known: " + join(kind->options) + ")");
+      if (spec.options.contains(key)) fail(line, "duplicate option " + in_quotes(key));
+      if (!value.IsScalar())
+        fail(line, "option " + in_quotes(key) + " must be a single value, got " + describe(value));
+      spec.options[key] = value.Scalar();
+    }
+  }
+  return spec;
+}
+
+JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
+  JausdConfig c;
+  const int no_line = 0;
+  read_map(
+      root, "", no_line,
+      {{"identification",
+        [&](const Entry& s) {
+          read_map(s.value, "identification", s.key_line,
+                   {{"subsystem",
+                     [&](const Entry& e) { c.subsystem = integer<std::uint8_t>(e, kAddressMin, kAddressMax); }},
+                    {"subsystem_name", [&](const Entry& e) { c.subsystem_name = identification(e); }},
+                    {"subsystem_type",
+                     [&](const Entry& e) { c.subsystem_type = integer<std::uint16_t>(e, 0, 65535); }},
+                    {"node", [&](const Entry& e) { c.node = integer<std::uint8_t>(e, kAddressMin, kAddressMax); }},
+                    {"node_name", [&](const Entry& e) { c.node_name = identification(e); }},
+                    {"node_type", [&](const Entry& e) { c.node_type = integer<std::uint16_t>(e, 0, 65535); }}});
+        }},
+       {"dialect", [&](const Entry& e) { c.dialect = choice(e, kDialects); }},
+       {"heartbeat_hz", [&](const Entry& e) { c.heartbeat_hz = number(e, kHeartbeatRange); }},
+       {"control",
+        [&](const Entry& s) {
+          read_map(s.value, "control", s.key_line,
+                   {{"controller_timeout_s",
+                     [&](const Entry& e) { c.controller_timeout_s = number(e, kTimeoutRange); }},
+                    {"reject_refused", [&](const Entry& e) { c.reject_refused_control = boolean(e); }}});
+        }},
+       {"service_connections",
+        [&](const Entry& s) {
+          auto& sc = c.service_connections;
+          read_map(s.value, "service_connections", s.key_line,
+                   {{"max_rate_hz", [&](const Entry& e) { sc.max_rate_hz = number(e, kRateRange); }},
+                    {"max_connections",
+                     [&](const Entry& e) { sc.max_connections = integer<std::size_t>(e, 1, kMaxConnectionsLimit); }},
+                    {"deadman_periods", [&](const Entry& e) { sc.deadman_periods = number(e, kDeadmanPeriodsRange); }},
+                    {"deadman_minimum_s", [&](const Entry& e) { sc.deadman_minimum_s = number(e, kTimeoutRange); }}});
+        }},
+       {"liveness",
+        [&](const Entry& s) {
+          auto& l = c.liveness;
+          read_map(s.value, "liveness", s.key_line,
+                   {{"component_timeout_s",
+                     [&](const Entry& e) { l.component_timeout_s = number(e, kPositiveTimeoutRange); }},
+                    {"node_timeout_s", [&](const Entry& e) { l.node_timeout_s = number(e, kPositiveTimeoutRange); }},
+                    {"subsystem_timeout_s",
+                     [&](const Entry& e) { l.subsystem_timeout_s = number(e, kPositiveTimeoutRange); }}});
+        }},
+       {"transport",
+        [&](const Entry& s) {
+          auto& t = c.transport;
+          std::vector<PeerEntry> peers;
+          read_map(
+              s.value, "transport", s.key_line,
+              {{"bind", [&](const Entry& e) { t.bind = endpoint(e); }},
+               {"framing", [&](const Entry& e) { t.framing = framing(e); }},
+               {"multicast",
+                [&](const Entry& e) {
+                  if (e.is_null()) t.multicast.reset();
+                  else t.multicast = endpoint(e);
+                  if (t.multicast && !is_multicast(*parse_ipv4(t.multicast->host)))
+                    fail(e.value_line(), "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
+                                             in_quotes(t.multicast->host));
+                }},
+               {"broadcast_to_peers", [&](const Entry& e) { t.broadcast_to_peers = boolean(e); }},
+               {"peers",
+                [&](const Entry& e) {
+                  for (const auto& item : read_list(e)) peers.push_back(peer(item));
+                }},
+               {"allow",
+                [&](const Entry& e) {
+                  for (const auto& item : read_list(e)) {
+                    if (!item.IsScalar())
+                      fail(line_of(item), "'allow' entries must be a.b.c.d/prefix, got " + describe(item));
+                    auto cidr = parse_cidr(item.Scalar());
+                    if (!cidr) fail(line_of(item), "'allow': " + cidr.error());
+                    t.allow.push_back(*cidr);
+                  }
+                }},
+               {"max_peers",
+                [&](const Entry& e) { t.max_peers = integer<std::size_t>(e, 1, kMaxPeersLimit); }}});
+          for (const auto& p : peers) {
+            t.peers.push_back(StaticPeer{p.endpoint, p.framing.value_or(t.framing)});
+            lines.peers.push_back(p.line);
+          }
+        }},
+       {"components",
+        [&](const Entry& e) {
+          lines.components = e.key_line;
+          if (e.is_null()) return;  // defaults
+          c.components.clear();
+          for (const auto& item : read_list(e)) c.components.push_back(component(item));
+        }},
+       {"logging", [&](const Entry& s) {
+          read_map(s.value, "logging", s.key_line,
+                   {{"level", [&](const Entry& e) { c.log_level = choice(e, kLogLevels); }}});
+        }}});
+  return c;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- loading
+
+ConfigResult load_config_string(std::string_view yaml, std::string_view name) {
+  const std::string file(name);
+  try {
+    const std::vector<YAML::Node> documents = YAML::LoadAll(std::string(yaml));
+    if (documents.size() > 1)
+      return jaus::unexpected(ConfigError{file, line_of(documents[1]), "a configuration holds one YAML document, "
+                                                                       "this is a second one"});
+    const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
+    SourceLines lines;
+    JausdConfig config = read_config(root, lines);
+    if (auto issue = check(config, lines)) return jaus::unexpected(ConfigError{file, issue->line, issue->what});
+    return config;
+  } catch (const Failure& f) {
+    return jaus::unexpected(ConfigError{file, f.line, f.what});
+  } catch (const YAML::Exception& e) {
+    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
+    return jaus::unexpected(ConfigError{file, line, "YAML syntax error: " + e.msg});
+  } catch (const std::exception& e) {
+    return jaus::unexpected(ConfigError{file, 0, std::string("cannot read the configuration: ") + e.what()});
+  }
+}
+
+ConfigResult load_config_file(const std::string& path) {
+  constexpr std::uintmax_t kMaxFileSize = 1024 * 1024;
+  const auto cannot_open = [&](const std::string& reason) {
+    return jaus::unexpected(ConfigError{path, 0, "cannot open " + path + ": " + reason});
+  };
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return cannot_open("is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return cannot_open(std::strerror(errno));
+  std::string text;
+  char buffer[4096];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxFileSize) return cannot_open("larger than 1 MiB, not a configuration file");
+  }
+  if (in.bad()) return cannot_open(std::strerror(errno));
+  return load_config_string(text, path);
+}
+
+}  // namespace jausd

@@ -1,0 +1,143 @@
+// Configuration of the node daemon jausd: a YAML file -> JausdConfig. Plain
+// data only (no sockets, no runtime objects); main.cpp maps it onto the node,
+// its components and the transport. Every key has a default, so an empty file
+// is a valid configuration. A bad file gives one error, "file:line: what is
+// wrong"; nothing is silently ignored. docs/configuration.md is the reference.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "jaus/core/expected.hpp"
+
+namespace jausd {
+
+inline constexpr std::uint16_t kJausPort = 3794;
+
+// A dotted IPv4 address with a port: "127.0.0.2:3794" ("127.0.0.2" = port 3794).
+struct Endpoint {
+  std::string host;  // dotted IPv4 in canonical form (no host names)
+  std::uint16_t port = kJausPort;
+  bool operator==(const Endpoint&) const = default;
+  std::string to_string() const;  // "host:port"
+};
+
+// An IPv4 network: "10.0.0.0/8"; a plain address is a /32.
+struct Cidr {
+  std::uint32_t network = 0;  // host byte order, host bits cleared
+  std::uint8_t prefix_length = 32;
+  bool operator==(const Cidr&) const = default;
+  std::string to_string() const;  // "10.0.0.0/8"
+};
+
+// Datagram framing (../shared/spec/jaus-wire-notes.md): OPC puts "JAUS01.0"
+// before the message, JUDP the AS5669 transport header.
+enum class Framing { opc, judp };
+std::string_view to_string(Framing framing);
+
+struct StaticPeer {
+  Endpoint endpoint;
+  Framing framing = Framing::opc;
+  bool operator==(const StaticPeer&) const = default;
+};
+
+struct TransportConfig {
+  Endpoint bind{"0.0.0.0", kJausPort};
+  Framing framing = Framing::opc;         // for peers not heard from yet
+  std::optional<Endpoint> multicast;      // e.g. 224.1.0.1:3794; absent = no multicast
+  bool broadcast_to_peers = true;         // broadcasts also go to every known peer
+  std::vector<StaticPeer> peers;          // known from the start (no discovery needed)
+  std::vector<Cidr> allow;                // sources that may talk to the node; empty = everyone
+  std::size_t max_peers = 256;            // peers learnt from traffic remembered at once (static ones come on top)
+};
+
+struct ComponentSpec {
+  std::string kind;       // a registered kind (component_kinds())
+  std::uint8_t id = 0;    // component ID, 1..254 (default: the kind's RA ID)
+  std::uint8_t instance = 1;
+  std::uint8_t authority = 0;
+  std::string name;       // Report Identification of the component (default: the kind)
+  std::map<std::string, std::string> options;  // kind-specific, keys checked against the kind
+  int line = 0;           // where the file declares it (0: not from a file)
+};
+
+struct ServiceConnectionSettings {  // per component, see jaus::rt::ServiceConnectionLimits
+  double max_rate_hz = 1092;        // confirmed rates are capped at this
+  std::size_t max_connections = 64;
+  double deadman_periods = 3;       // a command SC is lost after this many silent periods...
+  double deadman_minimum_s = 0.2;   // ...and never sooner than this
+};
+
+struct LivenessSettings {  // peers unheard this long are forgotten
+  double component_timeout_s = 3;
+  double node_timeout_s = 5;
+  double subsystem_timeout_s = 5;
+};
+
+struct JausdConfig {
+  // identification
+  std::uint8_t subsystem = 1;  // 1..254
+  std::uint8_t node = 1;       // 1..254
+  std::string subsystem_name = "jaus-node";
+  std::uint16_t subsystem_type = 10001;
+  std::string node_name = "node";
+  std::uint16_t node_type = 40001;
+
+  double heartbeat_hz = 1.0;           // node manager's Report Heartbeat Pulse
+  double controller_timeout_s = 3.0;   // controller silence that drops control; 0 disables
+  bool reject_refused_control = false; // refused control requests get Reject, not Confirm 2
+  ServiceConnectionSettings service_connections;
+  LivenessSettings liveness;
+  std::string dialect = "ra";          // "ra" or "openjaus": how payloads from peers are read
+  TransportConfig transport;
+  std::vector<ComponentSpec> components = default_components();
+  std::string log_level = "info";      // debug, info, warn, error
+
+  static std::vector<ComponentSpec> default_components();  // node_manager 1.1 + communicator 35.1
+};
+
+struct ConfigError {
+  std::string file;
+  int line = 0;  // 1-based; 0 when no line applies
+  std::string what;
+  std::string to_string() const;  // "file:line: what", or "file: what" when line is 0
+};
+
+using ConfigResult = jaus::Expected<JausdConfig, ConfigError>;
+
+// Reads and checks a configuration file (parse, ranges, then validate()).
+// Never throws.
+ConfigResult load_config_file(const std::string& path);
+// The same for text in memory; `name` stands for the file in errors.
+ConfigResult load_config_string(std::string_view yaml, std::string_view name);
+
+// "a.b.c.d[:port]", port 1..65535, 3794 when absent. Host names are refused.
+// The error names the value and what is wrong with it.
+jaus::Expected<Endpoint, std::string> parse_endpoint(std::string_view text);
+// "a.b.c.d/prefix" (prefix 0..32) or "a.b.c.d" (/32). Host bits set below
+// the prefix ("10.1.2.3/8") are an error that names the network meant.
+jaus::Expected<Cidr, std::string> parse_cidr(std::string_view text);
+// Dotted IPv4 -> host byte order. Four decimal octets 0..255, no leading zeros.
+std::optional<std::uint32_t> parse_ipv4(std::string_view text);
+bool cidr_contains(const Cidr& cidr, std::uint32_t ipv4_host_order);
+
+// Every range and cross-field rule on the values (a loaded file passes; run
+// it again after command-line overrides). The first problem, or nothing.
+std::optional<std::string> validate(const JausdConfig& config);
+
+// Component kinds the node can host: name, RA 3.x component ID, option keys.
+struct ComponentKind {
+  std::string_view name;
+  std::uint8_t default_id;
+  std::vector<std::string_view> options;
+};
+std::span<const ComponentKind> component_kinds();
+const ComponentKind* find_component_kind(std::string_view name);
+
+}  // namespace jausd

@@ -1,0 +1,734 @@
+// jausd configuration: defaults, every key read, and one "file:line: what"
+// error for every kind of mistake.
+#include "jausd_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace {
+
+using namespace jausd;
+
+ConfigResult load(std::string_view yaml) { return load_config_string(yaml, "test.yaml"); }
+
+// The text must load with an error at `line` saying exactly `what`.
+void expect_error(std::string_view yaml, int line, std::string_view what) {
+  const auto result = load(yaml);
+  ASSERT_FALSE(result.has_value()) << "loaded without error:\n" << yaml;
+  EXPECT_EQ(result.error().file, "test.yaml");
+  EXPECT_EQ(result.error().line, line) << result.error().to_string();
+  EXPECT_EQ(result.error().what, what) << result.error().to_string();
+}
+
+JausdConfig expect_ok(std::string_view yaml) {
+  auto result = load(yaml);
+  if (!result) ADD_FAILURE() << result.error().to_string() << "\n" << yaml;
+  return result ? *result : JausdConfig{};
+}
+
+void expect_defaults(const JausdConfig& c) {
+  EXPECT_EQ(c.subsystem, 1);
+  EXPECT_EQ(c.node, 1);
+  EXPECT_EQ(c.subsystem_name, "jaus-node");
+  EXPECT_EQ(c.subsystem_type, 10001);
+  EXPECT_EQ(c.node_name, "node");
+  EXPECT_EQ(c.node_type, 40001);
+  EXPECT_EQ(c.heartbeat_hz, 1.0);
+  EXPECT_EQ(c.controller_timeout_s, 3.0);
+  EXPECT_FALSE(c.reject_refused_control);
+  EXPECT_EQ(c.service_connections.max_rate_hz, 1092);
+  EXPECT_EQ(c.service_connections.max_connections, 64u);
+  EXPECT_EQ(c.service_connections.deadman_periods, 3);
+  EXPECT_EQ(c.service_connections.deadman_minimum_s, 0.2);
+  EXPECT_EQ(c.liveness.component_timeout_s, 3);
+  EXPECT_EQ(c.liveness.node_timeout_s, 5);
+  EXPECT_EQ(c.liveness.subsystem_timeout_s, 5);
+  EXPECT_EQ(c.dialect, "ra");
+  EXPECT_EQ(c.transport.bind, (Endpoint{"0.0.0.0", 3794}));
+  EXPECT_EQ(c.transport.framing, Framing::opc);
+  EXPECT_FALSE(c.transport.multicast);
+  EXPECT_TRUE(c.transport.broadcast_to_peers);
+  EXPECT_TRUE(c.transport.peers.empty());
+  EXPECT_TRUE(c.transport.allow.empty());
+  EXPECT_EQ(c.transport.max_peers, 256u);
+  ASSERT_EQ(c.components.size(), 2u);
+  EXPECT_EQ(c.components[0].kind, "node_manager");
+  EXPECT_EQ(c.components[0].id, 1);
+  EXPECT_EQ(c.components[0].instance, 1);
+  EXPECT_EQ(c.components[0].authority, 0);
+  EXPECT_EQ(c.components[0].name, "node_manager");
+  EXPECT_EQ(c.components[1].kind, "communicator");
+  EXPECT_EQ(c.components[1].id, 35);
+  EXPECT_EQ(c.components[1].instance, 1);
+  EXPECT_EQ(c.log_level, "info");
+}
+
+// A temporary file removed at the end of the test.
+struct TempFile {
+  std::string path;
+  explicit TempFile(std::string_view content) {
+    path = (std::filesystem::temp_directory_path() / ("jausd_config_test_" + std::to_string(::getpid()) + ".yaml"))
+               .string();
+    std::ofstream(path, std::ios::binary) << content;
+  }
+  ~TempFile() { std::remove(path.c_str()); }
+};
+
+// ------------------------------------------------------------ good files
+
+TEST(JausdConfig, EmptyFileIsTheDefaultConfiguration) {
+  expect_defaults(expect_ok(""));
+  expect_defaults(expect_ok("# nothing but a comment\n\n"));
+  expect_defaults(expect_ok("{}"));
+  EXPECT_EQ(validate(JausdConfig{}), std::nullopt);
+}
+
+TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
+  const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
+  ASSERT_TRUE(result.has_value()) << result.error().to_string();
+  expect_defaults(*result);
+  EXPECT_EQ(result->components[0].line, 42);  // declared in the file
+  EXPECT_EQ(validate(*result), std::nullopt);
+}
+
+TEST(JausdConfig, DocumentationExamplesLoad) {
+  std::ifstream in(JAUSD_CONFIGURATION_DOC);
+  ASSERT_TRUE(in) << JAUSD_CONFIGURATION_DOC;
+  std::string line, block;
+  bool inside = false;
+  int examples = 0;
+  while (std::getline(in, line)) {
+    if (!inside && line == "```yaml") {
+      inside = true;
+      block.clear();
+    } else if (inside && line == "```") {
+      inside = false;
+      ++examples;
+      EXPECT_TRUE(load(block).has_value()) << block;
+    } else if (inside) {
+      block += line + "\n";
+    }
+  }
+  EXPECT_GE(examples, 2);
+}
+
+TEST(JausdConfig, EveryKeyIsRead) {
+  const auto c = expect_ok(R"(
+identification:
+  subsystem: 12
+  subsystem_name: "Test vehicle #2"
+  subsystem_type: 10002
+  node: 254
+  node_name: payload node
+  node_type: 40002
+dialect: openjaus
+heartbeat_hz: 100
+control:
+  controller_timeout_s: 0
+  reject_refused: true
+service_connections:
+  max_rate_hz: 50.5
+  max_connections: 255
+  deadman_periods: 1.5
+  deadman_minimum_s: 0
+liveness:
+  component_timeout_s: 0.5
+  node_timeout_s: 10
+  subsystem_timeout_s: 86400
+transport:
+  bind: 127.0.0.2
+  framing: judp
+  multicast: 224.1.0.1:3795
+  broadcast_to_peers: false
+  peers:
+    - address: 127.0.0.3:3794
+      framing: opc
+    - address: 127.0.0.4
+    - 10.1.2.3:4000
+  allow: [127.0.0.0/8, 10.0.0.0/8, 192.168.1.7]
+  max_peers: 1
+components:
+  - kind: node_manager
+    authority: 255
+    name: NM
+  - kind: communicator
+    instance: 2
+    id: 36
+    authority: 7
+    options: {}
+logging:
+  level: debug
+)");
+  EXPECT_EQ(c.subsystem, 12);
+  EXPECT_EQ(c.subsystem_name, "Test vehicle #2");
+  EXPECT_EQ(c.subsystem_type, 10002);
+  EXPECT_EQ(c.node, 254);
+  EXPECT_EQ(c.node_name, "payload node");
+  EXPECT_EQ(c.node_type, 40002);
+  EXPECT_EQ(c.dialect, "openjaus");
+  EXPECT_EQ(c.heartbeat_hz, 100);
+  EXPECT_EQ(c.controller_timeout_s, 0);
+  EXPECT_TRUE(c.reject_refused_control);
+  EXPECT_EQ(c.service_connections.max_rate_hz, 50.5);
+  EXPECT_EQ(c.service_connections.max_connections, 255u);
+  EXPECT_EQ(c.service_connections.deadman_periods, 1.5);
+  EXPECT_EQ(c.service_connections.deadman_minimum_s, 0);
+  EXPECT_EQ(c.liveness.component_timeout_s, 0.5);
+  EXPECT_EQ(c.liveness.node_timeout_s, 10);
+  EXPECT_EQ(c.liveness.subsystem_timeout_s, 86400);
+  EXPECT_EQ(c.transport.bind, (Endpoint{"127.0.0.2", 3794}));
+  EXPECT_EQ(c.transport.framing, Framing::judp);
+  EXPECT_EQ(c.transport.multicast, (Endpoint{"224.1.0.1", 3795}));
+  EXPECT_FALSE(c.transport.broadcast_to_peers);
+  ASSERT_EQ(c.transport.peers.size(), 3u);
+  EXPECT_EQ(c.transport.peers[0], (StaticPeer{{"127.0.0.3", 3794}, Framing::opc}));
+  EXPECT_EQ(c.transport.peers[1], (StaticPeer{{"127.0.0.4", 3794}, Framing::judp}));  // transport.framing
+  EXPECT_EQ(c.transport.peers[2], (StaticPeer{{"10.1.2.3", 4000}, Framing::judp}));
+  ASSERT_EQ(c.transport.allow.size(), 3u);
+  EXPECT_EQ(c.transport.allow[0], (Cidr{0x7F000000, 8}));
+  EXPECT_EQ(c.transport.allow[1], (Cidr{0x0A000000, 8}));
+  EXPECT_EQ(c.transport.allow[2], (Cidr{0xC0A80107, 32}));
+  EXPECT_EQ(c.transport.max_peers, 1u);  // learnt peers; static ones come on top
+  ASSERT_EQ(c.components.size(), 2u);
+  EXPECT_EQ(c.components[0].authority, 255);
+  EXPECT_EQ(c.components[0].name, "NM");
+  EXPECT_EQ(c.components[0].line, 36);
+  EXPECT_EQ(c.components[1].kind, "communicator");
+  EXPECT_EQ(c.components[1].id, 36);
+  EXPECT_EQ(c.components[1].instance, 2);
+  EXPECT_EQ(c.components[1].authority, 7);
+  EXPECT_EQ(c.components[1].name, "communicator");
+  EXPECT_EQ(c.components[1].line, 39);
+  EXPECT_EQ(c.log_level, "debug");
+}
+
+TEST(JausdConfig, PeerFramingDefaultsToTransportFramingWhereverItIsWritten) {
+  const auto c = expect_ok("transport:\n  peers: [127.0.0.2]\n  framing: judp\n");
+  ASSERT_EQ(c.transport.peers.size(), 1u);
+  EXPECT_EQ(c.transport.peers[0].framing, Framing::judp);
+}
+
+TEST(JausdConfig, EmptySectionsAndListsAreTheirDefaults) {
+  const auto c = expect_ok(
+      "identification:\ncontrol:\nservice_connections:\nliveness:\ntransport:\n  peers:\n  allow:\n"
+      "  multicast: ~\ncomponents:\nlogging:\n");
+  expect_defaults(c);
+}
+
+TEST(JausdConfig, ScalarSpellings) {
+  auto c = expect_ok("identification: {subsystem: \"7\", node: +8}\nheartbeat_hz: 2.5e1\n");
+  EXPECT_EQ(c.subsystem, 7);
+  EXPECT_EQ(c.node, 8);
+  EXPECT_EQ(c.heartbeat_hz, 25);
+  c = expect_ok("control: {reject_refused: yes}\ntransport: {broadcast_to_peers: off}\n");
+  EXPECT_TRUE(c.reject_refused_control);
+  EXPECT_FALSE(c.transport.broadcast_to_peers);
+  c = expect_ok("identification: {node_name: 12345}\n");  // a plain number is text where text is wanted
+  EXPECT_EQ(c.node_name, "12345");
+}
+
+TEST(JausdConfig, BoundariesThatAreAllowed) {
+  EXPECT_TRUE(load("identification: {subsystem: 254, node: 1}\n"));
+  EXPECT_TRUE(load("heartbeat_hz: 0.001\n"));
+  EXPECT_TRUE(load("heartbeat_hz: 100\n"));
+  EXPECT_TRUE(load("control: {controller_timeout_s: 0}\n"));
+  EXPECT_TRUE(load("identification: {subsystem_type: 0, node_type: 65535}\n"));
+  EXPECT_TRUE(load("transport: {bind: 127.0.0.1:1}\n"));
+  EXPECT_TRUE(load("transport: {bind: 127.0.0.1:65535}\n"));
+  EXPECT_TRUE(load("transport: {allow: [0.0.0.0/0]}\n"));
+  EXPECT_TRUE(load("components: [{kind: node_manager}, {kind: communicator, id: 254, instance: 254, authority: 0}]\n"));
+  EXPECT_TRUE(load("identification: {node_name: " + std::string(80, 'x') + "}\n"));
+}
+
+TEST(JausdConfig, ComponentsReplaceTheDefaults) {
+  const auto c = expect_ok("components:\n  - kind: node_manager\n");
+  ASSERT_EQ(c.components.size(), 1u);
+  EXPECT_EQ(c.components[0].kind, "node_manager");
+  EXPECT_EQ(c.components[0].line, 2);
+}
+
+TEST(JausdConfig, SeveralInstancesOfAKind) {
+  const auto c = expect_ok(
+      "components:\n  - kind: node_manager\n  - kind: communicator\n  - kind: communicator\n    instance: 2\n");
+  ASSERT_EQ(c.components.size(), 3u);
+  EXPECT_EQ(c.components[2].id, 35);
+  EXPECT_EQ(c.components[2].instance, 2);
+}
+
+// ------------------------------------------------------------ YAML syntax
+
+TEST(JausdConfigErrors, YamlSyntaxErrorsNameTheLine) {
+  expect_error("identification:\n  subsystem: 1\n node: 2\n", 3, "YAML syntax error: end of map not found");
+  expect_error("transport:\n  peers: [127.0.0.2\n  framing: opc\n", 3,
+               "YAML syntax error: end of sequence flow not found");
+  expect_error("heartbeat_hz: 1\nlogging:\n\tlevel: info\n", 3, "YAML syntax error: illegal map value");
+  expect_error("dialect: ra\nlogging: {level: info\n", 3, "YAML syntax error: end of map flow not found");
+}
+
+TEST(JausdConfigErrors, OneDocumentOnly) {
+  expect_error("heartbeat_hz: 1\n---\nheartbeat_hz: 2\n", 3,
+               "a configuration holds one YAML document, this is a second one");
+}
+
+TEST(JausdConfigErrors, TheFileMustBeAMap) {
+  expect_error("- heartbeat_hz\n", 1, "the configuration must be a map of keys, got a list");
+  expect_error("\n\njust words\n", 3, "the configuration must be a map of keys, got 'just words'");
+}
+
+// ------------------------------------------------------------ keys
+
+TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
+  expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
+               "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
+               "service_connections, liveness, transport, components, logging)");
+  expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
+               "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
+               "node, node_name, node_type)");
+  expect_error("control:\n  timeout_s: 2\n", 2,
+               "unknown key 'timeout_s' in control (known: controller_timeout_s, reject_refused)");
+  expect_error("service_connections: {max_rate: 10}\n", 1,
+               "unknown key 'max_rate' in service_connections (known: max_rate_hz, max_connections, "
+               "deadman_periods, deadman_minimum_s)");
+  expect_error("liveness:\n\n  peer_timeout_s: 1\n", 3,
+               "unknown key 'peer_timeout_s' in liveness (known: component_timeout_s, node_timeout_s, "
+               "subsystem_timeout_s)");
+  expect_error("transport:\n  port: 3794\n", 2,
+               "unknown key 'port' in transport (known: bind, framing, multicast, broadcast_to_peers, peers, "
+               "allow, max_peers)");
+  expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framming: judp\n", 4,
+               "unknown key 'framming' in transport.peers (known: address, framing)");
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    ID: 35\n", 4,
+               "unknown key 'ID' in components (known: kind, id, instance, authority, name, options)");
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    options:\n      links: 2\n", 5,
+               "unknown option 'links' for communicator (known: none)");
+  expect_error("logging:\n  level: info\n  file: /tmp/x\n", 3, "unknown key 'file' in logging (known: level)");
+}
+
+TEST(JausdConfigErrors, DuplicateKeys) {
+  expect_error("heartbeat_hz: 1\ndialect: ra\nheartbeat_hz: 2\n", 3, "duplicate key 'heartbeat_hz' (first at line 1)");
+  expect_error("transport:\n  bind: 127.0.0.1\n  bind: 127.0.0.2\n", 3,
+               "duplicate key 'bind' in transport (first at line 2)");
+}
+
+TEST(JausdConfigErrors, KeysMustBeNames) {
+  expect_error("? [a, b]\n: 1\n", 1, "keys must be plain names, got a list");
+}
+
+// ------------------------------------------------------------ types
+
+TEST(JausdConfigErrors, WrongTypes) {
+  expect_error("identification:\n  subsystem: abc\n", 2, "'subsystem' must be an integer 1..254, got 'abc'");
+  expect_error("identification:\n  node: 1.0\n", 2, "'node' must be an integer 1..254, got '1.0'");
+  expect_error("identification:\n  node: 0x10\n", 2, "'node' must be an integer 1..254, got '0x10'");
+  expect_error("identification:\n  node: +-5\n", 2, "'node' must be an integer 1..254, got '+-5'");
+  expect_error("heartbeat_hz: +-5\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got '+-5'");
+  expect_error("heartbeat_hz: 1_000\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got '1_000'");
+  expect_error("identification:\n  node: [1]\n", 2, "'node' must be an integer 1..254, got a list");
+  expect_error("identification:\n  subsystem_type: vehicle\n", 2,
+               "'subsystem_type' must be an integer 0..65535, got 'vehicle'");
+  expect_error("heartbeat_hz: fast\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got 'fast'");
+  expect_error("heartbeat_hz: .nan\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got '.nan'");
+  expect_error("control:\n  reject_refused: maybe\n", 2, "'reject_refused' must be true or false, got 'maybe'");
+  expect_error("transport:\n  broadcast_to_peers: {}\n", 2, "'broadcast_to_peers' must be true or false, got a map");
+  expect_error("identification:\n  node_name: [a, b]\n", 2,
+               "'node_name' must be 1..80 printable ASCII characters, got a list");
+  expect_error("transport: 5\n", 1, "'transport' must be a map of keys, got '5'");
+  expect_error("control: [1, 2]\n", 1, "'control' must be a map of keys, got a list");
+  expect_error("transport:\n  peers: 127.0.0.2\n", 2, "'peers' must be a list, got '127.0.0.2'");
+  expect_error("transport:\n  allow: {a: 1}\n", 2, "'allow' must be a list, got a map");
+  expect_error("transport:\n  allow:\n    - [10.0.0.0/8]\n", 3, "'allow' entries must be a.b.c.d/prefix, got a list");
+  expect_error("transport:\n  peers:\n    - [127.0.0.2]\n", 3,
+               "a peer must be an address or a map with 'address', got a list");
+  expect_error("transport:\n  peers:\n    - framing: judp\n", 3, "a peer needs an 'address'");
+  expect_error("components: node_manager\n", 1, "'components' must be a list, got 'node_manager'");
+  expect_error("components:\n  - node_manager\n", 2, "a component must be a map with a 'kind', got 'node_manager'");
+  expect_error("components:\n  - kind: node_manager\n    options: [a]\n", 3,
+               "'options' must be a map of keys, got a list");
+  expect_error("logging: info\n", 1, "'logging' must be a map of keys, got 'info'");
+}
+
+TEST(JausdConfigErrors, AMissingValueIsNotTheDefault) {
+  // A scalar key written without a value is a mistake, reported on its line.
+  expect_error("identification:\n  subsystem:\n  node: 2\n", 2, "'subsystem' must be an integer 1..254, got nothing");
+  expect_error("heartbeat_hz: ~\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got nothing");
+  expect_error("transport:\n  bind:\n", 2, "'bind' must be an IPv4 address a.b.c.d[:port], got nothing");
+  expect_error("logging:\n  level:\n", 2, "'level' must be one of debug, info, warn, error, got nothing");
+}
+
+// ------------------------------------------------------------ ranges
+
+TEST(JausdConfigErrors, OutOfRange) {
+  expect_error("identification:\n  subsystem: 0\n", 2, "'subsystem' must be an integer 1..254, got '0'");
+  expect_error("identification:\n  subsystem: 255\n", 2, "'subsystem' must be an integer 1..254, got '255'");
+  expect_error("identification:\n  node: -1\n", 2, "'node' must be an integer 1..254, got '-1'");
+  expect_error("identification:\n  node: 99999999999999999999999\n", 2,
+               "'node' must be an integer 1..254, got '99999999999999999999999'");
+  expect_error("identification:\n  node_type: 65536\n", 2, "'node_type' must be an integer 0..65535, got '65536'");
+  expect_error("heartbeat_hz: 0\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got '0'");
+  expect_error("heartbeat_hz: 100.5\n", 1, "'heartbeat_hz' must be a number > 0 and <= 100, got '100.5'");
+  expect_error("control: {controller_timeout_s: -1}\n", 1,
+               "'controller_timeout_s' must be a number of seconds 0..86400, got '-1'");
+  expect_error("service_connections:\n  max_rate_hz: 2000\n", 2,
+               "'max_rate_hz' must be a number > 0 and <= 1092, got '2000'");
+  expect_error("service_connections:\n  max_connections: 0\n", 2,
+               "'max_connections' must be an integer 1..255, got '0'");
+  expect_error("service_connections:\n  deadman_periods: 0.5\n", 2,
+               "'deadman_periods' must be a number 1..1000, got '0.5'");
+  expect_error("service_connections:\n  deadman_minimum_s: -0.1\n", 2,
+               "'deadman_minimum_s' must be a number of seconds 0..86400, got '-0.1'");
+  expect_error("liveness:\n  node_timeout_s: 0\n", 2,
+               "'node_timeout_s' must be a number of seconds > 0 and <= 86400, got '0'");
+  expect_error("liveness:\n  component_timeout_s: -3\n", 2,
+               "'component_timeout_s' must be a number of seconds > 0 and <= 86400, got '-3'");
+  expect_error("liveness:\n  subsystem_timeout_s: 1e9\n", 2,
+               "'subsystem_timeout_s' must be a number of seconds > 0 and <= 86400, got '1e9'");
+  expect_error("transport:\n  max_peers: 0\n", 2, "'max_peers' must be an integer 1..65535, got '0'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    id: 0\n", 4,
+               "'id' must be an integer 1..254, got '0'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    id: 255\n", 4,
+               "'id' must be an integer 1..254, got '255'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    instance: 0\n", 4,
+               "'instance' must be an integer 1..254, got '0'");
+  expect_error("components:\n  - kind: node_manager\n    authority: 256\n", 3,
+               "'authority' must be an integer 0..255, got '256'");
+}
+
+TEST(JausdConfigErrors, Choices) {
+  expect_error("logging:\n  level: verbose\n", 2, "'level' must be one of debug, info, warn, error, got 'verbose'");
+  expect_error("logging:\n  level: INFO\n", 2, "'level' must be one of debug, info, warn, error, got 'INFO'");
+  expect_error("dialect: jaus\n", 1, "'dialect' must be one of ra, openjaus, got 'jaus'");
+  expect_error("transport:\n  framing: udp\n", 2, "'framing' must be one of opc, judp, got 'udp'");
+  expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framing: tcp\n", 4,
+               "'framing' must be one of opc, judp, got 'tcp'");
+}
+
+TEST(JausdConfigErrors, IdentificationStrings) {
+  const std::string long_name(81, 'x');
+  expect_error("identification:\n  subsystem_name: " + long_name + "\n", 2,
+               "'subsystem_name' must be 1..80 printable ASCII characters, got '" + std::string(60, 'x') +
+                   "...' (81 bytes)");
+  expect_error("identification:\n  node_name: \"\"\n", 2,
+               "'node_name' must be 1..80 printable ASCII characters, got '' (0 bytes)");
+  expect_error("identification:\n  node_name: \"caf\xC3\xA9\"\n", 2,
+               "'node_name' must be 1..80 printable ASCII characters, got 'caf\xC3\xA9' (5 bytes, not all "
+               "printable ASCII)");
+  expect_error("identification:\n  node_name: \"a\\tb\"\n", 2,
+               "'node_name' must be 1..80 printable ASCII characters, got 'a\\tb' (3 bytes, not all printable "
+               "ASCII)");
+  expect_error("components:\n  - kind: node_manager\n    name: " + long_name + "\n", 3,
+               "'name' must be 1..80 printable ASCII characters, got '" + std::string(60, 'x') + "...' (81 bytes)");
+}
+
+// ------------------------------------------------------------ addresses
+
+TEST(JausdConfigErrors, Addresses) {
+  expect_error("transport:\n  bind: localhost:3794\n", 2,
+               "'bind': 'localhost' is not an IPv4 address a.b.c.d (host names are not resolved)");
+  expect_error("transport:\n  bind: 0.0.0.0:0\n", 2, "'bind': port '0' of '0.0.0.0:0' must be 1..65535");
+  expect_error("transport:\n  bind: 0.0.0.0:65536\n", 2, "'bind': port '65536' of '0.0.0.0:65536' must be 1..65535");
+  expect_error("transport:\n  multicast: 10.0.0.1:3794\n", 2,
+               "'multicast' must be a group 224.0.0.0..239.255.255.255, got '10.0.0.1'");
+  expect_error("transport:\n  multicast: jaus-group\n", 2,
+               "'multicast': 'jaus-group' is not an IPv4 address a.b.c.d (host names are not resolved)");
+  expect_error("transport:\n  peers:\n    - address: robot.local\n", 3,
+               "'address': 'robot.local' is not an IPv4 address a.b.c.d (host names are not resolved)");
+  expect_error("transport:\n  peers:\n    - 127.0.0.2:99999\n", 3,
+               "'peers': port '99999' of '127.0.0.2:99999' must be 1..65535");
+  expect_error("transport:\n  allow: [10.0.0.0/33]\n", 2, "'allow': prefix length '33' of '10.0.0.0/33' must be 0..32");
+  expect_error("transport:\n  allow:\n    - 127.0.0.0/8\n    - lan\n", 4,
+               "'allow': 'lan' is not an IPv4 address a.b.c.d (host names are not resolved)");
+  expect_error("transport:\n  allow: [10.1.2.3/8]\n", 2,
+               "'allow': '10.1.2.3/8' has host bits set below the prefix (the network is 10.0.0.0/8)");
+}
+
+TEST(JausdConfigErrors, Peers) {
+  expect_error("transport:\n  peers:\n    - 127.0.0.2\n    - address: 127.0.0.2:3794\n", 4,
+               "duplicate peer 127.0.0.2:3794 (first at line 3)");
+  expect_error("transport:\n  peers:\n    - 0.0.0.0\n", 3,
+               "peer 'address' must be a unicast IPv4 address, got '0.0.0.0'");
+  expect_error("transport:\n  peers:\n    - 224.1.0.1\n", 3,
+               "peer 'address' must be a unicast IPv4 address, got '224.1.0.1' (multicast groups go in "
+               "transport.multicast)");
+  expect_error("transport:\n  bind: 127.0.0.2\n  peers:\n    - 127.0.0.2:3794\n", 4,
+               "peer 127.0.0.2:3794 is this node's own bind address");
+  expect_error("transport:\n  allow: [127.0.0.0/8]\n  peers:\n    - 127.0.0.2\n    - 10.0.0.2\n", 5,
+               "peer 10.0.0.2:3794 is not in 'allow': its datagrams would be dropped");
+}
+
+// ------------------------------------------------------------ components
+
+TEST(JausdConfigErrors, ComponentKinds) {
+  expect_error("components:\n  - kind: node_manager\n  - kind: primitive_driver\n", 3,
+               "unknown component kind 'primitive_driver' (known: node_manager, communicator)");
+  expect_error("components:\n  - kind: node_manager\n  - id: 35\n", 3,
+               "a component needs a 'kind' (one of node_manager, communicator)");
+}
+
+TEST(JausdConfigErrors, DuplicateComponent) {
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n\n  - kind: communicator\n", 5,
+               "duplicate component id 35 instance 1 (first at line 3)");
+  expect_error(
+      "components:\n  - kind: node_manager\n  - kind: communicator\n    instance: 3\n"
+      "  - {kind: communicator, id: 35, instance: 3}\n",
+      5, "duplicate component id 35 instance 3 (first at line 3)");
+}
+
+TEST(JausdConfigErrors, ExactlyOneNodeManagerAtOneOne) {
+  expect_error("heartbeat_hz: 1\ncomponents:\n  - kind: communicator\n", 2,
+               "a node_manager component is required (id 1, instance 1)");
+  expect_error("components: []\n", 1, "a node_manager component is required (id 1, instance 1)");
+  expect_error("components:\n  - kind: node_manager\n    id: 2\n", 2,
+               "the node_manager must have id 1 and instance 1, got id 2 instance 1");
+  expect_error("components:\n  - kind: node_manager\n  - kind: node_manager\n    instance: 2\n", 3,
+               "only one node_manager per node (first at line 2)");
+  expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    id: 1\n    instance: 2\n", 3,
+               "component id 1 is the node_manager's (communicator has RA id 35)");
+}
+
+// ------------------------------------------------------------ files
+
+TEST(JausdConfigFile, MissingFile) {
+  const std::string path = "/nonexistent/jausd.yaml";
+  const auto result = load_config_file(path);
+  ASSERT_FALSE(result.has_value());
+  EXPECT_EQ(result.error().line, 0);
+  EXPECT_EQ(result.error().what, "cannot open /nonexistent/jausd.yaml: No such file or directory");
+  EXPECT_EQ(result.error().to_string(),
+            "/nonexistent/jausd.yaml: cannot open /nonexistent/jausd.yaml: No such file or directory");
+}
+
+TEST(JausdConfigFile, DirectoryIsNotAFile) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  const auto result = load_config_file(dir);
+  ASSERT_FALSE(result.has_value());
+  EXPECT_EQ(result.error().to_string(), dir + ": cannot open " + dir + ": is a directory");
+}
+
+TEST(JausdConfigFile, ErrorsNameTheFileAndLine) {
+  TempFile file("identification:\n  subsystem: 1\n  node: abc\n");
+  const auto result = load_config_file(file.path);
+  ASSERT_FALSE(result.has_value());
+  EXPECT_EQ(result.error().to_string(), file.path + ":3: 'node' must be an integer 1..254, got 'abc'");
+}
+
+TEST(JausdConfigFile, GoodFile) {
+  TempFile file("identification: {subsystem: 9}\n");
+  const auto result = load_config_file(file.path);
+  ASSERT_TRUE(result.has_value()) << result.error().to_string();
+  EXPECT_EQ(result->subsystem, 9);
+}
+
+TEST(JausdConfigFile, HugeFileIsRefused) {
+  TempFile file(std::string(1024 * 1024 + 1, '#'));
+  const auto result = load_config_file(file.path);
+  ASSERT_FALSE(result.has_value());
+  EXPECT_EQ(result.error().what, "cannot open " + file.path + ": larger than 1 MiB, not a configuration file");
+}
+
+TEST(JausdConfigFile, ErrorText) {
+  EXPECT_EQ((ConfigError{"a.yaml", 3, "bad"}).to_string(), "a.yaml:3: bad");
+  EXPECT_EQ((ConfigError{"a.yaml", 0, "bad"}).to_string(), "a.yaml: bad");
+}
+
+TEST(JausdConfigFile, NothingThrows) {
+  const std::string inputs[] = {
+      std::string(100000, '['),                     // nesting deeper than yaml-cpp allows
+      std::string("\x00\x01\xFF\xFE", 4),
+      "&a [*a]",
+      "*undefined",
+      "key: !!binary \"%%%\"",
+      "{a: 1, a: 2, b: [}",
+      "components:\n  - &c {kind: communicator}\n  - *c\n",
+      std::string(2000, '-') + " x",
+  };
+  for (const auto& input : inputs) {
+    ConfigResult result = JausdConfig{};
+    EXPECT_NO_THROW(result = load(input)) << input.substr(0, 40);
+    EXPECT_FALSE(result.has_value()) << input.substr(0, 40);
+  }
+}
+
+// ------------------------------------------------------------ validate (after command-line overrides)
+
+TEST(JausdConfigValidate, Overrides) {
+  JausdConfig c;
+  EXPECT_EQ(validate(c), std::nullopt);
+  c.subsystem = 0;
+  EXPECT_EQ(validate(c), "'subsystem' must be an integer 1..254, got 0");
+  c.subsystem = 255;
+  EXPECT_EQ(validate(c), "'subsystem' must be an integer 1..254, got 255");
+  c.subsystem = 3;
+  c.node = 0;
+  EXPECT_EQ(validate(c), "'node' must be an integer 1..254, got 0");
+  c.node = 2;
+  c.log_level = "trace";
+  EXPECT_EQ(validate(c), "'level' must be one of debug, info, warn, error, got 'trace'");
+  c.log_level = "warn";
+  c.transport.bind = *parse_endpoint("127.0.0.5:4000");
+  EXPECT_EQ(validate(c), std::nullopt);
+  c.transport.bind.port = 0;
+  EXPECT_EQ(validate(c), "'bind' port must be 1..65535, got 0");
+  c.transport.bind = {"127.0.0.5", 3794};
+  c.transport.peers.push_back({{"127.0.0.5", 3794}, Framing::opc});
+  EXPECT_EQ(validate(c), "peer 127.0.0.5:3794 is this node's own bind address");
+}
+
+TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
+  auto broken = [](auto change) {
+    JausdConfig c;
+    change(c);
+    return validate(c).value_or("(valid)");
+  };
+  EXPECT_EQ(broken([](JausdConfig& c) { c.heartbeat_hz = 0; }),
+            "'heartbeat_hz' must be a number > 0 and <= 100, got 0");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.controller_timeout_s = -1; }),
+            "'controller_timeout_s' must be a number of seconds 0..86400, got -1");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.liveness.node_timeout_s = 0; }),
+            "'node_timeout_s' must be a number of seconds > 0 and <= 86400, got 0");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.service_connections.max_connections = 0; }),
+            "'max_connections' must be an integer 1..255, got 0");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.dialect = "RA"; }), "'dialect' must be one of ra, openjaus, got 'RA'");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.node_name = std::string(81, 'n'); }),
+            "'node_name' must be 1..80 printable ASCII characters, got '" + std::string(60, 'n') +
+                "...' (81 bytes)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.transport.bind.host = "localhost"; }),
+            "'bind': 'localhost' is not an IPv4 address a.b.c.d (host names are not resolved)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.transport.multicast = Endpoint{"10.0.0.1", 3794}; }),
+            "'multicast' must be a group 224.0.0.0..239.255.255.255, got '10.0.0.1'");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components.clear(); }),
+            "a node_manager component is required (id 1, instance 1)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components.push_back(c.components[1]); }),
+            "duplicate component id 35 instance 1");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "visual_sensor"; }),
+            "unknown component kind 'visual_sensor' (known: node_manager, communicator)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].options["x"] = "1"; }),
+            "unknown option 'x' for communicator (known: none)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].instance = 255; }),
+            "component 'instance' must be an integer 1..254, got 255");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.transport.allow.push_back(Cidr{0, 40}); }),
+            "'allow' prefix length must be 0..32, got 40");
+}
+
+// ------------------------------------------------------------ endpoints and CIDR
+
+TEST(Endpoint, Parses) {
+  EXPECT_EQ(*parse_endpoint("127.0.0.2:3794"), (Endpoint{"127.0.0.2", 3794}));
+  EXPECT_EQ(*parse_endpoint("127.0.0.2"), (Endpoint{"127.0.0.2", 3794}));
+  EXPECT_EQ(*parse_endpoint("0.0.0.0:1"), (Endpoint{"0.0.0.0", 1}));
+  EXPECT_EQ(*parse_endpoint("255.255.255.255:65535"), (Endpoint{"255.255.255.255", 65535}));
+  EXPECT_EQ(*parse_endpoint("10.0.0.1:03794"), (Endpoint{"10.0.0.1", 3794}));
+  EXPECT_EQ(parse_endpoint("10.0.0.1:4000")->to_string(), "10.0.0.1:4000");
+}
+
+TEST(Endpoint, Refuses) {
+  const std::pair<std::string_view, std::string_view> bad[] = {
+      {"", "empty address (expected a.b.c.d[:port])"},
+      {"localhost", "'localhost' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"localhost:3794", "'localhost' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"1.2.3", "'1.2.3' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"1.2.3.4.5", "'1.2.3.4.5' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"256.1.1.1", "'256.1.1.1' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"01.2.3.4", "'01.2.3.4' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"1..2.3", "'1..2.3' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"1.2.3.4.", "'1.2.3.4.' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"-1.2.3.4", "'-1.2.3.4' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {" 1.2.3.4", "' 1.2.3.4' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"1.2.3.4 ", "'1.2.3.4 ' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"::1", "'' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"[::1]:3794", "'[' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"1.2.3.4:", "port '' of '1.2.3.4:' must be 1..65535"},
+      {"1.2.3.4:0", "port '0' of '1.2.3.4:0' must be 1..65535"},
+      {"1.2.3.4:65536", "port '65536' of '1.2.3.4:65536' must be 1..65535"},
+      {"1.2.3.4:+1", "port '+1' of '1.2.3.4:+1' must be 1..65535"},
+      {"1.2.3.4:http", "port 'http' of '1.2.3.4:http' must be 1..65535"},
+      {"1.2.3.4:3794:1", "port '3794:1' of '1.2.3.4:3794:1' must be 1..65535"},
+      {"1.2.3.4:1000000", "port '1000000' of '1.2.3.4:1000000' must be 1..65535"},
+  };
+  for (const auto& [text, why] : bad) {
+    const auto result = parse_endpoint(text);
+    ASSERT_FALSE(result.has_value()) << text;
+    EXPECT_EQ(result.error(), why) << text;
+  }
+}
+
+TEST(Ipv4, Parses) {
+  EXPECT_EQ(parse_ipv4("127.0.0.1"), 0x7F000001u);
+  EXPECT_EQ(parse_ipv4("0.0.0.0"), 0u);
+  EXPECT_EQ(parse_ipv4("255.255.255.255"), 0xFFFFFFFFu);
+  EXPECT_EQ(parse_ipv4("1.2.3.04"), std::nullopt);
+  EXPECT_EQ(parse_ipv4("1.2.3.1000"), std::nullopt);
+  EXPECT_EQ(parse_ipv4("1.2.3.a"), std::nullopt);
+  EXPECT_EQ(parse_ipv4(""), std::nullopt);
+}
+
+TEST(Cidr, Parses) {
+  EXPECT_EQ(*parse_cidr("10.0.0.0/8"), (Cidr{0x0A000000, 8}));
+  EXPECT_EQ(*parse_cidr("127.0.0.1"), (Cidr{0x7F000001, 32}));
+  EXPECT_EQ(*parse_cidr("127.0.0.1/32"), (Cidr{0x7F000001, 32}));
+  EXPECT_EQ(*parse_cidr("0.0.0.0/0"), (Cidr{0, 0}));
+  EXPECT_EQ(*parse_cidr("192.168.4.0/22"), (Cidr{0xC0A80400, 22}));
+  EXPECT_EQ(parse_cidr("192.168.4.0/22")->to_string(), "192.168.4.0/22");
+}
+
+TEST(Cidr, Refuses) {
+  const std::pair<std::string_view, std::string_view> bad[] = {
+      {"", "empty network (expected a.b.c.d/prefix)"},
+      {"10.0.0.0/33", "prefix length '33' of '10.0.0.0/33' must be 0..32"},
+      {"10.0.0.0/", "prefix length '' of '10.0.0.0/' must be 0..32"},
+      {"10.0.0.0/-1", "prefix length '-1' of '10.0.0.0/-1' must be 0..32"},
+      {"10.0.0.0/008", "prefix length '008' of '10.0.0.0/008' must be 0..32"},
+      {"10.0.0.0/8/8", "prefix length '8/8' of '10.0.0.0/8/8' must be 0..32"},
+      {"/8", "'' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"lan/24", "'lan' is not an IPv4 address a.b.c.d (host names are not resolved)"},
+      {"10.1.0.0/8", "'10.1.0.0/8' has host bits set below the prefix (the network is 10.0.0.0/8)"},
+      {"1.2.3.4/0", "'1.2.3.4/0' has host bits set below the prefix (the network is 0.0.0.0/0)"},
+  };
+  for (const auto& [text, why] : bad) {
+    const auto result = parse_cidr(text);
+    ASSERT_FALSE(result.has_value()) << text;
+    EXPECT_EQ(result.error(), why) << text;
+  }
+}
+
+TEST(Cidr, Contains) {
+  const Cidr lan = *parse_cidr("192.168.1.0/24");
+  EXPECT_TRUE(cidr_contains(lan, 0xC0A80100));
+  EXPECT_TRUE(cidr_contains(lan, 0xC0A801FF));
+  EXPECT_FALSE(cidr_contains(lan, 0xC0A80200));
+  EXPECT_FALSE(cidr_contains(lan, 0xC0A800FF));
+  const Cidr all = *parse_cidr("0.0.0.0/0");
+  EXPECT_TRUE(cidr_contains(all, 0));
+  EXPECT_TRUE(cidr_contains(all, 0xFFFFFFFF));
+  const Cidr host = *parse_cidr("127.0.0.2");
+  EXPECT_TRUE(cidr_contains(host, 0x7F000002));
+  EXPECT_FALSE(cidr_contains(host, 0x7F000003));
+  const Cidr pair = *parse_cidr("10.0.0.2/31");
+  EXPECT_TRUE(cidr_contains(pair, 0x0A000002));
+  EXPECT_TRUE(cidr_contains(pair, 0x0A000003));
+  EXPECT_FALSE(cidr_contains(pair, 0x0A000004));
+  const Cidr top = *parse_cidr("128.0.0.0/1");
+  EXPECT_TRUE(cidr_contains(top, 0x80000000));
+  EXPECT_FALSE(cidr_contains(top, 0x7FFFFFFF));
+}
+
+// ------------------------------------------------------------ registry
+
+TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
+  ASSERT_EQ(component_kinds().size(), 2u);
+  EXPECT_EQ(component_kinds()[0].name, "node_manager");
+  EXPECT_EQ(component_kinds()[0].default_id, 1);
+  EXPECT_EQ(component_kinds()[1].name, "communicator");
+  EXPECT_EQ(component_kinds()[1].default_id, 35);
+  ASSERT_NE(find_component_kind("communicator"), nullptr);
+  EXPECT_TRUE(find_component_kind("communicator")->options.empty());
+  EXPECT_EQ(find_component_kind("primitive_driver"), nullptr);
+  EXPECT_EQ(to_string(Framing::opc), "opc");
+  EXPECT_EQ(to_string(Framing::judp), "judp");
+}
+
+}  // namespace
