@@ -58,6 +58,15 @@ void Node::remove(const Address& address) {
   if (node_manager_) node_manager_->configuration_changed();
 }
 
+void Node::shutdown(std::string_view why) {
+  // The node manager goes last, so its peers hear the others leave first.
+  for (auto& c : components_)
+    if (c.get() != node_manager_) c->shutdown(why);
+  if (node_manager_) node_manager_->shutdown(why);
+  node_manager_ = nullptr;
+  components_.clear();
+}
+
 rt::Component* Node::find(const Address& address) const {
   for (const auto& c : components_)
     if (c->address() == address) return c.get();

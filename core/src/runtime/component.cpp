@@ -71,7 +71,13 @@ void Component::transition(LifecycleEvent event, const Address& by) {
   if (after == PrimaryStatus::shutdown) {
     take_control_away("component shut down");
     services_.end_all("component shut down");
+    subscriptions_.unsubscribe_all();
   }
+}
+
+void Component::shutdown(std::string_view why) {
+  log(LogLevel::info, "shutting down: " + std::string(why));
+  transition(LifecycleEvent::shutdown, config_.address);
 }
 
 std::vector<std::uint16_t> Component::input_codes() const {

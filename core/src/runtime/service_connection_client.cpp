@@ -72,6 +72,10 @@ void ServiceConnectionClient::unsubscribe(SubscriptionId id) {
   subscriptions_.erase(it);
 }
 
+void ServiceConnectionClient::unsubscribe_all() {
+  while (!subscriptions_.empty()) unsubscribe(subscriptions_.begin()->first);
+}
+
 void ServiceConnectionClient::on_confirm(const Header& h, const msg::ConfirmServiceConnection& m) {
   for (auto& [id, s] : subscriptions_) {
     if (s.provider != h.source || s.code != m.command_code) continue;

@@ -75,6 +75,9 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   // Hosts and starts a component; the node manager (if any) announces the change.
   rt::Component& add(std::unique_ptr<rt::Component> component);
   void remove(const Address& address);
+  // Orderly stop: every component shuts down (platform stopped, control
+  // dropped, service connections ended, with their messages sent), then leaves.
+  void shutdown(std::string_view why);
   rt::Component* find(const Address& address) const;
   // Configuration events are sent by this node manager (one per node).
   void set_node_manager(rt::NodeManager* manager) { node_manager_ = manager; }

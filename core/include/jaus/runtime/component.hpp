@@ -65,6 +65,9 @@ class Component {
 
   // Runs initialisation: Initialize -> Ready, or Failure.
   void start();
+  // Local shutdown (the node is stopping): as a Shutdown message would, it
+  // stops the platform, drops control and ends every service connection.
+  void shutdown(std::string_view why);
   // One received message (header + payload). Never throws; bad payloads are
   // counted and logged, never acted upon.
   void receive(const Header& header, std::span<const std::uint8_t> payload,

@@ -46,6 +46,8 @@ class ServiceConnectionClient {
   SubscriptionId subscribe(const Address& provider, std::uint16_t report_code, double rate_hz,
                            std::uint32_t presence_vector, Deliver deliver);
   void unsubscribe(SubscriptionId id);
+  // Terminates every subscription (the component is shutting down).
+  void unsubscribe_all();
 
   void on_confirm(const Header& h, const msg::ConfirmServiceConnection& m);
   // True when the message was a report for one of our subscriptions.

@@ -1,0 +1,27 @@
+#include "logging.hpp"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+namespace jausd {
+
+std::shared_ptr<spdlog::logger> make_logger(std::string_view level) {
+  auto logger = spdlog::stderr_color_mt("jausd");
+  // 2026-11-21 11:42:07.123 info    node 1.1: hosts communicator 1.1.35.1
+  logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %-7l %v");
+  logger->set_level(spdlog::level::from_str(std::string(level == "warn" ? "warning" : level)));
+  logger->flush_on(spdlog::level::info);
+  return logger;
+}
+
+jaus::rt::LogFn log_function(std::shared_ptr<spdlog::logger> logger) {
+  return [logger = std::move(logger)](jaus::rt::LogLevel level, const std::string& text) {
+    switch (level) {
+      case jaus::rt::LogLevel::debug: logger->debug(text); break;
+      case jaus::rt::LogLevel::info: logger->info(text); break;
+      case jaus::rt::LogLevel::warn: logger->warn(text); break;
+      case jaus::rt::LogLevel::error: logger->error(text); break;
+    }
+  };
+}
+
+}  // namespace jausd
