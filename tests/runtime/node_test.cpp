@@ -265,6 +265,45 @@ TEST_F(NodeTest, OwnLoopedBackBroadcastsAreDropped) {
   EXPECT_EQ(driver->counters().received, 0u);
 }
 
+// A driver whose stop commands outlive it (shutdown destroys components).
+class WatchedDriver : public TestDriver {
+ public:
+  WatchedDriver(rt::ComponentConfig config, rt::Environment env, std::vector<std::string>& stops_out)
+      : TestDriver(std::move(config), std::move(env)), stops_out_(stops_out) {}
+  void command_stop(std::string_view why) override {
+    TestDriver::command_stop(why);
+    stops_out_.emplace_back(why);
+  }
+  std::vector<std::string>& stops_out_;
+};
+
+TEST_F(NodeTest, ShutdownStopsThePlatformDropsControlAndEndsServiceConnections) {
+  std::vector<std::string> stops;
+  const Address watched_address{1, 1, 33, 4};
+  a->add(std::make_unique<WatchedDriver>(config_for(watched_address, "watched"), a->environment(), stops));
+  ocu->send_to(watched_address, msg::RequestComponentControl{{10}});
+  msg::CreateServiceConnection sc;
+  sc.command_code = msg::ReportGlobalPose::code;
+  sc.periodic_rate_hz = 5;
+  sc.presence_vector = 0x1FF;
+  ocu->send_to(watched_address, sc);
+  time.advance(100ms);
+  ASSERT_TRUE(a->find(watched_address)->control().is_controller(kOcu));
+  ASSERT_EQ(a->find(watched_address)->service_connections().active(), 1u);
+  stops.clear();
+  link_a.packets.clear();
+  a->shutdown("test over");
+  EXPECT_FALSE(stops.empty());  // the platform was commanded to stop
+  EXPECT_TRUE(a->local_components().empty());
+  bool told_controller = false;
+  for (const auto& h : link_a.headers())
+    told_controller |= h.command_code == msg::RejectComponentControl::code && h.destination == kOcu;
+  EXPECT_TRUE(told_controller);
+  const std::size_t sent = link_a.packets.size();
+  time.advance(2s);  // no reports (or anything else) after the shutdown
+  EXPECT_EQ(link_a.packets.size(), sent);
+}
+
 TEST(NodeWithManager, PeersDiscoverEachOtherFromHeartbeats) {
   rt::VirtualTime time;
   MemoryLink link_a(time), link_b(time);
