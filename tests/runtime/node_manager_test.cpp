@@ -95,9 +95,11 @@ TEST_F(NodeManagerTest, AnswersConfigurationSubsystemListAndServices) {
   bool takes_wrench = false;
   for (const auto& in : services[1].inputs) takes_wrench |= in.command_code == msg::SetWrenchEffort::code;
   EXPECT_TRUE(takes_wrench);
-  ASSERT_EQ(services[1].outputs.size(), 1u);
-  EXPECT_EQ(services[1].outputs[0].command_code, msg::ReportGlobalPose::code);
-  EXPECT_EQ(services[1].outputs[0].presence_vector, 0x017Fu);
+  // Outputs by code: every component's status, and the driver's pose.
+  ASSERT_EQ(services[1].outputs.size(), 2u);
+  EXPECT_EQ(services[1].outputs[0].command_code, msg::ReportComponentStatus::code);
+  EXPECT_EQ(services[1].outputs[1].command_code, msg::ReportGlobalPose::code);
+  EXPECT_EQ(services[1].outputs[1].presence_vector, 0x017Fu);
 }
 
 TEST_F(NodeManagerTest, ConfigurationEventsOnEveryChange) {

@@ -67,6 +67,21 @@ TEST_F(ServiceConnectionTest, ReportsCarryTheFlagASequenceAndTheAndedPresenceVec
   }
 }
 
+TEST_F(ServiceConnectionTest, EveryComponentServesItsStatus) {
+  // What a controlling OCU watches (about 5 Hz): the status follows the component.
+  ASSERT_EQ(create(kOcuA, msg::ReportComponentStatus::code, 5, 0).response_code, msg::sc_response::kCreated);
+  time.advance(450ms);
+  deliver(kOcuA, msg::Standby{});
+  time.advance(400ms);
+  std::vector<std::uint8_t> states;
+  for (const auto& s : outbox.sent)
+    if (s.header.command_code == msg::ReportComponentStatus::code && s.header.service_connection)
+      states.push_back(wire::decode_payload<msg::ReportComponentStatus>(s.payload)->primary_status);
+  ASSERT_EQ(states.size(), 5u);  // 0, 0.2, 0.4, 0.6, 0.8 s
+  EXPECT_EQ(states.front(), static_cast<std::uint8_t>(msg::PrimaryStatus::ready));
+  EXPECT_EQ(states.back(), static_cast<std::uint8_t>(msg::PrimaryStatus::standby));
+}
+
 TEST_F(ServiceConnectionTest, RefusesWhatItCannotServe) {
   EXPECT_EQ(create(kOcuA, msg::ReportVelocityState::code, 10, 0xFF).response_code,
             msg::sc_response::kCommandNotSupported);

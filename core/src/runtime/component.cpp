@@ -151,18 +151,24 @@ void Component::refuse_not_controller(const Header& header, std::string_view wha
 
 // ---- core messages -----------------------------------------------------------
 
+msg::ReportComponentStatus Component::status_report() const {
+  msg::ReportComponentStatus report;
+  report.primary_status = static_cast<std::uint8_t>(lifecycle_.state());
+  // Bit 0 of the emergency secondary status: the Stop condition is set.
+  report.secondary_status = (emergency_.active() ? 1u : 0u) | (component_status_bits() & 0xFFFF0000u);
+  return report;
+}
+
 void Component::register_core_handlers() {
   using namespace msg;
   handle<QueryComponentAuthority>(Access::anyone, false, [this](const Header& h, const QueryComponentAuthority&) {
     send(h.source, ReportComponentAuthority{{control_.own_authority()}});
   });
-  handle<QueryComponentStatus>(Access::anyone, false, [this](const Header& h, const QueryComponentStatus&) {
-    ReportComponentStatus report;
-    report.primary_status = static_cast<std::uint8_t>(lifecycle_.state());
-    // Bit 0 of the emergency secondary status: the Stop condition is set.
-    report.secondary_status = (emergency_.active() ? 1u : 0u) | (component_status_bits() & 0xFFFF0000u);
-    send(h.source, report);
-  });
+  handle<QueryComponentStatus>(Access::anyone, false,
+                                [this](const Header& h, const QueryComponentStatus&) { send(h.source, status_report()); });
+  // Controlling OCUs watch a component through a service connection to its
+  // status (about 5 Hz) and treat silence as loss (jaus-wire-notes.md).
+  provide<ReportComponentStatus>(0, [this] { return status_report(); });
   handle<QueryComponentControl>(Access::anyone, false, [this](const Header& h, const QueryComponentControl&) {
     ReportComponentControl report;
     if (const auto& c = control_.controller()) {

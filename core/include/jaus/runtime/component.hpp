@@ -211,6 +211,7 @@ class Component {
   };
 
   void register_core_handlers();
+  msg::ReportComponentStatus status_report() const;
   void run_initialisation();
   void transition(LifecycleEvent event, const Address& by);
   void enforce_stop(std::string_view why);
