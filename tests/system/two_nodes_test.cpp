@@ -1,0 +1,224 @@
+// Two jausd processes on one host (127.0.0.21 and 127.0.0.22, port 3794, as
+// peers that answer IP:3794 require), and an OCU node in the test on
+// 127.0.0.23: they find each other, the OCU controls a component of one and
+// subscribes to another, and when one node dies the other notices. Real
+// processes and sockets: only outcomes are asserted, with generous deadlines.
+#include <gtest/gtest.h>
+
+#include <boost/asio/io_context.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "child_process.hpp"
+#include "jaus/messages/all.hpp"
+#include "jaus/node/node.hpp"
+#include "jaus/runtime/node_manager.hpp"
+#include "jaus/transport/asio_runtime.hpp"
+#include "jaus/transport/udp_link.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+namespace fs = std::filesystem;
+
+const Address kOcu{9, 1, 40, 1};
+const Address kManagerA{1, 1, 1, 1}, kManagerB{2, 1, 1, 1};
+const Address kCommunicatorA{1, 1, 35, 1}, kCommunicatorB{2, 1, 35, 1};
+
+// The OCU's component: keeps every message no handler took (the reports).
+class Ocu : public rt::Component {
+ public:
+  using Component::Component;
+  template <class M>
+  void send_to(const Address& to, const M& m) {
+    send(to, m);
+  }
+  template <class M>
+  std::vector<M> received_from(const Address& from) const {
+    std::vector<M> out;
+    for (const auto& [h, payload] : inbox)
+      if (h.command_code == M::code && h.source == from)
+        if (auto m = wire::decode_payload<M>(payload)) out.push_back(*m);
+    return out;
+  }
+  std::vector<std::pair<Header, std::vector<std::uint8_t>>> inbox;
+
+ protected:
+  bool unhandled(const Header& h, std::span<const std::uint8_t> payload) override {
+    inbox.emplace_back(h, std::vector<std::uint8_t>(payload.begin(), payload.end()));
+    return true;
+  }
+};
+
+std::string node_config(int subsystem, const std::string& bind, const std::string& peer) {
+  return "identification: {subsystem: " + std::to_string(subsystem) + ", node: 1}\n"
+         "heartbeat_hz: 5\n"
+         "control: {controller_timeout_s: 0.5}\n"
+         "liveness: {component_timeout_s: 1, node_timeout_s: 1.5, subsystem_timeout_s: 1.5}\n"
+         "transport:\n"
+         "  bind: " + bind + "\n"
+         "  peers: [" + peer + "]\n";
+}
+
+class TwoNodes : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() / ("jaus-two-nodes-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    a = start("a", node_config(1, "127.0.0.21:3794", "127.0.0.22:3794"));
+    b = start("b", node_config(2, "127.0.0.22:3794", "127.0.0.21:3794"));
+
+    transport::UdpLinkOptions options;
+    options.subsystem = kOcu.subsystem;
+    options.node = kOcu.node;
+    options.bind = *transport::parse_endpoint("127.0.0.23:3794");
+    options.peers = {{*transport::parse_endpoint("127.0.0.21:3794"), transport::Framing::opc},
+                     {*transport::parse_endpoint("127.0.0.22:3794"), transport::Framing::judp}};
+    auto opened = transport::UdpLink::open(io, runtime, runtime, options);
+    ASSERT_TRUE(opened) << opened.error();
+    link = std::move(*opened);
+    node::NodeConfig nc;
+    nc.subsystem = kOcu.subsystem;
+    nc.node = kOcu.node;
+    node = std::make_unique<node::Node>(nc, runtime, runtime, *link);
+    link->on_packet([this](std::span<const std::uint8_t> p) { node->receive(p); });
+    rt::ComponentConfig manager;
+    manager.name = "ocu node manager";
+    manager.address = Address{kOcu.subsystem, kOcu.node, 1, 1};
+    rt::NodeManagerConfig nm;
+    nm.subsystem_type = 20001;
+    nm.heartbeat_period = 200ms;
+    node->set_node_manager(static_cast<rt::NodeManager*>(
+        &node->add(std::make_unique<rt::NodeManager>(manager, node->environment(), *node, nm))));
+    rt::ComponentConfig oc;
+    oc.name = "ocu";
+    oc.address = kOcu;
+    ocu = static_cast<Ocu*>(&node->add(std::make_unique<Ocu>(oc, node->environment())));
+    link->start();
+  }
+  void TearDown() override {
+    node.reset();
+    link.reset();
+    a.reset();
+    b.reset();
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+  }
+
+  std::unique_ptr<ChildProcess> start(const std::string& name, const std::string& yaml) {
+    const fs::path config = dir / (name + ".yaml");
+    std::ofstream(config) << yaml;
+    auto child = std::make_unique<ChildProcess>(
+        std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
+        (dir / (name + ".log")).string());
+    EXPECT_TRUE(child->started());
+    return child;
+  }
+
+  // Runs the OCU's node until `done` or the deadline.
+  bool run_until(const std::function<bool()>& done, std::chrono::milliseconds deadline = 5s) {
+    const auto until = std::chrono::steady_clock::now() + deadline;
+    while (!done()) {
+      if (std::chrono::steady_clock::now() > until) return false;
+      io.run_for(10ms);
+    }
+    return true;
+  }
+  void run_for(std::chrono::milliseconds duration) {
+    run_until([] { return false; }, duration);
+  }
+  // Asks `manager` for its subsystem list until `subsystem` is (or is not) in it.
+  bool subsystem_list_shows(const Address& manager, std::uint8_t subsystem, bool present) {
+    return run_until([&] {
+      ocu->inbox.clear();
+      ocu->send_to(manager, msg::QuerySubsystemList{});
+      run_until([&] { return !ocu->received_from<msg::ReportSubsystemList>(manager).empty(); }, 300ms);
+      const auto lists = ocu->received_from<msg::ReportSubsystemList>(manager);
+      if (lists.empty()) return false;
+      bool found = false;
+      for (const auto& s : lists.back().subsystems) found |= s.subsystem == subsystem;
+      return found == present;
+    });
+  }
+
+  fs::path dir;
+  std::unique_ptr<ChildProcess> a, b;
+  boost::asio::io_context io;
+  transport::AsioRuntime runtime{io};
+  std::unique_ptr<transport::UdpLink> link;
+  std::unique_ptr<node::Node> node;
+  Ocu* ocu = nullptr;
+};
+
+TEST_F(TwoNodes, FindEachOther) {
+  EXPECT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();
+  EXPECT_TRUE(subsystem_list_shows(kManagerB, 1, true)) << b->output();
+  // We speak JUDP to B (our static peer entry) and OPC to A: each answers in kind.
+  EXPECT_EQ(link->routes().route(2, 1)->framing, transport::Framing::judp);
+  EXPECT_EQ(link->routes().route(1, 1)->framing, transport::Framing::opc);
+}
+
+TEST_F(TwoNodes, TheOcuControlsAComponentOfTheOtherNodeAndHoldsIt) {
+  ASSERT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();
+  ocu->send_to(kCommunicatorB, msg::RequestComponentControl{{50}});
+  ASSERT_TRUE(run_until([&] { return !ocu->received_from<msg::ConfirmComponentControl>(kCommunicatorB).empty(); }));
+  EXPECT_EQ(ocu->received_from<msg::ConfirmComponentControl>(kCommunicatorB).front().response_code, 0);
+  // Four controller timeouts later, control is still ours: the OCU answers B's liveness checks.
+  run_for(2s);
+  ocu->inbox.clear();
+  ocu->send_to(kCommunicatorB, msg::QueryComponentControl{});
+  ASSERT_TRUE(run_until([&] { return !ocu->received_from<msg::ReportComponentControl>(kCommunicatorB).empty(); }));
+  EXPECT_EQ(ocu->received_from<msg::ReportComponentControl>(kCommunicatorB).front().controller, kOcu) << b->output();
+  EXPECT_TRUE(ocu->received_from<msg::RejectComponentControl>(kCommunicatorB).empty());
+  // A command only the controller may give is executed.
+  ocu->send_to(kCommunicatorB, msg::Standby{});
+  ocu->send_to(kCommunicatorB, msg::QueryComponentStatus{});
+  EXPECT_TRUE(run_until([&] {
+    const auto s = ocu->received_from<msg::ReportComponentStatus>(kCommunicatorB);
+    return !s.empty() && s.back().primary_status == static_cast<std::uint8_t>(msg::PrimaryStatus::standby);
+  }));
+}
+
+TEST_F(TwoNodes, AServiceConnectionDeliversAtItsRate) {
+  std::size_t reports = 0;
+  ocu->subscribe<msg::ReportComponentStatus>(kCommunicatorA, 10, 0,
+                                             [&](const Header&, const msg::ReportComponentStatus&) { ++reports; });
+  ASSERT_TRUE(run_until([&] { return reports > 0; })) << a->output();
+  reports = 0;
+  run_for(2s);
+  // 10 Hz for 2 s: 20 reports; a loaded machine may lose or bunch a few.
+  EXPECT_GE(reports, 14u);
+  EXPECT_LE(reports, 26u);
+}
+
+TEST_F(TwoNodes, OneNoticesTheOthersLoss) {
+  ASSERT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();
+  b->signal(SIGKILL);  // no goodbye: a crash or a cut cable
+  EXPECT_TRUE(subsystem_list_shows(kManagerA, 2, false)) << a->output();
+  EXPECT_TRUE(a->output_contains("node 2.1.0.0 silent: lost")) << a->output();
+}
+
+TEST_F(TwoNodes, SigtermIsAnOrderlyShutdown) {
+  ocu->send_to(kCommunicatorA, msg::RequestComponentControl{{50}});
+  ASSERT_TRUE(run_until([&] { return !ocu->received_from<msg::ConfirmComponentControl>(kCommunicatorA).empty(); }));
+  a->signal(SIGTERM);
+  // The controller hears that control is gone (the platform was stopped).
+  EXPECT_TRUE(run_until([&] { return !ocu->received_from<msg::RejectComponentControl>(kCommunicatorA).empty(); }));
+  EXPECT_EQ(a->wait(5s), 0);
+  EXPECT_TRUE(a->output_contains("Ready -> Shutdown")) << a->output();
+  EXPECT_TRUE(a->output_contains("stopped (SIGTERM)")) << a->output();
+}
+
+TEST_F(TwoNodes, ABusyAddressAndABadFileExitWith2AndOneLine) {
+  ASSERT_TRUE(subsystem_list_shows(kManagerA, 2, true));
+  auto second = start("second", node_config(3, "127.0.0.21:3794", "127.0.0.22:3794"));
+  EXPECT_EQ(second->wait(5s), 2);
+  EXPECT_TRUE(second->output_contains("127.0.0.21:3794 is already in use")) << second->output();
+  auto bad = start("bad", "heartbeat_hz: 1\nhearbeat_hz: 2\n");
+  EXPECT_EQ(bad->wait(5s), 2);
+  EXPECT_TRUE(bad->output_contains("bad.yaml:2: unknown key 'hearbeat_hz'")) << bad->output();
+}
+
+}  // namespace
+}  // namespace jaus::test
