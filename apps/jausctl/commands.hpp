@@ -4,17 +4,18 @@
 
 #include <CLI/CLI.hpp>
 
-namespace jausctl {
+#include "ocu/exit_codes.hpp"  // kExitOk 0, kExitFailure 1, kExitBadInput 2
 
-// Exit codes shared by every command.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;  // the command ran but its target did not answer / failed
-inline constexpr int kExitBadInput = 2; // bad arguments or malformed input
+namespace jausctl {
 
 // `jausctl msg ...`: JAUS message codec (decode, encode, list).
 void add_msg_commands(CLI::App& app, int& exit_code);
 
 // `jausctl clearpath ...`: Clearpath protocol codec (decode, encode, list).
 void add_clearpath_commands(CLI::App& app, int& exit_code);
+
+// `jausctl discover | status | query | send | control | subscribe | emergency`:
+// jausctl as an operator control unit talking to a JAUS node over UDP.
+void add_ocu_commands(CLI::App& app, int& exit_code);
 
 }  // namespace jausctl

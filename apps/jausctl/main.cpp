@@ -1,13 +1,19 @@
-// jausctl: the project's command-line tool (message codecs now; OCU commands
-// arrive with the transport issue).
+// jausctl: the project's command-line tool: the message codecs (msg,
+// clearpath) and an operator control unit (discover, status, query, send,
+// control, subscribe, emergency).
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"jausctl: JAUS node command-line tool"};
   app.require_subcommand(1);
+  // Bad command lines are one line on stderr (exit 2), like every other bad input.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "jausctl: " + std::string(e.what()) + " (--help for usage)\n";
+  });
   int exit_code = jausctl::kExitOk;
   jausctl::add_msg_commands(app, exit_code);
   jausctl::add_clearpath_commands(app, exit_code);
+  jausctl::add_ocu_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,50 @@
+// The values the OCU commands take on the command line (addresses, command
+// codes, durations, endpoints, presence vectors), parsed without I/O. Each
+// parser returns the value or one line saying what is wrong with the text.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "jaus/core/address.hpp"
+#include "jaus/core/expected.hpp"
+#include "jaus/runtime/time.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+namespace jausctl::ocu {
+
+template <class T>
+using Parsed = jaus::Expected<T, std::string>;
+
+// "S.N.C.I", each 1..254, or 255 (broadcast) where `allow_broadcast`.
+Parsed<jaus::Address> parse_address(std::string_view text, bool allow_broadcast);
+
+// "0x4402", "4402" (hex) or a message name from the catalogue ("Report Global Pose").
+Parsed<std::uint16_t> parse_message_code(std::string_view text);
+
+// "0x1F" or "1F": a presence vector of up to 32 bits.
+Parsed<std::uint32_t> parse_presence_vector(std::string_view text);
+
+// Seconds as a decimal number ("1", "0.25"), > 0 and at most a day.
+Parsed<jaus::rt::Duration> parse_seconds(std::string_view text);
+
+// "a.b.c.d[:port]"; a missing port is `default_port`. Port 0 (any free port)
+// is accepted only where `allow_port_zero` (a bind address, not a peer).
+Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text, std::uint16_t default_port,
+                                                          bool allow_port_zero);
+
+// "opc" or "judp".
+Parsed<jaus::transport::Framing> parse_framing(std::string_view text);
+
+// "1 s", "0.25 s": how messages state a duration.
+std::string seconds_text(jaus::rt::Duration d);
+
+// "0x4402".
+std::string code_text(std::uint16_t code);
+
+// A rate as people write it: 5, 0.25, 12.5 (two decimals at most).
+std::string hz_text(double hz);
+
+}  // namespace jausctl::ocu

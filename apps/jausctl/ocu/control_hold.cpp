@@ -1,0 +1,124 @@
+#include "control_hold.hpp"
+
+#include "cli_values.hpp"
+#include "jaus/messages/core_messages.hpp"
+#include "names.hpp"
+
+namespace jausctl::ocu {
+
+namespace {
+using namespace std::chrono_literals;
+// What controlling OCUs use (jaus-wire-notes.md, "Service connections").
+constexpr double kStatusRateHz = 5;
+// The hold wakes this often to look at the status reports' silence.
+constexpr jaus::rt::Duration kHoldSlice = 250ms;
+}  // namespace
+
+ControlHold::ControlHold(OcuSession& session, const jaus::Address& target, std::uint8_t authority,
+                         jaus::rt::Duration status_silence)
+    : session_(session), target_(target), authority_(authority), status_silence_(status_silence) {}
+
+ControlHold::~ControlHold() {
+  if (listener_) session_.unlisten(listener_);
+  stop_watching_status();
+}
+
+ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
+  RequestResult r;
+  const std::string what = "control of " + target_.to_string();
+  auto reply = session_.request(target_, jaus::msg::RequestComponentControl{{authority_}},
+                                {jaus::msg::ConfirmComponentControl::code, jaus::msg::RejectComponentControl::code},
+                                timeout);
+  if (!reply) {
+    r.outcome = session_.interrupted() ? Outcome::interrupted : Outcome::no_reply;
+    r.text = reply.error();
+    return r;
+  }
+  if (reply->header.command_code == jaus::msg::RejectComponentControl::code) {
+    r.outcome = Outcome::rejected;
+    r.text = what + " refused (Reject Component Control)";
+    return r;
+  }
+  jaus::msg::ConfirmComponentControl confirm{};
+  if (jaus::wire::decode_payload_into(reply->payload, confirm, session_.options().dialect, jaus::kHeaderSize)) {
+    r.outcome = Outcome::refused;
+    r.response_code = 0xFF;
+    r.text = what + ": Confirm Component Control does not decode";
+    return r;
+  }
+  r.response_code = confirm.response_code;
+  if (confirm.response_code != jaus::msg::control_response::kAccepted) {
+    r.outcome = Outcome::refused;
+    r.text = what + " refused: " + control_response_text(confirm.response_code) + " (response " +
+             std::to_string(confirm.response_code) + ")";
+    return r;
+  }
+  r.outcome = Outcome::granted;
+  r.text = what + " granted (authority " + std::to_string(authority_) + ")";
+
+  // From now on a Reject means control is gone; the liveness checks show the component watches us.
+  listener_ = session_.listen([this](const Received& m) {
+    if (m.header.source != target_) return;
+    if (m.header.command_code == jaus::msg::RejectComponentControl::code) rejected_ = true;
+    if (m.header.command_code == jaus::msg::QueryComponentStatus::code) ++liveness_checks_;
+  });
+  watch_status();
+  return r;
+}
+
+void ControlHold::watch_status() {
+  status_heard_ = session_.clock().now();
+  status_sc_ = session_.component().subscribe<jaus::msg::ReportComponentStatus>(
+      target_, kStatusRateHz, 0,
+      [this](const jaus::Header&, const jaus::msg::ReportComponentStatus& report) {
+        status_heard_ = session_.clock().now();
+        const std::uint8_t state = report.primary_status & 0x0F;
+        if (state_ == state) return;
+        const std::string text = state_ ? primary_status_text(*state_) + " -> " + primary_status_text(state)
+                                        : primary_status_text(state);
+        state_ = state;
+        if (on_state_) on_state_(text);
+      });
+}
+
+void ControlHold::stop_watching_status() {
+  if (status_sc_) session_.component().unsubscribe(*status_sc_);
+  status_sc_.reset();
+}
+
+ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
+                                   std::function<void(const std::string&)> on_state) {
+  on_state_ = std::move(on_state);
+  if (state_ && on_state_) on_state_(primary_status_text(*state_));  // reported before the hold began
+  auto& clock = session_.clock();
+  const auto until = limit ? clock.now() + *limit : jaus::rt::TimePoint::max();
+  for (;;) {
+    if (rejected_) return End::rejected;
+    if (session_.interrupted()) return End::interrupted;
+    const auto now = clock.now();
+    if (now >= until) return End::time_up;
+    // Only reports that came can stop: a component that does not provide its
+    // status (refused, or a peer without service connections) is held without
+    // this check. (The connection's own `confirmed` is reset while the client
+    // re-creates it after a silence, so it cannot tell.)
+    if (state_ && now - status_heard_ > status_silence_) return End::silent;
+    session_.run_until([this] { return rejected_; }, std::min<jaus::rt::Duration>(until - now, kHoldSlice));
+  }
+}
+
+void ControlHold::release() {
+  session_.send(target_, jaus::msg::ReleaseComponentControl{});
+  stop_watching_status();
+}
+
+std::string ControlHold::who_has_control(jaus::rt::Duration timeout) {
+  auto reply = session_.request(target_, jaus::msg::QueryComponentControl{},
+                                {jaus::msg::ReportComponentControl::code}, timeout);
+  if (!reply) return {};
+  jaus::msg::ReportComponentControl report{};
+  if (jaus::wire::decode_payload_into(reply->payload, report, session_.options().dialect, jaus::kHeaderSize)) return {};
+  if (!report.controller.is_valid()) return "it has no controller now";
+  return "taken over by " + report.controller.to_string() + " (authority " + std::to_string(report.authority) + ")";
+}
+
+}  // namespace jausctl::ocu

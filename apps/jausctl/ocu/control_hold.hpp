@@ -1,0 +1,78 @@
+// Control of one component by the OCU: request it, hold it, release it.
+//
+// Holding needs no traffic of its own: the controlled component checks its
+// controller with Query Component Status (every controller timeout / 3), and
+// the OCU component, being an rt::Component, answers those by itself; the
+// OCU's node manager heartbeats keep its node alive on the other side.
+// Like other OCUs (jaus-wire-notes.md), the hold watches the component's
+// Report Component Status on a 5 Hz service connection: it shows state
+// changes, and silence means the component (or its node) is gone. Control
+// also ends with Reject Component Control (taken over, or dropped).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "jaus/runtime/service_connection_client.hpp"
+#include "session.hpp"
+
+namespace jausctl::ocu {
+
+class ControlHold {
+ public:
+  enum class Outcome { granted, refused, rejected, no_reply, interrupted };
+  struct RequestResult {
+    Outcome outcome = Outcome::no_reply;
+    std::uint8_t response_code = 0;  // of Confirm Component Control
+    std::string text;                // one line: "control of 1.1.35.1 granted (authority 5)", ...
+  };
+  enum class End { time_up, interrupted, rejected, silent };
+
+  // Silence of the status reports that ends a hold (when the component provides them).
+  static constexpr jaus::rt::Duration kStatusSilence = std::chrono::seconds(5);
+
+  ControlHold(OcuSession& session, const jaus::Address& target, std::uint8_t authority,
+              jaus::rt::Duration status_silence = kStatusSilence);
+  // Ends the status service connection.
+  ~ControlHold();
+  ControlHold(const ControlHold&) = delete;
+  ControlHold& operator=(const ControlHold&) = delete;
+
+  // Request Component Control; waits for Confirm or Reject Component Control.
+  RequestResult request(jaus::rt::Duration timeout);
+  // Runs the session while control is held: until `limit` (none: until
+  // interrupted) or control is lost. `on_state` hears the component's
+  // primary status when first reported and on every change ("Ready",
+  // "Ready -> Emergency").
+  End hold(std::optional<jaus::rt::Duration> limit, std::function<void(const std::string&)> on_state = {});
+  // Release Component Control (fire and forget: the RA has no reply to it)
+  // and end the status service connection.
+  void release();
+
+  // Who has control now, asked after a Reject: "taken over by 254.2.40.1
+  // (authority 9)", "it has no controller now", or empty without a reply.
+  std::string who_has_control(jaus::rt::Duration timeout);
+
+  // Liveness checks (Query Component Status) the component sent us while held.
+  std::uint64_t liveness_checks() const { return liveness_checks_; }
+
+ private:
+  void watch_status();
+  void stop_watching_status();
+
+  OcuSession& session_;
+  jaus::Address target_;
+  std::uint8_t authority_;
+  jaus::rt::Duration status_silence_;
+  OcuSession::ListenerId listener_ = 0;
+  bool rejected_ = false;
+  std::uint64_t liveness_checks_ = 0;
+  std::optional<jaus::rt::SubscriptionId> status_sc_;
+  std::optional<std::uint8_t> state_;  // last primary status reported
+  jaus::rt::TimePoint status_heard_{};
+  std::function<void(const std::string&)> on_state_;
+};
+
+}  // namespace jausctl::ocu

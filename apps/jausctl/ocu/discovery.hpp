@@ -1,0 +1,95 @@
+// What `jausctl discover` learns about the JAUS system, and which queries it
+// asks next (jaus-wire-notes.md, "typical OCU sequence"): a subsystem heard
+// for the first time is asked for its identification and configuration, each
+// node for its identification and configuration, each component for its
+// identification and services. Sans-I/O: messages in, queries out; the
+// command sends them.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "jaus/core/header.hpp"
+#include "jaus/messages/discovery_messages.hpp"
+#include "jaus/wire/codecs.hpp"
+
+namespace jausctl::ocu {
+
+struct Identification {
+  std::string name;
+  std::uint16_t type = 0;
+  std::uint8_t authority = 0;
+};
+
+struct DiscoveredComponent {
+  jaus::Address address;
+  std::optional<Identification> identification;
+  // What the component itself answered to Query Services, if it did.
+  std::optional<std::vector<jaus::msg::ServiceEntry>> own_services;
+};
+
+struct DiscoveredNode {
+  std::uint8_t id = 0;
+  std::optional<Identification> identification;
+  std::map<std::pair<std::uint8_t, std::uint8_t>, DiscoveredComponent> components;  // by (component, instance)
+  // The node manager's Report Services: one entry per component ID on the node.
+  std::map<std::uint16_t, jaus::msg::ServiceEntry> services_by_type;
+};
+
+struct DiscoveredSubsystem {
+  std::uint8_t id = 0;
+  std::optional<Identification> identification;
+  std::map<std::uint8_t, DiscoveredNode> nodes;
+};
+
+struct DiscoveryQuery {
+  enum class Kind { identification, configuration, services };
+  jaus::Address to;
+  Kind kind = Kind::identification;
+  std::uint8_t field = 0;  // query type (identification) or query field (configuration)
+  bool operator==(const DiscoveryQuery&) const = default;
+};
+
+class Discovery {
+ public:
+  // `self` is the OCU: its own node is left out.
+  explicit Discovery(jaus::Address self) : self_(self) {}
+
+  // The first query: every node manager that hears it says who it is.
+  std::vector<DiscoveryQuery> start();
+  // Something came from `source` (a heartbeat, any message).
+  std::vector<DiscoveryQuery> heard(const jaus::Address& source);
+  // A message addressed to the OCU (the replies).
+  std::vector<DiscoveryQuery> received(const jaus::Header& header, std::span<const std::uint8_t> payload,
+                                       jaus::wire::Dialect dialect);
+
+  const std::map<std::uint8_t, DiscoveredSubsystem>& subsystems() const { return subsystems_; }
+  std::size_t component_count() const;
+
+  // A component's services: its own answer, else its node manager's entry for its component ID.
+  static std::vector<jaus::msg::ServiceEntry> services_of(const DiscoveredNode& node,
+                                                          const DiscoveredComponent& component);
+
+ private:
+  using Kind = DiscoveryQuery::Kind;
+  bool is_self(const jaus::Address& a) const { return a.subsystem == self_.subsystem && a.node == self_.node; }
+  DiscoveredNode& node_of(std::uint8_t subsystem, std::uint8_t node);
+  void add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<DiscoveryQuery>& out);
+  void add_component(const jaus::Address& address, std::vector<DiscoveryQuery>& out);
+  // Asks once per key: a subsystem-wide question is keyed by the subsystem alone.
+  void ask(std::vector<DiscoveryQuery>& out, const jaus::Address& to, Kind kind, std::uint8_t field,
+           const jaus::Address& key);
+
+  jaus::Address self_;
+  std::map<std::uint8_t, DiscoveredSubsystem> subsystems_;
+  std::set<std::tuple<jaus::Address, Kind, std::uint8_t>> asked_;
+};
+
+}  // namespace jausctl::ocu

@@ -1,0 +1,21 @@
+// How `jausctl discover` prints what it found: a table for people, JSON for
+// scripts. Sans-I/O: strings and JSON out.
+#pragma once
+
+#include <string>
+
+#include "discovery.hpp"
+#include "message_json.hpp"
+
+namespace jausctl::ocu {
+
+// {"subsystems":[{"subsystem":1,"identification":{...}|null,"nodes":[{"node":1,...,
+//   "components":[{"address":"1.1.35.1","kind":"communicator","identification":...,
+//   "inputs":[{"code":"0x0001","name":...,"presence_vector":0}],"outputs":[...]}]}]}]}
+Json discovery_json(const Discovery& discovery);
+
+// One row per subsystem, node and component, each component followed by what
+// it accepts and provides.
+std::string discovery_table(const Discovery& discovery);
+
+}  // namespace jausctl::ocu

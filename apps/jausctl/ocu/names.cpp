@@ -1,0 +1,61 @@
+#include "names.hpp"
+
+#include <map>
+
+#include "jaus/runtime/lifecycle.hpp"
+
+namespace jausctl::ocu {
+
+std::string component_kind(std::uint8_t id) {
+  // RA 3.x component IDs (jaus-wire-notes.md).
+  static const std::map<std::uint8_t, const char*> kinds = {
+      {1, "node manager"},           {32, "subsystem commander"},       {33, "primitive driver"},
+      {34, "global vector driver"},  {35, "communicator"},              {36, "mission spooler"},
+      {37, "visual sensor"},         {38, "global pose sensor"},        {39, "mission planner"},
+      {40, "system commander"},      {41, "local pose sensor"},         {42, "velocity state sensor"},
+      {43, "reflexive driver"},      {44, "local vector driver"},       {45, "global waypoint driver"},
+      {46, "local waypoint driver"}, {47, "global path segment driver"}, {48, "local path segment driver"},
+      {49, "primitive manipulator"}, {50, "range sensor"},              {61, "world model vector knowledge store"}};
+  if (const auto it = kinds.find(id); it != kinds.end()) return it->second;
+  if (id >= 51 && id <= 59) return "manipulator sensor/driver";
+  return "component " + std::to_string(id);
+}
+
+std::string identification_class(std::uint16_t type) {
+  if (type >= 50001) return "payload";
+  if (type >= 40001) return "node";
+  if (type >= 30001) return "other subsystem";
+  if (type >= 20001) return "OCU";
+  if (type >= 10001) return "vehicle";
+  return "unspecified";
+}
+
+std::string control_response_text(std::uint8_t code) {
+  switch (code) {
+    case 0: return "granted";
+    case 1: return "not supported";
+    case 2: return "not available";
+    default: return "response " + std::to_string(code);
+  }
+}
+
+std::string service_connection_response_text(std::uint8_t code) {
+  switch (code) {
+    case 0: return "created";
+    case 1: return "node not capable";
+    case 2: return "component not capable";
+    case 3: return "insufficient authority";
+    case 4: return "refused";
+    case 5: return "invalid parameters";
+    case 6: return "command not supported";
+    default: return "response " + std::to_string(code);
+  }
+}
+
+std::string primary_status_text(std::uint8_t primary_status) {
+  const unsigned code = primary_status & 0x0F;
+  if (code > static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency)) return "unknown (" + std::to_string(code) + ")";
+  return std::string(jaus::rt::to_string(static_cast<jaus::msg::PrimaryStatus>(code)));
+}
+
+}  // namespace jausctl::ocu

@@ -1,0 +1,66 @@
+// The OCU commands of jausctl, each on an open session. Inputs are already
+// parsed and checked (bad input never gets this far); each returns the exit
+// code (kExitOk, or kExitFailure with one line on `err`) and prints its
+// results on `out`.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+
+#include "exit_codes.hpp"
+#include "message_json.hpp"
+#include "session.hpp"
+
+namespace jausctl::ocu {
+
+struct CommandIo {
+  std::ostream& out;
+  std::ostream& err;
+};
+
+struct DiscoverOptions {
+  jaus::rt::Duration wait = std::chrono::seconds(2);
+  bool json = false;
+};
+int run_discover(OcuSession& session, const DiscoverOptions& options, CommandIo io);
+
+// Query Component Status -> {"component":"1.1.35.1","primary_status":"Ready",...}
+int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Duration timeout, CommandIo io);
+
+// Sends a prepared query and prints the report (`jausctl msg decode` form).
+int run_query(OcuSession& session, const jaus::Address& target, const PreparedMessage& query,
+              std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io);
+
+// Sends any message; prints the first message the target sends back within
+// the timeout, if any.
+int run_send(OcuSession& session, const jaus::Address& target, const PreparedMessage& message,
+             jaus::rt::Duration timeout, CommandIo io);
+
+// Set or Clear Emergency, then Query Component Status to show the result.
+int run_emergency(OcuSession& session, const jaus::Address& target, bool set, jaus::rt::Duration timeout,
+                  CommandIo io);
+
+struct ControlOptions {
+  jaus::Address target;
+  std::uint8_t authority = 0;
+  std::optional<jaus::rt::Duration> hold_for;  // none: until SIGINT/SIGTERM
+  jaus::rt::Duration timeout = std::chrono::seconds(1);
+  // No Report Component Status (5 Hz service connection) for this long: control is lost.
+  jaus::rt::Duration status_silence = std::chrono::seconds(5);
+};
+int run_control(OcuSession& session, const ControlOptions& options, CommandIo io);
+
+struct SubscribeOptions {
+  jaus::Address target;
+  std::uint16_t report_code = 0;
+  double rate_hz = 1;
+  std::uint32_t presence_vector = 0;
+  std::optional<std::uint64_t> count;          // stop after this many reports
+  std::optional<jaus::rt::Duration> run_for;   // stop after this long
+  jaus::rt::Duration timeout = std::chrono::seconds(1);
+  jaus::rt::Duration rate_every = std::chrono::seconds(5);  // measured rate on `err` this often
+};
+int run_subscribe(OcuSession& session, const SubscribeOptions& options, CommandIo io);
+
+}  // namespace jausctl::ocu

@@ -1,0 +1,101 @@
+// The one-shot OCU commands: status, query, send, emergency. Each sends one
+// message and waits (up to the timeout) for the answer.
+#include "jaus/messages/core_messages.hpp"
+#include "names.hpp"
+#include "ocu_commands.hpp"
+
+namespace jausctl::ocu {
+
+namespace {
+
+int fail(CommandIo io, std::string_view command, const std::string& why) {
+  io.err << "jausctl " << command << ": " << why << "\n";
+  return kExitFailure;
+}
+
+// The status report of `target`, decoded.
+jaus::Expected<jaus::msg::ReportComponentStatus, std::string> query_status(OcuSession& session,
+                                                                          const jaus::Address& target,
+                                                                          jaus::rt::Duration timeout) {
+  auto reply = session.request(target, jaus::msg::QueryComponentStatus{}, {jaus::msg::ReportComponentStatus::code},
+                               timeout);
+  if (!reply) return jaus::unexpected(reply.error());
+  jaus::msg::ReportComponentStatus report{};
+  if (auto error = jaus::wire::decode_payload_into(reply->payload, report, session.options().dialect, jaus::kHeaderSize))
+    return jaus::unexpected("Report Component Status from " + reply->header.source.to_string() +
+                            " does not decode: " + error->message());
+  return report;
+}
+
+bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
+  return (report.primary_status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
+}
+
+}  // namespace
+
+int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Duration timeout, CommandIo io) {
+  auto report = query_status(session, target, timeout);
+  if (!report) return fail(io, "status", report.error());
+  const Json out{{"component", target.to_string()},
+                 {"primary_status", primary_status_text(report->primary_status)},
+                 {"primary_status_code", report->primary_status & 0x0F},
+                 {"secondary_status", report->secondary_status},
+                 {"emergency", is_emergency(*report)}};
+  io.out << json_line(out) << "\n";
+  return kExitOk;
+}
+
+int run_query(OcuSession& session, const jaus::Address& target, const PreparedMessage& query,
+              std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io) {
+  jaus::Header header = query.header;
+  header.destination = target;
+  session.send_raw(header, query.payload);
+  auto reply = session.await_reply(target, {report_code}, timeout);
+  if (!reply) return fail(io, "query", reply.error());
+  auto json = message_json(*reply, session.options().dialect);
+  if (!json) return fail(io, "query", json.error());
+  io.out << json_line(*json) << "\n";
+  return kExitOk;
+}
+
+int run_send(OcuSession& session, const jaus::Address& target, const PreparedMessage& message,
+             jaus::rt::Duration timeout, CommandIo io) {
+  jaus::Header header = message.header;
+  header.destination = target;
+  session.send_raw(header, message.payload);
+  // Commands have no reply in the RA: silence is not a failure here.
+  auto reply = session.await_reply(target, {}, timeout);
+  if (!reply) return kExitOk;
+  auto json = message_json(*reply, session.options().dialect);
+  if (!json) return fail(io, "send", json.error());
+  io.out << json_line(*json) << "\n";
+  return kExitOk;
+}
+
+int run_emergency(OcuSession& session, const jaus::Address& target, bool set, jaus::rt::Duration timeout,
+                  CommandIo io) {
+  // Bit 0 of the emergency code is Stop, the only condition the RA defines.
+  if (set)
+    session.send(target, jaus::msg::SetEmergency{{1}}, jaus::priority::kSafetyCritical);
+  else
+    session.send(target, jaus::msg::ClearEmergency{{1}});
+  const std::string what = set ? "Set Emergency" : "Clear Emergency";
+  if (target.is_broadcast()) {
+    // Many components may answer; there is no single state to show.
+    io.out << what << " sent to " << target.to_string() << "\n";
+    return kExitOk;
+  }
+  // The status query follows the command through the same queue: its answer shows the outcome.
+  auto report = query_status(session, target, timeout);
+  if (!report) return fail(io, "emergency", what + " sent, but " + report.error() + " to show its state");
+  const std::string state = primary_status_text(report->primary_status);
+  if (set && !is_emergency(*report))
+    return fail(io, "emergency", target.to_string() + " is in " + state + " after Set Emergency");
+  if (!set && is_emergency(*report))
+    return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, or " +
+                                     session.self().to_string() + " never set it");
+  io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " (state " << state << ")\n";
+  return kExitOk;
+}
+
+}  // namespace jausctl::ocu

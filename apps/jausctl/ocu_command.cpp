@@ -1,0 +1,334 @@
+// `jausctl discover | status | query | send | control | subscribe | emergency`:
+// jausctl as an operator control unit. This file is the command line only:
+// it parses and checks every value (bad input: exit 2, one line naming what
+// is wrong, before any socket is opened), opens an OcuSession and hands over
+// to the command in ocu/.
+#include <cstdio>
+#include <csignal>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "ocu/cli_values.hpp"
+#include "ocu/message_json.hpp"
+#include "ocu/ocu_commands.hpp"
+
+namespace jausctl {
+
+namespace {
+
+using ocu::Parsed;
+
+// What every OCU command takes, as written on the command line.
+struct CommonOptions {
+  std::string to = "127.0.0.1:3794";
+  std::string bind = "0.0.0.0:0";
+  std::string framing = "opc";
+  std::string as = "254.1.40.1";
+  std::string timeout = "1";
+  std::string dialect = "ra";
+  int verbosity = 0;
+};
+
+void add_common_options(CLI::App* cmd, CommonOptions& c) {
+  cmd->add_option("--to", c.to, "the node to talk to, HOST[:PORT] (a static peer)")->capture_default_str();
+  cmd->add_option("--bind", c.bind,
+                  "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")
+      ->capture_default_str();
+  cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->capture_default_str();
+  cmd->add_option("--as", c.as, "this OCU's JAUS address S.N.C.I (its node manager is S.N.1.1)")
+      ->capture_default_str();
+  cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->capture_default_str();
+  cmd->add_option("--dialect", c.dialect, "how payloads from the node are read: ra | openjaus")
+      ->capture_default_str();
+  cmd->add_flag("-v,--verbose", c.verbosity, "log the runtime: -v warnings, -vv info, -vvv debug");
+}
+
+struct Common {
+  ocu::SessionOptions session;
+  jaus::rt::Duration timeout{};
+};
+
+// One line on stderr, exit code 2.
+int bad_input(std::string_view command, const std::string& why) {
+  std::cerr << "jausctl " << command << ": " << why << "\n";
+  return kExitBadInput;
+}
+
+jaus::rt::LogFn stderr_log(int verbosity) {
+  // Default: errors only, so a failing command prints its one line.
+  const auto threshold = verbosity >= 3   ? jaus::rt::LogLevel::debug
+                         : verbosity == 2 ? jaus::rt::LogLevel::info
+                         : verbosity == 1 ? jaus::rt::LogLevel::warn
+                                          : jaus::rt::LogLevel::error;
+  return [threshold](jaus::rt::LogLevel level, const std::string& text) {
+    if (level < threshold) return;
+    static constexpr const char* kNames[] = {"debug", "info", "warn", "error"};
+    std::cerr << "jausctl [" << kNames[static_cast<int>(level)] << "] " << text << "\n";
+  };
+}
+
+Parsed<Common> parse_common(const CommonOptions& c) {
+  Common out;
+  auto to = ocu::parse_endpoint_text(c.to, jaus::transport::kJausPort, false);
+  if (!to) return jaus::unexpected("--to: " + to.error());
+  auto bind = ocu::parse_endpoint_text(c.bind, 0, true);
+  if (!bind) return jaus::unexpected("--bind: " + bind.error());
+  auto framing = ocu::parse_framing(c.framing);
+  if (!framing) return jaus::unexpected("--framing: " + framing.error());
+  auto self = ocu::parse_address(c.as, false);
+  if (!self) return jaus::unexpected("--as: " + self.error());
+  if (self->component == 1)
+    return jaus::unexpected(std::string("--as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"));
+  auto timeout = ocu::parse_seconds(c.timeout);
+  if (!timeout) return jaus::unexpected("--timeout: " + timeout.error());
+  if (c.dialect != "ra" && c.dialect != "openjaus")
+    return jaus::unexpected("--dialect: bad dialect '" + c.dialect + "': expected ra or openjaus");
+  out.session.to = *to;
+  out.session.bind = *bind;
+  out.session.framing = *framing;
+  out.session.self = *self;
+  out.session.dialect = c.dialect == "openjaus" ? jaus::wire::Dialect::openjaus : jaus::wire::Dialect::ra;
+  out.session.log = stderr_log(c.verbosity);
+  out.timeout = *timeout;
+  return out;
+}
+
+Parsed<std::uint8_t> parse_byte(std::string_view option, const std::string& text) {
+  unsigned value = 0;
+  int used = 0;
+  if (std::sscanf(text.c_str(), "%u%n", &value, &used) != 1 || used != static_cast<int>(text.size()) || value > 255)
+    return jaus::unexpected(std::string(option) + ": bad value '" + text + "': expected 0..255");
+  return static_cast<std::uint8_t>(value);
+}
+
+// Parses the common options, opens the session and runs `command` on it.
+template <class Run>
+int with_session(std::string_view name, const Common& common, Run run) {
+  ocu::SessionOptions options = common.session;
+  auto session = ocu::OcuSession::open(options);
+  if (!session) {
+    std::cerr << "jausctl " << name << ": " << session.error() << "\n";
+    return kExitFailure;
+  }
+  (*session)->stop_on_signals();
+  return run(**session, ocu::CommandIo{std::cout, std::cerr});
+}
+
+}  // namespace
+
+void add_ocu_commands(CLI::App& app, int& exit_code) {
+  auto common = std::make_shared<CommonOptions>();
+  auto target = std::make_shared<std::string>();
+  auto code = std::make_shared<std::string>();
+  auto pv = std::make_shared<std::string>();
+
+  // Each handler checks its input first: bad input exits 2 before a socket opens.
+  auto checked_common = [common](std::string_view name, int& rc) -> std::optional<Common> {
+    auto parsed = parse_common(*common);
+    if (!parsed) {
+      rc = bad_input(name, parsed.error());
+      return std::nullopt;
+    }
+    return *parsed;
+  };
+
+  // discover
+  auto wait = std::make_shared<std::string>("2");
+  auto json = std::make_shared<bool>(false);
+  auto* discover = app.add_subcommand("discover", "Find subsystems, nodes and components: identification and services");
+  discover->add_option("--wait", *wait, "seconds to listen and ask")->capture_default_str();
+  discover->add_flag("--json", *json, "print JSON instead of a table");
+  add_common_options(discover, *common);
+  discover->callback([&exit_code, checked_common, wait, json] {
+    auto c = checked_common("discover", exit_code);
+    if (!c) return;
+    auto seconds = ocu::parse_seconds(*wait);
+    if (!seconds) return void(exit_code = bad_input("discover", "--wait: " + seconds.error()));
+    const ocu::DiscoverOptions options{*seconds, *json};
+    exit_code = with_session("discover", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_discover(s, options, io);
+    });
+  });
+
+  // status
+  auto* status = app.add_subcommand("status", "Query Component Status of ADDR; prints JSON");
+  status->add_option("ADDR", *target, "component address S.N.C.I")->required();
+  add_common_options(status, *common);
+  status->callback([&exit_code, checked_common, target] {
+    auto c = checked_common("status", exit_code);
+    if (!c) return;
+    auto address = ocu::parse_address(*target, true);
+    if (!address) return void(exit_code = bad_input("status", address.error()));
+    exit_code = with_session("status", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_status(s, *address, c->timeout, io);
+    });
+  });
+
+  // query
+  auto fields = std::make_shared<std::string>("{}");
+  auto* query = app.add_subcommand("query", "Send the query CODE to ADDR; prints the report as JSON");
+  query->add_option("ADDR", *target, "component address S.N.C.I")->required();
+  query->add_option("CODE", *code, "query code (0x2402) or name (\"Query Global Pose\")")->required();
+  query->add_option("--pv", *pv, "presence vector of the query, hex (which fields the report should carry)");
+  query->add_option("--fields", *fields, "the query's other fields as JSON, e.g. '{\"camera_id\":1}' (default 0)");
+  add_common_options(query, *common);
+  query->callback([&exit_code, checked_common, target, code, pv, fields] {
+    auto c = checked_common("query", exit_code);
+    if (!c) return;
+    auto address = ocu::parse_address(*target, true);
+    if (!address) return void(exit_code = bad_input("query", address.error()));
+    auto parsed_code = ocu::parse_message_code(*code);
+    if (!parsed_code) return void(exit_code = bad_input("query", parsed_code.error()));
+    std::optional<std::uint32_t> presence;
+    if (!pv->empty()) {
+      auto parsed_pv = ocu::parse_presence_vector(*pv);
+      if (!parsed_pv) return void(exit_code = bad_input("query", "--pv: " + parsed_pv.error()));
+      presence = *parsed_pv;
+    }
+    const auto field_json = ocu::Json::parse(*fields, nullptr, false);
+    if (field_json.is_discarded()) return void(exit_code = bad_input("query", "--fields is not valid JSON"));
+    auto prepared = ocu::prepare_query(*parsed_code, presence, field_json);
+    if (!prepared) return void(exit_code = bad_input("query", prepared.error()));
+    const auto report = ocu::report_code_for(*parsed_code);
+    if (!report) return void(exit_code = bad_input("query", "no report is known for " + ocu::code_text(*parsed_code)));
+    exit_code = with_session("query", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_query(s, *address, *prepared, *report, c->timeout, io);
+    });
+  });
+
+  // send
+  auto message = std::make_shared<std::string>();
+  auto* send = app.add_subcommand("send", "Send a message (JSON as `jausctl msg decode` prints it) to ADDR");
+  send->add_option("ADDR", *target, "component address S.N.C.I")->required();
+  send->add_option("JSON", *message, "the message; - reads it from stdin")->required();
+  add_common_options(send, *common);
+  send->callback([&exit_code, checked_common, target, message] {
+    auto c = checked_common("send", exit_code);
+    if (!c) return;
+    auto address = ocu::parse_address(*target, true);
+    if (!address) return void(exit_code = bad_input("send", address.error()));
+    std::string text = *message;
+    if (text == "-") text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    const auto parsed = ocu::Json::parse(text, nullptr, false);
+    if (parsed.is_discarded())
+      return void(exit_code = bad_input("send", std::string(*message == "-" ? "stdin" : "the message") + " is not valid JSON"));
+    auto prepared = ocu::prepare_message(parsed, c->session.dialect);
+    if (!prepared) return void(exit_code = bad_input("send", prepared.error()));
+    exit_code = with_session("send", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_send(s, *address, *prepared, c->timeout, io);
+    });
+  });
+
+  // control
+  auto authority = std::make_shared<std::string>();
+  auto hold_for = std::make_shared<std::string>();
+  auto* control = app.add_subcommand(
+      "control", "Take control of ADDR and hold it until Ctrl-C (or --for); release it on exit");
+  control->add_option("ADDR", *target, "component address S.N.C.I")->required();
+  control->add_option("--authority", *authority, "authority of the request, 0..255")->required();
+  control->add_option("--for", *hold_for, "release after this many seconds");
+  add_common_options(control, *common);
+  control->callback([&exit_code, checked_common, target, authority, hold_for] {
+    auto c = checked_common("control", exit_code);
+    if (!c) return;
+    ocu::ControlOptions options;
+    auto address = ocu::parse_address(*target, false);
+    if (!address) return void(exit_code = bad_input("control", address.error()));
+    auto level = parse_byte("--authority", *authority);
+    if (!level) return void(exit_code = bad_input("control", level.error()));
+    if (!hold_for->empty()) {
+      auto seconds = ocu::parse_seconds(*hold_for);
+      if (!seconds) return void(exit_code = bad_input("control", "--for: " + seconds.error()));
+      options.hold_for = *seconds;
+    }
+    options.target = *address;
+    options.authority = *level;
+    options.timeout = c->timeout;
+    c->session.authority = *level;
+    exit_code = with_session("control", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_control(s, options, io);
+    });
+  });
+
+  // subscribe
+  auto rate = std::make_shared<std::string>();
+  auto count = std::make_shared<std::string>();
+  auto run_for = std::make_shared<std::string>();
+  auto* subscribe = app.add_subcommand(
+      "subscribe", "Service connection for report CODE from ADDR: one JSON line per report; rate on stderr");
+  subscribe->add_option("ADDR", *target, "component address S.N.C.I")->required();
+  subscribe->add_option("CODE", *code, "report code (0x4002) or name (\"Report Component Status\")")->required();
+  subscribe->add_option("--rate", *rate, "reports per second (up to 1092)")->required();
+  subscribe->add_option("--pv", *pv, "presence vector, hex (which fields each report carries)");
+  subscribe->add_option("--count", *count, "stop after this many reports");
+  subscribe->add_option("--for", *run_for, "stop after this many seconds");
+  add_common_options(subscribe, *common);
+  subscribe->callback([&exit_code, checked_common, target, code, rate, pv, count, run_for] {
+    auto c = checked_common("subscribe", exit_code);
+    if (!c) return;
+    ocu::SubscribeOptions options;
+    auto address = ocu::parse_address(*target, false);
+    if (!address) return void(exit_code = bad_input("subscribe", address.error()));
+    auto parsed_code = ocu::parse_message_code(*code);
+    if (!parsed_code) return void(exit_code = bad_input("subscribe", parsed_code.error()));
+    if (const auto report = ocu::report_code_for(*parsed_code))
+      return void(exit_code = bad_input("subscribe", ocu::code_text(*parsed_code) +
+                                                         " is a query: subscribe takes the report's code (" +
+                                                         ocu::code_text(*report) + ")"));
+    double hz = 0;
+    int used = 0;
+    // The rate travels as a u16 scaled over [0, 1092] Hz.
+    if (std::sscanf(rate->c_str(), "%lf%n", &hz, &used) != 1 || used != static_cast<int>(rate->size()) ||
+        !(hz > 0) || hz > 1092)
+      return void(exit_code = bad_input("subscribe", "--rate: bad rate '" + *rate + "': expected Hz, more than 0 and at most 1092"));
+    if (!pv->empty()) {
+      auto parsed_pv = ocu::parse_presence_vector(*pv);
+      if (!parsed_pv) return void(exit_code = bad_input("subscribe", "--pv: " + parsed_pv.error()));
+      options.presence_vector = *parsed_pv;
+    }
+    if (!count->empty()) {
+      unsigned long long n = 0;
+      if (std::sscanf(count->c_str(), "%llu%n", &n, &used) != 1 || used != static_cast<int>(count->size()) || n == 0 ||
+          (*count)[0] == '-')
+        return void(exit_code = bad_input("subscribe", "--count: bad count '" + *count + "': expected 1 or more"));
+      options.count = n;
+    }
+    if (!run_for->empty()) {
+      auto seconds = ocu::parse_seconds(*run_for);
+      if (!seconds) return void(exit_code = bad_input("subscribe", "--for: " + seconds.error()));
+      options.run_for = *seconds;
+    }
+    options.target = *address;
+    options.report_code = *parsed_code;
+    options.rate_hz = hz;
+    options.timeout = c->timeout;
+    // A closed stdout (| head) must end the loop, not kill the process before it terminates the connection.
+    std::signal(SIGPIPE, SIG_IGN);
+    exit_code = with_session("subscribe", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_subscribe(s, options, io);
+    });
+  });
+
+  // emergency
+  auto action = std::make_shared<std::string>();
+  auto* emergency = app.add_subcommand("emergency", "Set or clear the emergency (Stop) condition of ADDR");
+  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->required();
+  emergency->add_option("ACTION", *action, "set | clear")->required();
+  add_common_options(emergency, *common);
+  emergency->callback([&exit_code, checked_common, target, action] {
+    auto c = checked_common("emergency", exit_code);
+    if (!c) return;
+    auto address = ocu::parse_address(*target, true);
+    if (!address) return void(exit_code = bad_input("emergency", address.error()));
+    if (*action != "set" && *action != "clear")
+      return void(exit_code = bad_input("emergency", "bad action '" + *action + "': expected set or clear"));
+    exit_code = with_session("emergency", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+      return ocu::run_emergency(s, *address, *action == "set", c->timeout, io);
+    });
+  });
+}
+
+}  // namespace jausctl

@@ -1,0 +1,165 @@
+// `jausctl control`: granted, held past the component's controller timeout
+// (its liveness checks are answered), released on exit; a takeover or a
+// refusal is reported.
+#include "ocu/control_hold.hpp"
+#include "ocu_fixture.hpp"
+
+namespace jausctl::test {
+namespace {
+
+const jaus::Address kOcuB{254, 2, 40, 1};
+
+class ControlTest : public OcuTest {
+ protected:
+  // A short controller timeout: the component checks its controller every 100 ms.
+  void SetUp() override { start_target(TargetOptions{300ms, false}); }
+
+  std::optional<jaus::Address> controller() const {
+    const auto& c = target->communicator().control().controller();
+    return c ? std::optional(c->address) : std::nullopt;
+  }
+};
+
+TEST_F(ControlTest, GrantedHeldPastTheControllerTimeoutAndReleased) {
+  auto ocu = open_ocu();
+  ASSERT_TRUE(ocu);
+  ocu::ControlHold control(*ocu, kCommunicator, 5);
+  const auto requested = control.request(1s);
+  ASSERT_EQ(requested.outcome, ocu::ControlHold::Outcome::granted) << requested.text;
+  EXPECT_EQ(requested.text, "control of 1.1.35.1 granted (authority 5)");
+  EXPECT_EQ(controller(), ocu->self());
+
+  // Three controller timeouts: without answers to its liveness checks the component would drop us.
+  EXPECT_EQ(control.hold(900ms), ocu::ControlHold::End::time_up);
+  EXPECT_EQ(controller(), ocu->self());
+  EXPECT_GE(control.liveness_checks(), 3u);
+
+  control.release();
+  ASSERT_TRUE(run_until([&] { return !controller(); }));
+}
+
+TEST_F(ControlTest, CommandHoldsForAWhileThenReleases) {
+  auto ocu = open_ocu();
+  ASSERT_TRUE(ocu);
+  ocu::ControlOptions options;
+  options.target = kCommunicator;
+  options.authority = 7;
+  options.hold_for = 700ms;
+  ASSERT_EQ(ocu::run_control(*ocu, options, io()), kExitOk) << err.str();
+  const auto lines = out_lines();
+  ASSERT_EQ(lines.size(), 3u) << out.str();
+  EXPECT_EQ(lines[0], "control of 1.1.35.1 granted (authority 7)");
+  EXPECT_EQ(lines[1], "1.1.35.1: state Ready");  // from the 5 Hz Report Component Status
+  EXPECT_EQ(lines[2].rfind("control of 1.1.35.1 released after ", 0), 0u) << lines[2];
+  EXPECT_EQ(err.str(), "");
+  EXPECT_EQ(controller(), ocu->self());  // the Release is on its way
+  ASSERT_TRUE(run_until([&] { return !controller(); }));
+  // The status service connection ended with it.
+  ASSERT_TRUE(run_until([&] { return target->communicator().service_connections().active() == 0; }));
+}
+
+TEST_F(ControlTest, StateChangesWhileHeldAreShown) {
+  auto ocu = open_ocu();
+  auto other = open_ocu(kOcuB);
+  ASSERT_TRUE(ocu && other);
+  target->runtime().call_at(target->runtime().now() + 400ms,
+                            [&] { other->send(kCommunicator, jaus::msg::SetEmergency{{1}}); });
+  ocu::ControlOptions options;
+  options.target = kCommunicator;
+  options.authority = 7;
+  options.hold_for = 1200ms;
+  ASSERT_EQ(ocu::run_control(*ocu, options, io()), kExitOk) << err.str();
+  EXPECT_NE(out.str().find("1.1.35.1: state Ready\n1.1.35.1: state Ready -> Emergency\n"), std::string::npos)
+      << out.str();
+}
+
+TEST_F(ControlTest, ANodeThatFallsSilentEndsTheHold) {
+  auto ocu = open_ocu();
+  ASSERT_TRUE(ocu);
+  ocu::ControlHold control(*ocu, kCommunicator, 5, 600ms);
+  ASSERT_EQ(control.request(1s).outcome, ocu::ControlHold::Outcome::granted);
+  std::vector<std::string> states;
+  // The node goes quiet once its first status reports have come.
+  target->runtime().call_at(target->runtime().now() + 400ms, [&] { target->go_silent(); });
+  EXPECT_EQ(control.hold(5s, [&](const std::string& s) { states.push_back(s); }), ocu::ControlHold::End::silent);
+  ASSERT_FALSE(states.empty());
+  EXPECT_EQ(states.front(), "Ready");
+}
+
+TEST_F(ControlTest, AnInterruptReleases) {
+  auto ocu = open_ocu();
+  ASSERT_TRUE(ocu);
+  // What SIGINT does: interrupt the session while it holds control.
+  target->runtime().call_at(target->runtime().now() + 500ms, [&] { ocu->interrupt(); });
+  ocu::ControlOptions options;
+  options.target = kCommunicator;
+  options.authority = 7;
+  ASSERT_EQ(ocu::run_control(*ocu, options, io()), kExitOk) << err.str();
+  EXPECT_EQ(out_lines().size(), 3u) << out.str();
+  ASSERT_TRUE(run_until([&] { return !controller(); }));
+}
+
+TEST_F(ControlTest, AHigherAuthorityTakeoverIsReportedAsLost) {
+  auto a = open_ocu();
+  auto b = open_ocu(kOcuB);
+  ASSERT_TRUE(a && b);
+  // B asks for control with a higher authority while A holds it.
+  target->runtime().call_at(target->runtime().now() + 400ms,
+                            [&] { b->send(kCommunicator, jaus::msg::RequestComponentControl{{10}}); });
+  ocu::ControlOptions options;
+  options.target = kCommunicator;
+  options.authority = 5;
+  options.hold_for = 3s;
+  EXPECT_EQ(ocu::run_control(*a, options, io()), kExitFailure);
+  EXPECT_EQ(out.str(), "control of 1.1.35.1 granted (authority 5)\n1.1.35.1: state Ready\n");
+  const std::string e = err.str();
+  EXPECT_EQ(e.rfind("jausctl control: control of 1.1.35.1 lost after ", 0), 0u) << e;
+  EXPECT_NE(e.find(": Reject Component Control received; taken over by 254.2.40.1 (authority 10)\n"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(controller(), kOcuB);
+}
+
+TEST_F(ControlTest, ALowerAuthorityIsRefusedWithTheResponseCode) {
+  auto a = open_ocu();
+  auto b = open_ocu(kOcuB);
+  ASSERT_TRUE(a && b);
+  ocu::ControlHold held(*a, kCommunicator, 10);
+  ASSERT_EQ(held.request(1s).outcome, ocu::ControlHold::Outcome::granted);
+
+  ocu::ControlOptions options;
+  options.target = kCommunicator;
+  options.authority = 5;
+  options.hold_for = 1s;
+  EXPECT_EQ(ocu::run_control(*b, options, io()), kExitFailure);
+  EXPECT_EQ(err.str(), "jausctl control: control of 1.1.35.1 refused: not available (response 2)\n");
+  EXPECT_EQ(out.str(), "");
+  EXPECT_EQ(controller(), a->self());
+}
+
+TEST_F(ControlTest, ARejectAsTheAnswerIsARefusal) {
+  start_target(TargetOptions{300ms, true});
+  auto a = open_ocu();
+  auto b = open_ocu(kOcuB);
+  ASSERT_TRUE(a && b);
+  ocu::ControlHold held(*a, kCommunicator, 10);
+  ASSERT_EQ(held.request(1s).outcome, ocu::ControlHold::Outcome::granted);
+  ocu::ControlHold refused(*b, kCommunicator, 5);
+  const auto result = refused.request(1s);
+  EXPECT_EQ(result.outcome, ocu::ControlHold::Outcome::rejected);
+  EXPECT_EQ(result.text, "control of 1.1.35.1 refused (Reject Component Control)");
+}
+
+TEST_F(ControlTest, NoReplyTimesOut) {
+  auto ocu = open_ocu();
+  ASSERT_TRUE(ocu);
+  ocu::ControlOptions options;
+  options.target = kNobody;
+  options.authority = 5;
+  options.timeout = 300ms;
+  EXPECT_EQ(ocu::run_control(*ocu, options, io()), kExitFailure);
+  EXPECT_EQ(err.str(), "jausctl control: no reply from 1.1.42.1 within 0.3 s\n");
+}
+
+}  // namespace
+}  // namespace jausctl::test

@@ -1,0 +1,255 @@
+// The built jausctl binary: bad input exits 2 with one line, silence exits 1
+// with the timeout line, and the OCU commands work end to end against a node
+// running on a thread of this process (SIGINT releases control).
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <gtest/gtest.h>
+
+#include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <boost/asio/post.hpp>
+#include <csignal>
+#include <cstdlib>
+#include <fcntl.h>
+#include <fstream>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <sstream>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "target_node.hpp"
+
+extern char** environ;
+
+namespace jausctl::test {
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// jausctl as a child process; stdout and stderr go to files (no pipe to keep drained).
+class Jausctl {
+ public:
+  explicit Jausctl(const std::vector<std::string>& args, const std::string& stdin_text = "") {
+    char dir_template[] = "/tmp/jausctl_cli_XXXXXX";
+    dir_ = mkdtemp(dir_template);
+    { std::ofstream(dir_ + "/in") << stdin_text; }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, (dir_ + "/in").c_str(), O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, (dir_ + "/out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_addopen(&actions, 2, (dir_ + "/err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    std::vector<std::string> all{JAUSCTL_PATH};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    if (posix_spawn(&pid_, JAUSCTL_PATH, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  ~Jausctl() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    std::system(("rm -rf " + dir_).c_str());
+  }
+
+  bool started() const { return pid_ > 0; }
+  std::string out() const { return read_file(dir_ + "/out"); }
+  // Waits (up to 5 s) until stdout holds `text`.
+  bool wait_for_output(const std::string& text) const {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (out().find(text) == std::string::npos) {
+      if (std::chrono::steady_clock::now() > deadline) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return true;
+  }
+  void signal(int sig) const { kill(pid_, sig); }
+  Result finish() {
+    Result r;
+    int status = 0;
+    if (waitpid(pid_, &status, 0) == pid_ && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+    pid_ = -1;
+    r.out = out();
+    r.err = read_file(dir_ + "/err");
+    return r;
+  }
+
+ private:
+  std::string dir_;
+  pid_t pid_ = -1;
+};
+
+Result run(const std::vector<std::string>& args, const std::string& stdin_text = "") {
+  Jausctl child(args, stdin_text);
+  EXPECT_TRUE(child.started());
+  return child.finish();
+}
+
+std::size_t line_count(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+
+// A UDP socket that receives and never answers: a port where a node "is" but is silent.
+struct SilentPeer {
+  boost::asio::io_context io;
+  boost::asio::ip::udp::socket socket{io, boost::asio::ip::udp::endpoint(boost::asio::ip::make_address_v4("127.0.0.1"), 0)};
+  std::string endpoint() const { return "127.0.0.1:" + std::to_string(socket.local_endpoint().port()); }
+};
+
+struct BadInput {
+  std::vector<std::string> args;
+  std::string error;  // the whole stderr line
+};
+
+class JausctlBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(JausctlBadInput, ExitsTwoWithOneLineNamingTheProblem) {
+  const auto r = run(GetParam().args);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, GetParam().error + "\n");
+  EXPECT_EQ(r.out, "");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, JausctlBadInput,
+    ::testing::Values(
+        BadInput{{"status", "1.1.x.1"},
+                 "jausctl status: bad address '1.1.x.1': expected S.N.C.I (subsystem.node.component.instance)"},
+        BadInput{{"status", "1.1.0.1"}, "jausctl status: bad address '1.1.0.1': 0 is not a valid ID at any level"},
+        BadInput{{"query", "1.1.35.1", "0x1234"},
+                 "jausctl query: unknown message code 0x1234 (jausctl msg list shows every code)"},
+        BadInput{{"query", "1.1.35.1", "0x2002", "--pv", "1"},
+                 "jausctl query: Query Component Status (0x2002) has no presence vector (--pv)"},
+        BadInput{{"query", "1.1.35.1", "0x2402", "--pv", "zz"},
+                 "jausctl query: --pv: bad presence vector 'zz': expected hex such as 0x1F (at most 32 bits)"},
+        BadInput{{"send", "1.1.35.1", "{\"code\":"}, "jausctl send: the message is not valid JSON"},
+        BadInput{{"send", "1.1.35.1", "{\"code\":\"0x0006\",\"fields\":{\"emergency_code\":\"stop\"}}"},
+                 "jausctl send: bad JSON: 'emergency_code': expected an integer"},
+        BadInput{{"send", "1.1.35.1", "{\"code\":\"0x1234\"}"}, "jausctl send: offset 0, field 'code': unknown command code (0x1234)"},
+        BadInput{{"control", "1.1.35.1", "--authority", "256"},
+                 "jausctl control: --authority: bad value '256': expected 0..255"},
+        BadInput{{"control", "1.1.255.1", "--authority", "5"},
+                 "jausctl control: bad address '1.1.255.1': 255 (broadcast) is not allowed here"},
+        BadInput{{"subscribe", "1.1.35.1", "0x2002", "--rate", "5"},
+                 "jausctl subscribe: 0x2002 is a query: subscribe takes the report's code (0x4002)"},
+        BadInput{{"subscribe", "1.1.35.1", "0x4002", "--rate", "-3"},
+                 "jausctl subscribe: --rate: bad rate '-3': expected Hz, more than 0 and at most 1092"},
+        BadInput{{"emergency", "1.1.35.1", "maybe"}, "jausctl emergency: bad action 'maybe': expected set or clear"},
+        BadInput{{"status", "1.1.35.1", "--to", "localhost"},
+                 "jausctl status: --to: bad endpoint 'localhost': expected an IPv4 address a.b.c.d[:port]"},
+        BadInput{{"status", "1.1.35.1", "--timeout", "0"},
+                 "jausctl status: --timeout: bad duration '0': expected seconds, more than 0 and at most 86400"},
+        BadInput{{"status", "1.1.35.1", "--as", "254.1.1.1"},
+                 "jausctl status: --as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"},
+        BadInput{{"status", "1.1.35.1", "--framing", "udp"},
+                 "jausctl status: --framing: bad framing 'udp': expected opc or judp"},
+        BadInput{{"control", "1.1.35.1"}, "jausctl: --authority is required (--help for usage)"}));
+
+TEST(JausctlCli, SilenceExitsOneWithTheTimeoutLine) {
+  SilentPeer peer;
+  const auto r = run({"status", "1.1.33.1", "--to", peer.endpoint(), "--timeout", "0.3"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "jausctl status: no reply from 1.1.33.1 within 0.3 s\n");
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(JausctlCli, ABusyBindPortIsOneLine) {
+  SilentPeer busy;
+  const auto r = run({"status", "1.1.35.1", "--bind", busy.endpoint(), "--timeout", "0.3"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "jausctl status: " + busy.endpoint() + " is already in use\n");
+}
+
+// A target node on its own thread, for the binary to talk to.
+class JausctlEndToEnd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    target = std::make_unique<TargetNode>(context, TargetOptions{300ms, false});
+    thread = std::thread([this] { context.run(); });
+  }
+  void TearDown() override {
+    work.reset();
+    context.stop();
+    thread.join();
+    target.reset();
+  }
+  std::string to() const { return "127.0.0.1:" + std::to_string(target->endpoint().port); }
+  // Reads the target's state on its own thread.
+  template <class F>
+  auto on_target(F f) {
+    std::packaged_task<decltype(f())()> task(f);
+    auto result = task.get_future();
+    boost::asio::post(context, [&task] { task(); });
+    return result.get();
+  }
+  bool eventually(const std::function<bool()>& condition) {
+    const auto deadline = std::chrono::steady_clock::now() + 2s;
+    while (!on_target(condition)) {
+      if (std::chrono::steady_clock::now() > deadline) return false;
+      std::this_thread::sleep_for(10ms);
+    }
+    return true;
+  }
+
+  boost::asio::io_context context;
+  std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> work{context.get_executor()};
+  std::unique_ptr<TargetNode> target;
+  std::thread thread;
+};
+
+TEST_F(JausctlEndToEnd, Status) {
+  const auto r = run({"status", "1.1.35.1", "--to", to()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["primary_status"], "Ready");
+}
+
+TEST_F(JausctlEndToEnd, SendReadsStdinAndQueryPrintsTheReport) {
+  auto r = run({"send", "1.1.35.1", "-", "--to", to(), "--timeout", "0.2"},
+               R"({"code":"0x0006","fields":{"emergency_code":1}})");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(eventually([&] { return target->communicator().state() == jaus::msg::PrimaryStatus::emergency; }));
+  r = run({"query", "1.1.35.1", "Query Component Status", "--to", to()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["fields"]["primary_status"], 5);
+  r = run({"emergency", "1.1.35.1", "clear", "--to", to()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "1.1.35.1: emergency cleared (state Ready)\n");
+}
+
+TEST_F(JausctlEndToEnd, SubscribeCountsReportsAndTerminates) {
+  const auto r = run({"subscribe", "1.1.38.1", "0x4402", "--rate", "10", "--count", "3", "--to", to()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(line_count(r.out), 3u);
+  EXPECT_TRUE(eventually([&] { return target->pose_sensor().service_connections().active() == 0; }));
+}
+
+TEST_F(JausctlEndToEnd, ControlHeldUntilSigintThenReleased) {
+  Jausctl control({"control", "1.1.35.1", "--authority", "9", "--to", to()});
+  ASSERT_TRUE(control.wait_for_output("granted"));
+  // Held past the 300 ms controller timeout: the liveness checks are answered.
+  std::this_thread::sleep_for(1s);
+  EXPECT_TRUE(on_target([&] { return target->communicator().control().controller().has_value(); }));
+  control.signal(SIGINT);
+  const auto r = control.finish();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("control of 1.1.35.1 released after "), std::string::npos) << r.out;
+  EXPECT_TRUE(eventually([&] { return !target->communicator().control().controller().has_value(); }));
+}
+
+}  // namespace
+}  // namespace jausctl::test
