@@ -13,28 +13,18 @@ rt::Duration seconds(double s) {
   return std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(s));
 }
 
-transport::Ipv4Endpoint endpoint_of(const Endpoint& e) {
-  // The configuration accepted only dotted IPv4 addresses.
-  return transport::Ipv4Endpoint{transport::parse_ipv4(e.host).value_or(0), e.port};
-}
-
-transport::Framing framing_of(Framing f) {
-  return f == Framing::judp ? transport::Framing::judp : transport::Framing::opc;
-}
-
 }  // namespace
 
 transport::UdpLinkOptions link_options(const JausdConfig& config) {
   transport::UdpLinkOptions o;
   o.subsystem = config.subsystem;
   o.node = config.node;
-  o.bind = endpoint_of(config.transport.bind);
-  o.framing = framing_of(config.transport.framing);
-  if (config.transport.multicast) o.multicast = endpoint_of(*config.transport.multicast);
+  o.bind = config.transport.bind;
+  o.framing = config.transport.framing;
+  o.multicast = config.transport.multicast;
   o.broadcast_to_peers = config.transport.broadcast_to_peers;
-  for (const auto& peer : config.transport.peers)
-    o.peers.push_back(transport::StaticPeer{endpoint_of(peer.endpoint), framing_of(peer.framing)});
-  for (const auto& cidr : config.transport.allow) o.allow.push_back(transport::Cidr{cidr.network, cidr.prefix_length});
+  o.peers = config.transport.peers;
+  o.allow = config.transport.allow;
   o.routes.max_entries = config.transport.max_peers;
   return o;
 }

@@ -17,6 +17,11 @@
 
 namespace jausd {
 
+using jaus::transport::Cidr;
+using jaus::transport::Framing;
+using jaus::transport::Ipv4Endpoint;
+using jaus::transport::StaticPeer;
+
 // ---------------------------------------------------------------- registry
 
 namespace {
@@ -147,100 +152,9 @@ std::string identification_problem(std::string_view key, std::string_view text) 
   return {};
 }
 
-bool is_multicast(std::uint32_t ip) { return (ip >> 28) == 0xE; }  // 224.0.0.0/4
-
 }  // namespace
 
-// ---------------------------------------------------------------- addresses
-
-std::string_view to_string(Framing framing) { return framing == Framing::judp ? "judp" : "opc"; }
-
-std::optional<std::uint32_t> parse_ipv4(std::string_view text) {
-  std::uint32_t ip = 0;
-  int octets = 0;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t end = std::min(text.find('.', pos), text.size());
-    const std::string_view part = text.substr(pos, end - pos);
-    if (part.empty() || part.size() > 3 || (part.size() > 1 && part.front() == '0')) return std::nullopt;
-    if (!std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
-    unsigned value = 0;
-    std::from_chars(part.data(), part.data() + part.size(), value);
-    if (value > 255 || ++octets > 4) return std::nullopt;
-    ip = (ip << 8) | value;
-    if (end == text.size()) break;
-    pos = end + 1;
-  }
-  if (octets != 4) return std::nullopt;
-  return ip;
-}
-
-namespace {
-
-std::string ipv4_text(std::uint32_t ip) {
-  return std::to_string(ip >> 24) + "." + std::to_string((ip >> 16) & 0xFF) + "." + std::to_string((ip >> 8) & 0xFF) +
-         "." + std::to_string(ip & 0xFF);
-}
-
-std::string not_ipv4(std::string_view host) {
-  return in_quotes(host) + " is not an IPv4 address a.b.c.d (host names are not resolved)";
-}
-
-}  // namespace
-
-std::string Endpoint::to_string() const { return host + ":" + std::to_string(port); }
-
-std::string Cidr::to_string() const { return ipv4_text(network) + "/" + std::to_string(prefix_length); }
-
-jaus::Expected<Endpoint, std::string> parse_endpoint(std::string_view text) {
-  if (text.empty()) return jaus::unexpected(std::string("empty address (expected a.b.c.d[:port])"));
-  const std::size_t colon = text.find(':');
-  const std::string_view host = text.substr(0, colon);
-  if (!parse_ipv4(host)) return jaus::unexpected(not_ipv4(colon == std::string_view::npos ? text : host));
-  Endpoint endpoint{std::string(host), kJausPort};
-  if (colon != std::string_view::npos) {
-    const std::string_view port = text.substr(colon + 1);
-    const bool digits = !port.empty() && port.size() <= 5 &&
-                        std::all_of(port.begin(), port.end(), [](char c) { return c >= '0' && c <= '9'; });
-    unsigned value = 0;
-    if (digits) std::from_chars(port.data(), port.data() + port.size(), value);
-    if (!digits || value < 1 || value > 65535)
-      return jaus::unexpected("port " + in_quotes(port) + " of " + in_quotes(text) + " must be 1..65535");
-    endpoint.port = static_cast<std::uint16_t>(value);
-  }
-  return endpoint;
-}
-
-jaus::Expected<Cidr, std::string> parse_cidr(std::string_view text) {
-  if (text.empty()) return jaus::unexpected(std::string("empty network (expected a.b.c.d/prefix)"));
-  const std::size_t slash = text.find('/');
-  const std::string_view host = text.substr(0, slash);
-  const auto ip = parse_ipv4(host);
-  if (!ip) return jaus::unexpected(not_ipv4(host));
-  Cidr cidr{*ip, 32};
-  if (slash != std::string_view::npos) {
-    const std::string_view prefix = text.substr(slash + 1);
-    const bool digits = !prefix.empty() && prefix.size() <= 2 &&
-                        std::all_of(prefix.begin(), prefix.end(), [](char c) { return c >= '0' && c <= '9'; });
-    unsigned value = 0;
-    if (digits) std::from_chars(prefix.data(), prefix.data() + prefix.size(), value);
-    if (!digits || value > 32)
-      return jaus::unexpected("prefix length " + in_quotes(prefix) + " of " + in_quotes(text) + " must be 0..32");
-    cidr.prefix_length = static_cast<std::uint8_t>(value);
-  }
-  const std::uint32_t mask = cidr.prefix_length == 0 ? 0 : ~std::uint32_t{0} << (32 - cidr.prefix_length);
-  if ((cidr.network & mask) != cidr.network)
-    return jaus::unexpected(in_quotes(text) + " has host bits set below the prefix (the network is " +
-                            ipv4_text(cidr.network & mask) + "/" + std::to_string(cidr.prefix_length) + ")");
-  return cidr;
-}
-
-bool cidr_contains(const Cidr& cidr, std::uint32_t ipv4_host_order) {
-  if (cidr.prefix_length == 0) return true;
-  const std::uint8_t prefix = std::min<std::uint8_t>(cidr.prefix_length, 32);
-  const std::uint32_t mask = ~std::uint32_t{0} << (32 - prefix);
-  return (ipv4_host_order & mask) == (cidr.network & mask);
-}
+// ---------------------------------------------------------------- errors
 
 std::string ConfigError::to_string() const {
   return line > 0 ? file + ":" + std::to_string(line) + ": " + what : file + ": " + what;
@@ -310,14 +224,13 @@ std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& l
 }
 
 std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines& lines) {
-  const auto bind_ip = parse_ipv4(t.bind.host);
-  if (!bind_ip) return Issue{0, "'bind': " + not_ipv4(t.bind.host)};
+  using jaus::transport::ipv4_to_string;
+  using jaus::transport::to_string;
   if (t.bind.port == 0) return Issue{0, "'bind' port must be 1..65535, got 0"};
   if (t.multicast) {
-    const auto ip = parse_ipv4(t.multicast->host);
-    if (!ip) return Issue{0, "'multicast': " + not_ipv4(t.multicast->host)};
-    if (!is_multicast(*ip))
-      return Issue{0, "'multicast' must be a group 224.0.0.0..239.255.255.255, got " + in_quotes(t.multicast->host)};
+    if (!t.multicast->is_multicast())
+      return Issue{0, "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
+                          in_quotes(ipv4_to_string(t.multicast->address))};
     if (t.multicast->port == 0) return Issue{0, "'multicast' port must be 1..65535, got 0"};
   }
   if (t.max_peers < 1 || t.max_peers > kMaxPeersLimit)
@@ -325,22 +238,21 @@ std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines
   for (const auto& cidr : t.allow)
     if (cidr.prefix_length > 32) return Issue{0, "'allow' prefix length must be 0..32, got " +
                                                      std::to_string(cidr.prefix_length)};
-  std::map<std::string, int> seen;  // "host:port" -> line
+  std::map<Ipv4Endpoint, int> seen;  // peer -> line
   for (std::size_t i = 0; i < t.peers.size(); ++i) {
-    const Endpoint& peer = t.peers[i].endpoint;
+    const Ipv4Endpoint& peer = t.peers[i].endpoint;
     const int line = line_at(lines.peers, i);
-    const auto ip = parse_ipv4(peer.host);
-    if (!ip) return Issue{line, "'address': " + not_ipv4(peer.host)};
-    if (*ip == 0 || is_multicast(*ip))
-      return Issue{line, "peer 'address' must be a unicast IPv4 address, got " + in_quotes(peer.host) +
-                             (*ip == 0 ? "" : " (multicast groups go in transport.multicast)")};
+    if (peer.is_any() || peer.is_multicast())
+      return Issue{line, "peer 'address' must be a unicast IPv4 address, got " +
+                             in_quotes(ipv4_to_string(peer.address)) +
+                             (peer.is_any() ? "" : " (multicast groups go in transport.multicast)")};
     if (peer.port == 0) return Issue{line, "peer 'address' port must be 1..65535, got 0"};
-    if (peer == t.bind) return Issue{line, "peer " + peer.to_string() + " is this node's own bind address"};
+    if (peer == t.bind) return Issue{line, "peer " + to_string(peer) + " is this node's own bind address"};
     if (!t.allow.empty() &&
-        std::none_of(t.allow.begin(), t.allow.end(), [&](const Cidr& cidr) { return cidr_contains(cidr, *ip); }))
-      return Issue{line, "peer " + peer.to_string() + " is not in 'allow': its datagrams would be dropped"};
-    const auto [it, inserted] = seen.emplace(peer.to_string(), line);
-    if (!inserted) return Issue{line, "duplicate peer " + peer.to_string() + first_at(it->second)};
+        std::none_of(t.allow.begin(), t.allow.end(), [&](const Cidr& cidr) { return cidr.contains(peer.address); }))
+      return Issue{line, "peer " + to_string(peer) + " is not in 'allow': its datagrams would be dropped"};
+    const auto [it, inserted] = seen.emplace(peer, line);
+    if (!inserted) return Issue{line, "duplicate peer " + to_string(peer) + first_at(it->second)};
   }
   return std::nullopt;
 }
@@ -508,8 +420,8 @@ std::string choice(const Entry& e, auto const& choices) {
 
 Framing framing(const Entry& e) { return choice(e, kFramings) == "judp" ? Framing::judp : Framing::opc; }
 
-Endpoint endpoint(const Entry& e) {
-  auto parsed = parse_endpoint(e.scalar("an IPv4 address a.b.c.d[:port]"));
+Ipv4Endpoint endpoint(const Entry& e) {
+  auto parsed = jaus::transport::parse_endpoint(e.scalar("an IPv4 address a.b.c.d[:port]"));
   if (!parsed) fail(e.value_line(), "'" + e.key + "': " + parsed.error());
   return *parsed;
 }
@@ -517,7 +429,7 @@ Endpoint endpoint(const Entry& e) {
 // One entry of transport.peers: {address: a.b.c.d[:port], framing: opc|judp},
 // or just the address. The framing defaults to transport.framing, read later.
 struct PeerEntry {
-  Endpoint endpoint;
+  Ipv4Endpoint endpoint;
   std::optional<Framing> framing;
   int line;
 };
@@ -646,9 +558,9 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                 [&](const Entry& e) {
                   if (e.is_null()) t.multicast.reset();
                   else t.multicast = endpoint(e);
-                  if (t.multicast && !is_multicast(*parse_ipv4(t.multicast->host)))
+                  if (t.multicast && !t.multicast->is_multicast())
                     fail(e.value_line(), "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
-                                             in_quotes(t.multicast->host));
+                                             in_quotes(jaus::transport::ipv4_to_string(t.multicast->address)));
                 }},
                {"broadcast_to_peers", [&](const Entry& e) { t.broadcast_to_peers = boolean(e); }},
                {"peers",
@@ -660,7 +572,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                   for (const auto& item : read_list(e)) {
                     if (!item.IsScalar())
                       fail(line_of(item), "'allow' entries must be a.b.c.d/prefix, got " + describe(item));
-                    auto cidr = parse_cidr(item.Scalar());
+                    auto cidr = jaus::transport::parse_cidr(item.Scalar());
                     if (!cidr) fail(line_of(item), "'allow': " + cidr.error());
                     t.allow.push_back(*cidr);
                   }

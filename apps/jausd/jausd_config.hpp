@@ -15,46 +15,22 @@
 #include <vector>
 
 #include "jaus/core/expected.hpp"
+#include "jaus/transport/ipv4.hpp"
+#include "jaus/transport/peer.hpp"
 
 namespace jausd {
 
-inline constexpr std::uint16_t kJausPort = 3794;
-
-// A dotted IPv4 address with a port: "127.0.0.2:3794" ("127.0.0.2" = port 3794).
-struct Endpoint {
-  std::string host;  // dotted IPv4 in canonical form (no host names)
-  std::uint16_t port = kJausPort;
-  bool operator==(const Endpoint&) const = default;
-  std::string to_string() const;  // "host:port"
-};
-
-// An IPv4 network: "10.0.0.0/8"; a plain address is a /32.
-struct Cidr {
-  std::uint32_t network = 0;  // host byte order, host bits cleared
-  std::uint8_t prefix_length = 32;
-  bool operator==(const Cidr&) const = default;
-  std::string to_string() const;  // "10.0.0.0/8"
-};
-
-// Datagram framing (../shared/spec/jaus-wire-notes.md): OPC puts "JAUS01.0"
-// before the message, JUDP the AS5669 transport header.
-enum class Framing { opc, judp };
-std::string_view to_string(Framing framing);
-
-struct StaticPeer {
-  Endpoint endpoint;
-  Framing framing = Framing::opc;
-  bool operator==(const StaticPeer&) const = default;
-};
-
+// Addresses, networks, framings and peers are the transport's own values
+// (jaus/transport/ipv4.hpp, peer.hpp), read with jaus::transport::parse_endpoint
+// and parse_cidr, so UdpLinkOptions takes them as they are.
 struct TransportConfig {
-  Endpoint bind{"0.0.0.0", kJausPort};
-  Framing framing = Framing::opc;         // for peers not heard from yet
-  std::optional<Endpoint> multicast;      // e.g. 224.1.0.1:3794; absent = no multicast
-  bool broadcast_to_peers = true;         // broadcasts also go to every known peer
-  std::vector<StaticPeer> peers;          // known from the start (no discovery needed)
-  std::vector<Cidr> allow;                // sources that may talk to the node; empty = everyone
-  std::size_t max_peers = 256;            // peers learnt from traffic remembered at once (static ones come on top)
+  jaus::transport::Ipv4Endpoint bind{0, jaus::transport::kJausPort};  // 0.0.0.0:3794
+  jaus::transport::Framing framing = jaus::transport::Framing::opc;   // for peers not heard from yet
+  std::optional<jaus::transport::Ipv4Endpoint> multicast;  // e.g. 224.1.0.1:3794; absent = no multicast
+  bool broadcast_to_peers = true;                  // broadcasts also go to every known peer
+  std::vector<jaus::transport::StaticPeer> peers;  // known from the start (no discovery needed)
+  std::vector<jaus::transport::Cidr> allow;        // sources that may talk to the node; empty = everyone
+  std::size_t max_peers = 256;  // peers learnt from traffic remembered at once (static ones come on top)
 };
 
 struct ComponentSpec {
@@ -116,16 +92,6 @@ using ConfigResult = jaus::Expected<JausdConfig, ConfigError>;
 ConfigResult load_config_file(const std::string& path);
 // The same for text in memory; `name` stands for the file in errors.
 ConfigResult load_config_string(std::string_view yaml, std::string_view name);
-
-// "a.b.c.d[:port]", port 1..65535, 3794 when absent. Host names are refused.
-// The error names the value and what is wrong with it.
-jaus::Expected<Endpoint, std::string> parse_endpoint(std::string_view text);
-// "a.b.c.d/prefix" (prefix 0..32) or "a.b.c.d" (/32). Host bits set below
-// the prefix ("10.1.2.3/8") are an error that names the network meant.
-jaus::Expected<Cidr, std::string> parse_cidr(std::string_view text);
-// Dotted IPv4 -> host byte order. Four decimal octets 0..255, no leading zeros.
-std::optional<std::uint32_t> parse_ipv4(std::string_view text);
-bool cidr_contains(const Cidr& cidr, std::uint32_t ipv4_host_order);
 
 // Every range and cross-field rule on the values (a loaded file passes; run
 // it again after command-line overrides). The first problem, or nothing.

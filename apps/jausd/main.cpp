@@ -31,7 +31,7 @@ struct CommandLine {
 // The command line wins over the file; the result is checked again.
 std::optional<std::string> apply_overrides(jausd::JausdConfig& config, const CommandLine& cl) {
   if (!cl.bind.empty()) {
-    auto endpoint = jausd::parse_endpoint(cl.bind);
+    auto endpoint = jaus::transport::parse_endpoint(cl.bind);
     if (!endpoint) return "--bind: " + endpoint.error();
     config.transport.bind = *endpoint;
   }
@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
   }
   if (cl.check_config) {
     std::cout << source << ": ok (subsystem " << int{config.subsystem} << ", node " << int{config.node} << ", "
-              << config.components.size() << " components, bind " << config.transport.bind.to_string() << ")\n";
+              << config.components.size() << " components, bind " << jaus::transport::to_string(config.transport.bind)
+              << ")\n";
     return kExitOk;
   }
 

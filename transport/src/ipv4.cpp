@@ -1,22 +1,45 @@
 #include "jaus/transport/ipv4.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 namespace jaus::transport {
 
 namespace {
 
-// A decimal number with no sign, no leading '+', no spaces, within [0, max].
-std::optional<std::uint32_t> parse_decimal(std::string_view text, std::uint32_t max) {
-  if (text.empty() || text.size() > 10) return std::nullopt;
+bool all_digits(std::string_view text) {
+  return std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// Decimal digits only (no sign, no spaces), at most `max_digits` of them.
+std::optional<std::uint32_t> parse_digits(std::string_view text, std::size_t max_digits) {
+  if (text.empty() || text.size() > max_digits || !all_digits(text)) return std::nullopt;
   std::uint32_t value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size() || value > max) return std::nullopt;
+  std::from_chars(text.data(), text.data() + text.size(), value);
   return value;
 }
 
 std::uint32_t mask_of(std::uint8_t prefix_length) {
-  return prefix_length == 0 ? 0 : ~std::uint32_t{0} << (32 - prefix_length);
+  return prefix_length == 0 ? 0 : ~std::uint32_t{0} << (32 - std::min<std::uint8_t>(prefix_length, 32));
+}
+
+// A value for an error message: quoted, on one line, not too long.
+std::string in_quotes(std::string_view text) {
+  constexpr std::size_t kMax = 60;
+  std::string out = "'";
+  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7F) out += '?';
+    else out += static_cast<char>(c);
+  }
+  if (text.size() > kMax) out += "...";
+  return out + "'";
+}
+
+std::string not_ipv4(std::string_view host) {
+  return in_quotes(host) + " is not an IPv4 address a.b.c.d (host names are not resolved)";
 }
 
 }  // namespace
@@ -32,47 +55,59 @@ std::optional<std::uint32_t> parse_ipv4(std::string_view text) {
   std::uint32_t address = 0;
   for (int octet = 0; octet < 4; ++octet) {
     const std::size_t dot = octet < 3 ? text.find('.') : text.size();
-    if (dot == std::string_view::npos) return std::nullopt;
-    const auto value = parse_decimal(text.substr(0, dot), 255);
-    if (!value) return std::nullopt;
+    if (dot == std::string_view::npos) return std::nullopt;  // fewer than four octets
+    const std::string_view part = text.substr(0, dot);
+    if (part.size() > 1 && part.front() == '0') return std::nullopt;  // leading zero: octal to some parsers
+    const auto value = parse_digits(part, 3);
+    if (!value || *value > 255) return std::nullopt;  // also a fifth octet: '.' is not a digit
     address = (address << 8) | *value;
     text = octet < 3 ? text.substr(dot + 1) : std::string_view{};
   }
   return address;
 }
 
-std::optional<Ipv4Endpoint> parse_endpoint(std::string_view text, std::uint16_t default_port) {
-  Ipv4Endpoint endpoint;
-  endpoint.port = default_port;
+Expected<Ipv4Endpoint, std::string> parse_endpoint(std::string_view text, std::uint16_t default_port) {
+  if (text.empty()) return unexpected(std::string("empty address (expected a.b.c.d[:port])"));
   const std::size_t colon = text.find(':');
+  const std::string_view host = text.substr(0, colon);
+  const auto address = parse_ipv4(host);
+  if (!address) return unexpected(not_ipv4(host));
+  Ipv4Endpoint endpoint{*address, default_port};
   if (colon != std::string_view::npos) {
-    const auto port = parse_decimal(text.substr(colon + 1), 65535);
-    if (!port || *port == 0) return std::nullopt;
-    endpoint.port = static_cast<std::uint16_t>(*port);
-    text = text.substr(0, colon);
+    const std::string_view port = text.substr(colon + 1);
+    const auto value = parse_digits(port, 5);
+    if (!value || *value < 1 || *value > 65535)
+      return unexpected("port " + in_quotes(port) + " of " + in_quotes(text) + " must be 1..65535");
+    endpoint.port = static_cast<std::uint16_t>(*value);
   }
-  const auto address = parse_ipv4(text);
-  if (!address) return std::nullopt;
-  endpoint.address = *address;
   return endpoint;
 }
 
-bool Cidr::contains(std::uint32_t address) const { return (address & mask_of(prefix_length)) == network; }
+bool Cidr::contains(std::uint32_t address) const {
+  const std::uint32_t mask = mask_of(prefix_length);
+  return (address & mask) == (network & mask);
+}
 
 std::string to_string(const Cidr& c) { return ipv4_to_string(c.network) + "/" + std::to_string(c.prefix_length); }
 
-std::optional<Cidr> parse_cidr(std::string_view text) {
-  Cidr cidr;
+Expected<Cidr, std::string> parse_cidr(std::string_view text) {
+  if (text.empty()) return unexpected(std::string("empty network (expected a.b.c.d/prefix)"));
   const std::size_t slash = text.find('/');
+  const std::string_view host = text.substr(0, slash);
+  const auto address = parse_ipv4(host);
+  if (!address) return unexpected(not_ipv4(host));
+  Cidr cidr{*address, 32};
   if (slash != std::string_view::npos) {
-    const auto length = parse_decimal(text.substr(slash + 1), 32);
-    if (!length) return std::nullopt;
-    cidr.prefix_length = static_cast<std::uint8_t>(*length);
-    text = text.substr(0, slash);
+    const std::string_view prefix = text.substr(slash + 1);
+    const auto value = parse_digits(prefix, 2);
+    if (!value || *value > 32)
+      return unexpected("prefix length " + in_quotes(prefix) + " of " + in_quotes(text) + " must be 0..32");
+    cidr.prefix_length = static_cast<std::uint8_t>(*value);
   }
-  const auto address = parse_ipv4(text);
-  if (!address || (*address & ~mask_of(cidr.prefix_length)) != 0) return std::nullopt;
-  cidr.network = *address;
+  const std::uint32_t mask = mask_of(cidr.prefix_length);
+  if ((cidr.network & mask) != cidr.network)
+    return unexpected(in_quotes(text) + " has host bits set below the prefix (the network is " +
+                      to_string(Cidr{cidr.network & mask, cidr.prefix_length}) + ")");
   return cidr;
 }
 

@@ -25,14 +25,10 @@
 #include "jaus/runtime/environment.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
+#include "jaus/transport/peer.hpp"
 #include "jaus/transport/route_table.hpp"
 
 namespace jaus::transport {
-
-struct StaticPeer {
-  Ipv4Endpoint endpoint;
-  Framing framing = Framing::opc;
-};
 
 struct UdpLinkOptions {
   // This node: datagrams from it (its own multicast looped back) are dropped.
