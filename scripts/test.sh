@@ -34,7 +34,7 @@ if command -v clang++ >/dev/null; then
     name=$(basename "$target")
     corpus=$(mktemp -d)
     cp -r "$root/tests/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
-    if [ "$name" = fuzz_jaus_decode ]; then
+    if [ "$name" = fuzz_jaus_decode ] || [ "$name" = fuzz_node_receive ]; then
       # Seed with every JAUS vector, one file each.
       grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
         while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done

@@ -602,14 +602,63 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
 
 // ---------------------------------------------------------------- loading
 
+namespace {
+
+// What the text holds besides comments and blank lines: the first line with
+// content, and the line of a second document's separator, if any. Needed
+// because yaml-cpp 0.7's LoadAll never returns on some inputs (",1" loops
+// allocating), so documents are told apart here and only Load is used.
+struct TextShape {
+  int first_content_line = 0;   // 0: nothing but comments and blank lines
+  std::string first_content;
+  int second_document_line = 0;
+};
+
+TextShape shape_of(std::string_view text) {
+  TextShape shape;
+  int line = 0;
+  bool content_since_separator = false;
+  while (!text.empty()) {
+    ++line;
+    const std::size_t end = text.find('\n');
+    std::string_view l = text.substr(0, end);
+    text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
+    while (!l.empty() && (l.back() == '\r' || l.back() == ' ' || l.back() == '\t')) l.remove_suffix(1);
+    std::string_view trimmed = l;
+    while (!trimmed.empty() && (trimmed.front() == ' ' || trimmed.front() == '\t')) trimmed.remove_prefix(1);
+    if (trimmed.empty() || trimmed.front() == '#') continue;
+    const bool separator = l == "---" || l.starts_with("--- ") || l == "...";
+    if (separator) {
+      if (content_since_separator && shape.second_document_line == 0 && l != "...") shape.second_document_line = line;
+      continue;
+    }
+    if (shape.second_document_line != 0 && !content_since_separator) break;
+    content_since_separator = true;
+    if (shape.first_content_line == 0) {
+      shape.first_content_line = line;
+      shape.first_content = std::string(trimmed);
+    }
+  }
+  return shape;
+}
+
+}  // namespace
+
 ConfigResult load_config_string(std::string_view yaml, std::string_view name) {
   const std::string file(name);
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(std::string(yaml));
-    if (documents.size() > 1)
-      return jaus::unexpected(ConfigError{file, line_of(documents[1]), "a configuration holds one YAML document, "
-                                                                       "this is a second one"});
-    const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
+    const TextShape shape = shape_of(yaml);
+    if (shape.second_document_line != 0)
+      return jaus::unexpected(ConfigError{file, shape.second_document_line,
+                                          "a configuration holds one YAML document, this starts a second one"});
+    const YAML::Node root = YAML::Load(std::string(yaml));
+    // yaml-cpp reads some junk (",1") as an empty document: only an empty
+    // file, or an explicit null, means "all defaults".
+    const bool explicit_null = shape.first_content == "~" || shape.first_content == "null" ||
+                               shape.first_content == "Null" || shape.first_content == "NULL";
+    if ((!root.IsDefined() || root.IsNull()) && shape.first_content_line != 0 && !explicit_null)
+      return jaus::unexpected(ConfigError{file, shape.first_content_line,
+                                          "not a YAML mapping of settings: '" + shape.first_content.substr(0, 40) + "'"});
     SourceLines lines;
     JausdConfig config = read_config(root, lines);
     if (auto issue = check(config, lines)) return jaus::unexpected(ConfigError{file, issue->line, issue->what});

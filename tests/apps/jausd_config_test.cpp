@@ -295,8 +295,19 @@ TEST(JausdConfigErrors, YamlSyntaxErrorsNameTheLine) {
 }
 
 TEST(JausdConfigErrors, OneDocumentOnly) {
-  expect_error("heartbeat_hz: 1\n---\nheartbeat_hz: 2\n", 3,
-               "a configuration holds one YAML document, this is a second one");
+  expect_error("heartbeat_hz: 1\n---\nheartbeat_hz: 2\n", 2,
+               "a configuration holds one YAML document, this starts a second one");
+  // A leading separator, or an end marker, is still one document.
+  EXPECT_TRUE(jausd::load_config_string("---\nheartbeat_hz: 2\n...\n", "one.yaml"));
+}
+
+// yaml-cpp 0.7 reads some junk as an empty document (and its LoadAll never
+// returns on it): found by fuzz_jausd_config.
+TEST(JausdConfigErrors, JunkIsNotAnEmptyFile) {
+  expect_error(",1", 1, "not a YAML mapping of settings: ',1'");
+  expect_error("# a comment\n, ,\n", 2, "not a YAML mapping of settings: ', ,'");
+  EXPECT_TRUE(jausd::load_config_string("~\n", "null.yaml"));
+  EXPECT_TRUE(jausd::load_config_string("# nothing but comments\n\n", "comments.yaml"));
 }
 
 TEST(JausdConfigErrors, TheFileMustBeAMap) {
