@@ -23,7 +23,7 @@ using ocu::Parsed;
 
 // What every OCU command takes, as written on the command line.
 struct CommonOptions {
-  std::string to = "127.0.0.1:3794";
+  std::vector<std::string> to{"127.0.0.1:3794"};
   std::string bind = "0.0.0.0:0";
   std::string framing = "opc";
   std::string as = "254.1.40.1";
@@ -33,15 +33,16 @@ struct CommonOptions {
 };
 
 void add_common_options(CLI::App* cmd, CommonOptions& c) {
-  cmd->add_option("--to", c.to, "the node to talk to, HOST[:PORT] (a static peer)")->capture_default_str();
+  cmd->add_option("--to", c.to, "the node to talk to, HOST[:PORT] (a static peer; repeat for several nodes)")->type_name("HOST[:PORT]")
+      ->capture_default_str();
   cmd->add_option("--bind", c.bind,
-                  "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")
+                  "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")->type_name("ADDR[:PORT]")
       ->capture_default_str();
-  cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->capture_default_str();
-  cmd->add_option("--as", c.as, "this OCU's JAUS address S.N.C.I (its node manager is S.N.1.1)")
+  cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->type_name("opc|judp")->capture_default_str();
+  cmd->add_option("--as", c.as, "this OCU's JAUS address S.N.C.I (its node manager is S.N.1.1)")->type_name("S.N.C.I")
       ->capture_default_str();
-  cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->capture_default_str();
-  cmd->add_option("--dialect", c.dialect, "how payloads from the node are read: ra | openjaus")
+  cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->type_name("SECONDS")->capture_default_str();
+  cmd->add_option("--dialect", c.dialect, "how payloads from the node are read: ra | openjaus")->type_name("ra|openjaus")
       ->capture_default_str();
   cmd->add_flag("-v,--verbose", c.verbosity, "log the runtime: -v warnings, -vv info, -vvv debug");
 }
@@ -72,8 +73,12 @@ jaus::rt::LogFn stderr_log(int verbosity) {
 
 Parsed<Common> parse_common(const CommonOptions& c) {
   Common out;
-  auto to = ocu::parse_endpoint_text(c.to, jaus::transport::kJausPort, false);
-  if (!to) return jaus::unexpected("--to: " + to.error());
+  out.session.to.clear();
+  for (const auto& text : c.to) {
+    auto to = ocu::parse_endpoint_text(text, jaus::transport::kJausPort, false);
+    if (!to) return jaus::unexpected("--to: " + to.error());
+    out.session.to.push_back(*to);
+  }
   auto bind = ocu::parse_endpoint_text(c.bind, 0, true);
   if (!bind) return jaus::unexpected("--bind: " + bind.error());
   auto framing = ocu::parse_framing(c.framing);
@@ -86,7 +91,6 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   if (!timeout) return jaus::unexpected("--timeout: " + timeout.error());
   if (c.dialect != "ra" && c.dialect != "openjaus")
     return jaus::unexpected("--dialect: bad dialect '" + c.dialect + "': expected ra or openjaus");
-  out.session.to = *to;
   out.session.bind = *bind;
   out.session.framing = *framing;
   out.session.self = *self;
@@ -139,7 +143,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto wait = std::make_shared<std::string>("2");
   auto json = std::make_shared<bool>(false);
   auto* discover = app.add_subcommand("discover", "Find subsystems, nodes and components: identification and services");
-  discover->add_option("--wait", *wait, "seconds to listen and ask")->capture_default_str();
+  discover->add_option("--wait", *wait, "seconds to listen and ask")->type_name("SECONDS")->capture_default_str();
   discover->add_flag("--json", *json, "print JSON instead of a table");
   add_common_options(discover, *common);
   discover->callback([&exit_code, checked_common, wait, json] {
@@ -155,7 +159,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
 
   // status
   auto* status = app.add_subcommand("status", "Query Component Status of ADDR; prints JSON");
-  status->add_option("ADDR", *target, "component address S.N.C.I")->required();
+  status->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
   add_common_options(status, *common);
   status->callback([&exit_code, checked_common, target] {
     auto c = checked_common("status", exit_code);
@@ -170,10 +174,10 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   // query
   auto fields = std::make_shared<std::string>("{}");
   auto* query = app.add_subcommand("query", "Send the query CODE to ADDR; prints the report as JSON");
-  query->add_option("ADDR", *target, "component address S.N.C.I")->required();
-  query->add_option("CODE", *code, "query code (0x2402) or name (\"Query Global Pose\")")->required();
-  query->add_option("--pv", *pv, "presence vector of the query, hex (which fields the report should carry)");
-  query->add_option("--fields", *fields, "the query's other fields as JSON, e.g. '{\"camera_id\":1}' (default 0)");
+  query->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
+  query->add_option("CODE", *code, "query code (0x2402) or name (\"Query Global Pose\")")->type_name("CODE")->required();
+  query->add_option("--pv", *pv, "presence vector of the query, hex (which fields the report should carry)")->type_name("HEX");
+  query->add_option("--fields", *fields, "the query's other fields as JSON, e.g. '{\"camera_id\":1}' (default 0)")->type_name("JSON");
   add_common_options(query, *common);
   query->callback([&exit_code, checked_common, target, code, pv, fields] {
     auto c = checked_common("query", exit_code);
@@ -202,8 +206,8 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   // send
   auto message = std::make_shared<std::string>();
   auto* send = app.add_subcommand("send", "Send a message (JSON as `jausctl msg decode` prints it) to ADDR");
-  send->add_option("ADDR", *target, "component address S.N.C.I")->required();
-  send->add_option("JSON", *message, "the message; - reads it from stdin")->required();
+  send->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
+  send->add_option("JSON", *message, "the message; - reads it from stdin")->type_name("JSON")->required();
   add_common_options(send, *common);
   send->callback([&exit_code, checked_common, target, message] {
     auto c = checked_common("send", exit_code);
@@ -227,9 +231,9 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto hold_for = std::make_shared<std::string>();
   auto* control = app.add_subcommand(
       "control", "Take control of ADDR and hold it until Ctrl-C (or --for); release it on exit");
-  control->add_option("ADDR", *target, "component address S.N.C.I")->required();
-  control->add_option("--authority", *authority, "authority of the request, 0..255")->required();
-  control->add_option("--for", *hold_for, "release after this many seconds");
+  control->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
+  control->add_option("--authority", *authority, "authority of the request, 0..255")->type_name("N")->required();
+  control->add_option("--for", *hold_for, "release after this many seconds")->type_name("SECONDS");
   add_common_options(control, *common);
   control->callback([&exit_code, checked_common, target, authority, hold_for] {
     auto c = checked_common("control", exit_code);
@@ -259,12 +263,12 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto run_for = std::make_shared<std::string>();
   auto* subscribe = app.add_subcommand(
       "subscribe", "Service connection for report CODE from ADDR: one JSON line per report; rate on stderr");
-  subscribe->add_option("ADDR", *target, "component address S.N.C.I")->required();
-  subscribe->add_option("CODE", *code, "report code (0x4002) or name (\"Report Component Status\")")->required();
-  subscribe->add_option("--rate", *rate, "reports per second (up to 1092)")->required();
-  subscribe->add_option("--pv", *pv, "presence vector, hex (which fields each report carries)");
-  subscribe->add_option("--count", *count, "stop after this many reports");
-  subscribe->add_option("--for", *run_for, "stop after this many seconds");
+  subscribe->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
+  subscribe->add_option("CODE", *code, "report code (0x4002) or name (\"Report Component Status\")")->type_name("CODE")->required();
+  subscribe->add_option("--rate", *rate, "reports per second (up to 1092)")->type_name("HZ")->required();
+  subscribe->add_option("--pv", *pv, "presence vector, hex (which fields each report carries)")->type_name("HEX");
+  subscribe->add_option("--count", *count, "stop after this many reports")->type_name("N");
+  subscribe->add_option("--for", *run_for, "stop after this many seconds")->type_name("SECONDS");
   add_common_options(subscribe, *common);
   subscribe->callback([&exit_code, checked_common, target, code, rate, pv, count, run_for] {
     auto c = checked_common("subscribe", exit_code);
@@ -315,8 +319,8 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   // emergency
   auto action = std::make_shared<std::string>();
   auto* emergency = app.add_subcommand("emergency", "Set or clear the emergency (Stop) condition of ADDR");
-  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->required();
-  emergency->add_option("ACTION", *action, "set | clear")->required();
+  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->type_name("S.N.C.I")->required();
+  emergency->add_option("ACTION", *action, "set | clear")->type_name("set|clear")->required();
   add_common_options(emergency, *common);
   emergency->callback([&exit_code, checked_common, target, action] {
     auto c = checked_common("emergency", exit_code);

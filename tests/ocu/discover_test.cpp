@@ -72,11 +72,27 @@ TEST_F(OcuTest, DiscoverPrintsATable) {
   EXPECT_NE(table.find("provides  0x4002 0x4402\n"), std::string::npos) << table;
 }
 
+TEST_F(OcuTest, DiscoverAsksEveryNodeGivenWithTo) {
+  TargetOptions second_options;
+  second_options.subsystem = 2;
+  TargetNode second(context, second_options);
+  ocu::SessionOptions options;
+  options.to = {target->endpoint(), second.endpoint()};
+  options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
+  auto ocu = ocu::OcuSession::open(options, &context);
+  ASSERT_TRUE(ocu) << ocu.error();
+  ASSERT_EQ(ocu::run_discover(**ocu, {1s, true}, io()), kExitOk) << err.str();
+  const auto j = nlohmann::json::parse(out.str());
+  ASSERT_EQ(j["subsystems"].size(), 2u) << out.str();
+  EXPECT_EQ(j["subsystems"][1]["subsystem"], 2);
+  EXPECT_EQ(j["subsystems"][1]["nodes"][0]["components"].size(), 3u);
+}
+
 TEST_F(OcuTest, DiscoverWithNobodyThereSaysSo) {
   const auto port = target->endpoint().port;
   target.reset();
   ocu::SessionOptions options;
-  options.to = jaus::transport::Ipv4Endpoint{kLoopback, port};
+  options.to = {jaus::transport::Ipv4Endpoint{kLoopback, port}};
   options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
   auto ocu = ocu::OcuSession::open(options, &context);
   ASSERT_TRUE(ocu) << ocu.error();

@@ -23,7 +23,7 @@ class OcuTest : public ::testing::Test {
     ocu::SessionOptions options;
     options.self = self;
     options.authority = authority;
-    options.to = target->endpoint();
+    options.to = {target->endpoint()};
     options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
     auto session = ocu::OcuSession::open(options, &context);
     if (!session) {

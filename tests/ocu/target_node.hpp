@@ -60,19 +60,22 @@ class PoseSensor final : public jaus::rt::Component {
 struct TargetOptions {
   jaus::rt::Duration controller_timeout = 3s;
   bool reject_refused = false;
+  std::uint8_t subsystem = 1;  // the component addresses above are those of subsystem 1
 };
 
 class TargetNode {
  public:
   explicit TargetNode(boost::asio::io_context& io, TargetOptions options = {}) : runtime_(io) {
     jaus::transport::UdpLinkOptions link_options;
-    link_options.subsystem = 1;
+    link_options.subsystem = options.subsystem;
     link_options.node = 1;
     link_options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
     auto link = jaus::transport::UdpLink::open(io, runtime_, runtime_, link_options);
     if (!link) throw std::runtime_error(link.error());
     link_ = std::move(*link);
-    node_ = std::make_unique<jaus::node::Node>(jaus::node::NodeConfig{}, runtime_, runtime_, *link_);
+    jaus::node::NodeConfig node_config;
+    node_config.subsystem = options.subsystem;
+    node_ = std::make_unique<jaus::node::Node>(node_config, runtime_, runtime_, *link_);
     link_->on_packet([this](std::span<const std::uint8_t> packet) { node_->receive(packet); });
 
     jaus::rt::NodeManagerConfig identity;
@@ -100,7 +103,7 @@ class TargetNode {
   static jaus::rt::ComponentConfig config(const char* name, const jaus::Address& address, const TargetOptions& o) {
     jaus::rt::ComponentConfig c;
     c.name = name;
-    c.address = address;
+    c.address = jaus::Address{o.subsystem, address.node, address.component, address.instance};
     c.controller_timeout = o.controller_timeout;
     c.reject_refused_requests = o.reject_refused;
     return c;

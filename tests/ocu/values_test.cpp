@@ -39,6 +39,7 @@ TEST(CliValues, DurationsEndpointsPresenceVectors) {
   for (const char* bad : {"0", "-1", "abc", "1s", "nan", "inf", "100000"}) EXPECT_FALSE(parse_seconds(bad)) << bad;
   EXPECT_EQ(seconds_text(1s), "1 s");
   EXPECT_EQ(seconds_text(300ms), "0.3 s");
+  EXPECT_EQ(elapsed_text(4000880us), "4.0 s");
 
   const auto any = parse_endpoint_text("0.0.0.0:0", 0, true);
   ASSERT_TRUE(any);

@@ -95,6 +95,12 @@ std::string seconds_text(jaus::rt::Duration d) {
   return text;
 }
 
+std::string elapsed_text(jaus::rt::Duration d) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", std::chrono::duration<double>(d).count());
+  return text;
+}
+
 std::string code_text(std::uint16_t code) {
   char text[8];
   std::snprintf(text, sizeof text, "0x%04X", code);

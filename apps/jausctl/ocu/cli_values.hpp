@@ -38,8 +38,10 @@ Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text,
 // "opc" or "judp".
 Parsed<jaus::transport::Framing> parse_framing(std::string_view text);
 
-// "1 s", "0.25 s": how messages state a duration.
+// "1 s", "0.25 s": how messages state a duration that was given.
 std::string seconds_text(jaus::rt::Duration d);
+// "4.0 s": how long something took (measured, so one decimal).
+std::string elapsed_text(jaus::rt::Duration d);
 
 // "0x4402".
 std::string code_text(std::uint16_t code);

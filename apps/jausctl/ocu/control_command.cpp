@@ -25,7 +25,7 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
   const auto end = control.hold(options.hold_for, [&](const std::string& state) {
     io.out << target << ": state " << state << "\n" << std::flush;
   });
-  const auto held = seconds_text(session.clock().now() - start);
+  const auto held = elapsed_text(session.clock().now() - start);
   if (end == ControlHold::End::rejected) {
     const std::string why = control.who_has_control(std::min(options.timeout, kWhoHasControlTimeout));
     io.err << "jausctl control: control of " << target << " lost after " << held

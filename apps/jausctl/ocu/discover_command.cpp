@@ -45,8 +45,10 @@ int run_discover(OcuSession& session, const DiscoverOptions& options, CommandIo 
       io.err << "jausctl discover: interrupted\n";
       return kExitFailure;
     }
-    io.err << "jausctl discover: no JAUS node heard within " << seconds_text(options.wait) << " (asked "
-           << jaus::transport::to_string(session.options().to) << ")\n";
+    std::string asked;
+    for (const auto& peer : session.options().to) asked += (asked.empty() ? "" : ", ") + jaus::transport::to_string(peer);
+    io.err << "jausctl discover: no JAUS node heard within " << seconds_text(options.wait) << " (asked " << asked
+           << ")\n";
     return kExitFailure;
   }
   if (options.json)

@@ -45,7 +45,7 @@ jaus::Expected<std::unique_ptr<OcuSession>, std::string> OcuSession::open(Sessio
   link_options.node = self.node;
   link_options.bind = o.bind;
   link_options.framing = o.framing;
-  link_options.peers.push_back(jaus::transport::StaticPeer{o.to, o.framing});
+  for (const auto& peer : o.to) link_options.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
   auto link = jaus::transport::UdpLink::open(s->io_, s->runtime_, s->runtime_, link_options, o.log);
   if (!link) return unexpected(link.error());
   s->link_ = std::move(*link);

@@ -36,8 +36,9 @@ inline constexpr std::uint16_t kOcuSubsystemType = 20001;  // 20001+: OCU
 
 struct SessionOptions {
   jaus::Address self = kDefaultOcuAddress;
-  // The node to talk to: a static peer, so it is reached before it is heard.
-  jaus::transport::Ipv4Endpoint to{0x7F000001, jaus::transport::kJausPort};
+  // The nodes to talk to: static peers, so they are reached before they are
+  // heard. Messages to a node not heard from yet, and broadcasts, go to each.
+  std::vector<jaus::transport::Ipv4Endpoint> to{{0x7F000001, jaus::transport::kJausPort}};
   // Any address, any free port. Peers that answer to IP:3794 instead of the
   // sender's port need the OCU bound to its own address and port 3794.
   jaus::transport::Ipv4Endpoint bind{0, 0};

@@ -75,7 +75,7 @@ int run_subscribe(OcuSession& session, const SubscribeOptions& o, CommandIo io) 
          << "; service connection terminated\n";
   if (o.count && meter.count() < *o.count && !session.interrupted() && !output_broken) {
     io.err << "jausctl subscribe: only " << meter.count() << " of " << *o.count << " reports within "
-           << seconds_text(clock.now() - start) << "\n";
+           << elapsed_text(clock.now() - start) << "\n";
     return kExitFailure;
   }
   return kExitOk;
