@@ -111,8 +111,10 @@ Parsed<std::uint8_t> parse_byte(std::string_view option, const std::string& text
 // Parses the common options, opens the session and runs `command` on it.
 template <class Run>
 int with_session(std::string_view name, const Common& common, Run run) {
-  ocu::SessionOptions options = common.session;
-  auto session = ocu::OcuSession::open(options);
+  // A closed stdout (| head) must not kill the process before it has released
+  // control or terminated its service connection: writes fail instead.
+  std::signal(SIGPIPE, SIG_IGN);
+  auto session = ocu::OcuSession::open(common.session);
   if (!session) {
     std::cerr << "jausctl " << name << ": " << session.error() << "\n";
     return kExitFailure;
@@ -309,8 +311,6 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     options.report_code = *parsed_code;
     options.rate_hz = hz;
     options.timeout = c->timeout;
-    // A closed stdout (| head) must end the loop, not kill the process before it terminates the connection.
-    std::signal(SIGPIPE, SIG_IGN);
     exit_code = with_session("subscribe", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_subscribe(s, options, io);
     });

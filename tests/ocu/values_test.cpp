@@ -188,6 +188,18 @@ TEST_F(DiscoveryModel, AHeartbeatStartsTheSequenceAndEachQuestionIsAskedOnce) {
   EXPECT_EQ(driver_services[0].inputs[0].command_code, 0x0405);
 }
 
+TEST_F(DiscoveryModel, ANodeClaimingTooManyComponentsIsNotBelieved) {
+  jaus::msg::ReportConfiguration configuration;
+  for (std::uint8_t node = 1; node <= 10; ++node) {
+    jaus::msg::NodeEntry entry{node, {}};
+    for (std::uint8_t c = 1; c <= 200; ++c) entry.components.push_back({c, 1});
+    configuration.nodes.push_back(entry);
+  }
+  const auto queries = reply(jaus::Address{3, 1, 1, 1}, configuration);
+  EXPECT_EQ(discovery.component_count(), Discovery::kMaxComponents);
+  EXPECT_LE(queries.size(), 2 * Discovery::kMaxComponents + 4 * 10 + 2);
+}
+
 TEST_F(DiscoveryModel, MalformedRepliesAreIgnored) {
   jaus::Header h;
   h.command_code = jaus::msg::ReportConfiguration::code;

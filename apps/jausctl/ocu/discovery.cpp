@@ -27,6 +27,13 @@ std::vector<DiscoveryQuery> Discovery::start() {
   return {DiscoveryQuery{jaus::Address{kAny, kAny, kNodeManager, 1}, Kind::identification, id::kSubsystem}};
 }
 
+const DiscoveredNode* Discovery::find_node(std::uint8_t subsystem, std::uint8_t node) const {
+  const auto s = subsystems_.find(subsystem);
+  if (s == subsystems_.end()) return nullptr;
+  const auto n = s->second.nodes.find(node);
+  return n == s->second.nodes.end() ? nullptr : &n->second;
+}
+
 DiscoveredNode& Discovery::node_of(std::uint8_t subsystem, std::uint8_t node) {
   auto& s = subsystems_[subsystem];
   s.id = subsystem;
@@ -52,6 +59,9 @@ void Discovery::add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<
 }
 
 void Discovery::add_component(const jaus::Address& a, std::vector<DiscoveryQuery>& out) {
+  const auto* known = find_node(a.subsystem, a.node);
+  const bool is_new = !known || !known->components.contains({a.component, a.instance});
+  if (is_new && component_count() >= kMaxComponents) return;
   add_node(a.subsystem, a.node, out);
   auto& c = node_of(a.subsystem, a.node).components[{a.component, a.instance}];
   c.address = a;

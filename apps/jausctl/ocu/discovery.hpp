@@ -59,6 +59,10 @@ struct DiscoveryQuery {
 
 class Discovery {
  public:
+  // Each component costs two queries: a node that claims more than this is
+  // not believed (bounded memory and traffic whatever it sends).
+  static constexpr std::size_t kMaxComponents = 1024;
+
   // `self` is the OCU: its own node is left out.
   explicit Discovery(jaus::Address self) : self_(self) {}
 
@@ -81,6 +85,7 @@ class Discovery {
   using Kind = DiscoveryQuery::Kind;
   bool is_self(const jaus::Address& a) const { return a.subsystem == self_.subsystem && a.node == self_.node; }
   DiscoveredNode& node_of(std::uint8_t subsystem, std::uint8_t node);
+  const DiscoveredNode* find_node(std::uint8_t subsystem, std::uint8_t node) const;
   void add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<DiscoveryQuery>& out);
   void add_component(const jaus::Address& address, std::vector<DiscoveryQuery>& out);
   // Asks once per key: a subsystem-wide question is keyed by the subsystem alone.
