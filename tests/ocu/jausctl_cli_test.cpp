@@ -115,6 +115,12 @@ struct BadInput {
   std::string error;  // the whole stderr line
 };
 
+// Test names and failures show the command line, not the struct's bytes.
+void PrintTo(const BadInput& b, std::ostream* os) {
+  *os << "jausctl";
+  for (const auto& a : b.args) *os << " " << a;
+}
+
 class JausctlBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(JausctlBadInput, ExitsTwoWithOneLineNamingTheProblem) {
