@@ -3,7 +3,6 @@
 // it parses and checks every value (bad input: exit 2, one line naming what
 // is wrong, before any socket is opened), opens an OcuSession and hands over
 // to the command in ocu/.
-#include <cstdio>
 #include <csignal>
 #include <iostream>
 #include <iterator>
@@ -98,14 +97,6 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   out.session.log = stderr_log(c.verbosity);
   out.timeout = *timeout;
   return out;
-}
-
-Parsed<std::uint8_t> parse_byte(std::string_view option, const std::string& text) {
-  unsigned value = 0;
-  int used = 0;
-  if (std::sscanf(text.c_str(), "%u%n", &value, &used) != 1 || used != static_cast<int>(text.size()) || value > 255)
-    return jaus::unexpected(std::string(option) + ": bad value '" + text + "': expected 0..255");
-  return static_cast<std::uint8_t>(value);
 }
 
 // Parses the common options, opens the session and runs `command` on it.
@@ -243,8 +234,8 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     ocu::ControlOptions options;
     auto address = ocu::parse_address(*target, false);
     if (!address) return void(exit_code = bad_input("control", address.error()));
-    auto level = parse_byte("--authority", *authority);
-    if (!level) return void(exit_code = bad_input("control", level.error()));
+    auto level = ocu::parse_authority(*authority);
+    if (!level) return void(exit_code = bad_input("control", "--authority: " + level.error()));
     if (!hold_for->empty()) {
       auto seconds = ocu::parse_seconds(*hold_for);
       if (!seconds) return void(exit_code = bad_input("control", "--for: " + seconds.error()));
@@ -284,23 +275,17 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       return void(exit_code = bad_input("subscribe", ocu::code_text(*parsed_code) +
                                                          " is a query: subscribe takes the report's code (" +
                                                          ocu::code_text(*report) + ")"));
-    double hz = 0;
-    int used = 0;
-    // The rate travels as a u16 scaled over [0, 1092] Hz.
-    if (std::sscanf(rate->c_str(), "%lf%n", &hz, &used) != 1 || used != static_cast<int>(rate->size()) ||
-        !(hz > 0) || hz > 1092)
-      return void(exit_code = bad_input("subscribe", "--rate: bad rate '" + *rate + "': expected Hz, more than 0 and at most 1092"));
+    auto hz = ocu::parse_rate_hz(*rate);
+    if (!hz) return void(exit_code = bad_input("subscribe", "--rate: " + hz.error()));
     if (!pv->empty()) {
       auto parsed_pv = ocu::parse_presence_vector(*pv);
       if (!parsed_pv) return void(exit_code = bad_input("subscribe", "--pv: " + parsed_pv.error()));
       options.presence_vector = *parsed_pv;
     }
     if (!count->empty()) {
-      unsigned long long n = 0;
-      if (std::sscanf(count->c_str(), "%llu%n", &n, &used) != 1 || used != static_cast<int>(count->size()) || n == 0 ||
-          (*count)[0] == '-')
-        return void(exit_code = bad_input("subscribe", "--count: bad count '" + *count + "': expected 1 or more"));
-      options.count = n;
+      auto n = ocu::parse_count(*count);
+      if (!n) return void(exit_code = bad_input("subscribe", "--count: " + n.error()));
+      options.count = *n;
     }
     if (!run_for->empty()) {
       auto seconds = ocu::parse_seconds(*run_for);
@@ -309,7 +294,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     }
     options.target = *address;
     options.report_code = *parsed_code;
-    options.rate_hz = hz;
+    options.rate_hz = *hz;
     options.timeout = c->timeout;
     exit_code = with_session("subscribe", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_subscribe(s, options, io);

@@ -147,7 +147,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "jausctl send: bad JSON: 'emergency_code': expected an integer"},
         BadInput{{"send", "1.1.35.1", "{\"code\":\"0x1234\"}"}, "jausctl send: offset 0, field 'code': unknown command code (0x1234)"},
         BadInput{{"control", "1.1.35.1", "--authority", "256"},
-                 "jausctl control: --authority: bad value '256': expected 0..255"},
+                 "jausctl control: --authority: bad authority '256': expected 0..255"},
         BadInput{{"control", "1.1.255.1", "--authority", "5"},
                  "jausctl control: bad address '1.1.255.1': 255 (broadcast) is not allowed here"},
         BadInput{{"subscribe", "1.1.35.1", "0x2002", "--rate", "5"},

@@ -55,6 +55,17 @@ TEST(CliValues, DurationsEndpointsPresenceVectors) {
   EXPECT_FALSE(parse_presence_vector("0x123456789"));
   EXPECT_FALSE(parse_presence_vector("xyz"));
 
+  EXPECT_EQ(*parse_authority("255"), 255);
+  EXPECT_FALSE(parse_authority("256"));
+  EXPECT_FALSE(parse_authority("-1"));
+  EXPECT_DOUBLE_EQ(*parse_rate_hz("0.5"), 0.5);
+  EXPECT_FALSE(parse_rate_hz("0"));
+  EXPECT_FALSE(parse_rate_hz("1093"));
+  EXPECT_FALSE(parse_rate_hz("5Hz"));
+  EXPECT_EQ(*parse_count("3"), 3u);
+  EXPECT_FALSE(parse_count("0"));
+  EXPECT_FALSE(parse_count("-2"));
+
   EXPECT_EQ(hz_text(4.99886), "5");
   EXPECT_EQ(hz_text(0.25), "0.25");
   EXPECT_EQ(hz_text(12.5), "12.5");

@@ -52,6 +52,31 @@ Parsed<std::uint32_t> parse_presence_vector(std::string_view text) {
   return value;
 }
 
+Parsed<std::uint8_t> parse_authority(std::string_view text) {
+  unsigned value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || value > 255)
+    return unexpected("bad authority '" + std::string(text) + "': expected 0..255");
+  return static_cast<std::uint8_t>(value);
+}
+
+Parsed<double> parse_rate_hz(std::string_view text) {
+  constexpr double kMaxRate = 1092;  // Create Service Connection: u16 scaled over [0, 1092] Hz
+  double value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc{} || end != text.data() + text.size() || !(value > 0) || value > kMaxRate)
+    return unexpected("bad rate '" + std::string(text) + "': expected Hz, more than 0 and at most 1092");
+  return value;
+}
+
+Parsed<std::uint64_t> parse_count(std::string_view text) {
+  std::uint64_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || value == 0)
+    return unexpected("bad count '" + std::string(text) + "': expected 1 or more");
+  return value;
+}
+
 Parsed<jaus::rt::Duration> parse_seconds(std::string_view text) {
   double value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

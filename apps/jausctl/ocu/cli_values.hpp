@@ -27,6 +27,15 @@ Parsed<std::uint16_t> parse_message_code(std::string_view text);
 // "0x1F" or "1F": a presence vector of up to 32 bits.
 Parsed<std::uint32_t> parse_presence_vector(std::string_view text);
 
+// An authority (Request Component Control): 0..255.
+Parsed<std::uint8_t> parse_authority(std::string_view text);
+
+// A service connection rate in Hz: more than 0 and at most 1092 (its wire range).
+Parsed<double> parse_rate_hz(std::string_view text);
+
+// A count of reports: 1 or more.
+Parsed<std::uint64_t> parse_count(std::string_view text);
+
 // Seconds as a decimal number ("1", "0.25"), > 0 and at most a day.
 Parsed<jaus::rt::Duration> parse_seconds(std::string_view text);
 
