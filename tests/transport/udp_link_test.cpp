@@ -154,6 +154,8 @@ TEST_F(UdpNodeTest, EachPeerIsAnsweredInTheFramingItUses) {
   ASSERT_TRUE(route);
   EXPECT_EQ(route->endpoint.port, peer.local_endpoint().port());
   EXPECT_EQ(link->counters().dropped_total(), 0u);
+  const std::string told = "node 2.1 at 127.0.0.1:" + std::to_string(peer.local_endpoint().port()) + " (judp)";
+  EXPECT_NE(std::find(logs.begin(), logs.end(), told), logs.end());
 }
 
 // Every vector of the other implementation, in both framings, addressed to
@@ -257,6 +259,7 @@ TEST_F(UdpNodeTest, AFloodLeavesTheNodeAnsweringWithBoundedTables) {
   EXPECT_LE(link->routes().route_count(), RouteTableOptions{}.max_entries);
   EXPECT_LE(link->routes().peers().size(), RouteTableOptions{}.max_entries);
   EXPECT_LE(node->liveness().size(), node::LivenessTable::Options{}.max_entries);
+  EXPECT_LT(logs.size(), 200u);  // the log is rate-limited, not flooded
   received.clear();
   send(framed(Framing::opc, packet_of(kOcu, kManager, msg::QueryIdentification{})));
   EXPECT_TRUE(run_until([&] { return replies(msg::ReportIdentification::code, Framing::opc) == 1; }))

@@ -17,13 +17,13 @@ void RouteTable::erase_route(std::map<std::uint16_t, Route>::iterator route) {
   routes_.erase(route);
 }
 
-void RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
-                       rt::TimePoint now) {
+Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
+                         rt::TimePoint now) {
   auto peer = peers_.find(from);
   if (peer == peers_.end()) {
     if (learnt_peers_ >= options_.max_entries) {
       ++counters_.rejected_full;
-      return;
+      return Learnt::rejected;
     }
     peer = peers_.emplace(from, Peer{from, framing, false, now, 0}).first;
     ++learnt_peers_;
@@ -32,11 +32,13 @@ void RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endp
   peer->second.last_heard = now;
 
   const std::uint16_t k = key(subsystem, node);
+  Learnt result = Learnt::new_route;
   if (auto route = routes_.find(k); route != routes_.end()) {
     route->second.last_heard = now;
-    if (route->second.endpoint == from) return;
+    if (route->second.endpoint == from) return Learnt::known;
     erase_route(route);  // the node restarted elsewhere: the newest source wins
     ++counters_.moved;
+    result = Learnt::moved;
   } else {
     ++counters_.learnt;
   }
@@ -49,10 +51,11 @@ void RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endp
     ++counters_.replaced;
   } else if (routes_.size() >= options_.max_entries) {
     ++counters_.rejected_full;
-    return;
+    return Learnt::rejected;
   }
   routes_.emplace(k, Route{from, now});
   ++peer->second.routes;
+  return result;
 }
 
 std::optional<Peer> RouteTable::route(std::uint8_t subsystem, std::uint8_t node) const {

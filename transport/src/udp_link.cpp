@@ -172,11 +172,34 @@ void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint
   const Header& header = unframed->packet.header;
   if (header.source.subsystem == options_.subsystem && header.source.node == options_.node)
     return drop(DropReason::from_self, from, "");
-  if (header.source.is_valid() && !header.source.is_broadcast())
-    routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
+  if (header.source.is_valid() && !header.source.is_broadcast()) {
+    const Learnt learnt =
+        routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
+    if ((learnt == Learnt::new_route || learnt == Learnt::moved) && route_log_allowed()) {
+      const std::string node = std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node);
+      const std::string where = to_string(from) + " (" + std::string(to_string(unframed->framing)) + ")";
+      // A node flipping between endpoints is usually two peers using one JAUS ID.
+      if (learnt == Learnt::moved)
+        log_(rt::LogLevel::warn, "node " + node + " now heard from " + where + ": two peers with one ID?");
+      else
+        log_(rt::LogLevel::info, "node " + node + " at " + where);
+    }
+  }
   ++counters_.packets_delivered;
   const std::size_t prefix = unframed->framing == Framing::opc ? kOpcPrefix.size() : kJudpPrefixSize;
   if (handler_) handler_(datagram.subspan(prefix));
+}
+
+bool UdpLink::route_log_allowed() {
+  // New and moved routes are worth a line each, but a flood of forged
+  // sources must not flood the log: at most a few lines a second.
+  constexpr int kRouteLinesPerSecond = 5;
+  const rt::TimePoint now = clock_.now();
+  if (now - route_log_window_ >= std::chrono::seconds(1)) {
+    route_log_window_ = now;
+    route_lines_in_window_ = 0;
+  }
+  return ++route_lines_in_window_ <= kRouteLinesPerSecond;
 }
 
 void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail) {

@@ -93,6 +93,9 @@ void ServiceConnectionClient::on_confirm(const Header& h, const msg::ConfirmServ
 }
 
 bool ServiceConnectionClient::on_report(const Header& h, std::span<const std::uint8_t> payload) {
+  // Reports on a service connection carry the SC flag (RA, and the common
+  // peer does so too); the same report answering a query is not ours.
+  if (!h.service_connection) return false;
   bool ours = false;
   for (auto& [id, s] : subscriptions_) {
     if (s.provider != h.source || s.code != h.command_code) continue;

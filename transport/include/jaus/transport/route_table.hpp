@@ -36,6 +36,9 @@ struct RouteTableOptions {
   rt::Duration route_timeout = std::chrono::seconds(30);
 };
 
+// What learn() did, so the link can tell the operator about new and moved nodes.
+enum class Learnt : std::uint8_t { known, new_route, moved, rejected };
+
 struct RouteTableCounters {
   std::uint64_t learnt = 0;          // new routes
   std::uint64_t moved = 0;           // a node heard from a new endpoint
@@ -50,7 +53,8 @@ class RouteTable {
 
   void add_static_peer(const Ipv4Endpoint& endpoint, Framing framing);
   // A datagram from `from`, framed in `framing`, whose JAUS source is subsystem.node.
-  void learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing, rt::TimePoint now);
+  Learnt learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
+               rt::TimePoint now);
   // Where (subsystem, node) lives, if known.
   std::optional<Peer> route(std::uint8_t subsystem, std::uint8_t node) const;
   // Every distinct peer endpoint (static and learnt), for broadcasts.

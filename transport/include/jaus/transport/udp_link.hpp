@@ -94,6 +94,7 @@ class UdpLink final : public node::Link {
   void on_datagram(const boost::asio::ip::udp::endpoint& from, std::span<const std::uint8_t> datagram);
   void drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail);
   bool allowed(std::uint32_t address) const;
+  bool route_log_allowed();
   void schedule_expiry();
 
   boost::asio::io_context& io_;
@@ -109,6 +110,8 @@ class UdpLink final : public node::Link {
   rt::TimerId expiry_timer_ = rt::kNoTimer;
   // Rate limit of drop logs: one line per reason per second.
   std::array<rt::TimePoint, static_cast<std::size_t>(DropReason::count_)> last_drop_log_{};
+  rt::TimePoint route_log_window_{};
+  int route_lines_in_window_ = 0;
   bool closed_ = false;
   // Completion handlers can run after the link is destroyed (the io_context
   // outlives it); they hold a weak reference to this and do nothing once it expires.
