@@ -46,7 +46,7 @@ TEST_F(OcuTest, DiscoverFindsTheSubsystemNodeAndComponentsWithIdentificationAndS
   const auto* communicator = find_component(node, "1.1.35.1");
   ASSERT_TRUE(communicator);
   EXPECT_EQ((*communicator)["kind"], "communicator");
-  EXPECT_TRUE((*communicator)["identification"].is_null());  // only node managers answer Query Identification here
+  EXPECT_EQ((*communicator)["identification"]["name"], "communicator");  // every component answers type 4
   EXPECT_TRUE(has_code((*communicator)["inputs"], "0x0200"));  // Set Data Link Status
   EXPECT_TRUE(has_code((*communicator)["inputs"], "0x000D"));  // Request Component Control
 

@@ -101,6 +101,13 @@ TEST_F(ComponentTest, CoreQueriesAreAnsweredInEveryState) {
     deliver(kOcuB, msg::QueryComponentControl{});
     deliver(kOcuB, msg::QueryTime{{3}});
     deliver(kOcuB, msg::QueryHeartbeatPulse{});
+    deliver(kOcuB, msg::QueryIdentification{{msg::identification::kComponent}});
+    deliver(kOcuB, msg::QueryIdentification{{msg::identification::kSubsystem}});  // the node manager's to answer
+    const auto identification = outbox.to<msg::ReportIdentification>(kOcuB);
+    ASSERT_EQ(identification.size(), 1u);
+    EXPECT_EQ(identification[0].query_type, msg::identification::kComponent);
+    EXPECT_EQ(identification[0].identification, "driver");
+    EXPECT_EQ(identification[0].authority, 5);
     const auto status = outbox.to<msg::ReportComponentStatus>(kOcuB);
     ASSERT_EQ(status.size(), 1u);
     EXPECT_EQ(status[0].primary_status, static_cast<std::uint8_t>(expected));

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "jaus/messages/communications_messages.hpp"
+#include "jaus/messages/discovery_messages.hpp"
 
 namespace jaus::rt {
 
@@ -163,6 +164,16 @@ void Component::register_core_handlers() {
   using namespace msg;
   handle<QueryComponentAuthority>(Access::anyone, false, [this](const Header& h, const QueryComponentAuthority&) {
     send(h.source, ReportComponentAuthority{{control_.own_authority()}});
+  });
+  // OCUs ask every component who it is (Query Identification, type 4); the
+  // node manager also answers for its subsystem and node.
+  handle<QueryIdentification>(Access::anyone, false, [this](const Header& h, const QueryIdentification& m) {
+    if (m.query_type != identification::kComponent) {
+      log(LogLevel::debug, "Query Identification type " + std::to_string(m.query_type) + " from " +
+                               h.source.to_string() + " not answered: only node managers speak for a node");
+      return;
+    }
+    send(h.source, ReportIdentification{{identification::kComponent, control_.own_authority(), 0, name()}});
   });
   handle<QueryComponentStatus>(Access::anyone, false,
                                 [this](const Header& h, const QueryComponentStatus&) { send(h.source, status_report()); });
