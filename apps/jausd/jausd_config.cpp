@@ -1,5 +1,7 @@
 #include "jausd_config.hpp"
 
+#include "jaus/core/quoted.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -92,20 +94,6 @@ std::string join(auto const& names) {
   return out.empty() ? "none" : out;
 }
 
-// A value for an error message: quoted, on one line, not too long.
-std::string in_quotes(std::string_view text) {
-  constexpr std::size_t kMax = 60;
-  std::string out = "'";
-  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c < 0x20 || c == 0x7F) out += '?';
-    else out += static_cast<char>(c);
-  }
-  if (text.size() > kMax) out += "...";
-  return out + "'";
-}
 
 std::string number_text(double v) {
   std::array<char, 32> buf{};
@@ -147,7 +135,7 @@ std::string identification_problem(std::string_view key, std::string_view text) 
     return c >= 0x20 && c <= 0x7E;
   });
   if (text.empty() || text.size() > kMaxIdentification || !printable)
-    return "'" + std::string(key) + "' must be 1..80 printable ASCII characters, got " + in_quotes(text) + " (" +
+    return "'" + std::string(key) + "' must be 1..80 printable ASCII characters, got " + jaus::quoted(text) + " (" +
            std::to_string(text.size()) + " bytes" + (printable ? "" : ", not all printable ASCII") + ")";
   return {};
 }
@@ -192,11 +180,11 @@ std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& l
     if (!kind) {
       std::vector<std::string_view> names;
       for (const auto& k : component_kinds()) names.push_back(k.name);
-      return Issue{spec.line, "unknown component kind " + in_quotes(spec.kind) + " (known: " + join(names) + ")"};
+      return Issue{spec.line, "unknown component kind " + jaus::quoted(spec.kind) + " (known: " + join(names) + ")"};
     }
     for (const auto& [key, value] : spec.options)
       if (!one_of(key, kind->options))
-        return Issue{spec.line, "unknown option " + in_quotes(key) + " for " + spec.kind + " (known: " +
+        return Issue{spec.line, "unknown option " + jaus::quoted(key) + " for " + spec.kind + " (known: " +
                                     join(kind->options) + ")"};
     if (spec.id < kAddressMin || spec.id > kAddressMax)
       return Issue{spec.line, "component 'id' must be an integer 1..254, got " + std::to_string(spec.id)};
@@ -230,7 +218,7 @@ std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines
   if (t.multicast) {
     if (!t.multicast->is_multicast())
       return Issue{0, "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
-                          in_quotes(ipv4_to_string(t.multicast->address))};
+                          jaus::quoted(ipv4_to_string(t.multicast->address))};
     if (t.multicast->port == 0) return Issue{0, "'multicast' port must be 1..65535, got 0"};
   }
   if (t.max_peers < 1 || t.max_peers > kMaxPeersLimit)
@@ -244,7 +232,7 @@ std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines
     const int line = line_at(lines.peers, i);
     if (peer.is_any() || peer.is_multicast())
       return Issue{line, "peer 'address' must be a unicast IPv4 address, got " +
-                             in_quotes(ipv4_to_string(peer.address)) +
+                             jaus::quoted(ipv4_to_string(peer.address)) +
                              (peer.is_any() ? "" : " (multicast groups go in transport.multicast)")};
     if (peer.port == 0) return Issue{line, "peer 'address' port must be 1..65535, got 0"};
     if (peer == t.bind) return Issue{line, "peer " + to_string(peer) + " is this node's own bind address"};
@@ -286,9 +274,9 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (sc.max_connections < 1 || sc.max_connections > kMaxConnectionsLimit)
     return Issue{0, "'max_connections' must be an integer 1..255, got " + std::to_string(sc.max_connections)};
   if (!one_of(c.dialect, kDialects))
-    return Issue{0, "'dialect' must be one of " + join(kDialects) + ", got " + in_quotes(c.dialect)};
+    return Issue{0, "'dialect' must be one of " + join(kDialects) + ", got " + jaus::quoted(c.dialect)};
   if (!one_of(c.log_level, kLogLevels))
-    return Issue{0, "'level' must be one of " + join(kLogLevels) + ", got " + in_quotes(c.log_level)};
+    return Issue{0, "'level' must be one of " + join(kLogLevels) + ", got " + jaus::quoted(c.log_level)};
   if (auto issue = check_transport(c.transport, lines)) return issue;
   return check_components(c, lines);
 }
@@ -319,7 +307,7 @@ int line_of(const YAML::Node& node) {
 
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar: return in_quotes(node.Scalar());
+    case YAML::NodeType::Scalar: return jaus::quoted(node.Scalar());
     case YAML::NodeType::Sequence: return "a list";
     case YAML::NodeType::Map: return "a map";
     default: return "nothing";
@@ -367,12 +355,12 @@ void read_map(const YAML::Node& node, std::string_view where, int where_line, st
     const std::string& name = key.Scalar();
     const int line = line_of(key);
     if (const auto [first, inserted] = seen.emplace(name, line); !inserted)
-      fail(line, "duplicate key " + in_quotes(name) + in(where) + first_at(first->second));
+      fail(line, "duplicate key " + jaus::quoted(name) + in(where) + first_at(first->second));
     const auto handler = std::find_if(keys.begin(), keys.end(), [&](const Key& k) { return k.name == name; });
     if (handler == keys.end()) {
       std::vector<std::string_view> names;
       for (const auto& k : keys) names.push_back(k.name);
-      fail(line, "unknown key " + in_quotes(name) + in(where) + " (known: " + join(names) + ")");
+      fail(line, "unknown key " + jaus::quoted(name) + in(where) + " (known: " + join(names) + ")");
     }
     handler->read(Entry{name, line, value});
   }
@@ -465,7 +453,7 @@ ComponentSpec component(const YAML::Node& node) {
                  std::vector<std::string_view> names;
                  for (const auto& k : component_kinds()) names.push_back(k.name);
                  fail(e.value_line(),
-                      "unknown component kind " + in_quotes(spec.kind) + " (known: " + join(names) + ")");
+                      "unknown component kind " + jaus::quoted(spec.kind) + " (known: " + join(names) + ")");
                }
              }},
             {"id", [&](const Entry& e) { id = integer<std::uint8_t>(e, kAddressMin, kAddressMax); }},
@@ -490,10 +478,10 @@ ComponentSpec component(const YAML::Node& node) {
       const int line = line_of(key_node);
       const std::string key = key_node.IsScalar() ? key_node.Scalar() : "";
       if (key.empty() || !one_of(key, kind->options))
-        fail(line, "unknown option " + in_quotes(key) + " for " + spec.kind + " (known: " + join(kind->options) + ")");
-      if (spec.options.contains(key)) fail(line, "duplicate option " + in_quotes(key));
+        fail(line, "unknown option " + jaus::quoted(key) + " for " + spec.kind + " (known: " + join(kind->options) + ")");
+      if (spec.options.contains(key)) fail(line, "duplicate option " + jaus::quoted(key));
       if (!value.IsScalar())
-        fail(line, "option " + in_quotes(key) + " must be a single value, got " + describe(value));
+        fail(line, "option " + jaus::quoted(key) + " must be a single value, got " + describe(value));
       spec.options[key] = value.Scalar();
     }
   }
@@ -560,7 +548,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                   else t.multicast = endpoint(e);
                   if (t.multicast && !t.multicast->is_multicast())
                     fail(e.value_line(), "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
-                                             in_quotes(jaus::transport::ipv4_to_string(t.multicast->address)));
+                                             jaus::quoted(jaus::transport::ipv4_to_string(t.multicast->address)));
                 }},
                {"broadcast_to_peers", [&](const Entry& e) { t.broadcast_to_peers = boolean(e); }},
                {"peers",

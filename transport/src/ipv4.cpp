@@ -1,5 +1,7 @@
 #include "jaus/transport/ipv4.hpp"
 
+#include "jaus/core/quoted.hpp"
+
 #include <algorithm>
 #include <charconv>
 
@@ -23,23 +25,9 @@ std::uint32_t mask_of(std::uint8_t prefix_length) {
   return prefix_length == 0 ? 0 : ~std::uint32_t{0} << (32 - std::min<std::uint8_t>(prefix_length, 32));
 }
 
-// A value for an error message: quoted, on one line, not too long.
-std::string in_quotes(std::string_view text) {
-  constexpr std::size_t kMax = 60;
-  std::string out = "'";
-  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c < 0x20 || c == 0x7F) out += '?';
-    else out += static_cast<char>(c);
-  }
-  if (text.size() > kMax) out += "...";
-  return out + "'";
-}
 
 std::string not_ipv4(std::string_view host) {
-  return in_quotes(host) + " is not an IPv4 address a.b.c.d (host names are not resolved)";
+  return jaus::quoted(host) + " is not an IPv4 address a.b.c.d (host names are not resolved)";
 }
 
 }  // namespace
@@ -77,7 +65,7 @@ Expected<Ipv4Endpoint, std::string> parse_endpoint(std::string_view text, std::u
     const std::string_view port = text.substr(colon + 1);
     const auto value = parse_digits(port, 5);
     if (!value || *value < 1 || *value > 65535)
-      return unexpected("port " + in_quotes(port) + " of " + in_quotes(text) + " must be 1..65535");
+      return unexpected("port " + jaus::quoted(port) + " of " + jaus::quoted(text) + " must be 1..65535");
     endpoint.port = static_cast<std::uint16_t>(*value);
   }
   return endpoint;
@@ -101,12 +89,12 @@ Expected<Cidr, std::string> parse_cidr(std::string_view text) {
     const std::string_view prefix = text.substr(slash + 1);
     const auto value = parse_digits(prefix, 2);
     if (!value || *value > 32)
-      return unexpected("prefix length " + in_quotes(prefix) + " of " + in_quotes(text) + " must be 0..32");
+      return unexpected("prefix length " + jaus::quoted(prefix) + " of " + jaus::quoted(text) + " must be 0..32");
     cidr.prefix_length = static_cast<std::uint8_t>(*value);
   }
   const std::uint32_t mask = mask_of(cidr.prefix_length);
   if ((cidr.network & mask) != cidr.network)
-    return unexpected(in_quotes(text) + " has host bits set below the prefix (the network is " +
+    return unexpected(jaus::quoted(text) + " has host bits set below the prefix (the network is " +
                       to_string(Cidr{cidr.network & mask, cidr.prefix_length}) + ")");
   return cidr;
 }
