@@ -9,6 +9,7 @@
 #include <atomic>
 #include <random>
 #include <thread>
+#include <unistd.h>
 
 #include "../core/vector_file.hpp"
 #include "jaus/core/hex.hpp"
@@ -303,6 +304,46 @@ TEST(UdpLinks, BroadcastsReachStaticPeersWhichThenLearnTheRouteBack) {
   // Unicast to a node nobody has heard of, with no static peer and no multicast: dropped, counted.
   (*b)->transmit(packet_of(Address{2, 1, 1, 1}, Address{9, 9, 1, 1}, msg::QueryIdentification{}));
   EXPECT_EQ((*b)->counters().no_route, 1u);
+}
+
+TEST(UdpLinks, BroadcastsGoToTheMulticastGroupAndOwnOnesAreNotTakenBack) {
+  asio::io_context io;
+  AsioRuntime runtime(io);
+  // A group port of our own, so parallel test runs do not hear each other.
+  const auto port = static_cast<std::uint16_t>(30000 + ::getpid() % 20000);
+  const Ipv4Endpoint group{*parse_ipv4("224.1.0.1"), port};
+  std::vector<std::string> logs;
+  auto open_member = [&](std::uint8_t subsystem, const char* address) {
+    UdpLinkOptions options;
+    options.subsystem = subsystem;
+    options.node = 1;
+    options.bind = Ipv4Endpoint{*parse_ipv4(address), 0};
+    options.multicast = group;
+    options.broadcast_to_peers = false;
+    return UdpLink::open(io, runtime, runtime, options,
+                         [&](rt::LogLevel, const std::string& line) { logs.push_back(line); });
+  };
+  auto a = open_member(1, "127.0.0.1");
+  auto b = open_member(2, "127.0.0.2");
+  ASSERT_TRUE(a && b);
+  for (const auto& line : logs)
+    if (line.find("broadcasts go to known peers only") != std::string::npos)
+      GTEST_SKIP() << "no multicast on this host's loopback: " << line;
+  std::vector<std::vector<std::uint8_t>> at_a, at_b;
+  (*a)->on_packet([&](std::span<const std::uint8_t> p) { at_a.emplace_back(p.begin(), p.end()); });
+  (*b)->on_packet([&](std::span<const std::uint8_t> p) { at_b.emplace_back(p.begin(), p.end()); });
+  (*a)->start();
+  (*b)->start();
+  (*a)->transmit(packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  for (int i = 0; i < 400 && at_b.empty(); ++i) io.run_for(5ms);
+  ASSERT_EQ(at_b.size(), 1u);
+  EXPECT_EQ(decode_header(at_b[0])->source, kManager);
+  io.run_for(50ms);
+  EXPECT_TRUE(at_a.empty());  // its own broadcast looped back is dropped
+  EXPECT_EQ((*a)->counters().dropped_for(DropReason::from_self), 1u);
+  // B learnt where A lives from the multicast datagram's source.
+  ASSERT_TRUE((*b)->routes().route(1, 1));
+  EXPECT_EQ((*b)->routes().route(1, 1)->endpoint, (*a)->local_endpoint());
 }
 
 }  // namespace
