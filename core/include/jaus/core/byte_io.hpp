@@ -17,6 +17,8 @@
 // Per-field codec steps are a handful of instructions; keeping them inline lets
 // a whole message encode or decode as straight-line code.
 #define JAUS_ALWAYS_INLINE [[gnu::always_inline]] inline
+// The same for a lambda (placed after the parameter list).
+#define JAUS_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
 
 namespace jaus {
 

@@ -22,6 +22,7 @@
 #include <string_view>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "jaus/wire/codecs.hpp"
@@ -83,6 +84,21 @@ struct is_presence_vector : std::false_type {};
 template <class T>
 struct is_presence_vector<PresenceVector<T>> : std::true_type {};
 
+// The description as a constant. The walkers below reach each field as
+// std::get<I>(kFields<Body>) with I a template argument, so its name, bit,
+// dialect and codec limits are compile-time values in the generated code
+// whether or not the compiler inlines the walk (passed as function arguments,
+// a long description was left to run-time loads, divisions included).
+template <class Body>
+inline constexpr auto kFields = Body::describe();
+
+template <class Body, class F>
+JAUS_ALWAYS_INLINE void for_each_field_index(F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) JAUS_ALWAYS_INLINE_LAMBDA {
+    (f(std::integral_constant<std::size_t, I>{}), ...);
+  }(std::make_index_sequence<std::tuple_size_v<decltype(kFields<Body>)>>{});
+}
+
 // Bits the body defines; any other bit of a received presence vector is reserved.
 template <class Body>
 constexpr std::uint32_t optional_mask() {
@@ -107,19 +123,15 @@ constexpr bool has_presence_vector() {
 
 template <class Body>
 std::uint32_t presence_of(const Body& body) {
-  static constexpr auto fields = Body::describe();
   std::uint32_t pv = 0;
-  std::apply(
-      [&](const auto&... f) {
-        (([&] {
-           if constexpr (!is_presence_vector<std::decay_t<decltype(f)>>::value) {
-             if constexpr (std::decay_t<decltype(f)>::is_optional)
-               if (f.bit >= 0 && (body.*f.member).has_value()) pv |= 1u << f.bit;
-           }
-         }()),
-         ...);
-      },
-      fields);
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (!is_presence_vector<F>::value) {
+      if constexpr (F::is_optional && f.bit >= 0)
+        pv |= static_cast<std::uint32_t>((body.*f.member).has_value()) << f.bit;
+    }
+  });
   return pv;
 }
 
@@ -246,80 +258,66 @@ struct Records {
 
 template <class Body>
 void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
-  // A constant description lets the compiler fold every codec's limits.
-  static constexpr auto fields = Body::describe();
-  // The presence vector is written as a placeholder and patched once the
-  // optional fields have been seen: one pass over the fields.
-  std::size_t pv_at = 0;
-  std::uint32_t pv = 0;
-  std::apply(
-      [&](const auto&... f) {
-        (([&] {
-           using F = std::decay_t<decltype(f)>;
-           if constexpr (is_presence_vector<F>::value) {
-             w.set_field("presence_vector");
-             pv_at = w.size();
-             w.write(typename F::wire_type{0});
-           } else {
-             w.set_field(f.name);
-             if constexpr (F::is_optional) {
-               if (f.only_in) {
-                 if (*f.only_in == ctx.dialect)
-                   f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
-               } else if ((body.*f.member).has_value()) {
-                 pv |= 1u << f.bit;
-                 f.codec.encode(*(body.*f.member), w, ctx);
-               }
-             } else {
-               f.codec.encode(body.*f.member, w, ctx);
-             }
-           }
-         }()),
-         ...);
-      },
-      fields);
-  if constexpr (has_presence_vector<Body>()) {
-    using Pv = typename std::decay_t<decltype(std::get<0>(fields))>::wire_type;
-    w.patch(pv_at, static_cast<Pv>(pv));
-  }
+  // The presence vector first, from the optional members alone: computed
+  // inside the field branches below it cost more than the fields themselves.
+  const std::uint32_t pv = presence_of(body);
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (is_presence_vector<F>::value) {
+      w.set_field("presence_vector");
+      w.write(static_cast<typename F::wire_type>(pv));
+    } else {
+      w.set_field(f.name);
+      if constexpr (F::is_optional) {
+        if constexpr (f.only_in.has_value()) {
+          if (*f.only_in == ctx.dialect)
+            f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
+        } else if ((body.*f.member).has_value()) {
+          f.codec.encode(*(body.*f.member), w, ctx);
+        }
+      } else {
+        f.codec.encode(body.*f.member, w, ctx);
+      }
+    }
+  });
 }
 
 template <class Body>
 void decode_fields(ByteReader& r, Body& body, auto& ctx) {
-  static constexpr auto fields = Body::describe();
   std::uint32_t pv = 0;
-  std::apply(
-      [&](const auto&... f) {
-        (([&] {
-           using F = std::decay_t<decltype(f)>;
-           if constexpr (is_presence_vector<F>::value) {
-             r.set_field("presence_vector");
-             typename F::wire_type raw{};
-             if (!r.read(raw)) return;
-             pv = raw;
-             constexpr std::uint32_t defined = optional_mask<Body>();
-             if ((pv & ~defined) != 0) [[unlikely]]
-               detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
-           } else {
-             if constexpr (F::is_optional) {
-               auto& member = body.*f.member;
-               const bool present = f.only_in ? *f.only_in == ctx.dialect : ((pv >> f.bit) & 1u) != 0;
-               if (present) {
-                 r.set_field(f.name);
-                 if (!member) member.emplace();
-                 f.codec.decode(r, *member, ctx);
-               } else {
-                 member.reset();
-               }
-             } else {
-               r.set_field(f.name);
-               f.codec.decode(r, body.*f.member, ctx);
-             }
-           }
-         }()),
-         ...);
-      },
-      fields);
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (is_presence_vector<F>::value) {
+      r.set_field("presence_vector");
+      typename F::wire_type raw{};
+      if (!r.read(raw)) return;
+      pv = raw;
+      constexpr std::uint32_t defined = optional_mask<Body>();
+      if ((pv & ~defined) != 0) [[unlikely]]
+        detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
+    } else {
+      if constexpr (F::is_optional) {
+        auto& member = body.*f.member;
+        bool present;
+        if constexpr (f.only_in.has_value())
+          present = *f.only_in == ctx.dialect;
+        else
+          present = ((pv >> f.bit) & 1u) != 0;
+        if (present) {
+          r.set_field(f.name);
+          if (!member) member.emplace();
+          f.codec.decode(r, *member, ctx);
+        } else {
+          member.reset();
+        }
+      } else {
+        r.set_field(f.name);
+        f.codec.decode(r, body.*f.member, ctx);
+      }
+    }
+  });
 }
 
 // One line per message: "name: type; name (bit 0): type; ..." for docs/messages.md.
