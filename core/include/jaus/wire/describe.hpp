@@ -16,6 +16,7 @@
 // never stored twice).
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -256,18 +257,72 @@ struct Records {
   bool from_json(const Json& j, value_type& v, std::string& why) const;
 };
 
+// A body has a fixed layout when every field's codec has a fixed size: its
+// size then follows from the presence vector (and dialect) alone, so it is
+// checked once and the fields go through an UncheckedReader/UncheckedWriter.
+// Anything else (arrays, records, bytes, counts) walks with the checked
+// ByteReader/ByteWriter, which name the field of any error.
+template <class Codec>
+constexpr std::size_t fixed_size_of() {
+  if constexpr (requires { Codec::fixed_size; })
+    return Codec::fixed_size;
+  else
+    return 0;
+}
+
 template <class Body>
-void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
-  // The presence vector first, from the optional members alone: computed
-  // inside the field branches below it cost more than the fields themselves.
-  const std::uint32_t pv = presence_of(body);
+constexpr bool has_fixed_layout() {
+  return std::apply(
+      [](const auto&... f) {
+        return ([] {
+          using F = std::decay_t<decltype(f)>;
+          if constexpr (is_presence_vector<F>::value)
+            return true;
+          else
+            return fixed_size_of<typename F::codec_type>() > 0;
+        }() && ...);
+      },
+      Body::describe());
+}
+
+// The size of the fields after the presence vector `pv` of a fixed-layout body.
+template <class Body>
+JAUS_ALWAYS_INLINE std::size_t fixed_layout_size(std::uint32_t pv, const auto& ctx) {
+  std::size_t size = 0;
   for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
     constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
     using F = std::decay_t<decltype(f)>;
-    if constexpr (is_presence_vector<F>::value) {
-      w.set_field("presence_vector");
-      w.write(static_cast<typename F::wire_type>(pv));
-    } else {
+    if constexpr (!is_presence_vector<F>::value) {
+      constexpr std::size_t n = fixed_size_of<typename F::codec_type>();
+      if constexpr (!F::is_optional)
+        size += n;
+      else if constexpr (f.only_in.has_value())
+        size += *f.only_in == ctx.dialect ? n : 0;
+      else
+        size += ((pv >> f.bit) & 1u) * n;
+    }
+  });
+  return size;
+}
+
+// The presence vector, when there is one, is the first field: it is read
+// before the others, to know their size.
+template <class Body>
+constexpr bool presence_vector_first() {
+  using Fields = decltype(Body::describe());
+  return []<std::size_t... I>(std::index_sequence<I...>) {
+    return ((I == 0 || !is_presence_vector<std::tuple_element_t<I, Fields>>::value) && ...);
+  }(std::make_index_sequence<std::tuple_size_v<Fields>>{});
+}
+
+// Writes every field after the presence vector. W is a ByteWriter, or an
+// UncheckedWriter with room for fixed_layout_size().
+template <class Body, class W>
+JAUS_ALWAYS_INLINE void write_fields(const Body& body, W& w, auto& ctx) {
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (!is_presence_vector<F>::value) {
       w.set_field(f.name);
       if constexpr (F::is_optional) {
         if constexpr (f.only_in.has_value()) {
@@ -283,41 +338,106 @@ void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
   });
 }
 
-template <class Body>
-void decode_fields(ByteReader& r, Body& body, auto& ctx) {
-  std::uint32_t pv = 0;
+// Reads every field after the presence vector `pv`. R is a ByteReader, or an
+// UncheckedReader over fixed_layout_size() bytes.
+template <class Body, class R>
+JAUS_ALWAYS_INLINE void read_fields(R& r, Body& body, std::uint32_t pv, auto& ctx) {
   for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
     constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
     using F = std::decay_t<decltype(f)>;
     if constexpr (is_presence_vector<F>::value) {
-      r.set_field("presence_vector");
-      typename F::wire_type raw{};
-      if (!r.read(raw)) return;
+      // read by decode_fields
+    } else if constexpr (F::is_optional) {
+      auto& member = body.*f.member;
+      bool present;
+      if constexpr (f.only_in.has_value())
+        present = *f.only_in == ctx.dialect;
+      else
+        present = ((pv >> f.bit) & 1u) != 0;
+      if (present) {
+        r.set_field(f.name);
+        if (!member) member.emplace();
+        f.codec.decode(r, *member, ctx);
+      } else {
+        member.reset();
+      }
+    } else {
+      r.set_field(f.name);
+      f.codec.decode(r, body.*f.member, ctx);
+    }
+  });
+}
+
+// Out of line: the checked walk is the fast path's fallback, taken only to
+// report an error.
+template <class Body>
+[[gnu::noinline]] void write_fields_checked(const Body& body, ByteWriter& w, auto& ctx) {
+  write_fields(body, w, ctx);
+}
+template <class Body>
+[[gnu::noinline]] void read_fields_checked(ByteReader& r, Body& body, std::uint32_t pv, auto& ctx) {
+  read_fields(r, body, pv, ctx);
+}
+
+template <class Body>
+void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
+  // The presence vector first, from the optional members alone: computed
+  // inside the field branches it cost more than the fields themselves.
+  static_assert(presence_vector_first<Body>());
+  const std::uint32_t pv = presence_of(body);
+  if constexpr (has_presence_vector<Body>()) {
+    using Pv = typename std::decay_t<decltype(std::get<0>(kFields<Body>))>::wire_type;
+    w.set_field("presence_vector");
+    w.write(static_cast<Pv>(pv));
+  }
+  if constexpr (has_fixed_layout<Body>()) {
+    const std::size_t size = fixed_layout_size<Body>(pv, ctx);
+    if (w.room() >= size) [[likely]] {
+      UncheckedWriter fast(w.cursor());
+      write_fields(body, fast, ctx);
+      if (!fast.failed()) [[likely]] {
+        assert(fast.size() == size);
+        w.commit(size);
+        return;
+      }
+    }
+    // Too little room, or a codec refused a value (a time stamp part out of
+    // range, text too long): the checked walk reports where and in which field.
+    write_fields_checked(body, w, ctx);
+  } else {
+    write_fields(body, w, ctx);
+  }
+}
+
+template <class Body>
+void decode_fields(ByteReader& r, Body& body, auto& ctx) {
+  static_assert(presence_vector_first<Body>());
+  std::uint32_t pv = 0;
+  if constexpr (has_presence_vector<Body>()) {
+    using Pv = typename std::decay_t<decltype(std::get<0>(kFields<Body>))>::wire_type;
+    r.set_field("presence_vector");
+    Pv raw{};
+    // On failure pv stays 0 and the fields below fail in turn (sticky error).
+    if (r.read(raw)) {
       pv = raw;
       constexpr std::uint32_t defined = optional_mask<Body>();
       if ((pv & ~defined) != 0) [[unlikely]]
         detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
-    } else {
-      if constexpr (F::is_optional) {
-        auto& member = body.*f.member;
-        bool present;
-        if constexpr (f.only_in.has_value())
-          present = *f.only_in == ctx.dialect;
-        else
-          present = ((pv >> f.bit) & 1u) != 0;
-        if (present) {
-          r.set_field(f.name);
-          if (!member) member.emplace();
-          f.codec.decode(r, *member, ctx);
-        } else {
-          member.reset();
-        }
-      } else {
-        r.set_field(f.name);
-        f.codec.decode(r, body.*f.member, ctx);
-      }
     }
-  });
+  }
+  if constexpr (has_fixed_layout<Body>()) {
+    const std::size_t size = fixed_layout_size<Body>(pv, ctx);
+    if (r.remaining() >= size) [[likely]] {
+      UncheckedReader fast(r.cursor());
+      read_fields(fast, body, pv, ctx);
+      r.skip(size);
+      return;
+    }
+    // Too few bytes: the checked walk names the field that is cut short.
+    read_fields_checked(r, body, pv, ctx);
+  } else {
+    read_fields(r, body, pv, ctx);
+  }
 }
 
 // One line per message: "name: type; name (bit 0): type; ..." for docs/messages.md.
