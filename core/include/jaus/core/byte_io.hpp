@@ -190,7 +190,7 @@ class ByteWriter {
 // the caller can redo the message with a ByteWriter, which reports it.
 class UncheckedReader {
  public:
-  explicit UncheckedReader(const std::uint8_t* at) : cur_(at) {}
+  explicit UncheckedReader(const std::uint8_t* at) : begin_(at), cur_(at) {}
 
   template <WireScalar T>
   JAUS_ALWAYS_INLINE bool read(T& out) {
@@ -203,9 +203,11 @@ class UncheckedReader {
     cur_ += n;
     return true;
   }
+  std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }  // bytes read
   void set_field(std::string_view) {}
 
  private:
+  const std::uint8_t* begin_;
   const std::uint8_t* cur_;
 };
 
@@ -230,7 +232,7 @@ class UncheckedWriter {
     return true;
   }
 
-  std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }
+  std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }  // bytes written
   void set_field(std::string_view) {}
   void fail(ErrorCode, const std::string& = {}) { failed_ = true; }
   bool failed() const { return failed_; }

@@ -123,7 +123,7 @@ constexpr bool has_presence_vector() {
 }
 
 template <class Body>
-std::uint32_t presence_of(const Body& body) {
+JAUS_ALWAYS_INLINE std::uint32_t presence_of(const Body& body) {
   std::uint32_t pv = 0;
   for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
     constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
@@ -305,6 +305,25 @@ JAUS_ALWAYS_INLINE std::size_t fixed_layout_size(std::uint32_t pv, const auto& c
   return size;
 }
 
+// Every field present (and every dialect's fields, an upper bound).
+template <class Body>
+inline constexpr std::size_t kMaxFixedLayoutSize = [] {
+  std::size_t size = 0;
+  std::apply(
+      [&](const auto&... f) {
+        ((size += [] {
+            using F = std::decay_t<decltype(f)>;
+            if constexpr (is_presence_vector<F>::value)
+              return std::size_t{0};
+            else
+              return fixed_size_of<typename F::codec_type>();
+          }()),
+         ...);
+      },
+      Body::describe());
+  return size;
+}();
+
 // The presence vector, when there is one, is the first field: it is read
 // before the others, to know their size.
 template <class Body>
@@ -316,7 +335,7 @@ constexpr bool presence_vector_first() {
 }
 
 // Writes every field after the presence vector. W is a ByteWriter, or an
-// UncheckedWriter with room for fixed_layout_size().
+// UncheckedWriter with room for fixed_layout_size() bytes.
 template <class Body, class W>
 JAUS_ALWAYS_INLINE void write_fields(const Body& body, W& w, auto& ctx) {
   for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
@@ -391,13 +410,14 @@ void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
     w.write(static_cast<Pv>(pv));
   }
   if constexpr (has_fixed_layout<Body>()) {
-    const std::size_t size = fixed_layout_size<Body>(pv, ctx);
-    if (w.room() >= size) [[likely]] {
+    const std::size_t room = w.room();
+    // Room for every field (the usual case) spares working out the exact size.
+    if (room >= kMaxFixedLayoutSize<Body> || room >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
       UncheckedWriter fast(w.cursor());
       write_fields(body, fast, ctx);
       if (!fast.failed()) [[likely]] {
-        assert(fast.size() == size);
-        w.commit(size);
+        assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
+        w.commit(fast.size());
         return;
       }
     }
@@ -426,11 +446,12 @@ void decode_fields(ByteReader& r, Body& body, auto& ctx) {
     }
   }
   if constexpr (has_fixed_layout<Body>()) {
-    const std::size_t size = fixed_layout_size<Body>(pv, ctx);
-    if (r.remaining() >= size) [[likely]] {
+    const std::size_t left = r.remaining();
+    if (left >= kMaxFixedLayoutSize<Body> || left >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
       UncheckedReader fast(r.cursor());
       read_fields(fast, body, pv, ctx);
-      r.skip(size);
+      assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
+      r.skip(fast.size());
       return;
     }
     // Too few bytes: the checked walk names the field that is cut short.
