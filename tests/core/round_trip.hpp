@@ -71,13 +71,25 @@ TYPED_TEST_P(RoundTrip, RandomValuesSurviveEncodeDecode) {
       EXPECT_TRUE(std::equal(payload.begin(), payload.end(), second.begin())) << where << "\n" << json.dump();
       }
 
-      // Every truncation is an error, never a crash or an over-read.
+      // Every truncation is an error naming the field cut short, never a
+      // crash or an over-read (fixed-layout messages find it on a second,
+      // checked walk: describe.hpp).
       if constexpr (!ends_open<M>()) {
         for (std::size_t cut = 0; cut < payload.size(); ++cut) {
           M partial{};
-          EXPECT_TRUE(wire::decode_payload_into(payload.first(cut), partial, dialect).has_value())
-              << where << " truncated to " << cut << " bytes";
+          const auto cut_error = wire::decode_payload_into(payload.first(cut), partial, dialect);
+          ASSERT_TRUE(cut_error.has_value()) << where << " truncated to " << cut << " bytes";
+          EXPECT_FALSE(cut_error->field.empty()) << where << " truncated to " << cut << ": " << cut_error->message();
+          EXPECT_LE(cut_error->offset, cut) << where << " truncated to " << cut << ": " << cut_error->message();
         }
+      }
+      // Likewise every output buffer too small for the payload.
+      for (std::size_t room = 0; room < *size; ++room) {
+        const auto small = wire::encode_payload(original, std::span(second).first(room), dialect);
+        ASSERT_FALSE(small) << where << " into " << room << " bytes";
+        EXPECT_EQ(small.error().code, ErrorCode::output_too_small) << where << ": " << small.error().message();
+        EXPECT_FALSE(small.error().field.empty()) << where << " into " << room << ": " << small.error().message();
+        EXPECT_LE(small.error().offset, room) << where << " into " << room << ": " << small.error().message();
       }
       // One byte too many is an error too.
       if (*size < first.size()) {

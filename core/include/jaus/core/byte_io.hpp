@@ -10,6 +10,7 @@
 #include <cstring>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "jaus/core/error.hpp"
@@ -17,6 +18,8 @@
 // Per-field codec steps are a handful of instructions; keeping them inline lets
 // a whole message encode or decode as straight-line code.
 #define JAUS_ALWAYS_INLINE [[gnu::always_inline]] inline
+// The same for a lambda (placed after the parameter list).
+#define JAUS_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
 
 namespace jaus {
 
@@ -69,6 +72,11 @@ class ByteReader {
 
   std::size_t remaining() const { return failed() ? 0 : bytes_.size() - pos_; }
   std::size_t offset() const { return base_offset_ + pos_; }
+
+  // For a caller that checked remaining() and reads the bytes itself
+  // (an UncheckedReader), then skips them (n <= remaining()).
+  const std::uint8_t* cursor() const { return bytes_.data() + pos_; }
+  void skip(std::size_t n) { pos_ += n; }
 
   // Which field is being read, for error messages (static storage).
   void set_field(std::string_view field) { field_ = field; }
@@ -143,6 +151,12 @@ class ByteWriter {
   std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }
   std::span<std::uint8_t> written() const { return {begin_, size()}; }
 
+  // For a caller that checked room() and writes the bytes itself (an
+  // UncheckedWriter), then commits them (n <= room()).
+  std::size_t room() const { return static_cast<std::size_t>(end_ - cur_); }
+  std::uint8_t* cursor() const { return cur_; }
+  void commit(std::size_t n) { cur_ += n; }
+
   void set_field(std::string_view field) { field_ = field; }
   std::string_view field() const { return field_; }
   void fail(ErrorCode code, std::string detail = {}) {
@@ -166,6 +180,67 @@ class ByteWriter {
   std::string_view field_;
   // Allocated only on failure, so that a healthy write costs nothing.
   std::unique_ptr<Error> error_;
+};
+
+// The same interfaces over bytes whose extent the caller has already checked
+// (a message of fixed layout checks its whole size once, describe.hpp): no
+// bounds check per value and no field names, so that the cursor stays in a
+// register. Errors are left to ByteReader/ByteWriter: a reader has no error
+// of its own, and a writer only notes that a codec refused a value so that
+// the caller can redo the message with a ByteWriter, which reports it.
+class UncheckedReader {
+ public:
+  explicit UncheckedReader(const std::uint8_t* at) : begin_(at), cur_(at) {}
+
+  template <WireScalar T>
+  JAUS_ALWAYS_INLINE bool read(T& out) {
+    out = detail::from_little_endian<T>(cur_);
+    cur_ += sizeof(T);
+    return true;
+  }
+  bool read_bytes(std::size_t n, std::span<const std::uint8_t>& out) {
+    out = {cur_, n};
+    cur_ += n;
+    return true;
+  }
+  std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }  // bytes read
+  void set_field(std::string_view) {}
+
+ private:
+  const std::uint8_t* begin_;
+  const std::uint8_t* cur_;
+};
+
+class UncheckedWriter {
+ public:
+  explicit UncheckedWriter(std::uint8_t* at) : begin_(at), cur_(at) {}
+
+  template <WireScalar T>
+  JAUS_ALWAYS_INLINE bool write(T value) {
+    detail::to_little_endian<T>(value, cur_);
+    cur_ += sizeof(T);
+    return true;
+  }
+  bool write_bytes(std::span<const std::uint8_t> bytes) {
+    if (!bytes.empty()) std::memcpy(cur_, bytes.data(), bytes.size());
+    cur_ += bytes.size();
+    return true;
+  }
+  bool write_zeros(std::size_t n) {
+    std::memset(cur_, 0, n);
+    cur_ += n;
+    return true;
+  }
+
+  std::size_t size() const { return static_cast<std::size_t>(cur_ - begin_); }  // bytes written
+  void set_field(std::string_view) {}
+  void fail(ErrorCode, const std::string& = {}) { failed_ = true; }
+  bool failed() const { return failed_; }
+
+ private:
+  std::uint8_t* begin_;
+  std::uint8_t* cur_;
+  bool failed_ = false;
 };
 
 }  // namespace jaus

@@ -76,11 +76,10 @@ inline void encode_header_unchecked(const Header& h, std::span<std::uint8_t, kHe
   std::copy(std::begin(bytes), std::end(bytes), p);
 }
 
-// Reads and validates a header: version 1 or 2, known data flag, data size <= 4080.
-inline Expected<Header, Error> decode_header(std::span<const std::uint8_t> bytes) {
+namespace detail {
+// The header's fields from its 16 bytes, before any check.
+inline Header read_header(const std::uint8_t* p) {
   Header h;
-  if (bytes.size() < kHeaderSize) return unexpected(detail::header_error(bytes, h, 0));
-  const std::uint8_t* p = bytes.data();
   const unsigned properties = p[0] | (p[1] << 8);
   h.priority = properties & 0x0F;
   h.ack_nak = static_cast<AckNak>((properties >> 4) & 0x03);
@@ -92,12 +91,23 @@ inline Expected<Header, Error> decode_header(std::span<const std::uint8_t> bytes
   h.source = Address{p[11], p[10], p[9], p[8]};
   const unsigned data_control = p[12] | (p[13] << 8);
   h.data_size = static_cast<std::uint16_t>(data_control & 0x0FFF);
-  const unsigned flag = data_control >> 12;
-  h.data_flag = static_cast<DataFlag>(flag);
+  h.data_flag = static_cast<DataFlag>(data_control >> 12);
   h.sequence = static_cast<std::uint16_t>(p[14] | (p[15] << 8));
-  if ((h.version != kVersionRa30 && h.version != kVersionRa32) || !detail::is_known_data_flag(flag) ||
-      h.data_size > kMaxPayloadSize) [[unlikely]]
-    return unexpected(detail::header_error(bytes, h, flag));
+  return h;
+}
+// Version 1 or 2, known data flag, data size <= 4080.
+inline bool is_valid_header(const Header& h) {
+  return (h.version == kVersionRa30 || h.version == kVersionRa32) &&
+         is_known_data_flag(static_cast<unsigned>(h.data_flag)) && h.data_size <= kMaxPayloadSize;
+}
+}  // namespace detail
+
+// Reads and validates a header: version 1 or 2, known data flag, data size <= 4080.
+inline Expected<Header, Error> decode_header(std::span<const std::uint8_t> bytes) {
+  if (bytes.size() < kHeaderSize) return unexpected(detail::header_error(bytes, Header{}, 0));
+  const Header h = detail::read_header(bytes.data());
+  if (!detail::is_valid_header(h)) [[unlikely]]
+    return unexpected(detail::header_error(bytes, h, static_cast<unsigned>(h.data_flag)));
   return h;
 }
 
@@ -110,14 +120,18 @@ struct PacketView {
 namespace detail {
 Error packet_size_error(const Header& header, std::size_t payload_size);
 }
+// The checks of decode_header, then the data size; the header is read straight
+// into the result rather than through decode_header's own Expected (a copy and
+// a variant on every received packet).
 inline Expected<PacketView, Error> decode_packet(std::span<const std::uint8_t> bytes) {
-  auto header = decode_header(bytes);
-  if (!header) [[unlikely]]
-    return unexpected(header.error());
-  const std::size_t payload_size = bytes.size() - kHeaderSize;
-  if (header->data_size != payload_size) [[unlikely]]
-    return unexpected(detail::packet_size_error(*header, payload_size));
-  return PacketView{*header, bytes.subspan(kHeaderSize)};
+  if (bytes.size() < kHeaderSize) [[unlikely]]
+    return unexpected(detail::header_error(bytes, Header{}, 0));
+  const PacketView packet{detail::read_header(bytes.data()), bytes.subspan(kHeaderSize)};
+  if (!detail::is_valid_header(packet.header)) [[unlikely]]
+    return unexpected(detail::header_error(bytes, packet.header, static_cast<unsigned>(packet.header.data_flag)));
+  if (packet.header.data_size != packet.payload.size()) [[unlikely]]
+    return unexpected(detail::packet_size_error(packet.header, packet.payload.size()));
+  return packet;
 }
 
 }  // namespace jaus

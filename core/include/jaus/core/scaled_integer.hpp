@@ -40,15 +40,20 @@ struct ScaledRange {
     return static_cast<double>(static_cast<std::int64_t>(x + (x >= 0 ? 0.5 : -0.5)));
   }
 
-  [[gnu::always_inline]] constexpr I encode(double value) const {
+  [[gnu::always_inline]] I encode(double value) const {
     // Clamp first (NaN becomes the lower limit); a clamped value lands within
     // the integer range after rounding, so the result needs no second clamp.
     value = std::min(upper, std::max(lower, value));
     // Multiplying by the constant steps-per-unit (folded at compile time)
     // instead of dividing by the scale keeps the encoder free of divisions.
     const double exact = (value - bias()) * (steps() / (upper - lower));
-    const double raw = peer_rounding ? static_cast<double>(static_cast<std::int64_t>(exact + 0.5)) : round_half_away(exact);
-    return static_cast<I>(raw);
+    // round_half_away without its branch: copysign is a bit operation, and
+    // adding +-0.5 then truncating gives the same integer for every value
+    // (-0.0 gets -0.5 instead of +0.5; both truncate to 0). The peer rounds
+    // with (int)(x + 0.5). The integer fits I, so no double -> I conversion
+    // (undefined out of range) is needed, only an integer narrowing.
+    const double half = peer_rounding ? 0.5 : std::copysign(0.5, exact);
+    return static_cast<I>(static_cast<std::int64_t>(exact + half));
   }
 
   [[gnu::always_inline]] constexpr double decode(I raw) const {

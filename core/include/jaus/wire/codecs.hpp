@@ -9,6 +9,14 @@
 //   decode(ByteReader&, value_type&, Context&)
 //   to_json<Json>(const value_type&) / from_json<Json>(const Json&, value_type&, std::string& why)
 // JSON members are templates so that this header does not pull in a JSON library.
+//
+// A codec whose field always takes the same number of bytes, and whose decode
+// cannot fail once those bytes are there, also has
+//   static constexpr std::size_t fixed_size
+// and takes any reader/writer (auto&): a message made only of such fields is
+// checked for size once and then encoded or decoded with an UncheckedWriter or
+// UncheckedReader (describe.hpp). UncheckedReader has no fail(), so a decode
+// that can fail does not compile there.
 #pragma once
 
 #include <algorithm>
@@ -130,9 +138,10 @@ template <std::integral T>
 struct Int {
   using value_type = T;
   using wire_type = T;
+  static constexpr std::size_t fixed_size = sizeof(T);
   std::string doc() const { return detail::wire_name<T>(); }
-  JAUS_ALWAYS_INLINE void encode(const T& v, ByteWriter& w, auto&) const { w.write(v); }
-  JAUS_ALWAYS_INLINE void decode(ByteReader& r, T& v, auto&) const { r.read(v); }
+  JAUS_ALWAYS_INLINE void encode(const T& v, auto& w, auto&) const { w.write(v); }
+  JAUS_ALWAYS_INLINE void decode(auto& r, T& v, auto&) const { r.read(v); }
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
@@ -143,9 +152,10 @@ struct Int {
 template <std::floating_point T>
 struct Real {
   using value_type = T;
+  static constexpr std::size_t fixed_size = sizeof(T);
   std::string doc() const { return detail::wire_name<T>(); }
-  JAUS_ALWAYS_INLINE void encode(const T& v, ByteWriter& w, auto&) const { w.write(v); }
-  JAUS_ALWAYS_INLINE void decode(ByteReader& r, T& v, auto&) const { r.read(v); }
+  JAUS_ALWAYS_INLINE void encode(const T& v, auto& w, auto&) const { w.write(v); }
+  JAUS_ALWAYS_INLINE void decode(auto& r, T& v, auto&) const { r.read(v); }
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
@@ -167,6 +177,7 @@ template <std::integral T>
 struct Scaled {
   using value_type = double;
   using wire_type = T;
+  static constexpr std::size_t fixed_size = sizeof(T);  // also as the quirk's unsigned
   double lower;
   double upper;
   Quirk quirk = Quirk::none;
@@ -192,13 +203,13 @@ struct Scaled {
       return false;
     }
   }
-  JAUS_ALWAYS_INLINE void encode(const double& v, ByteWriter& w, auto& ctx) const {
+  JAUS_ALWAYS_INLINE void encode(const double& v, auto& w, auto& ctx) const {
     if (uses_quirk(ctx))
       w.write(range_for<std::make_unsigned_t<T>>(ctx).encode(v));
     else
       w.write(range_for<T>(ctx).encode(v));
   }
-  JAUS_ALWAYS_INLINE void decode(ByteReader& r, double& v, auto& ctx) const {
+  JAUS_ALWAYS_INLINE void decode(auto& r, double& v, auto& ctx) const {
     if (uses_quirk(ctx)) {
       std::make_unsigned_t<T> raw{};
       if (r.read(raw)) v = range_for<std::make_unsigned_t<T>>(ctx).decode(raw);
@@ -219,19 +230,20 @@ template <std::integral T>
 struct Linear {
   using value_type = double;
   using wire_type = T;
+  static constexpr std::size_t fixed_size = sizeof(T);
   double factor;
   std::string doc() const { return detail::wire_name<T>() + " x " + detail::number_text(factor); }
 
   constexpr double step() const { return factor; }
   constexpr double lower() const { return static_cast<double>(std::numeric_limits<T>::min()) * factor; }
   constexpr double upper() const { return static_cast<double>(std::numeric_limits<T>::max()) * factor; }
-  void encode(const double& v, ByteWriter& w, auto&) const {
+  void encode(const double& v, auto& w, auto&) const {
     double raw = ScaledRange<T>::round_half_away(std::isfinite(v) ? v / factor : 0.0);
     raw = std::clamp(raw, static_cast<double>(std::numeric_limits<T>::min()),
                      static_cast<double>(std::numeric_limits<T>::max()));
     w.write(static_cast<T>(raw));
   }
-  void decode(ByteReader& r, double& v, auto&) const {
+  void decode(auto& r, double& v, auto&) const {
     T raw{};
     if (r.read(raw)) v = static_cast<double>(raw) * factor;
   }
@@ -247,11 +259,12 @@ template <std::size_t N, bool AcceptShorter = false>
 struct Text {
   using value_type = std::string;
   static constexpr std::size_t length = N;
+  static constexpr std::size_t fixed_size = AcceptShorter ? 0 : N;  // 0: not fixed
   std::string doc() const {
     return "text, " + std::to_string(N) + " bytes NUL padded" + (AcceptShorter ? " (shorter accepted)" : "");
   }
 
-  void encode(const std::string& v, ByteWriter& w, auto&) const {
+  void encode(const std::string& v, auto& w, auto&) const {
     if (v.size() > N) {
       w.fail(ErrorCode::string_too_long, std::to_string(v.size()) + " > " + std::to_string(N) + " characters");
       return;
@@ -259,9 +272,10 @@ struct Text {
     w.write_bytes({reinterpret_cast<const std::uint8_t*>(v.data()), v.size()});
     w.write_zeros(N - v.size());
   }
-  void decode(ByteReader& r, std::string& v, auto&) const {
+  void decode(auto& r, std::string& v, auto&) const {
     std::span<const std::uint8_t> bytes;
-    const std::size_t n = AcceptShorter ? std::min(N, r.remaining()) : N;
+    std::size_t n = N;
+    if constexpr (AcceptShorter) n = std::min(N, r.remaining());
     if (!r.read_bytes(n, bytes)) return;
     std::size_t len = 0;
     while (len < bytes.size() && bytes[len] != 0) ++len;
@@ -287,8 +301,9 @@ struct Text {
 // Time stamp (u32) as its parts.
 struct Time {
   using value_type = TimeStamp;
+  static constexpr std::size_t fixed_size = 4;
   std::string doc() const { return "time stamp (u32)"; }
-  void encode(const TimeStamp& v, ByteWriter& w, auto&) const {
+  void encode(const TimeStamp& v, auto& w, auto&) const {
     const auto raw = v.pack();
     if (!raw) {
       w.fail(ErrorCode::bad_value, "time stamp part out of its bit range");
@@ -296,7 +311,7 @@ struct Time {
     }
     w.write(*raw);
   }
-  void decode(ByteReader& r, TimeStamp& v, auto&) const {
+  void decode(auto& r, TimeStamp& v, auto&) const {
     std::uint32_t raw = 0;
     if (r.read(raw)) v = TimeStamp::unpack(raw);
   }
@@ -336,8 +351,9 @@ struct Time {
 // masked to 7 bits and a 0-based month; it is mapped back here.
 struct Date {
   using value_type = DateStamp;
+  static constexpr std::size_t fixed_size = 2;
   std::string doc() const { return "date stamp (u16)"; }
-  void encode(const DateStamp& v, ByteWriter& w, auto& ctx) const {
+  void encode(const DateStamp& v, auto& w, auto& ctx) const {
     DateStamp wire = v;
     if (ctx.dialect == Dialect::openjaus) {
       wire.month = static_cast<std::uint8_t>(v.month == 0 ? 0 : v.month - 1);
@@ -350,7 +366,7 @@ struct Date {
     }
     w.write(*raw);
   }
-  void decode(ByteReader& r, DateStamp& v, auto& ctx) const {
+  void decode(auto& r, DateStamp& v, auto& ctx) const {
     std::uint16_t raw = 0;
     if (!r.read(raw)) return;
     v = DateStamp::unpack(raw);
@@ -446,14 +462,15 @@ bool Bytes<SizeT>::from_json(const Json& j, value_type& v, std::string& why) con
 // (the order of discovery and control reports; the header uses the reverse).
 struct AddressCodec {
   using value_type = Address;
+  static constexpr std::size_t fixed_size = 4;
   std::string doc() const { return "address S.N.C.I (4 x u8)"; }
-  void encode(const Address& v, ByteWriter& w, auto&) const {
+  void encode(const Address& v, auto& w, auto&) const {
     w.write(v.subsystem);
     w.write(v.node);
     w.write(v.component);
     w.write(v.instance);
   }
-  void decode(ByteReader& r, Address& v, auto&) const {
+  void decode(auto& r, Address& v, auto&) const {
     r.read(v.subsystem);
     r.read(v.node);
     r.read(v.component);

@@ -16,12 +16,14 @@
 // never stored twice).
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "jaus/wire/codecs.hpp"
@@ -83,6 +85,21 @@ struct is_presence_vector : std::false_type {};
 template <class T>
 struct is_presence_vector<PresenceVector<T>> : std::true_type {};
 
+// The description as a constant. The walkers below reach each field as
+// std::get<I>(kFields<Body>) with I a template argument, so its name, bit,
+// dialect and codec limits are compile-time values in the generated code
+// whether or not the compiler inlines the walk (passed as function arguments,
+// a long description was left to run-time loads, divisions included).
+template <class Body>
+inline constexpr auto kFields = Body::describe();
+
+template <class Body, class F>
+JAUS_ALWAYS_INLINE void for_each_field_index(F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) JAUS_ALWAYS_INLINE_LAMBDA {
+    (f(std::integral_constant<std::size_t, I>{}), ...);
+  }(std::make_index_sequence<std::tuple_size_v<decltype(kFields<Body>)>>{});
+}
+
 // Bits the body defines; any other bit of a received presence vector is reserved.
 template <class Body>
 constexpr std::uint32_t optional_mask() {
@@ -106,20 +123,16 @@ constexpr bool has_presence_vector() {
 }
 
 template <class Body>
-std::uint32_t presence_of(const Body& body) {
-  static constexpr auto fields = Body::describe();
+JAUS_ALWAYS_INLINE std::uint32_t presence_of(const Body& body) {
   std::uint32_t pv = 0;
-  std::apply(
-      [&](const auto&... f) {
-        (([&] {
-           if constexpr (!is_presence_vector<std::decay_t<decltype(f)>>::value) {
-             if constexpr (std::decay_t<decltype(f)>::is_optional)
-               if (f.bit >= 0 && (body.*f.member).has_value()) pv |= 1u << f.bit;
-           }
-         }()),
-         ...);
-      },
-      fields);
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (!is_presence_vector<F>::value) {
+      if constexpr (F::is_optional && f.bit >= 0)
+        pv |= static_cast<std::uint32_t>((body.*f.member).has_value()) << f.bit;
+    }
+  });
   return pv;
 }
 
@@ -244,82 +257,208 @@ struct Records {
   bool from_json(const Json& j, value_type& v, std::string& why) const;
 };
 
+// A body has a fixed layout when every field's codec has a fixed size: its
+// size then follows from the presence vector (and dialect) alone, so it is
+// checked once and the fields go through an UncheckedReader/UncheckedWriter.
+// Anything else (arrays, records, bytes, counts) walks with the checked
+// ByteReader/ByteWriter, which name the field of any error.
+template <class Codec>
+constexpr std::size_t fixed_size_of() {
+  if constexpr (requires { Codec::fixed_size; })
+    return Codec::fixed_size;
+  else
+    return 0;
+}
+
 template <class Body>
-void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
-  // A constant description lets the compiler fold every codec's limits.
-  static constexpr auto fields = Body::describe();
-  // The presence vector is written as a placeholder and patched once the
-  // optional fields have been seen: one pass over the fields.
-  std::size_t pv_at = 0;
-  std::uint32_t pv = 0;
+constexpr bool has_fixed_layout() {
+  return std::apply(
+      [](const auto&... f) {
+        return ([] {
+          using F = std::decay_t<decltype(f)>;
+          if constexpr (is_presence_vector<F>::value)
+            return true;
+          else
+            return fixed_size_of<typename F::codec_type>() > 0;
+        }() && ...);
+      },
+      Body::describe());
+}
+
+// The size of the fields after the presence vector `pv` of a fixed-layout body.
+template <class Body>
+JAUS_ALWAYS_INLINE std::size_t fixed_layout_size(std::uint32_t pv, const auto& ctx) {
+  std::size_t size = 0;
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (!is_presence_vector<F>::value) {
+      constexpr std::size_t n = fixed_size_of<typename F::codec_type>();
+      if constexpr (!F::is_optional)
+        size += n;
+      else if constexpr (f.only_in.has_value())
+        size += *f.only_in == ctx.dialect ? n : 0;
+      else
+        size += ((pv >> f.bit) & 1u) * n;
+    }
+  });
+  return size;
+}
+
+// Every field present (and every dialect's fields, an upper bound).
+template <class Body>
+inline constexpr std::size_t kMaxFixedLayoutSize = [] {
+  std::size_t size = 0;
   std::apply(
       [&](const auto&... f) {
-        (([&] {
-           using F = std::decay_t<decltype(f)>;
-           if constexpr (is_presence_vector<F>::value) {
-             w.set_field("presence_vector");
-             pv_at = w.size();
-             w.write(typename F::wire_type{0});
-           } else {
-             w.set_field(f.name);
-             if constexpr (F::is_optional) {
-               if (f.only_in) {
-                 if (*f.only_in == ctx.dialect)
-                   f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
-               } else if ((body.*f.member).has_value()) {
-                 pv |= 1u << f.bit;
-                 f.codec.encode(*(body.*f.member), w, ctx);
-               }
-             } else {
-               f.codec.encode(body.*f.member, w, ctx);
-             }
-           }
-         }()),
+        ((size += [] {
+            using F = std::decay_t<decltype(f)>;
+            if constexpr (is_presence_vector<F>::value)
+              return std::size_t{0};
+            else
+              return fixed_size_of<typename F::codec_type>();
+          }()),
          ...);
       },
-      fields);
+      Body::describe());
+  return size;
+}();
+
+// The presence vector, when there is one, is the first field: it is read
+// before the others, to know their size.
+template <class Body>
+constexpr bool presence_vector_first() {
+  using Fields = decltype(Body::describe());
+  return []<std::size_t... I>(std::index_sequence<I...>) {
+    return ((I == 0 || !is_presence_vector<std::tuple_element_t<I, Fields>>::value) && ...);
+  }(std::make_index_sequence<std::tuple_size_v<Fields>>{});
+}
+
+// Writes every field after the presence vector. W is a ByteWriter, or an
+// UncheckedWriter with room for fixed_layout_size() bytes.
+template <class Body, class W>
+JAUS_ALWAYS_INLINE void write_fields(const Body& body, W& w, auto& ctx) {
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (!is_presence_vector<F>::value) {
+      w.set_field(f.name);
+      if constexpr (F::is_optional) {
+        if constexpr (f.only_in.has_value()) {
+          if (*f.only_in == ctx.dialect)
+            f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
+        } else if ((body.*f.member).has_value()) {
+          f.codec.encode(*(body.*f.member), w, ctx);
+        }
+      } else {
+        f.codec.encode(body.*f.member, w, ctx);
+      }
+    }
+  });
+}
+
+// Reads every field after the presence vector `pv`. R is a ByteReader, or an
+// UncheckedReader over fixed_layout_size() bytes.
+template <class Body, class R>
+JAUS_ALWAYS_INLINE void read_fields(R& r, Body& body, std::uint32_t pv, auto& ctx) {
+  for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
+    constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
+    using F = std::decay_t<decltype(f)>;
+    if constexpr (is_presence_vector<F>::value) {
+      // read by decode_fields
+    } else if constexpr (F::is_optional) {
+      auto& member = body.*f.member;
+      bool present;
+      if constexpr (f.only_in.has_value())
+        present = *f.only_in == ctx.dialect;
+      else
+        present = ((pv >> f.bit) & 1u) != 0;
+      if (present) {
+        r.set_field(f.name);
+        if (!member) member.emplace();
+        f.codec.decode(r, *member, ctx);
+      } else {
+        member.reset();
+      }
+    } else {
+      r.set_field(f.name);
+      f.codec.decode(r, body.*f.member, ctx);
+    }
+  });
+}
+
+// Out of line: the checked walk is the fast path's fallback, taken only to
+// report an error.
+template <class Body>
+[[gnu::noinline]] void write_fields_checked(const Body& body, ByteWriter& w, auto& ctx) {
+  write_fields(body, w, ctx);
+}
+template <class Body>
+[[gnu::noinline]] void read_fields_checked(ByteReader& r, Body& body, std::uint32_t pv, auto& ctx) {
+  read_fields(r, body, pv, ctx);
+}
+
+template <class Body>
+void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
+  // The presence vector first, from the optional members alone: computed
+  // inside the field branches it cost more than the fields themselves.
+  static_assert(presence_vector_first<Body>());
+  const std::uint32_t pv = presence_of(body);
   if constexpr (has_presence_vector<Body>()) {
-    using Pv = typename std::decay_t<decltype(std::get<0>(fields))>::wire_type;
-    w.patch(pv_at, static_cast<Pv>(pv));
+    using Pv = typename std::decay_t<decltype(std::get<0>(kFields<Body>))>::wire_type;
+    w.set_field("presence_vector");
+    w.write(static_cast<Pv>(pv));
+  }
+  if constexpr (has_fixed_layout<Body>()) {
+    const std::size_t room = w.room();
+    // Room for every field (the usual case) spares working out the exact size.
+    if (room >= kMaxFixedLayoutSize<Body> || room >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
+      UncheckedWriter fast(w.cursor());
+      write_fields(body, fast, ctx);
+      if (!fast.failed()) [[likely]] {
+        assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
+        w.commit(fast.size());
+        return;
+      }
+    }
+    // Too little room, or a codec refused a value (a time stamp part out of
+    // range, text too long): the checked walk reports where and in which field.
+    write_fields_checked(body, w, ctx);
+  } else {
+    write_fields(body, w, ctx);
   }
 }
 
 template <class Body>
 void decode_fields(ByteReader& r, Body& body, auto& ctx) {
-  static constexpr auto fields = Body::describe();
+  static_assert(presence_vector_first<Body>());
   std::uint32_t pv = 0;
-  std::apply(
-      [&](const auto&... f) {
-        (([&] {
-           using F = std::decay_t<decltype(f)>;
-           if constexpr (is_presence_vector<F>::value) {
-             r.set_field("presence_vector");
-             typename F::wire_type raw{};
-             if (!r.read(raw)) return;
-             pv = raw;
-             constexpr std::uint32_t defined = optional_mask<Body>();
-             if ((pv & ~defined) != 0) [[unlikely]]
-               detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
-           } else {
-             if constexpr (F::is_optional) {
-               auto& member = body.*f.member;
-               const bool present = f.only_in ? *f.only_in == ctx.dialect : ((pv >> f.bit) & 1u) != 0;
-               if (present) {
-                 r.set_field(f.name);
-                 if (!member) member.emplace();
-                 f.codec.decode(r, *member, ctx);
-               } else {
-                 member.reset();
-               }
-             } else {
-               r.set_field(f.name);
-               f.codec.decode(r, body.*f.member, ctx);
-             }
-           }
-         }()),
-         ...);
-      },
-      fields);
+  if constexpr (has_presence_vector<Body>()) {
+    using Pv = typename std::decay_t<decltype(std::get<0>(kFields<Body>))>::wire_type;
+    r.set_field("presence_vector");
+    Pv raw{};
+    // On failure pv stays 0 and the fields below fail in turn (sticky error).
+    if (r.read(raw)) {
+      pv = raw;
+      constexpr std::uint32_t defined = optional_mask<Body>();
+      if ((pv & ~defined) != 0) [[unlikely]]
+        detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
+    }
+  }
+  if constexpr (has_fixed_layout<Body>()) {
+    const std::size_t left = r.remaining();
+    if (left >= kMaxFixedLayoutSize<Body> || left >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
+      UncheckedReader fast(r.cursor());
+      read_fields(fast, body, pv, ctx);
+      assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
+      r.skip(fast.size());
+      return;
+    }
+    // Too few bytes: the checked walk names the field that is cut short.
+    read_fields_checked(r, body, pv, ctx);
+  } else {
+    read_fields(r, body, pv, ctx);
+  }
 }
 
 // One line per message: "name: type; name (bit 0): type; ..." for docs/messages.md.
