@@ -96,6 +96,19 @@ class TwoNodes : public ::testing::Test {
     oc.address = kOcu;
     ocu = static_cast<Ocu*>(&node->add(std::make_unique<Ocu>(oc, node->environment())));
     link->start();
+    // The daemons take a moment to start (longer under sanitizers): a
+    // datagram sent before they listen is lost, so wait until both answer.
+    for (const Address& manager : {kManagerA, kManagerB})
+      ASSERT_TRUE(answers(manager)) << (manager == kManagerA ? a : b)->output();
+    ocu->inbox.clear();
+  }
+
+  // Asks `manager` for its identification until it answers.
+  bool answers(const Address& manager) {
+    return run_until([&] {
+      ocu->send_to(manager, msg::QueryIdentification{{msg::identification::kComponent}});
+      return run_until([&] { return !ocu->received_from<msg::ReportIdentification>(manager).empty(); }, 200ms);
+    }, 20s);
   }
   void TearDown() override {
     node.reset();

@@ -214,6 +214,15 @@ TEST_F(UdpNodeTest, NonJausDatagramsAreCountedByReasonAndTheNodeKeepsAnswering) 
   EXPECT_TRUE(logged_reason);
 }
 
+TEST_F(UdpNodeTest, APeerUsingOurIdIsDroppedAndReported) {
+  send(framed(Framing::opc, packet_of(Address{1, 1, 40, 1}, kManager, msg::QueryIdentification{})));
+  ASSERT_TRUE(run_until([&] { return link->counters().dropped_for(DropReason::from_self) == 1; }));
+  EXPECT_EQ(node->counters().packets_received, 0u);
+  bool reported = false;
+  for (const auto& line : logs) reported |= line.find("another node uses this node's ID 1.1.40.1") != std::string::npos;
+  EXPECT_TRUE(reported);
+}
+
 TEST_F(UdpNodeTest, TheAllowListKeepsStrangersOut) {
   link.reset();
   node.reset();

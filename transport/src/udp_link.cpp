@@ -73,6 +73,7 @@ Expected<bool, std::string> UdpLink::bind_sockets() {
   if (ec) return unexpected(bind_error(options_.bind, ec));
   main_->socket.non_blocking(true, ec);
   if (ec) return unexpected("cannot make the socket non-blocking: " + ec.message());
+  local_port_ = main_->socket.local_endpoint(ec).port();
 
   if (!options_.multicast) return true;
   const Ipv4Endpoint group = *options_.multicast;
@@ -170,8 +171,12 @@ void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint
   auto unframed = unframe(datagram);
   if (!unframed) return drop(unframed.error().reason, from, unframed.error().detail);
   const Header& header = unframed->packet.header;
-  if (header.source.subsystem == options_.subsystem && header.source.node == options_.node)
-    return drop(DropReason::from_self, from, "");
+  if (header.source.subsystem == options_.subsystem && header.source.node == options_.node) {
+    // Our own broadcast looped back comes from our port; anything else with
+    // our ID is a misconfigured peer, which the operator must hear about.
+    const bool ours = from.port == local_port_ && (options_.bind.is_any() || from.address == options_.bind.address);
+    return drop(DropReason::from_self, from, ours ? "" : "another node uses this node's ID " + header.source.to_string());
+  }
   if (header.source.is_valid() && !header.source.is_broadcast()) {
     const Learnt learnt =
         routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
@@ -206,7 +211,7 @@ void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::strin
   const auto index = static_cast<std::size_t>(reason);
   ++counters_.dropped[index];
   // Own multicast coming back is expected, not worth a line.
-  if (reason == DropReason::from_self) return;
+  if (reason == DropReason::from_self && detail.empty()) return;
   const rt::TimePoint now = clock_.now();
   if (counters_.dropped[index] > 1 && now - last_drop_log_[index] < kDropLogInterval) return;
   last_drop_log_[index] = now;

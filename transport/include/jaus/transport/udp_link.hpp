@@ -110,6 +110,7 @@ class UdpLink final : public node::Link {
   rt::TimerId expiry_timer_ = rt::kNoTimer;
   // Rate limit of drop logs: one line per reason per second.
   std::array<rt::TimePoint, static_cast<std::size_t>(DropReason::count_)> last_drop_log_{};
+  std::uint16_t local_port_ = 0;  // the bound port (options_.bind.port may be 0: any)
   rt::TimePoint route_log_window_{};
   int route_lines_in_window_ = 0;
   bool closed_ = false;
