@@ -98,8 +98,8 @@ class TwoNodes : public ::testing::Test {
     link->start();
     // The daemons take a moment to start (longer under sanitizers): a
     // datagram sent before they listen is lost, so wait until both answer.
-    for (const Address& manager : {kManagerA, kManagerB})
-      ASSERT_TRUE(answers(manager)) << (manager == kManagerA ? a : b)->output();
+    for (const Address& daemon : {kManagerA, kManagerB})
+      ASSERT_TRUE(answers(daemon)) << (daemon == kManagerA ? a : b)->output();
     ocu->inbox.clear();
   }
 
