@@ -270,17 +270,24 @@ constexpr std::size_t fixed_size_of() {
     return 0;
 }
 
+// Bytes a field of type F takes whatever its value (0: variable, or the
+// presence vector, which is counted apart). A named helper, not a lambda
+// inside a fold expression: clang 14 crashes on that pattern.
+template <class F>
+constexpr std::size_t fixed_field_size() {
+  if constexpr (is_presence_vector<F>::value)
+    return 0;
+  else
+    return fixed_size_of<typename F::codec_type>();
+}
+
 template <class Body>
 constexpr bool has_fixed_layout() {
   return std::apply(
       [](const auto&... f) {
-        return ([] {
-          using F = std::decay_t<decltype(f)>;
-          if constexpr (is_presence_vector<F>::value)
-            return true;
-          else
-            return fixed_size_of<typename F::codec_type>() > 0;
-        }() && ...);
+        return ((is_presence_vector<std::decay_t<decltype(f)>>::value ||
+                 fixed_field_size<std::decay_t<decltype(f)>>() > 0) &&
+                ...);
       },
       Body::describe());
 }
@@ -308,20 +315,8 @@ JAUS_ALWAYS_INLINE std::size_t fixed_layout_size(std::uint32_t pv, const auto& c
 // Every field present (and every dialect's fields, an upper bound).
 template <class Body>
 inline constexpr std::size_t kMaxFixedLayoutSize = [] {
-  std::size_t size = 0;
-  std::apply(
-      [&](const auto&... f) {
-        ((size += [] {
-            using F = std::decay_t<decltype(f)>;
-            if constexpr (is_presence_vector<F>::value)
-              return std::size_t{0};
-            else
-              return fixed_size_of<typename F::codec_type>();
-          }()),
-         ...);
-      },
-      Body::describe());
-  return size;
+  return std::apply([](const auto&... f) { return (std::size_t{0} + ... + fixed_field_size<std::decay_t<decltype(f)>>()); },
+                    Body::describe());
 }();
 
 // The presence vector, when there is one, is the first field: it is read
