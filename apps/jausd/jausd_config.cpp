@@ -1,6 +1,6 @@
 #include "jausd_config.hpp"
 
-#include "jaus/core/quoted.hpp"
+#include "jaus/base/quoted.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -23,31 +23,9 @@ using jaus::transport::Cidr;
 using jaus::transport::Framing;
 using jaus::transport::Ipv4Endpoint;
 using jaus::transport::StaticPeer;
-
-// ---------------------------------------------------------------- registry
-
-namespace {
-
-// Component kinds the node can host. Adding one is one line: name, RA 3.x
-// component ID (../shared/spec/jaus-wire-notes.md), allowed option keys.
-// Register a kind only once main.cpp can build it.
-const std::vector<ComponentKind>& kinds() {
-  static const std::vector<ComponentKind> registry{
-      {"node_manager", 1, {}},
-      {"communicator", 35, {}},
-  };
-  return registry;
-}
-
-}  // namespace
-
-std::span<const ComponentKind> component_kinds() { return kinds(); }
-
-const ComponentKind* find_component_kind(std::string_view name) {
-  for (const auto& kind : kinds())
-    if (kind.name == name) return &kind;
-  return nullptr;
-}
+using jaus::host::component_kinds;
+using jaus::host::ComponentKind;
+using jaus::host::find_component_kind;
 
 std::vector<ComponentSpec> JausdConfig::default_components() {
   return {ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0},

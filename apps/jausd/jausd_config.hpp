@@ -14,7 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "jaus/core/expected.hpp"
+#include "jaus/base/expected.hpp"
+#include "jaus/host/component_kinds.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
 
@@ -33,15 +34,7 @@ struct TransportConfig {
   std::size_t max_peers = 256;  // peers learnt from traffic remembered at once (static ones come on top)
 };
 
-struct ComponentSpec {
-  std::string kind;       // a registered kind (component_kinds())
-  std::uint8_t id = 0;    // component ID, 1..254 (default: the kind's RA ID)
-  std::uint8_t instance = 1;
-  std::uint8_t authority = 0;
-  std::string name;       // Report Identification of the component (default: the kind)
-  std::map<std::string, std::string> options;  // kind-specific, keys checked against the kind
-  int line = 0;           // where the file declares it (0: not from a file)
-};
+using ComponentSpec = jaus::host::ComponentSpec;  // kinds and options: jaus/host/component_kinds.hpp
 
 struct ServiceConnectionSettings {  // per component, see jaus::rt::ServiceConnectionLimits
   double max_rate_hz = 1092;        // confirmed rates are capped at this
@@ -96,14 +89,5 @@ ConfigResult load_config_string(std::string_view yaml, std::string_view name);
 // Every range and cross-field rule on the values (a loaded file passes; run
 // it again after command-line overrides). The first problem, or nothing.
 std::optional<std::string> validate(const JausdConfig& config);
-
-// Component kinds the node can host: name, RA 3.x component ID, option keys.
-struct ComponentKind {
-  std::string_view name;
-  std::uint8_t default_id;
-  std::vector<std::string_view> options;
-};
-std::span<const ComponentKind> component_kinds();
-const ComponentKind* find_component_kind(std::string_view name);
 
 }  // namespace jausd

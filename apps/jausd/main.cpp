@@ -11,7 +11,7 @@
 #include <csignal>
 #include <iostream>
 
-#include "daemon.hpp"
+#include "host_config.hpp"
 #include "logging.hpp"
 
 namespace {
@@ -86,16 +86,21 @@ int main(int argc, char** argv) {
   auto logger = jausd::make_logger(config.log_level);
   const jaus::rt::LogFn log = jausd::log_function(logger);
   boost::asio::io_context io;
-  auto daemon = jausd::Daemon::start(config, io, log);
-  if (!daemon) {
-    logger->error("{}", daemon.error());
+  auto host = jaus::host::NodeHost::open(jausd::host_config(config), io, log);
+  if (!host) {
+    logger->error("{}", host.error().message());
     return kExitBadInput;
   }
+  const auto& link = (*host)->link();
+  logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
+               jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
   logger->info("configuration {}", source);
   boost::asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](const boost::system::error_code& ec, int signal) {
     if (ec) return;
-    (*daemon)->stop(signal == SIGINT ? "SIGINT" : "SIGTERM");
+    // Safety: NodeHost::stop shuts every component down (platform commanded
+    // to stop) before the link closes.
+    (*host)->stop(signal == SIGINT ? "SIGINT" : "SIGTERM");
     io.stop();
   });
   io.run();

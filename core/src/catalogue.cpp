@@ -206,7 +206,7 @@ Expected<Bytes, Error> message_from_json(const nlohmann::ordered_json& message, 
   auto payload = info->payload_from_json(message.value("fields", nlohmann::ordered_json::object()), dialect);
   if (!payload) return unexpected(payload.error());
   if (payload->size() > kMaxPayloadSize)
-    return unexpected(Error{ErrorCode::payload_too_large, 0, {}, std::to_string(payload->size()) + " bytes"});
+    return unexpected(Error{ErrorCode::payload_too_large, 0, {}, std::to_string(payload->size()) + " bytes, at most 4080 in one packet"});
   header->command_code = *code;
   header->data_size = static_cast<std::uint16_t>(payload->size());
   auto head = encode_header(*header);

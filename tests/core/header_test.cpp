@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "jaus/core/header.hpp"
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 
 namespace jaus {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/messages/catalogue.hpp"
 
 namespace jaus::msg {

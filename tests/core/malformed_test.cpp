@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/messages/catalogue.hpp"
 #include "vector_file.hpp"

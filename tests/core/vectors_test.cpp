@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "described_values.hpp"
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/messages/catalogue.hpp"
 #include "message_types.hpp"
 #include "vector_file.hpp"

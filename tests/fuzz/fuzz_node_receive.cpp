@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "jaus/node/node.hpp"
-#include "jaus/runtime/communicator.hpp"
-#include "jaus/runtime/node_manager.hpp"
-#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/components/communicator.hpp"
+#include "jaus/components/node_manager.hpp"
+#include "jaus/base/virtual_time.hpp"
 #include "jaus/transport/framing.hpp"
 
 namespace {

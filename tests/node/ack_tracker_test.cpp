@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "jaus/node/ack_reply.hpp"
-#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/base/virtual_time.hpp"
 
 namespace jaus::node {
 namespace {

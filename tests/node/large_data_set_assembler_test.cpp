@@ -8,7 +8,7 @@
 #include <random>
 
 #include "jaus/node/large_data_set_splitter.hpp"
-#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/base/virtual_time.hpp"
 #include "large_data_set_test_support.hpp"
 
 namespace jaus::node {

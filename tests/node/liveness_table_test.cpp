@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/base/virtual_time.hpp"
 
 namespace jaus::node {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "jaus/messages/all.hpp"
 #include "jaus/runtime/component.hpp"
-#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/base/virtual_time.hpp"
 
 namespace jaus::test {
 

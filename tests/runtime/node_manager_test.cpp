@@ -1,7 +1,7 @@
 // Node manager (discovery, heartbeats, configuration events) and communicator.
 #include "harness.hpp"
-#include "jaus/runtime/communicator.hpp"
-#include "jaus/runtime/node_manager.hpp"
+#include "jaus/components/communicator.hpp"
+#include "jaus/components/node_manager.hpp"
 
 namespace jaus::test {
 namespace {

@@ -2,9 +2,9 @@
 // dispatch, ACK/NAK, large data sets, liveness. Two nodes are joined by an
 // in-memory link under virtual time.
 #include "harness.hpp"
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/node/node.hpp"
-#include "jaus/runtime/node_manager.hpp"
+#include "jaus/components/node_manager.hpp"
 
 namespace jaus::test {
 namespace {

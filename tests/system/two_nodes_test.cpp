@@ -12,7 +12,7 @@
 #include "child_process.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/node/node.hpp"
-#include "jaus/runtime/node_manager.hpp"
+#include "jaus/components/node_manager.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
 

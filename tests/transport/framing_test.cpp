@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "../core/vector_file.hpp"
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/transport/framing.hpp"
 
 namespace jaus::transport {

@@ -2,7 +2,7 @@
 // bound on entries, under virtual time.
 #include <gtest/gtest.h>
 
-#include "jaus/runtime/virtual_time.hpp"
+#include "jaus/base/virtual_time.hpp"
 #include "jaus/transport/route_table.hpp"
 
 namespace jaus::transport {

@@ -12,11 +12,11 @@
 #include <unistd.h>
 
 #include "../core/vector_file.hpp"
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/node/node.hpp"
-#include "jaus/runtime/communicator.hpp"
-#include "jaus/runtime/node_manager.hpp"
+#include "jaus/components/communicator.hpp"
+#include "jaus/components/node_manager.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
 

@@ -1,6 +1,6 @@
 #include "jaus/transport/ipv4.hpp"
 
-#include "jaus/core/quoted.hpp"
+#include "jaus/base/quoted.hpp"
 
 #include <algorithm>
 #include <charconv>

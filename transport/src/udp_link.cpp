@@ -48,12 +48,12 @@ UdpLink::UdpLink(asio::io_context& io, rt::Clock& clock, rt::Scheduler& schedule
       clock_(clock),
       scheduler_(scheduler),
       options_(std::move(options)),
-      log_(log ? std::move(log) : [](rt::LogLevel, const std::string&) {}),
+      log_(log ? std::move(log) : rt::silent_log()),
       routes_(options_.routes) {
   for (const auto& peer : options_.peers) routes_.add_static_peer(peer.endpoint, peer.framing);
 }
 
-Expected<std::unique_ptr<UdpLink>, std::string> UdpLink::open(asio::io_context& io, rt::Clock& clock,
+Expected<std::unique_ptr<UdpLink>> UdpLink::open(asio::io_context& io, rt::Clock& clock,
                                                               rt::Scheduler& scheduler, UdpLinkOptions options,
                                                               rt::LogFn log) {
   std::unique_ptr<UdpLink> link(new UdpLink(io, clock, scheduler, std::move(options), std::move(log)));
@@ -62,22 +62,23 @@ Expected<std::unique_ptr<UdpLink>, std::string> UdpLink::open(asio::io_context& 
   return link;
 }
 
-Expected<bool, std::string> UdpLink::bind_sockets() {
+Expected<bool> UdpLink::bind_sockets() {
+  const auto failed = [](std::string what) { return unexpected(make_error(ErrorCode::io, std::move(what))); };
   boost::system::error_code ec;
   main_ = std::make_unique<Socket>(io_);
   main_->socket.open(udp::v4(), ec);
-  if (ec) return unexpected("cannot open a UDP socket: " + ec.message());
+  if (ec) return failed("cannot open a UDP socket: " + ec.message());
   // No SO_REUSEADDR on the main socket: a second node on the same address and
   // port must fail loudly instead of silently sharing the traffic.
   main_->socket.bind(to_asio(options_.bind), ec);
-  if (ec) return unexpected(bind_error(options_.bind, ec));
+  if (ec) return failed(bind_error(options_.bind, ec));
   main_->socket.non_blocking(true, ec);
-  if (ec) return unexpected("cannot make the socket non-blocking: " + ec.message());
+  if (ec) return failed("cannot make the socket non-blocking: " + ec.message());
   local_port_ = main_->socket.local_endpoint(ec).port();
 
   if (!options_.multicast) return true;
   const Ipv4Endpoint group = *options_.multicast;
-  if (!group.is_multicast()) return unexpected(to_string(group) + " is not a multicast address (224.0.0.0/4)");
+  if (!group.is_multicast()) return failed(to_string(group) + " is not a multicast address (224.0.0.0/4)");
   const auto interface = asio::ip::address_v4(options_.bind.address);
   // Multicast is best effort: a host without a multicast route still talks to
   // its known and static peers.
@@ -191,8 +192,7 @@ void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint
     }
   }
   ++counters_.packets_delivered;
-  const std::size_t prefix = unframed->framing == Framing::opc ? kOpcPrefix.size() : kJudpPrefixSize;
-  if (handler_) handler_(datagram.subspan(prefix));
+  if (handler_) handler_(unframed->packet, unframed->framing);
 }
 
 bool UdpLink::route_log_allowed() {
@@ -237,14 +237,8 @@ void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const s
   ++counters_.datagrams_sent;
 }
 
-void UdpLink::transmit(std::span<const std::uint8_t> packet) {
-  auto header = decode_header(packet);
-  if (!header) {
-    ++counters_.send_errors;
-    log_(rt::LogLevel::error, "refused to send a malformed packet: " + header.error().message());
-    return;
-  }
-  const Address& to = header->destination;
+void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packet) {
+  const Address& to = header.destination;
   const bool broadcast = to.subsystem == Address::kBroadcast || to.node == Address::kBroadcast;
   if (!broadcast) {
     if (auto peer = routes_.route(to.subsystem, to.node)) return send_to(peer->endpoint, peer->framing, packet);

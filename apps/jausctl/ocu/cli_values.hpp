@@ -8,8 +8,8 @@
 #include <string_view>
 
 #include "jaus/core/address.hpp"
-#include "jaus/core/expected.hpp"
-#include "jaus/runtime/time.hpp"
+#include "jaus/base/expected.hpp"
+#include "jaus/base/time.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
 

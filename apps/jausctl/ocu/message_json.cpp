@@ -1,6 +1,6 @@
 #include "message_json.hpp"
 
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/messages/catalogue.hpp"
 
 namespace jausctl::ocu {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "jaus/runtime/time.hpp"
+#include "jaus/base/time.hpp"
 
 namespace jausctl::ocu {
 

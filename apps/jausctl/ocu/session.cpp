@@ -4,7 +4,7 @@
 #include <csignal>
 
 #include "cli_values.hpp"
-#include "jaus/runtime/node_manager.hpp"
+#include "jaus/components/node_manager.hpp"
 
 namespace jausctl::ocu {
 

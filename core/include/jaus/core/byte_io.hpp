@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "jaus/core/error.hpp"
+#include "jaus/base/error.hpp"
 
 // Per-field codec steps are a handful of instructions; keeping them inline lets
 // a whole message encode or decode as straight-line code.

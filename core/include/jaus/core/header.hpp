@@ -9,8 +9,8 @@
 #include <span>
 
 #include "jaus/core/address.hpp"
-#include "jaus/core/error.hpp"
-#include "jaus/core/expected.hpp"
+#include "jaus/base/error.hpp"
+#include "jaus/base/expected.hpp"
 
 namespace jaus {
 

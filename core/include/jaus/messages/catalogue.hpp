@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "jaus/core/expected.hpp"
+#include "jaus/base/expected.hpp"
 #include "jaus/core/header.hpp"
 #include "jaus/wire/codecs.hpp"
 

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "jaus/messages/common.hpp"
-#include "jaus/runtime/primary_status.hpp"
+#include "jaus/messages/primary_status.hpp"
 
 namespace jaus::msg {
 

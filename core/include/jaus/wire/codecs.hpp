@@ -33,7 +33,7 @@
 
 #include "jaus/core/address.hpp"
 #include "jaus/core/byte_io.hpp"
-#include "jaus/core/hex.hpp"
+#include "jaus/base/hex.hpp"
 #include "jaus/core/scaled_integer.hpp"
 #include "jaus/core/time_stamp.hpp"
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <tuple>
 
-#include "jaus/core/expected.hpp"
+#include "jaus/base/expected.hpp"
 #include "jaus/core/header.hpp"
 #include "jaus/wire/describe.hpp"
 
@@ -99,8 +99,10 @@ Expected<std::size_t, Error> encode_message(Header header, const M& message, std
   auto size = encode_payload(message, out.subspan(kHeaderSize, payload_capacity), dialect);
   if (!size) {
     Error e = size.error();
-    if (e.code == ErrorCode::output_too_small && out.size() - kHeaderSize >= kMaxPayloadSize)
+    if (e.code == ErrorCode::output_too_small && out.size() - kHeaderSize >= kMaxPayloadSize) {
       e.code = ErrorCode::payload_too_large;
+      e.detail = "more than 4080 bytes in one packet";
+    }
     e.offset += kHeaderSize;
     return unexpected(std::move(e));
   }

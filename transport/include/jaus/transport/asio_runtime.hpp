@@ -10,7 +10,7 @@
 #include <map>
 #include <memory>
 
-#include "jaus/runtime/time.hpp"
+#include "jaus/base/time.hpp"
 
 namespace jaus::transport {
 

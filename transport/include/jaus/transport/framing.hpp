@@ -11,7 +11,7 @@
 #include <span>
 #include <string_view>
 
-#include "jaus/core/expected.hpp"
+#include "jaus/base/expected.hpp"
 #include "jaus/core/header.hpp"
 
 namespace jaus::transport {

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "jaus/core/expected.hpp"
+#include "jaus/base/expected.hpp"
 
 namespace jaus::transport {
 

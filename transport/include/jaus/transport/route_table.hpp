@@ -16,7 +16,7 @@
 #include <map>
 #include <optional>
 
-#include "jaus/runtime/time.hpp"
+#include "jaus/base/time.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
 

@@ -58,26 +58,28 @@ struct UdpLinkCounters {
 
 class UdpLink final : public node::Link {
  public:
-  using PacketHandler = std::function<void(std::span<const std::uint8_t> packet)>;
+  // A received JAUS message: header decoded and checked once, here, with its
+  // payload (a view into the datagram, valid during the call) and framing.
+  using PacketHandler = std::function<void(const PacketView& packet, Framing framing)>;
 
   // Opens and binds the sockets. A failure is one readable line, e.g.
   // "127.0.0.1:3794 is already in use".
-  static Expected<std::unique_ptr<UdpLink>, std::string> open(boost::asio::io_context& io, rt::Clock& clock,
+  static Expected<std::unique_ptr<UdpLink>> open(boost::asio::io_context& io, rt::Clock& clock,
                                                                rt::Scheduler& scheduler, UdpLinkOptions options,
                                                                rt::LogFn log = {});
   ~UdpLink() override;
   UdpLink(const UdpLink&) = delete;
   UdpLink& operator=(const UdpLink&) = delete;
 
-  // Where received JAUS messages (header + payload) go; typically Node::receive.
+  // Where received JAUS messages go; typically Node::receive.
   void on_packet(PacketHandler handler) { handler_ = std::move(handler); }
   // Starts receiving.
   void start();
   // Stops receiving and sending (pending handlers are cancelled).
   void close();
 
-  // node::Link: routes one message by its destination.
-  void transmit(std::span<const std::uint8_t> packet) override;
+  // node::Link: routes one message by its header's destination.
+  void transmit(const Header& header, std::span<const std::uint8_t> packet) override;
   // Sends one message to an endpoint in a framing, outside routing (tools).
   void send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
 
@@ -89,7 +91,7 @@ class UdpLink final : public node::Link {
   struct Socket;
   UdpLink(boost::asio::io_context& io, rt::Clock& clock, rt::Scheduler& scheduler, UdpLinkOptions options,
           rt::LogFn log);
-  Expected<bool, std::string> bind_sockets();
+  Expected<bool> bind_sockets();
   void receive_next(Socket& socket);
   void on_datagram(const boost::asio::ip::udp::endpoint& from, std::span<const std::uint8_t> datagram);
   void drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail);

@@ -1,0 +1,50 @@
+#include "jaus/components/communicator.hpp"
+
+namespace jaus::components {
+
+using namespace rt;
+
+Communicator::Communicator(ComponentConfig config, Environment env, std::uint8_t link_count)
+    : Component(std::move(config), std::move(env)) {
+  for (std::uint8_t id = 0; id < link_count; ++id) links_[id] = data_link::kOn;
+  using namespace msg;
+  handle<SetDataLinkStatus>(Access::controller, false, [this](const Header& h, const SetDataLinkStatus& m) {
+    if (m.state > data_link::kStandby) {
+      log(LogLevel::warn, "Set Data Link Status " + std::to_string(m.state) + " from " + h.source.to_string() +
+                              " ignored: reserved state");
+      return;
+    }
+    // Part 3's Set Data Link Status carries no link ID: it applies to the selected link.
+    set_link_state(selected_, m.state);
+  });
+  handle<SetDataLinkSelect>(Access::controller, false, [this](const Header& h, const SetDataLinkSelect& m) {
+    if (!links_.contains(m.data_link_id)) {
+      log(LogLevel::warn, "Set Data Link Select " + std::to_string(m.data_link_id) + " from " +
+                              h.source.to_string() + " ignored: no such link");
+      return;
+    }
+    selected_ = m.data_link_id;
+    log(LogLevel::info, "data link " + std::to_string(selected_) + " selected by " + h.source.to_string());
+  });
+  handle<QueryDataLinkStatus>(Access::anyone, false, [this](const Header& h, const QueryDataLinkStatus& m) {
+    send(h.source, ReportDataLinkStatus{{m.data_link_id, link_state(m.data_link_id)}});
+  });
+  handle<QuerySelectedDataLinkStatus>(Access::anyone, false, [this](const Header& h, const QuerySelectedDataLinkStatus&) {
+    send(h.source, ReportSelectedDataLinkStatus{{selected_}});
+  });
+}
+
+std::uint8_t Communicator::link_state(std::uint8_t link) const {
+  const auto it = links_.find(link);
+  return it == links_.end() ? data_link::kOff : it->second;
+}
+
+void Communicator::set_link_state(std::uint8_t link, std::uint8_t state) {
+  auto& current = links_[link];
+  if (current == state) return;
+  log(LogLevel::info, "data link " + std::to_string(link) + " state " + std::to_string(current) + " -> " +
+                          std::to_string(state));
+  current = state;
+}
+
+}  // namespace jaus::components

@@ -1,0 +1,78 @@
+// The node manager (component 1, instance 1): the node's face to discovery
+// (RA 3.2/3.3 dynamic configuration, jaus-wire-notes.md). It sends Report
+// Heartbeat Pulse at a configured rate to (subsystem, 255, 1, 1) and
+// (subsystem, node, 255, 255), answers Query Identification, Configuration,
+// Subsystem List and Services, and keeps Create Event subscriptions to Report
+// Configuration, sending an Event on every change (or periodically).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "jaus/messages/communications_messages.hpp"
+#include "jaus/messages/discovery_messages.hpp"
+#include "jaus/messages/event_messages.hpp"
+#include "jaus/runtime/component.hpp"
+#include "jaus/runtime/node_directory.hpp"
+
+namespace jaus::components {
+
+struct NodeManagerConfig {
+  rt::Duration heartbeat_period = std::chrono::seconds(1);
+  std::string subsystem_name = "jaus-node";
+  std::uint16_t subsystem_type = 10001;  // 10001+ vehicle, 20001+ OCU, 30001+ other
+  std::string node_name = "node";
+  std::uint16_t node_type = 40001;
+};
+
+// Event response codes (Confirm Event Request).
+namespace event_response {
+inline constexpr std::uint8_t kSuccessful = 0;
+inline constexpr std::uint8_t kPeriodicNotSupported = 1;
+inline constexpr std::uint8_t kChangeNotSupported = 2;
+inline constexpr std::uint8_t kRefused = 3;
+inline constexpr std::uint8_t kInvalidSetup = 4;
+inline constexpr std::uint8_t kMessageNotSupported = 5;
+}  // namespace event_response
+
+class NodeManager final : public rt::Component, public rt::ConfigurationObserver {
+ public:
+  NodeManager(rt::ComponentConfig config, rt::Environment env, const rt::NodeDirectory& directory, NodeManagerConfig nm);
+  ~NodeManager() override;
+
+  // The node added or removed a component: subscribers get an Event.
+  void configuration_changed() override;
+  std::size_t event_subscriptions() const { return events_.size(); }
+
+ protected:
+  bool initialize() override;
+
+ private:
+  struct EventSubscription {
+    Address requester;
+    std::uint8_t event_id = 0;
+    std::uint8_t request_id = 0;
+    std::uint8_t query_field = msg::identification::kSubsystem;
+    bool periodic = false;
+    double rate_hz = 0;
+    std::uint8_t sequence = 0;
+    rt::TimerId timer = rt::kNoTimer;
+  };
+
+  void heartbeat();
+  msg::ReportConfiguration configuration(std::uint8_t query_field) const;
+  msg::ReportServices services() const;
+  void on_create_event(const Header& h, const msg::CreateEvent& m);
+  void on_cancel_event(const Header& h, const msg::CancelEvent& m);
+  void send_event(EventSubscription& e);
+  void confirm_event(const Address& to, std::uint8_t request_id, std::uint16_t code, std::uint8_t event_id,
+                     std::optional<double> rate, std::uint8_t response);
+
+  const rt::NodeDirectory& directory_;
+  NodeManagerConfig nm_;
+  rt::TimerId heartbeat_timer_ = rt::kNoTimer;
+  std::map<std::uint8_t, EventSubscription> events_;  // by event ID
+};
+
+}  // namespace jaus::components

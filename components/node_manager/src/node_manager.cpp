@@ -1,0 +1,178 @@
+#include "jaus/components/node_manager.hpp"
+
+#include <cmath>
+
+namespace jaus::components {
+
+using namespace rt;
+
+namespace {
+constexpr std::uint8_t kNodeManagerComponent = 1;
+}  // namespace
+
+NodeManager::NodeManager(ComponentConfig config, Environment env, const NodeDirectory& directory,
+                         NodeManagerConfig nm)
+    : Component(std::move(config), std::move(env)), directory_(directory), nm_(std::move(nm)) {
+  using namespace msg;
+  handle<QueryIdentification>(Access::anyone, false, [this](const Header& h, const QueryIdentification& m) {
+    ReportIdentification report;
+    report.query_type = m.query_type;
+    report.authority = control().own_authority();
+    switch (m.query_type) {
+      case identification::kSubsystem:
+        report.type = nm_.subsystem_type;
+        report.identification = nm_.subsystem_name;
+        break;
+      case identification::kNode:
+        report.type = nm_.node_type;
+        report.identification = nm_.node_name;
+        break;
+      case identification::kComponent:
+        report.type = 0;
+        report.identification = name();
+        break;
+      default:
+        log(LogLevel::info, "Query Identification type " + std::to_string(m.query_type) + " from " +
+                                h.source.to_string() + " not answered: not a subsystem, node or component query");
+        return;
+    }
+    send(h.source, report);
+  });
+  handle<QueryConfiguration>(Access::anyone, false, [this](const Header& h, const QueryConfiguration& m) {
+    send(h.source, configuration(m.query_field));
+  });
+  handle<QuerySubsystemList>(Access::anyone, false, [this](const Header& h, const QuerySubsystemList&) {
+    ReportSubsystemList report;
+    report.subsystems = directory_.known_subsystems();
+    send(h.source, report);
+  });
+  handle<QueryServices>(Access::anyone, false, [this](const Header& h, const QueryServices&) { send(h.source, services()); });
+  handle<CreateEvent>(Access::anyone, false, [this](const Header& h, const CreateEvent& m) { on_create_event(h, m); });
+  handle<CancelEvent>(Access::anyone, false, [this](const Header& h, const CancelEvent& m) { on_cancel_event(h, m); });
+}
+
+NodeManager::~NodeManager() {
+  if (heartbeat_timer_ != kNoTimer) env().scheduler.cancel(heartbeat_timer_);
+  for (auto& [id, e] : events_)
+    if (e.timer != kNoTimer) env().scheduler.cancel(e.timer);
+}
+
+bool NodeManager::initialize() {
+  if (heartbeat_timer_ == kNoTimer && nm_.heartbeat_period > Duration::zero()) heartbeat();
+  return true;
+}
+
+void NodeManager::heartbeat() {
+  // To every node manager of the subsystem and to every component of this node.
+  const Address& self = address();
+  send(Address{self.subsystem, Address::kBroadcast, kNodeManagerComponent, 1}, msg::ReportHeartbeatPulse{});
+  send(Address{self.subsystem, self.node, Address::kBroadcast, Address::kBroadcast}, msg::ReportHeartbeatPulse{});
+  heartbeat_timer_ = env().scheduler.call_at(env().clock.now() + nm_.heartbeat_period, [this] { heartbeat(); });
+}
+
+msg::ReportConfiguration NodeManager::configuration(std::uint8_t) const {
+  // This node manager knows its own node; a subsystem query gets the same
+  // single node (other nodes answer for themselves).
+  msg::NodeEntry node;
+  node.node_id = address().node;
+  for (const Component* c : directory_.local_components())
+    node.components.push_back({c->address().component, c->address().instance});
+  msg::ReportConfiguration report;
+  report.nodes.push_back(std::move(node));
+  return report;
+}
+
+msg::ReportServices NodeManager::services() const {
+  msg::ReportServices report;
+  for (const Component* c : directory_.local_components()) {
+    msg::ServiceEntry service;
+    service.type = c->address().component;
+    for (auto code : c->input_codes()) service.inputs.push_back({code, 0});
+    for (const auto& [code, presence] : c->output_codes()) service.outputs.push_back({code, presence});
+    report.services.push_back(std::move(service));
+  }
+  return report;
+}
+
+void NodeManager::confirm_event(const Address& to, std::uint8_t request_id, std::uint16_t code, std::uint8_t event_id,
+                                std::optional<double> rate, std::uint8_t response) {
+  msg::ConfirmEventRequest confirm;
+  confirm.request_id = request_id;
+  confirm.message_code = code;
+  confirm.event_id = event_id;
+  confirm.confirmed_rate_hz = rate;
+  confirm.response_code = response;
+  send(to, confirm);
+}
+
+void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
+  if (m.report_code != msg::ReportConfiguration::code)
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kMessageNotSupported);
+  const bool periodic = m.event_type == 0;
+  if (!periodic && m.event_type != 1)
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kInvalidSetup);
+  const double rate = m.requested_rate_hz.value_or(0);
+  if (periodic && !(rate > 0))
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kInvalidSetup);
+  std::uint8_t query_field = msg::identification::kSubsystem;
+  if (m.query_message && !m.query_message->empty()) query_field = m.query_message->front();
+
+  std::uint8_t id = 0;
+  while (events_.contains(id) && id < 255) ++id;
+  if (events_.contains(id))
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kRefused);
+  EventSubscription& e = events_[id];
+  e.requester = h.source;
+  e.event_id = id;
+  e.request_id = m.request_id;
+  e.query_field = query_field;
+  e.periodic = periodic;
+  e.rate_hz = rate;
+  log(LogLevel::info, "event " + std::to_string(id) + " (Report Configuration, " +
+                          (periodic ? "periodic" : "every change") + ") for " + h.source.to_string());
+  confirm_event(h.source, m.request_id, m.report_code, id, periodic ? std::optional<double>(rate) : std::nullopt,
+                event_response::kSuccessful);
+  if (periodic) send_event(e);
+}
+
+void NodeManager::on_cancel_event(const Header& h, const msg::CancelEvent& m) {
+  for (auto it = events_.begin(); it != events_.end(); ++it) {
+    const bool same_id = !m.event_id || *m.event_id == it->first;
+    if (it->second.requester == h.source && same_id) {
+      if (it->second.timer != kNoTimer) env().scheduler.cancel(it->second.timer);
+      confirm_event(h.source, m.request_id, msg::ReportConfiguration::code, it->first, std::nullopt,
+                    event_response::kSuccessful);
+      events_.erase(it);
+      return;
+    }
+  }
+  log(LogLevel::info, "Cancel Event from " + h.source.to_string() + " matches no event");
+}
+
+void NodeManager::send_event(EventSubscription& e) {
+  e.timer = kNoTimer;
+  const auto report = configuration(e.query_field);
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  const auto size = wire::encode_payload(report, payload);
+  if (!size) return;
+  msg::Event event;
+  event.event_id = e.event_id;
+  event.report_code = msg::ReportConfiguration::code;
+  event.sequence_number = e.sequence++;
+  event.report_message.assign(payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(*size));
+  send(e.requester, event);
+  if (e.periodic) {
+    const auto period = Duration(static_cast<Duration::rep>(std::llround(1e9 / e.rate_hz)));
+    const std::uint8_t id = e.event_id;
+    e.timer = env().scheduler.call_at(env().clock.now() + period, [this, id] {
+      if (auto it = events_.find(id); it != events_.end()) send_event(it->second);
+    });
+  }
+}
+
+void NodeManager::configuration_changed() {
+  for (auto& [id, e] : events_)
+    if (!e.periodic) send_event(e);
+}
+
+}  // namespace jaus::components

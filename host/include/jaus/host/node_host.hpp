@@ -1,0 +1,80 @@
+// One JAUS node on the network, built from a configuration: the UDP link, the
+// node and its components on the caller's io_context, with the io_context's
+// clock and timers (AsioRuntime). jausd is a NodeHost with signal handling;
+// the OCU is a NodeHost with one more component; tests host nodes the same way.
+#pragma once
+
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <boost/asio/io_context.hpp>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "jaus/host/component_kinds.hpp"
+#include "jaus/node/node.hpp"
+#include "jaus/transport/asio_runtime.hpp"
+#include "jaus/transport/udp_link.hpp"
+
+namespace jaus::host {
+
+struct HostConfig {
+  node::NodeConfig node;            // subsystem and node IDs, dialect, liveness, queues
+  transport::UdpLinkOptions link;   // bind, framing, peers, ...; its IDs are the node's
+  ComponentSettings settings;       // what every component shares, the node manager's identity
+  std::vector<ComponentSpec> components;
+};
+
+class NodeHost {
+ public:
+  // Sees every JAUS message the link hands the node, before the node does
+  // (tools watch heartbeats addressed to broadcast IDs this way).
+  using Watcher = std::function<void(const PacketView& packet)>;
+
+  // Opens the link, builds the node and every configured component, and starts
+  // receiving. The error is one line, e.g. "127.0.0.1:3794 is already in use".
+  static Expected<std::unique_ptr<NodeHost>> open(HostConfig config, boost::asio::io_context& io,
+                                                  rt::LogFn log = {});
+  // stop("host destroyed").
+  ~NodeHost();
+  NodeHost(const NodeHost&) = delete;
+  NodeHost& operator=(const NodeHost&) = delete;
+
+  // A component that no configuration names (an OCU's own, a test's).
+  template <class C, class... Args>
+  C& emplace(rt::ComponentConfig config, Args&&... args) {
+    return node_->add_as(std::make_unique<C>(std::move(config), node_->environment(), std::forward<Args>(args)...));
+  }
+  // The settings every hosted component shares, with this name and address.
+  rt::ComponentConfig component_config(std::string name, std::uint8_t component, std::uint8_t instance = 1) const;
+
+  void watch(Watcher watcher) { watcher_ = std::move(watcher); }
+
+  // Orderly stop. Safety: every component goes to Shutdown first, which
+  // commands its platform to stop (Component::enforce_stop), drops control
+  // and ends its service connections, with those messages sent while the
+  // link is still open; then the link closes. Idempotent.
+  void stop(const std::string& why);
+  bool stopped() const { return stopped_; }
+
+  const HostConfig& config() const { return config_; }
+  node::Node& node() { return *node_; }
+  const node::Node& node() const { return *node_; }
+  transport::UdpLink& link() { return *link_; }
+  const transport::UdpLink& link() const { return *link_; }
+  transport::AsioRuntime& runtime() { return runtime_; }
+
+ private:
+  NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
+
+  HostConfig config_;
+  transport::AsioRuntime runtime_;
+  rt::LogFn log_;
+  std::unique_ptr<transport::UdpLink> link_;
+  std::unique_ptr<node::Node> node_;
+  Watcher watcher_;
+  bool stopped_ = false;
+};
+
+}  // namespace jaus::host

@@ -1,0 +1,53 @@
+#include "jaus/host/node_host.hpp"
+
+namespace jaus::host {
+
+NodeHost::NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log)
+    : config_(std::move(config)), runtime_(io), log_(log ? std::move(log) : rt::silent_log()) {
+  config_.link.subsystem = config_.node.subsystem;
+  config_.link.node = config_.node.node;
+}
+
+Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asio::io_context& io, rt::LogFn log) {
+  std::unique_ptr<NodeHost> h(new NodeHost(std::move(config), io, std::move(log)));
+  auto link = transport::UdpLink::open(io, h->runtime_, h->runtime_, h->config_.link, h->log_);
+  if (!link) return unexpected(link.error());
+  h->link_ = std::move(*link);
+  h->node_ = std::make_unique<node::Node>(h->config_.node, h->runtime_, h->runtime_, *h->link_, h->log_);
+  h->link_->on_packet([host = h.get()](const PacketView& packet, transport::Framing) {
+    if (host->watcher_) host->watcher_(packet);
+    host->node_->receive(packet);
+  });
+  for (const auto& spec : h->config_.components) {
+    auto component = make_component(spec, h->config_.settings, *h->node_);
+    if (!component) return unexpected(component.error());
+    h->node_->add(std::move(*component));
+  }
+  h->link_->start();
+  return h;
+}
+
+NodeHost::~NodeHost() { stop("host destroyed"); }
+
+rt::ComponentConfig NodeHost::component_config(std::string name, std::uint8_t component, std::uint8_t instance) const {
+  rt::ComponentConfig c = config_.settings.defaults;
+  c.name = std::move(name);
+  c.address = Address{config_.node.subsystem, config_.node.node, component, instance};
+  return c;
+}
+
+void NodeHost::stop(const std::string& why) {
+  if (stopped_ || !node_ || !link_) return;  // stopped, or never fully opened
+  stopped_ = true;
+  // Safety: the node shuts every component down (platform commanded to stop)
+  // while the link can still carry their last messages.
+  node_->shutdown(why);
+  const auto& n = node_->counters();
+  const auto& l = link_->counters();
+  log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +
+                               std::to_string(l.dropped_total()) + " dropped, " + std::to_string(n.delivered) +
+                               " messages delivered, " + std::to_string(l.datagrams_sent) + " datagrams out");
+  link_->close();
+}
+
+}  // namespace jaus::host

@@ -1,0 +1,148 @@
+// The node: hosts components and moves messages between them and the network.
+//
+// From the network (receive): the packet is checked (header, length, source),
+// remembered in the liveness table, ACK/NAK replies are matched, large data
+// sets are reassembled, and the message is queued by priority (12-15 before
+// everything queued) for every local component its destination matches (255
+// is broadcast at each level). An ACK request is answered with ACK when some
+// local component took the message and NAK when none could.
+// From a local component (send): the node stamps the sequence number (per
+// source and destination; service connection reports keep their own), splits
+// payloads over 4080 bytes into a large data set, delivers locally what is
+// addressed here and transmits what is addressed elsewhere, and retransmits
+// its own ACK-requested messages a bounded number of times.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "jaus/node/ack_tracker.hpp"
+#include "jaus/node/large_data_set_assembler.hpp"
+#include "jaus/node/liveness_table.hpp"
+#include "jaus/node/priority_queue.hpp"
+#include "jaus/node/sequence_counters.hpp"
+#include "jaus/runtime/component.hpp"
+#include "jaus/runtime/node_directory.hpp"
+
+namespace jaus::node {
+
+// Where the node's packets leave for other nodes (UDP in production).
+class Link {
+ public:
+  virtual ~Link() = default;
+  // One JAUS message: its header as a value (to route it by, never decoded
+  // again) and the packet's bytes, 16-byte header and payload (at most 4080
+  // bytes). The bytes are valid only during the call: copy what is kept.
+  virtual void transmit(const Header& header, std::span<const std::uint8_t> packet) = 0;
+};
+
+struct NodeConfig {
+  std::uint8_t subsystem = 1;
+  std::uint8_t node = 1;
+  wire::Dialect dialect = wire::Dialect::ra;  // how payloads from peers are read
+  std::size_t inbound_queue_capacity = 1024;
+  LargeDataSetAssembler::Options large_data_sets;
+  AckTracker::Options acks;
+  LivenessTable::Options liveness;
+  SequenceCounters::Options sequences;
+};
+
+struct NodeCounters {
+  std::uint64_t packets_received = 0;
+  std::uint64_t malformed = 0;           // header or length wrong
+  std::uint64_t invalid_source = 0;      // source address with 0 or 255
+  std::uint64_t from_self = 0;           // source is this node (looped-back broadcast)
+  std::uint64_t not_for_this_node = 0;
+  std::uint64_t delivered = 0;           // messages handed to a local component
+  std::uint64_t undeliverable = 0;       // addressed here, no such component
+  std::uint64_t queue_dropped = 0;
+  std::uint64_t packets_sent = 0;
+  std::uint64_t acks_sent = 0;
+  std::uint64_t naks_sent = 0;
+  std::uint64_t send_failures = 0;       // a local message the node could not send
+};
+
+class Node final : public rt::Outbox, public rt::NodeDirectory {
+ public:
+  Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& link, rt::LogFn log = {});
+  ~Node() override;
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  // What a component hosted here is constructed with.
+  rt::Environment environment();
+  // Hosts and starts a component; the node's configuration observer (its node
+  // manager, if any) hears of the change. A component that is itself a
+  // ConfigurationObserver becomes the node's observer.
+  rt::Component& add(std::unique_ptr<rt::Component> component);
+  template <class C>
+  C& add_as(std::unique_ptr<C> component) {
+    return static_cast<C&>(add(std::move(component)));
+  }
+  void remove(const Address& address);
+  // Orderly stop: every component shuts down (platform stopped, control
+  // dropped, service connections ended, with their messages sent), then leaves.
+  void shutdown(std::string_view why);
+  rt::Component* find(const Address& address) const;
+  // One packet from the network, its header already decoded and checked
+  // (version, data flag, sizes) by the transport.
+  void receive(const PacketView& packet);
+  // The same from raw bytes (16-byte header + payload), for sources that have
+  // not decoded the header: it is decoded and checked here once.
+  void receive_bytes(std::span<const std::uint8_t> bytes);
+
+  // rt::Outbox: a message from a local component.
+  void send(const Header& header, std::span<const std::uint8_t> payload) override;
+
+  // rt::NodeDirectory.
+  std::vector<const rt::Component*> local_components() const override;
+  std::vector<Address> known_subsystems() const override;
+
+  const NodeConfig& config() const { return config_; }
+  const NodeCounters& counters() const { return counters_; }
+  const LivenessTable& liveness() const { return liveness_; }
+  const LargeDataSetAssembler& assembler() const { return assembler_; }
+  const AckTracker& acks() const { return acks_; }
+
+ private:
+  struct Inbound {
+    Header header;
+    std::vector<std::uint8_t> payload;
+    Address exclude;  // the local sender of a broadcast does not get it back
+  };
+
+  bool is_local(const Address& destination) const;
+  bool reaches_elsewhere(const Address& destination) const;
+  std::size_t local_matches(const Address& destination, const Address& exclude) const;
+  void enqueue(Inbound message);
+  void drain();
+  void transmit(const Header& header, std::span<const std::uint8_t> payload);
+  void answer_ack_request(const Header& header, bool delivered);
+  void schedule_housekeeping();
+  void housekeeping();
+  void log(rt::LogLevel level, const std::string& text) const;
+
+  NodeConfig config_;
+  rt::Clock& clock_;
+  rt::Scheduler& scheduler_;
+  Link& link_;
+  rt::LogFn log_;
+  std::vector<std::unique_ptr<rt::Component>> components_;
+  rt::Component* configuration_holder_ = nullptr;  // the component that is the observer
+  rt::ConfigurationObserver* configuration_observer_ = nullptr;
+  PriorityQueue<Inbound> inbound_;
+  rt::TimerId drain_timer_ = rt::kNoTimer;
+  rt::TimerId housekeeping_timer_ = rt::kNoTimer;
+  LargeDataSetAssembler assembler_;
+  AckTracker acks_;
+  LivenessTable liveness_;
+  SequenceCounters sequences_;
+  NodeCounters counters_;
+  // One packet at a time is built here: the link copies or sends before
+  // transmit() returns, so no packet allocates.
+  std::vector<std::uint8_t> tx_buffer_ = std::vector<std::uint8_t>(kHeaderSize + kMaxPayloadSize);
+};
+
+}  // namespace jaus::node

@@ -1,0 +1,322 @@
+#include "jaus/node/node.hpp"
+
+#include <algorithm>
+
+#include "jaus/node/ack_reply.hpp"
+#include "jaus/node/large_data_set_splitter.hpp"
+
+namespace jaus::node {
+
+namespace {
+// How often liveness, reassembly timeouts and retransmissions are looked at.
+constexpr rt::Duration kHousekeepingPeriod = std::chrono::milliseconds(100);
+constexpr std::uint8_t kNodeManager = 1;
+}  // namespace
+
+Node::Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& link, rt::LogFn log)
+    : config_(config),
+      clock_(clock),
+      scheduler_(scheduler),
+      link_(link),
+      log_(log ? std::move(log) : [](rt::LogLevel, const std::string&) {}),
+      inbound_(PriorityQueue<Inbound>::Options{config.inbound_queue_capacity}),
+      assembler_(config.large_data_sets),
+      acks_(config.acks),
+      liveness_(config.liveness),
+      sequences_(config.sequences) {
+  schedule_housekeeping();
+}
+
+Node::~Node() {
+  if (drain_timer_ != rt::kNoTimer) scheduler_.cancel(drain_timer_);
+  if (housekeeping_timer_ != rt::kNoTimer) scheduler_.cancel(housekeeping_timer_);
+  components_.clear();  // before the queues they may still send into
+}
+
+void Node::log(rt::LogLevel level, const std::string& text) const {
+  log_(level, "node " + std::to_string(config_.subsystem) + "." + std::to_string(config_.node) + ": " + text);
+}
+
+rt::Environment Node::environment() { return rt::Environment{clock_, scheduler_, *this, log_}; }
+
+rt::Component& Node::add(std::unique_ptr<rt::Component> component) {
+  rt::Component& c = *component;
+  components_.push_back(std::move(component));
+  if (auto* observer = dynamic_cast<rt::ConfigurationObserver*>(&c)) {
+    configuration_holder_ = &c;
+    configuration_observer_ = observer;
+  }
+  c.start();
+  log(rt::LogLevel::info, "hosts " + c.name() + " " + c.address().to_string());
+  if (configuration_observer_) configuration_observer_->configuration_changed();
+  return c;
+}
+
+void Node::remove(const Address& address) {
+  const auto it = std::find_if(components_.begin(), components_.end(),
+                               [&](const auto& c) { return c->address() == address; });
+  if (it == components_.end()) return;
+  if (it->get() == configuration_holder_) {
+    configuration_holder_ = nullptr;
+    configuration_observer_ = nullptr;
+  }
+  components_.erase(it);
+  log(rt::LogLevel::info, "removed " + address.to_string());
+  if (configuration_observer_) configuration_observer_->configuration_changed();
+}
+
+void Node::shutdown(std::string_view why) {
+  // The node manager (the configuration observer) goes last, so its peers
+  // hear the others leave first.
+  for (auto& c : components_)
+    if (c.get() != configuration_holder_) c->shutdown(why);
+  if (configuration_holder_) configuration_holder_->shutdown(why);
+  configuration_holder_ = nullptr;
+  configuration_observer_ = nullptr;
+  components_.clear();
+}
+
+rt::Component* Node::find(const Address& address) const {
+  for (const auto& c : components_)
+    if (c->address() == address) return c.get();
+  return nullptr;
+}
+
+std::vector<const rt::Component*> Node::local_components() const {
+  std::vector<const rt::Component*> out;
+  for (const auto& c : components_) out.push_back(c.get());
+  return out;
+}
+
+std::vector<Address> Node::known_subsystems() const {
+  std::vector<Address> out{Address{config_.subsystem, config_.node, kNodeManager, 1}};
+  for (const auto& entry : liveness_.known(LivenessLevel::subsystem))
+    if (entry.address.subsystem != config_.subsystem)
+      out.push_back(Address{entry.address.subsystem, entry.address.node == 0 ? std::uint8_t{1} : entry.address.node,
+                            kNodeManager, 1});
+  return out;
+}
+
+bool Node::is_local(const Address& d) const {
+  return (d.subsystem == config_.subsystem || d.subsystem == Address::kBroadcast) &&
+         (d.node == config_.node || d.node == Address::kBroadcast);
+}
+
+bool Node::reaches_elsewhere(const Address& d) const {
+  return d.subsystem != config_.subsystem || d.node != config_.node;
+}
+
+std::size_t Node::local_matches(const Address& destination, const Address& exclude) const {
+  std::size_t n = 0;
+  for (const auto& c : components_)
+    if (destination.matches(c->address()) && c->address() != exclude) ++n;
+  return n;
+}
+
+// ---- from the network ------------------------------------------------------------
+
+void Node::receive_bytes(std::span<const std::uint8_t> bytes) {
+  auto decoded = decode_packet(bytes);
+  if (!decoded) {
+    ++counters_.packets_received;
+    ++counters_.malformed;
+    log(rt::LogLevel::warn, "dropped a malformed packet: " + decoded.error().message());
+    return;
+  }
+  receive(*decoded);
+}
+
+void Node::receive(const PacketView& packet) {
+  ++counters_.packets_received;
+  const Header& h = packet.header;
+  const Address& s = h.source;
+  if (!s.is_valid() || s.is_broadcast()) {
+    ++counters_.invalid_source;
+    log(rt::LogLevel::warn, "dropped a packet from invalid source " + s.to_string());
+    return;
+  }
+  if (s.subsystem == config_.subsystem && s.node == config_.node) {
+    // Our own broadcast looped back (multicast), or a peer misconfigured with our ID.
+    ++counters_.from_self;
+    return;
+  }
+  const rt::TimePoint now = clock_.now();
+  liveness_.heard(s, now);
+  if (!is_local(h.destination)) {
+    ++counters_.not_for_this_node;
+    return;
+  }
+  // ACK and NAK answer our own ACK-requested messages.
+  if (h.ack_nak == AckNak::ack || h.ack_nak == AckNak::nak) {
+    if (auto resolution = acks_.on_reply(h); resolution && resolution->outcome != AckOutcome::acknowledged)
+      log(rt::LogLevel::warn, "0x" + wire::detail::hex_u32(h.command_code) + " to " + s.to_string() + " " +
+                                  std::string(to_string(resolution->outcome)));
+    return;
+  }
+  auto assembled = assembler_.feed(h, packet.payload, now);
+  switch (assembled.status) {
+    case AssemblyStatus::single:
+      enqueue(Inbound{h, {packet.payload.begin(), packet.payload.end()}, Address{}});
+      return;
+    case AssemblyStatus::complete:
+      enqueue(Inbound{assembled.message->first_header, std::move(assembled.message->payload), Address{}});
+      return;
+    case AssemblyStatus::pending:
+      return;
+    case AssemblyStatus::dropped:
+      log(rt::LogLevel::warn, "large data set packet 0x" + wire::detail::hex_u32(h.command_code) + " from " +
+                                  s.to_string() + " dropped: " + std::string(to_string(assembled.issue)));
+      return;
+  }
+}
+
+void Node::enqueue(Inbound message) {
+  const std::uint8_t priority = message.header.priority;
+  auto pushed = inbound_.push(priority, std::move(message));
+  if (pushed.dropped) {
+    ++counters_.queue_dropped;
+    log(rt::LogLevel::warn, "inbound queue full: dropped a priority " + std::to_string(pushed.dropped_priority) +
+                                " message");
+  }
+  if (drain_timer_ == rt::kNoTimer) drain_timer_ = scheduler_.call_at(clock_.now(), [this] { drain(); });
+}
+
+void Node::drain() {
+  drain_timer_ = rt::kNoTimer;
+  // Highest priority first; safety-critical (12-15) before everything queued.
+  while (auto message = inbound_.pop()) {
+    const Header& h = message->header;
+    bool delivered = false;
+    for (std::size_t i = 0; i < components_.size(); ++i) {
+      rt::Component* c = components_[i].get();
+      if (!h.destination.matches(c->address()) || c->address() == message->exclude) continue;
+      c->receive(h, message->payload, config_.dialect);
+      delivered = true;
+      ++counters_.delivered;
+      // A component that shut down leaves the node (after this message).
+      if (c->state() == msg::PrimaryStatus::shutdown) {
+        const Address gone = c->address();
+        scheduler_.call_at(clock_.now(), [this, gone] { remove(gone); });
+      }
+    }
+    if (!delivered && !h.destination.is_broadcast()) {
+      ++counters_.undeliverable;
+      log(rt::LogLevel::debug, "no component " + h.destination.to_string() + " for 0x" +
+                                   wire::detail::hex_u32(h.command_code) + " from " + h.source.to_string());
+    }
+    if (h.ack_nak == AckNak::ack_requested && message->exclude == Address{}) answer_ack_request(h, delivered);
+  }
+}
+
+void Node::answer_ack_request(const Header& h, bool delivered) {
+  const Address responder = h.destination.is_broadcast()
+                                ? Address{config_.subsystem, config_.node, kNodeManager, 1}
+                                : h.destination;
+  const auto reply = ack_reply_for(h, responder, delivered ? Delivery::delivered : Delivery::undeliverable);
+  if (!reply) return;
+  ++(delivered ? counters_.acks_sent : counters_.naks_sent);
+  transmit(*reply, {});
+}
+
+// ---- from local components -----------------------------------------------------
+
+void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
+  Header h = given;
+  // Service connection reports carry their own per-SC sequence numbers.
+  if (!h.service_connection) h.sequence = sequences_.take({h.source, h.destination});
+  if (is_local(h.destination) && local_matches(h.destination, h.source) > 0)
+    enqueue(Inbound{h, {payload.begin(), payload.end()}, h.source});
+  if (!reaches_elsewhere(h.destination)) return;
+  if (h.ack_nak == AckNak::ack_requested && payload.size() > kMaxPayloadSize) {
+    // An ACK answers one packet; a large data set is not tracked as a whole.
+    log(rt::LogLevel::debug, "ACK request on a large data set ignored");
+    h.ack_nak = AckNak::none;
+  }
+  if (h.ack_nak == AckNak::ack_requested) {
+    const auto tracked = acks_.track(h, payload, clock_.now());
+    if (tracked == TrackResult::full) {
+      ++counters_.send_failures;
+      log(rt::LogLevel::warn, "too many messages awaiting ACK: 0x" + wire::detail::hex_u32(h.command_code) +
+                                  " to " + h.destination.to_string() + " not sent");
+      return;
+    }
+  }
+  if (payload.size() <= kMaxPayloadSize) {
+    transmit(h, payload);
+    return;
+  }
+  // The common RA 3.3 peer drops a large data set whose first packet is not
+  // numbered 0 (the RA leaves the start free): for it, every set starts at 0.
+  if (config_.dialect == wire::Dialect::openjaus) h.sequence = 0;
+  auto splitter = LargeDataSetSplitter::create(h, payload);
+  if (!splitter) {
+    ++counters_.send_failures;
+    log(rt::LogLevel::error, "cannot split 0x" + wire::detail::hex_u32(h.command_code) + ": " +
+                                 splitter.error().message());
+    return;
+  }
+  // A large data set numbers its packets s, s+1, ...: reserve the rest.
+  if (splitter->packet_count() > 1 && config_.dialect == wire::Dialect::ra)
+    sequences_.take({h.source, h.destination}, static_cast<std::uint16_t>(splitter->packet_count() - 1));
+  for (std::size_t i = 0; i < splitter->packet_count(); ++i) {
+    const PacketView packet = splitter->packet(i);
+    auto size = splitter->encode(i, tx_buffer_);
+    if (!size) {
+      ++counters_.send_failures;
+      return;
+    }
+    ++counters_.packets_sent;
+    link_.transmit(packet.header, std::span(tx_buffer_).first(*size));
+  }
+}
+
+void Node::transmit(const Header& header, std::span<const std::uint8_t> payload) {
+  if (payload.size() > kMaxPayloadSize) {  // callers split first; never write past the buffer
+    ++counters_.send_failures;
+    return;
+  }
+  Header h = header;
+  h.data_size = static_cast<std::uint16_t>(payload.size());
+  encode_header_unchecked(h, std::span(tx_buffer_).first<kHeaderSize>());
+  std::copy(payload.begin(), payload.end(), tx_buffer_.begin() + kHeaderSize);
+  ++counters_.packets_sent;
+  link_.transmit(h, std::span(tx_buffer_).first(kHeaderSize + payload.size()));
+}
+
+// ---- timers ----------------------------------------------------------------------
+
+void Node::schedule_housekeeping() {
+  housekeeping_timer_ = scheduler_.call_at(clock_.now() + kHousekeepingPeriod, [this] { housekeeping(); });
+}
+
+void Node::housekeeping() {
+  housekeeping_timer_ = rt::kNoTimer;
+  const rt::TimePoint now = clock_.now();
+  for (const auto& gone : liveness_.expire(now)) {
+    // A silent component whose node still heartbeats is normal: an OCU that
+    // only receives reports sends nothing from its component. Losing its node
+    // (or subsystem) is what ends its service connections and control; a
+    // silent controller on a live node is caught by the component's own
+    // controller liveness check (Query Component Status).
+    if (gone.level == LivenessLevel::component) {
+      log(rt::LogLevel::debug, gone.address.to_string() + " silent: forgotten");
+      continue;
+    }
+    log(rt::LogLevel::info, std::string(gone.level == LivenessLevel::node ? "node " : "subsystem ") +
+                                gone.address.to_string() + " silent: lost");
+    for (const auto& c : components_) c->peer_lost(gone.address);
+  }
+  for (const auto& discarded : assembler_.expire(now))
+    log(rt::LogLevel::warn, "large data set 0x" + wire::detail::hex_u32(discarded.key.command_code) + " from " +
+                                discarded.key.source.to_string() + " discarded: " +
+                                std::string(to_string(discarded.reason)));
+  auto poll = acks_.poll(now);
+  for (const auto& again : poll.retransmit) transmit(again.header, again.payload);
+  for (const auto& failed : poll.failed)
+    log(rt::LogLevel::warn, "no ACK for 0x" + wire::detail::hex_u32(failed.key.command_code) + " to " +
+                                failed.key.peer.to_string() + " after " + std::to_string(failed.transmissions) +
+                                " transmissions");
+  schedule_housekeeping();
+}
+
+}  // namespace jaus::node
