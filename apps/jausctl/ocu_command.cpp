@@ -11,7 +11,7 @@
 
 #include "commands.hpp"
 #include "ocu/cli_values.hpp"
-#include "ocu/message_json.hpp"
+#include "jaus/ocu/message_json.hpp"
 #include "ocu/ocu_commands.hpp"
 
 namespace jausctl {
@@ -107,7 +107,7 @@ int with_session(std::string_view name, const Common& common, Run run) {
   std::signal(SIGPIPE, SIG_IGN);
   auto session = ocu::OcuSession::open(common.session);
   if (!session) {
-    std::cerr << "jausctl " << name << ": " << session.error() << "\n";
+    std::cerr << "jausctl " << name << ": " << session.error().message() << "\n";
     return kExitFailure;
   }
   (*session)->stop_on_signals();
@@ -188,7 +188,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     const auto field_json = ocu::Json::parse(*fields, nullptr, false);
     if (field_json.is_discarded()) return void(exit_code = bad_input("query", "--fields is not valid JSON"));
     auto prepared = ocu::prepare_query(*parsed_code, presence, field_json);
-    if (!prepared) return void(exit_code = bad_input("query", prepared.error()));
+    if (!prepared) return void(exit_code = bad_input("query", prepared.error().message()));
     const auto report = ocu::report_code_for(*parsed_code);
     if (!report) return void(exit_code = bad_input("query", "no report is known for " + ocu::code_text(*parsed_code)));
     exit_code = with_session("query", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
@@ -213,7 +213,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     if (parsed.is_discarded())
       return void(exit_code = bad_input("send", std::string(*message == "-" ? "stdin" : "the message") + " is not valid JSON"));
     auto prepared = ocu::prepare_message(parsed, c->session.dialect);
-    if (!prepared) return void(exit_code = bad_input("send", prepared.error()));
+    if (!prepared) return void(exit_code = bad_input("send", prepared.error().message()));
     exit_code = with_session("send", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_send(s, *address, *prepared, c->timeout, io);
     });

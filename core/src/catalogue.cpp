@@ -29,7 +29,7 @@ std::string code_text(std::uint16_t code) {
 }
 
 Error json_error(std::string_view field, std::string detail) {
-  return Error{ErrorCode::json, 0, field, std::move(detail)};
+  return Error{ErrorCode::json, 0, std::string(field), std::move(detail)};
 }
 
 constexpr std::string_view kAckNakNames[] = {"none", "ack_requested", "nak", "ack"};

@@ -8,7 +8,7 @@ namespace jaus {
 
 Expected<std::array<std::uint8_t, kHeaderSize>, Error> encode_header(const Header& h) {
   auto fail = [](std::string_view field, ErrorCode code, std::string detail) {
-    return unexpected(Error{code, 0, field, std::move(detail)});
+    return unexpected(Error{code, 0, std::string(field), std::move(detail)});
   };
   if (h.priority > 15) return fail("priority", ErrorCode::bad_value, "0-15");
   if (static_cast<unsigned>(h.ack_nak) > 3) return fail("ack_nak", ErrorCode::bad_value, "0-3");

@@ -31,9 +31,12 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
   c.name = spec.name.empty() ? spec.kind : spec.name;
   c.address = Address{node.config().subsystem, node.config().node, spec.id, spec.instance};
   c.authority = spec.authority;
+  std::unique_ptr<rt::Component> made;
   if (spec.kind == "node_manager")
-    return std::make_unique<components::NodeManager>(c, node.environment(), node, settings.identity);
-  if (spec.kind == "communicator") return std::make_unique<components::Communicator>(c, node.environment());
+    made = std::make_unique<components::NodeManager>(c, node.environment(), node, settings.identity);
+  else if (spec.kind == "communicator")
+    made = std::make_unique<components::Communicator>(c, node.environment());
+  if (made) return made;
   return unexpected(make_error(ErrorCode::invalid_argument,
                                "component kind '" + spec.kind + "' cannot be hosted by this build"));
 }

@@ -30,6 +30,8 @@ using jaus::transport::Cidr;
 using jaus::transport::Framing;
 using jaus::transport::Ipv4Endpoint;
 using jaus::transport::StaticPeer;
+using jaus::host::component_kinds;
+using jaus::host::find_component_kind;
 
 // "a.b.c.d[:port]" as a value (the text is known to be good).
 Ipv4Endpoint endpoint(std::string_view text) {

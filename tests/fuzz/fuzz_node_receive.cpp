@@ -22,9 +22,10 @@ using namespace jaus;
 
 class NullLink : public node::Link {
  public:
-  void transmit(std::span<const std::uint8_t> packet) override {
-    // What the node sends must itself be a valid message.
-    if (!decode_packet(packet)) std::abort();
+  void transmit(const Header& header, std::span<const std::uint8_t> packet) override {
+    // What the node sends must itself be a valid message, with the header it says.
+    const auto decoded = decode_packet(packet);
+    if (!decoded || !(decoded->header == header)) std::abort();
   }
 };
 
@@ -32,18 +33,15 @@ struct FuzzNode {
   FuzzNode() : node(node::NodeConfig{}, time, time, link) {
     rt::ComponentConfig manager;
     manager.address = Address{1, 1, 1, 1};
-    node.set_node_manager(static_cast<rt::NodeManager*>(
-        &node.add(std::make_unique<rt::NodeManager>(manager, node.environment(), node, rt::NodeManagerConfig{}))));
+    node.add(std::make_unique<components::NodeManager>(manager, node.environment(), node,
+                                                       components::NodeManagerConfig{}));
     rt::ComponentConfig communicator;
     communicator.address = Address{1, 1, 35, 1};
-    node.add(std::make_unique<rt::Communicator>(communicator, node.environment()));
+    node.add(std::make_unique<components::Communicator>(communicator, node.environment()));
   }
   void datagram(std::span<const std::uint8_t> bytes) {
-    if (auto unframed = transport::unframe(bytes)) {
-      const std::size_t prefix = unframed->framing == transport::Framing::opc ? transport::kOpcPrefix.size()
-                                                                              : transport::kJudpPrefixSize;
-      node.receive(bytes.subspan(prefix));
-    }
+    // As the UDP link does: unframe (header decoded and checked once), then the node.
+    if (auto unframed = transport::unframe(bytes)) node.receive(unframed->packet);
     time.advance(std::chrono::milliseconds(3));
   }
   rt::VirtualTime time;

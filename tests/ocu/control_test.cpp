@@ -1,7 +1,7 @@
 // `jausctl control`: granted, held past the component's controller timeout
 // (its liveness checks are answered), released on exit; a takeover or a
 // refusal is reported.
-#include "ocu/control_hold.hpp"
+#include "jaus/ocu/control_hold.hpp"
 #include "ocu_fixture.hpp"
 
 namespace jausctl::test {

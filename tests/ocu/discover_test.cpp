@@ -80,7 +80,7 @@ TEST_F(OcuTest, DiscoverAsksEveryNodeGivenWithTo) {
   options.to = {target->endpoint(), second.endpoint()};
   options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
   auto ocu = ocu::OcuSession::open(options, &context);
-  ASSERT_TRUE(ocu) << ocu.error();
+  ASSERT_TRUE(ocu) << ocu.error().message();
   ASSERT_EQ(ocu::run_discover(**ocu, {1s, true}, io()), kExitOk) << err.str();
   const auto j = nlohmann::json::parse(out.str());
   ASSERT_EQ(j["subsystems"].size(), 2u) << out.str();
@@ -95,7 +95,7 @@ TEST_F(OcuTest, DiscoverWithNobodyThereSaysSo) {
   options.to = {jaus::transport::Ipv4Endpoint{kLoopback, port}};
   options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
   auto ocu = ocu::OcuSession::open(options, &context);
-  ASSERT_TRUE(ocu) << ocu.error();
+  ASSERT_TRUE(ocu) << ocu.error().message();
   EXPECT_EQ(ocu::run_discover(**ocu, {300ms, false}, io()), kExitFailure);
   EXPECT_EQ(err.str(), "jausctl discover: no JAUS node heard within 0.3 s (asked 127.0.0.1:" + std::to_string(port) + ")\n");
   EXPECT_EQ(out.str(), "");

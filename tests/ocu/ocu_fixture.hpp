@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "ocu/ocu_commands.hpp"
-#include "ocu/session.hpp"
+#include "jaus/ocu/session.hpp"
 #include "target_node.hpp"
 
 namespace jausctl::test {
@@ -27,7 +27,7 @@ class OcuTest : public ::testing::Test {
     options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
     auto session = ocu::OcuSession::open(options, &context);
     if (!session) {
-      ADD_FAILURE() << session.error();
+      ADD_FAILURE() << session.error().message();
       return nullptr;
     }
     return std::move(*session);

@@ -2,7 +2,7 @@
 // command prints when nobody answers.
 #include <nlohmann/json.hpp>
 
-#include "ocu/message_json.hpp"
+#include "jaus/ocu/message_json.hpp"
 #include "ocu_fixture.hpp"
 
 namespace jausctl::test {
@@ -12,7 +12,7 @@ using jaus::msg::PrimaryStatus;
 
 ocu::PreparedMessage prepared(const std::string& json) {
   auto p = ocu::prepare_message(ocu::Json::parse(json), jaus::wire::Dialect::ra);
-  EXPECT_TRUE(p) << p.error();
+  EXPECT_TRUE(p) << p.error().message();
   return p ? *p : ocu::PreparedMessage{};
 }
 
@@ -39,7 +39,7 @@ TEST_F(OcuTest, QueryWithAPresenceVectorGetsTheReportWithThoseFields) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   auto query = ocu::prepare_query(jaus::msg::QueryGlobalPose::code, 0x3, ocu::Json::object());
-  ASSERT_TRUE(query) << query.error();
+  ASSERT_TRUE(query) << query.error().message();
   ASSERT_EQ(ocu::run_query(*ocu, kPoseSensor, *query, jaus::msg::ReportGlobalPose::code, 1s, io()), kExitOk)
       << err.str();
   const auto lines = out_lines();
@@ -58,7 +58,7 @@ TEST_F(OcuTest, QueryFieldsOtherThanThePresenceVectorAreGiven) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   auto query = ocu::prepare_query(jaus::msg::QueryIdentification::code, std::nullopt, ocu::Json{{"query_type", 3}});
-  ASSERT_TRUE(query) << query.error();
+  ASSERT_TRUE(query) << query.error().message();
   ASSERT_EQ(ocu::run_query(*ocu, kTargetManager, *query, jaus::msg::ReportIdentification::code, 1s, io()), kExitOk)
       << err.str();
   const auto j = nlohmann::json::parse(out.str());

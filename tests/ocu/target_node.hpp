@@ -1,5 +1,5 @@
-// A JAUS node for jausctl's OCU to talk to, in-process: node manager 1.1.1.1,
-// communicator 1.1.35.1 (controllable) and a pose sensor 1.1.38.1 that
+// A JAUS node for jausctl's OCU to talk to, in-process, on a node host: node
+// manager 1.1.1.1, communicator 1.1.35.1 (controllable) and a pose sensor 1.1.38.1 that
 // answers Query Global Pose and provides Report Global Pose on service
 // connections, behind a UDP link on 127.0.0.1 and an ephemeral port.
 #pragma once
@@ -12,12 +12,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "jaus/messages/all.hpp"
-#include "jaus/node/node.hpp"
 #include "jaus/components/communicator.hpp"
-#include "jaus/components/node_manager.hpp"
-#include "jaus/transport/asio_runtime.hpp"
-#include "jaus/transport/udp_link.hpp"
+#include "jaus/host/node_host.hpp"
+#include "jaus/messages/all.hpp"
 
 namespace jausctl::test {
 
@@ -65,55 +62,36 @@ struct TargetOptions {
 
 class TargetNode {
  public:
-  explicit TargetNode(boost::asio::io_context& io, TargetOptions options = {}) : runtime_(io) {
-    jaus::transport::UdpLinkOptions link_options;
-    link_options.subsystem = options.subsystem;
-    link_options.node = 1;
-    link_options.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
-    auto link = jaus::transport::UdpLink::open(io, runtime_, runtime_, link_options);
-    if (!link) throw std::runtime_error(link.error());
-    link_ = std::move(*link);
-    jaus::node::NodeConfig node_config;
-    node_config.subsystem = options.subsystem;
-    node_ = std::make_unique<jaus::node::Node>(node_config, runtime_, runtime_, *link_);
-    link_->on_packet([this](std::span<const std::uint8_t> packet) { node_->receive(packet); });
-
-    jaus::rt::NodeManagerConfig identity;
-    identity.subsystem_name = "test-vehicle";
-    identity.node_name = "test-node";
-    manager_ = static_cast<jaus::rt::NodeManager*>(&node_->add(std::make_unique<jaus::rt::NodeManager>(
-        config("node manager", kTargetManager, options), node_->environment(), *node_, identity)));
-    node_->set_node_manager(manager_);
-    communicator_ = static_cast<jaus::rt::Communicator*>(&node_->add(std::make_unique<jaus::rt::Communicator>(
-        config("communicator", kCommunicator, options), node_->environment())));
-    pose_ = static_cast<PoseSensor*>(
-        &node_->add(std::make_unique<PoseSensor>(config("pose sensor", kPoseSensor, options), node_->environment())));
-    link_->start();
+  explicit TargetNode(boost::asio::io_context& io, TargetOptions options = {}) {
+    jaus::host::HostConfig config;
+    config.node.subsystem = options.subsystem;
+    config.link.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
+    config.settings.defaults.controller_timeout = options.controller_timeout;
+    config.settings.defaults.reject_refused_requests = options.reject_refused;
+    config.settings.identity.subsystem_name = "test-vehicle";
+    config.settings.identity.node_name = "test-node";
+    config.components = {jaus::host::ComponentSpec{"node_manager", kTargetManager.component, 1, 0, "node manager", {}, 0},
+                         jaus::host::ComponentSpec{"communicator", kCommunicator.component, 1, 0, "communicator", {}, 0}};
+    auto host = jaus::host::NodeHost::open(config, io);
+    if (!host) throw std::runtime_error(host.error().message());
+    host_ = std::move(*host);
+    communicator_ = dynamic_cast<jaus::components::Communicator*>(
+        host_->node().find(jaus::Address{options.subsystem, 1, kCommunicator.component, 1}));
+    if (!communicator_) throw std::runtime_error("the target hosts no communicator");
+    pose_ = &host_->emplace<PoseSensor>(host_->component_config("pose sensor", kPoseSensor.component));
   }
 
-  jaus::transport::Ipv4Endpoint endpoint() const { return link_->local_endpoint(); }
+  jaus::transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
   // The network goes quiet (cable pulled, process frozen): nothing in or out.
-  void go_silent() { link_->close(); }
-  jaus::node::Node& node() { return *node_; }
-  jaus::rt::Communicator& communicator() { return *communicator_; }
+  void go_silent() { host_->link().close(); }
+  jaus::node::Node& node() { return host_->node(); }
+  jaus::components::Communicator& communicator() { return *communicator_; }
   PoseSensor& pose_sensor() { return *pose_; }
-  jaus::transport::AsioRuntime& runtime() { return runtime_; }
+  jaus::transport::AsioRuntime& runtime() { return host_->runtime(); }
 
  private:
-  static jaus::rt::ComponentConfig config(const char* name, const jaus::Address& address, const TargetOptions& o) {
-    jaus::rt::ComponentConfig c;
-    c.name = name;
-    c.address = jaus::Address{o.subsystem, address.node, address.component, address.instance};
-    c.controller_timeout = o.controller_timeout;
-    c.reject_refused_requests = o.reject_refused;
-    return c;
-  }
-
-  jaus::transport::AsioRuntime runtime_;
-  std::unique_ptr<jaus::transport::UdpLink> link_;
-  std::unique_ptr<jaus::node::Node> node_;
-  jaus::rt::NodeManager* manager_ = nullptr;
-  jaus::rt::Communicator* communicator_ = nullptr;
+  std::unique_ptr<jaus::host::NodeHost> host_;
+  jaus::components::Communicator* communicator_ = nullptr;
   PoseSensor* pose_ = nullptr;
 };
 

@@ -4,9 +4,9 @@
 
 #include "jaus/messages/all.hpp"
 #include "ocu/cli_values.hpp"
-#include "ocu/discovery.hpp"
-#include "ocu/message_json.hpp"
-#include "ocu/rate_meter.hpp"
+#include "jaus/ocu/discovery.hpp"
+#include "jaus/ocu/message_json.hpp"
+#include "jaus/ocu/rate_meter.hpp"
 
 namespace jausctl::ocu {
 namespace {
@@ -73,21 +73,22 @@ TEST(CliValues, DurationsEndpointsPresenceVectors) {
 
 TEST(MessageJson, QueriesGetTheirPresenceVectorAndDefaultFields) {
   auto pose = prepare_query(0x2402, 0x3, Json::object());
-  ASSERT_TRUE(pose) << pose.error();
+  ASSERT_TRUE(pose) << pose.error().message();
   EXPECT_EQ(pose->header.command_code, 0x2402);
   EXPECT_EQ(pose->payload, (std::vector<std::uint8_t>{0x03, 0x00}));
 
   // Query Camera Pose: presence vector and camera ID; the camera defaults to 0.
   auto camera = prepare_query(0x2800, 0x1, Json::object());
-  ASSERT_TRUE(camera) << camera.error();
+  ASSERT_TRUE(camera) << camera.error().message();
   EXPECT_EQ(camera->payload, (std::vector<std::uint8_t>{0x01, 0x00, 0x00}));
   auto camera2 = prepare_query(0x2800, std::nullopt, Json{{"camera_id", 2}});
-  ASSERT_TRUE(camera2) << camera2.error();
+  ASSERT_TRUE(camera2) << camera2.error().message();
   EXPECT_EQ(camera2->payload, (std::vector<std::uint8_t>{0x00, 0x00, 0x02}));
 
-  EXPECT_EQ(prepare_query(0x2002, 1, Json::object()).error(),
+  EXPECT_EQ(prepare_query(0x2002, 1, Json::object()).error().code, jaus::ErrorCode::invalid_argument);
+  EXPECT_EQ(prepare_query(0x2002, 1, Json::object()).error().message(),
             "Query Component Status (0x2002) has no presence vector (--pv)");
-  EXPECT_EQ(prepare_query(0x0006, std::nullopt, Json::object()).error(),
+  EXPECT_EQ(prepare_query(0x0006, std::nullopt, Json::object()).error().message(),
             "Set Emergency (0x0006) is not a query (queries are 0x2nnn; `jausctl send` sends any message)");
   EXPECT_FALSE(prepare_query(0x2800, std::nullopt, Json{{"lens", 1}}));
   EXPECT_EQ(*report_code_for(0x2402), 0x4402);
@@ -97,7 +98,7 @@ TEST(MessageJson, QueriesGetTheirPresenceVectorAndDefaultFields) {
 TEST(MessageJson, MessagesFromDecodeJson) {
   auto m = prepare_message(Json::parse(R"({"code":"0x000D","header":{"priority":11},"fields":{"authority":7}})"),
                            jaus::wire::Dialect::ra);
-  ASSERT_TRUE(m) << m.error();
+  ASSERT_TRUE(m) << m.error().message();
   EXPECT_EQ(m->header.command_code, 0x000D);
   EXPECT_EQ(m->header.priority, 11);
   EXPECT_EQ(m->payload, (std::vector<std::uint8_t>{7}));
@@ -114,7 +115,7 @@ TEST(MessageJson, ReceivedMessagesInTheDecodeForm) {
   r.header.destination = {254, 1, 40, 1};
   r.payload = {0x01, 0, 0, 0, 0};
   auto j = message_json(r, jaus::wire::Dialect::ra);
-  ASSERT_TRUE(j) << j.error();
+  ASSERT_TRUE(j) << j.error().message();
   EXPECT_EQ(json_line(*j).rfind(R"({"code":"0x4002","name":"Report Component Status","header":{)", 0), 0u);
   EXPECT_EQ((*j)["fields"]["primary_status"], 1);
 

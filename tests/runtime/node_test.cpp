@@ -14,11 +14,12 @@ using namespace std::chrono_literals;
 class MemoryLink : public node::Link {
  public:
   explicit MemoryLink(rt::VirtualTime& t) : time(t) {}
-  void transmit(std::span<const std::uint8_t> packet) override {
+  void transmit(const Header& header, std::span<const std::uint8_t> packet) override {
+    EXPECT_EQ(header, *decode_header(packet));  // the node hands over the header it wrote
     packets.emplace_back(packet.begin(), packet.end());
     if (peer && connected) {
       std::vector<std::uint8_t> copy(packet.begin(), packet.end());
-      time.call_at(time.now() + 1ms, [this, copy] { peer->receive(copy); });
+      time.call_at(time.now() + 1ms, [this, copy] { peer->receive_bytes(copy); });
     }
   }
   std::vector<Header> headers() const {
@@ -125,21 +126,21 @@ TEST_F(NodeTest, RoutesBetweenNodesAndStampsSequenceNumbers) {
 
 TEST_F(NodeTest, BroadcastReachesEveryLocalComponentButTheSender) {
   auto& second = a->add(std::make_unique<TestDriver>(config_for(Address{1, 1, 33, 2}, "driver 2"), a->environment()));
-  a->receive(packet_of(kOcu, Address{1, 1, 255, 255}, msg::SetEmergency{}));
+  a->receive_bytes(packet_of(kOcu, Address{1, 1, 255, 255}, msg::SetEmergency{}));
   time.advance(1ms);
   EXPECT_EQ(driver->state(), msg::PrimaryStatus::emergency);
   EXPECT_EQ(second.state(), msg::PrimaryStatus::emergency);
   // Another subsystem's broadcast is not for this node.
-  a->receive(packet_of(kOcu, Address{3, 255, 255, 255}, msg::Standby{}));
+  a->receive_bytes(packet_of(kOcu, Address{3, 255, 255, 255}, msg::Standby{}));
   time.advance(1ms);
   EXPECT_EQ(a->counters().not_for_this_node, 1u);
 }
 
 TEST_F(NodeTest, SafetyCriticalMessagesOvertakeQueuedOnes) {
   link_a.packets.clear();
-  a->receive(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
-  a->receive(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
-  a->receive(packet_of(kOcu, kDriver, msg::SetEmergency{}, 12));
+  a->receive_bytes(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
+  a->receive_bytes(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
+  a->receive_bytes(packet_of(kOcu, kDriver, msg::SetEmergency{}, 12));
   time.advance(1ms);
   // Both status reports were produced after the emergency was handled.
   std::size_t in_emergency = 0;
@@ -154,8 +155,8 @@ TEST_F(NodeTest, SafetyCriticalMessagesOvertakeQueuedOnes) {
 
 TEST_F(NodeTest, AnswersAckRequestsWithAckOrNak) {
   link_a.packets.clear();
-  a->receive(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
-  a->receive(packet_of(kOcu, Address{1, 1, 50, 1}, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
+  a->receive_bytes(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
+  a->receive_bytes(packet_of(kOcu, Address{1, 1, 50, 1}, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
   time.advance(1ms);
   std::vector<AckNak> replies;
   for (const auto& h : link_a.headers())
@@ -209,11 +210,11 @@ TEST_F(NodeTest, AShutDownComponentLeavesTheNode) {
 }
 
 TEST_F(NodeTest, BadPacketsAreCountedNeverDelivered) {
-  a->receive(std::vector<std::uint8_t>{0x06, 0x02, 0x02});
+  a->receive_bytes(std::vector<std::uint8_t>{0x06, 0x02, 0x02});
   auto wrong_size = packet_of(kOcu, kDriver, msg::SetEmergency{});
   wrong_size.push_back(0);
-  a->receive(wrong_size);
-  a->receive(packet_of(Address{0, 1, 40, 1}, kDriver, msg::SetEmergency{}));
+  a->receive_bytes(wrong_size);
+  a->receive_bytes(packet_of(Address{0, 1, 40, 1}, kDriver, msg::SetEmergency{}));
   time.advance(1ms);
   EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
   EXPECT_EQ(a->counters().malformed, 2u);
@@ -252,14 +253,14 @@ TEST_F(NodeTest, AReceivingOnlyComponentOnALiveNodeKeepsItsServiceConnection) {
   // heartbeats would); the subscriber itself only listens.
   const Address other{2, 1, 1, 1};
   for (int second = 0; second < 10; ++second) {
-    a->receive(packet_of(other, Address{1, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+    a->receive_bytes(packet_of(other, Address{1, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
     time.advance(1s);
   }
   EXPECT_EQ(driver->service_connections().active(), 1u);
 }
 
 TEST_F(NodeTest, OwnLoopedBackBroadcastsAreDropped) {
-  a->receive(packet_of(Address{1, 1, 40, 1}, Address{1, 255, 255, 255}, msg::QueryHeartbeatPulse{}));
+  a->receive_bytes(packet_of(Address{1, 1, 40, 1}, Address{1, 255, 255, 255}, msg::QueryHeartbeatPulse{}));
   time.advance(1ms);
   EXPECT_EQ(a->counters().from_self, 1u);
   EXPECT_EQ(driver->counters().received, 0u);
@@ -316,8 +317,7 @@ TEST(NodeWithManager, PeersDiscoverEachOtherFromHeartbeats) {
     rt::ComponentConfig config;
     config.name = "node manager";
     config.address = Address{n == &a ? std::uint8_t{1} : std::uint8_t{2}, 1, 1, 1};
-    auto& manager = n->add(std::make_unique<rt::NodeManager>(config, n->environment(), *n, rt::NodeManagerConfig{}));
-    n->set_node_manager(static_cast<rt::NodeManager*>(&manager));
+    n->add(std::make_unique<components::NodeManager>(config, n->environment(), *n, components::NodeManagerConfig{}));
   }
   time.advance(2500ms);
   EXPECT_EQ(b.known_subsystems(), (std::vector<Address>{{2, 1, 1, 1}, {1, 1, 1, 1}}));

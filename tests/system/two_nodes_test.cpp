@@ -11,10 +11,7 @@
 
 #include "child_process.hpp"
 #include "jaus/messages/all.hpp"
-#include "jaus/node/node.hpp"
-#include "jaus/components/node_manager.hpp"
-#include "jaus/transport/asio_runtime.hpp"
-#include "jaus/transport/udp_link.hpp"
+#include "jaus/host/node_host.hpp"
 
 namespace jaus::test {
 namespace {
@@ -69,33 +66,19 @@ class TwoNodes : public ::testing::Test {
     a = start("a", node_config(1, "127.0.0.21:3794", "127.0.0.22:3794"));
     b = start("b", node_config(2, "127.0.0.22:3794", "127.0.0.21:3794"));
 
-    transport::UdpLinkOptions options;
-    options.subsystem = kOcu.subsystem;
-    options.node = kOcu.node;
-    options.bind = *transport::parse_endpoint("127.0.0.23:3794");
-    options.peers = {{*transport::parse_endpoint("127.0.0.21:3794"), transport::Framing::opc},
-                     {*transport::parse_endpoint("127.0.0.22:3794"), transport::Framing::judp}};
-    auto opened = transport::UdpLink::open(io, runtime, runtime, options);
-    ASSERT_TRUE(opened) << opened.error();
-    link = std::move(*opened);
-    node::NodeConfig nc;
-    nc.subsystem = kOcu.subsystem;
-    nc.node = kOcu.node;
-    node = std::make_unique<node::Node>(nc, runtime, runtime, *link);
-    link->on_packet([this](std::span<const std::uint8_t> p) { node->receive(p); });
-    rt::ComponentConfig manager;
-    manager.name = "ocu node manager";
-    manager.address = Address{kOcu.subsystem, kOcu.node, 1, 1};
-    rt::NodeManagerConfig nm;
-    nm.subsystem_type = 20001;
-    nm.heartbeat_period = 200ms;
-    node->set_node_manager(static_cast<rt::NodeManager*>(
-        &node->add(std::make_unique<rt::NodeManager>(manager, node->environment(), *node, nm))));
-    rt::ComponentConfig oc;
-    oc.name = "ocu";
-    oc.address = kOcu;
-    ocu = static_cast<Ocu*>(&node->add(std::make_unique<Ocu>(oc, node->environment())));
-    link->start();
+    host::HostConfig config;
+    config.node.subsystem = kOcu.subsystem;
+    config.node.node = kOcu.node;
+    config.link.bind = *transport::parse_endpoint("127.0.0.23:3794");
+    config.link.peers = {{*transport::parse_endpoint("127.0.0.21:3794"), transport::Framing::opc},
+                         {*transport::parse_endpoint("127.0.0.22:3794"), transport::Framing::judp}};
+    config.settings.identity.subsystem_type = 20001;
+    config.settings.identity.heartbeat_period = 200ms;
+    config.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "ocu node manager", {}, 0}};
+    auto opened = host::NodeHost::open(config, io);
+    ASSERT_TRUE(opened) << opened.error().message();
+    node_host = std::move(*opened);
+    ocu = &node_host->emplace<Ocu>(node_host->component_config("ocu", kOcu.component, kOcu.instance));
     // The daemons take a moment to start (longer under sanitizers): a
     // datagram sent before they listen is lost, so wait until both answer.
     for (const Address& daemon : {kManagerA, kManagerB})
@@ -111,8 +94,7 @@ class TwoNodes : public ::testing::Test {
     }, 20s);
   }
   void TearDown() override {
-    node.reset();
-    link.reset();
+    node_host.reset();
     a.reset();
     b.reset();
     std::error_code ignored;
@@ -158,9 +140,7 @@ class TwoNodes : public ::testing::Test {
   fs::path dir;
   std::unique_ptr<ChildProcess> a, b;
   boost::asio::io_context io;
-  transport::AsioRuntime runtime{io};
-  std::unique_ptr<transport::UdpLink> link;
-  std::unique_ptr<node::Node> node;
+  std::unique_ptr<host::NodeHost> node_host;
   Ocu* ocu = nullptr;
 };
 
@@ -168,8 +148,8 @@ TEST_F(TwoNodes, FindEachOther) {
   EXPECT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();
   EXPECT_TRUE(subsystem_list_shows(kManagerB, 1, true)) << b->output();
   // We speak JUDP to B (our static peer entry) and OPC to A: each answers in kind.
-  EXPECT_EQ(link->routes().route(2, 1)->framing, transport::Framing::judp);
-  EXPECT_EQ(link->routes().route(1, 1)->framing, transport::Framing::opc);
+  EXPECT_EQ(node_host->link().routes().route(2, 1)->framing, transport::Framing::judp);
+  EXPECT_EQ(node_host->link().routes().route(1, 1)->framing, transport::Framing::opc);
 }
 
 TEST_F(TwoNodes, TheOcuControlsAComponentOfTheOtherNodeAndHoldsIt) {

@@ -17,6 +17,7 @@
 #include "jaus/node/node.hpp"
 #include "jaus/components/communicator.hpp"
 #include "jaus/components/node_manager.hpp"
+#include "jaus/host/node_host.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
 
@@ -52,6 +53,9 @@ std::vector<std::uint8_t> packet_of(const Address& from, const Address& to, cons
   return out;
 }
 
+// A packet handed to a link as the node hands it: its header and its bytes.
+void transmit(UdpLink& link, std::span<const std::uint8_t> packet) { link.transmit(*decode_header(packet), packet); }
+
 std::vector<std::uint8_t> framed(Framing framing, std::span<const std::uint8_t> message) {
   const Prefix prefix = frame_prefix(framing, message.size());
   std::vector<std::uint8_t> out(prefix.view().begin(), prefix.view().end());
@@ -59,30 +63,27 @@ std::vector<std::uint8_t> framed(Framing framing, std::span<const std::uint8_t> 
   return out;
 }
 
-// A node (node manager + communicator) behind a UDP link, and a bare socket
-// playing the peer, on one io_context.
+// A node host (node manager) behind a UDP link, and a bare socket playing the
+// peer, on one io_context.
 class UdpNodeTest : public ::testing::Test {
  protected:
   void SetUp() override { open_node({}); }
 
   void open_node(UdpLinkOptions options) {
-    options.subsystem = 1;
-    options.node = 1;
-    options.bind = Ipv4Endpoint{kLoopback1, 0};
-    auto opened = UdpLink::open(io, runtime, runtime, options, [this](rt::LogLevel, const std::string& line) {
-      logs.push_back(line);
+    host::HostConfig config;
+    config.link = options;
+    config.link.bind = Ipv4Endpoint{kLoopback1, 0};
+    config.components = {host::ComponentSpec{"node_manager", kManager.component, 1, 0, "node manager", {}, 0}};
+    // What jausd's default level (info) would print.
+    auto opened = host::NodeHost::open(config, io, [this](rt::LogLevel level, const std::string& line) {
+      if (level != rt::LogLevel::debug) logs.push_back(line);
     });
-    ASSERT_TRUE(opened) << opened.error();
-    link = std::move(*opened);
-    node = std::make_unique<node::Node>(node::NodeConfig{}, runtime, runtime, *link);
-    link->on_packet([this](std::span<const std::uint8_t> packet) { node->receive(packet); });
-    rt::ComponentConfig manager_config;
-    manager_config.name = "node manager";
-    manager_config.address = kManager;
-    manager = static_cast<rt::NodeManager*>(&node->add(std::make_unique<rt::NodeManager>(
-        manager_config, node->environment(), *node, rt::NodeManagerConfig{})));
-    node->set_node_manager(manager);
-    link->start();
+    ASSERT_TRUE(opened) << opened.error().message();
+    node_host = std::move(*opened);
+    link = &node_host->link();
+    node = &node_host->node();
+    manager = dynamic_cast<components::NodeManager*>(node->find(kManager));
+    ASSERT_NE(manager, nullptr);
     peer.open(udp::v4());
     peer.bind(udp::endpoint(asio::ip::make_address_v4("127.0.0.1"), 0));
     peer.non_blocking(true);
@@ -126,9 +127,10 @@ class UdpNodeTest : public ::testing::Test {
   asio::io_context io;
   AsioRuntime runtime{io};
   std::vector<std::string> logs;
-  std::unique_ptr<UdpLink> link;
-  std::unique_ptr<node::Node> node;
-  rt::NodeManager* manager = nullptr;
+  std::unique_ptr<host::NodeHost> node_host;
+  UdpLink* link = nullptr;
+  node::Node* node = nullptr;
+  components::NodeManager* manager = nullptr;
   udp::socket peer{io};
   std::vector<std::vector<std::uint8_t>> received;
 };
@@ -138,11 +140,12 @@ TEST_F(UdpNodeTest, ABusyPortIsOneClearError) {
   options.bind = link->local_endpoint();
   auto second = UdpLink::open(io, runtime, runtime, options);
   ASSERT_FALSE(second);
-  EXPECT_EQ(second.error(), to_string(link->local_endpoint()) + " is already in use");
+  EXPECT_EQ(second.error().code, ErrorCode::io);
+  EXPECT_EQ(second.error().message(), to_string(link->local_endpoint()) + " is already in use");
   options.bind = Ipv4Endpoint{0xC0000201, 3794};  // 192.0.2.1 (TEST-NET): not ours
   auto foreign = UdpLink::open(io, runtime, runtime, options);
   ASSERT_FALSE(foreign);
-  EXPECT_EQ(foreign.error(), "192.0.2.1:3794 is not an address of this machine");
+  EXPECT_EQ(foreign.error().message(), "192.0.2.1:3794 is not an address of this machine");
 }
 
 TEST_F(UdpNodeTest, EachPeerIsAnsweredInTheFramingItUses) {
@@ -224,8 +227,7 @@ TEST_F(UdpNodeTest, APeerUsingOurIdIsDroppedAndReported) {
 }
 
 TEST_F(UdpNodeTest, TheAllowListKeepsStrangersOut) {
-  link.reset();
-  node.reset();
+  node_host.reset();
   peer.close();
   UdpLinkOptions options;
   options.allow = {*parse_cidr("10.0.0.0/8")};
@@ -286,32 +288,32 @@ TEST(UdpLinks, BroadcastsReachStaticPeersWhichThenLearnTheRouteBack) {
   options_b.node = 1;
   options_b.bind = Ipv4Endpoint{kLoopback1, 0};
   auto b = UdpLink::open(io, runtime, runtime, options_b);
-  ASSERT_TRUE(b) << b.error();
+  ASSERT_TRUE(b) << b.error().message();
   UdpLinkOptions options_a;
   options_a.subsystem = 1;
   options_a.node = 1;
   options_a.bind = Ipv4Endpoint{kLoopback1, 0};
   options_a.peers = {StaticPeer{(*b)->local_endpoint(), Framing::judp}};
   auto a = UdpLink::open(io, runtime, runtime, options_a);
-  ASSERT_TRUE(a) << a.error();
-  std::vector<std::vector<std::uint8_t>> at_a, at_b;
-  (*a)->on_packet([&](std::span<const std::uint8_t> p) { at_a.emplace_back(p.begin(), p.end()); });
-  (*b)->on_packet([&](std::span<const std::uint8_t> p) { at_b.emplace_back(p.begin(), p.end()); });
+  ASSERT_TRUE(a) << a.error().message();
+  std::vector<Header> at_a, at_b;
+  (*a)->on_packet([&](const PacketView& p, Framing) { at_a.push_back(p.header); });
+  (*b)->on_packet([&](const PacketView& p, Framing) { at_b.push_back(p.header); });
   (*a)->start();
   (*b)->start();
-  (*a)->transmit(packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  transmit(**a, packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
   for (int i = 0; i < 400 && at_b.empty(); ++i) io.run_for(5ms);
   ASSERT_EQ(at_b.size(), 1u);
   const auto route = (*b)->routes().route(1, 1);
   ASSERT_TRUE(route);
   EXPECT_EQ(route->endpoint, (*a)->local_endpoint());
   EXPECT_EQ(route->framing, Framing::judp);  // A spoke JUDP to B, so B answers in JUDP
-  (*b)->transmit(packet_of(Address{2, 1, 1, 1}, kManager, msg::QueryIdentification{}));
+  transmit(**b, packet_of(Address{2, 1, 1, 1}, kManager, msg::QueryIdentification{}));
   for (int i = 0; i < 400 && at_a.empty(); ++i) io.run_for(5ms);
   ASSERT_EQ(at_a.size(), 1u);
-  EXPECT_EQ(decode_header(at_a[0])->command_code, msg::QueryIdentification::code);
+  EXPECT_EQ(at_a[0].command_code, msg::QueryIdentification::code);
   // Unicast to a node nobody has heard of, with no static peer and no multicast: dropped, counted.
-  (*b)->transmit(packet_of(Address{2, 1, 1, 1}, Address{9, 9, 1, 1}, msg::QueryIdentification{}));
+  transmit(**b, packet_of(Address{2, 1, 1, 1}, Address{9, 9, 1, 1}, msg::QueryIdentification{}));
   EXPECT_EQ((*b)->counters().no_route, 1u);
 }
 
@@ -338,15 +340,15 @@ TEST(UdpLinks, BroadcastsGoToTheMulticastGroupAndOwnOnesAreNotTakenBack) {
   for (const auto& line : logs)
     if (line.find("broadcasts go to known peers only") != std::string::npos)
       GTEST_SKIP() << "no multicast on this host's loopback: " << line;
-  std::vector<std::vector<std::uint8_t>> at_a, at_b;
-  (*a)->on_packet([&](std::span<const std::uint8_t> p) { at_a.emplace_back(p.begin(), p.end()); });
-  (*b)->on_packet([&](std::span<const std::uint8_t> p) { at_b.emplace_back(p.begin(), p.end()); });
+  std::vector<Header> at_a, at_b;
+  (*a)->on_packet([&](const PacketView& p, Framing) { at_a.push_back(p.header); });
+  (*b)->on_packet([&](const PacketView& p, Framing) { at_b.push_back(p.header); });
   (*a)->start();
   (*b)->start();
-  (*a)->transmit(packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  transmit(**a, packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
   for (int i = 0; i < 400 && at_b.empty(); ++i) io.run_for(5ms);
   ASSERT_EQ(at_b.size(), 1u);
-  EXPECT_EQ(decode_header(at_b[0])->source, kManager);
+  EXPECT_EQ(at_b[0].source, kManager);
   io.run_for(50ms);
   EXPECT_TRUE(at_a.empty());  // its own broadcast looped back is dropped
   EXPECT_EQ((*a)->counters().dropped_for(DropReason::from_self), 1u);

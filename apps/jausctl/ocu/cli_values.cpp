@@ -114,32 +114,4 @@ Parsed<jaus::transport::Framing> parse_framing(std::string_view text) {
   return unexpected("bad framing '" + std::string(text) + "': expected opc or judp");
 }
 
-std::string seconds_text(jaus::rt::Duration d) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g s", std::chrono::duration<double>(d).count());
-  return text;
-}
-
-std::string elapsed_text(jaus::rt::Duration d) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f s", std::chrono::duration<double>(d).count());
-  return text;
-}
-
-std::string code_text(std::uint16_t code) {
-  char text[8];
-  std::snprintf(text, sizeof text, "0x%04X", code);
-  return text;
-}
-
-std::string hz_text(double hz) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f", hz);
-  std::string out = text;
-  // Scaled rates come back a hair off (5 Hz travels as 4.9989): the decimals that say nothing go.
-  while (out.back() == '0') out.pop_back();
-  if (out.back() == '.') out.pop_back();
-  return out;
-}
-
 }  // namespace jausctl::ocu

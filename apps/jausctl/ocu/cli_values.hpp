@@ -12,8 +12,12 @@
 #include "jaus/base/time.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
+#include "jaus/ocu/names.hpp"
 
 namespace jausctl::ocu {
+
+// jausctl's OCU commands are built on the OCU library.
+using namespace jaus::ocu;
 
 template <class T>
 using Parsed = jaus::Expected<T, std::string>;
@@ -46,16 +50,5 @@ Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text,
 
 // "opc" or "judp".
 Parsed<jaus::transport::Framing> parse_framing(std::string_view text);
-
-// "1 s", "0.25 s": how messages state a duration that was given.
-std::string seconds_text(jaus::rt::Duration d);
-// "4.0 s": how long something took (measured, so one decimal).
-std::string elapsed_text(jaus::rt::Duration d);
-
-// "0x4402".
-std::string code_text(std::uint16_t code);
-
-// A rate as people write it: 5, 0.25, 12.5 (two decimals at most).
-std::string hz_text(double hz);
 
 }  // namespace jausctl::ocu

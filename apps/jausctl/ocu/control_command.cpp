@@ -1,7 +1,7 @@
 // `jausctl control ADDR --authority N`: request control, hold it until
 // SIGINT/SIGTERM or --for, release it; report the component's state while
 // held, and a loss when it happens.
-#include "control_hold.hpp"
+#include "jaus/ocu/control_hold.hpp"
 #include "ocu_commands.hpp"
 
 namespace jausctl::ocu {
@@ -9,17 +9,41 @@ namespace jausctl::ocu {
 namespace {
 // How long to wait for Report Component Control after a Reject (it only adds detail).
 constexpr jaus::rt::Duration kWhoHasControlTimeout = std::chrono::milliseconds(500);
+
+// "control of 1.1.35.1 granted (authority 5)", "... refused: not available (response 2)", ...
+std::string request_text(const ControlHold::RequestResult& r, const jaus::Address& target, std::uint8_t authority) {
+  const std::string what = "control of " + target.to_string();
+  if (r.error) return r.error->message();
+  switch (r.outcome) {
+    case ControlHold::Outcome::granted: return what + " granted (authority " + std::to_string(authority) + ")";
+    case ControlHold::Outcome::rejected: return what + " refused (Reject Component Control)";
+    case ControlHold::Outcome::refused:
+      return what + " refused: " + control_response_text(r.response_code) + " (response " +
+             std::to_string(r.response_code) + ")";
+    case ControlHold::Outcome::no_reply:
+    case ControlHold::Outcome::interrupted: break;
+  }
+  return what + ": no answer";
+}
+
+// "; taken over by 254.2.40.1 (authority 9)", "; it has no controller now", or nothing.
+std::string controller_text(const std::optional<jaus::msg::ReportComponentControl>& report) {
+  if (!report) return "";
+  if (!report->controller.is_valid()) return "; it has no controller now";
+  return "; taken over by " + report->controller.to_string() + " (authority " + std::to_string(report->authority) + ")";
+}
 }  // namespace
 
 int run_control(OcuSession& session, const ControlOptions& options, CommandIo io) {
   const std::string target = options.target.to_string();
   ControlHold control(session, options.target, options.authority, options.status_silence);
   const auto requested = control.request(options.timeout);
+  const std::string requested_text = request_text(requested, options.target, options.authority);
   if (requested.outcome != ControlHold::Outcome::granted) {
-    io.err << "jausctl control: " << requested.text << "\n";
+    io.err << "jausctl control: " << requested_text << "\n";
     return kExitFailure;
   }
-  io.out << requested.text << "\n" << std::flush;
+  io.out << requested_text << "\n" << std::flush;
 
   const auto start = session.clock().now();
   const auto end = control.hold(options.hold_for, [&](const std::string& state) {
@@ -27,9 +51,9 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
   });
   const auto held = elapsed_text(session.clock().now() - start);
   if (end == ControlHold::End::rejected) {
-    const std::string why = control.who_has_control(std::min(options.timeout, kWhoHasControlTimeout));
+    const auto controller = control.who_has_control(std::min(options.timeout, kWhoHasControlTimeout));
     io.err << "jausctl control: control of " << target << " lost after " << held
-           << ": Reject Component Control received" << (why.empty() ? "" : "; " + why) << "\n";
+           << ": Reject Component Control received" << controller_text(controller) << "\n";
     return kExitFailure;
   }
   if (end == ControlHold::End::silent) {

@@ -1,6 +1,6 @@
 // `jausctl discover`: heartbeats and replies feed the Discovery model, which
 // says what to ask next; after --wait, what was found is printed.
-#include "discovery.hpp"
+#include "jaus/ocu/discovery.hpp"
 #include "discovery_output.hpp"
 #include "ocu_commands.hpp"
 

@@ -5,7 +5,7 @@
 #include <map>
 
 #include "jaus/messages/catalogue.hpp"
-#include "names.hpp"
+#include "jaus/ocu/names.hpp"
 
 namespace jausctl::ocu {
 

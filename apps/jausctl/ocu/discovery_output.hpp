@@ -4,8 +4,9 @@
 
 #include <string>
 
-#include "discovery.hpp"
-#include "message_json.hpp"
+#include "jaus/ocu/discovery.hpp"
+#include "cli_values.hpp"
+#include "jaus/ocu/message_json.hpp"
 
 namespace jausctl::ocu {
 

@@ -8,9 +8,10 @@
 #include <optional>
 #include <ostream>
 
+#include "cli_values.hpp"
 #include "exit_codes.hpp"
-#include "message_json.hpp"
-#include "session.hpp"
+#include "jaus/ocu/message_json.hpp"
+#include "jaus/ocu/session.hpp"
 
 namespace jausctl::ocu {
 

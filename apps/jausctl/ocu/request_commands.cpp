@@ -1,7 +1,7 @@
 // The one-shot OCU commands: status, query, send, emergency. Each sends one
 // message and waits (up to the timeout) for the answer.
 #include "jaus/messages/core_messages.hpp"
-#include "names.hpp"
+#include "jaus/ocu/names.hpp"
 #include "ocu_commands.hpp"
 
 namespace jausctl::ocu {
@@ -12,9 +12,10 @@ int fail(CommandIo io, std::string_view command, const std::string& why) {
   io.err << "jausctl " << command << ": " << why << "\n";
   return kExitFailure;
 }
+int fail(CommandIo io, std::string_view command, const jaus::Error& why) { return fail(io, command, why.message()); }
 
 // The status report of `target`, decoded.
-jaus::Expected<jaus::msg::ReportComponentStatus, std::string> query_status(OcuSession& session,
+jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& session,
                                                                           const jaus::Address& target,
                                                                           jaus::rt::Duration timeout) {
   auto reply = session.request(target, jaus::msg::QueryComponentStatus{}, {jaus::msg::ReportComponentStatus::code},
@@ -22,8 +23,9 @@ jaus::Expected<jaus::msg::ReportComponentStatus, std::string> query_status(OcuSe
   if (!reply) return jaus::unexpected(reply.error());
   jaus::msg::ReportComponentStatus report{};
   if (auto error = jaus::wire::decode_payload_into(reply->payload, report, session.options().dialect, jaus::kHeaderSize))
-    return jaus::unexpected("Report Component Status from " + reply->header.source.to_string() +
-                            " does not decode: " + error->message());
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::malformed,
+                                             "Report Component Status from " + reply->header.source.to_string() +
+                                                 " does not decode: " + error->message()));
   return report;
 }
 
@@ -87,7 +89,7 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   }
   // The status query follows the command through the same queue: its answer shows the outcome.
   auto report = query_status(session, target, timeout);
-  if (!report) return fail(io, "emergency", what + " sent, but " + report.error() + " to show its state");
+  if (!report) return fail(io, "emergency", what + " sent, but " + report.error().message() + " to show its state");
   const std::string state = primary_status_text(report->primary_status);
   if (set && !is_emergency(*report))
     return fail(io, "emergency", target.to_string() + " is in " + state + " after Set Emergency");

@@ -5,9 +5,9 @@
 #include <algorithm>
 
 #include "jaus/messages/catalogue.hpp"
-#include "names.hpp"
+#include "jaus/ocu/names.hpp"
 #include "ocu_commands.hpp"
-#include "rate_meter.hpp"
+#include "jaus/ocu/rate_meter.hpp"
 
 namespace jausctl::ocu {
 
@@ -31,7 +31,7 @@ int run_subscribe(OcuSession& session, const SubscribeOptions& o, CommandIo io) 
         meter.tick(clock.now());
         auto json = message_json(Received{h, {payload.begin(), payload.end()}}, session.options().dialect);
         if (!json) {
-          io.err << "jausctl subscribe: " << json.error() << "\n";
+          io.err << "jausctl subscribe: " << json.error().message() << "\n";
           return;
         }
         io.out << json_line(*json) << "\n" << std::flush;
@@ -49,7 +49,7 @@ int run_subscribe(OcuSession& session, const SubscribeOptions& o, CommandIo io) 
       io.err << "jausctl subscribe: service connection for " << label << " refused: "
              << service_connection_response_text(*refused) << " (response " << int{*refused} << ")\n";
     else
-      io.err << "jausctl subscribe: " << no_reply_text(o.target, o.timeout) << "\n";
+      io.err << "jausctl subscribe: " << no_reply_error(o.target, o.timeout).message() << "\n";
     return kExitFailure;
   }
   io.err << "jausctl subscribe: " << label << " at " << hz_text(status->confirmed_rate_hz) << " Hz (service connection "

@@ -26,6 +26,7 @@ std::string_view to_string(ErrorCode code) {
     case ErrorCode::interrupted: return "interrupted";
     case ErrorCode::invalid_argument: return "invalid argument";
     case ErrorCode::refused: return "refused";
+    case ErrorCode::malformed: return "malformed message";
   }
   return "unknown error";
 }

@@ -35,6 +35,7 @@ enum class ErrorCode : std::uint8_t {
   interrupted,            // stopped by a signal or by the caller
   invalid_argument,       // a value given by the user or the configuration that cannot be used
   refused,                // the peer answered no
+  malformed,              // a message from a peer that does not decode (the detail says which, and why)
 };
 
 std::string_view to_string(ErrorCode code);

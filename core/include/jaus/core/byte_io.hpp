@@ -86,7 +86,7 @@ class ByteReader {
   // Fails naming an earlier absolute offset (e.g. the start of a field already read).
   void fail_at(ErrorCode code, std::size_t absolute_offset, std::string detail = {}) {
     if (error_) return;
-    error_ = std::make_unique<Error>(Error{code, absolute_offset, field_, std::move(detail)});
+    error_ = std::make_unique<Error>(Error{code, absolute_offset, std::string(field_), std::move(detail)});
     limit_ = pos_;
   }
   bool failed() const { return error_ != nullptr; }
@@ -161,7 +161,7 @@ class ByteWriter {
   std::string_view field() const { return field_; }
   void fail(ErrorCode code, std::string detail = {}) {
     if (error_) return;
-    error_ = std::make_unique<Error>(Error{code, size(), field_, std::move(detail)});
+    error_ = std::make_unique<Error>(Error{code, size(), std::string(field_), std::move(detail)});
     end_ = cur_;  // nothing more fits: every later write fails fast
   }
   bool failed() const { return error_ != nullptr; }

@@ -1,8 +1,8 @@
-#include "rate_meter.hpp"
+#include "jaus/ocu/rate_meter.hpp"
 
 #include <cstdio>
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 namespace {
 double seconds(jaus::rt::Duration d) { return std::chrono::duration<double>(d).count(); }
@@ -40,4 +40,4 @@ std::string summary_text(const RateMeter::Summary& summary) {
   return text;
 }
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

@@ -15,18 +15,19 @@
 #include <optional>
 #include <string>
 
+#include "jaus/messages/core_messages.hpp"
 #include "jaus/runtime/service_connection_client.hpp"
-#include "session.hpp"
+#include "jaus/ocu/session.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 class ControlHold {
  public:
   enum class Outcome { granted, refused, rejected, no_reply, interrupted };
   struct RequestResult {
     Outcome outcome = Outcome::no_reply;
-    std::uint8_t response_code = 0;  // of Confirm Component Control
-    std::string text;                // one line: "control of 1.1.35.1 granted (authority 5)", ...
+    std::uint8_t response_code = 0;  // of Confirm Component Control (refused)
+    std::optional<jaus::Error> error;  // no_reply (timeout), interrupted, or a confirmation that does not decode
   };
   enum class End { time_up, interrupted, rejected, silent };
 
@@ -51,9 +52,9 @@ class ControlHold {
   // and end the status service connection.
   void release();
 
-  // Who has control now, asked after a Reject: "taken over by 254.2.40.1
-  // (authority 9)", "it has no controller now", or empty without a reply.
-  std::string who_has_control(jaus::rt::Duration timeout);
+  // Who has control now (Query Component Control), asked after a Reject:
+  // none without a reply; a controller that is not a valid address means nobody.
+  std::optional<jaus::msg::ReportComponentControl> who_has_control(jaus::rt::Duration timeout);
 
   // Liveness checks (Query Component Status) the component sent us while held.
   std::uint64_t liveness_checks() const { return liveness_checks_; }
@@ -75,4 +76,4 @@ class ControlHold {
   std::function<void(const std::string&)> on_state_;
 };
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

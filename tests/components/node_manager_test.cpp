@@ -25,10 +25,10 @@ class NodeManagerTest : public ::testing::Test {
     rt::ComponentConfig nm_config;
     nm_config.name = "node manager";
     nm_config.address = kNodeManager;
-    rt::NodeManagerConfig nm;
+    components::NodeManagerConfig nm;
     nm.subsystem_name = "Husky A200";
     nm.node_name = "onboard";
-    manager = std::make_unique<rt::NodeManager>(nm_config, rt::Environment{time, time, outbox}, directory, nm);
+    manager = std::make_unique<components::NodeManager>(nm_config, rt::Environment{time, time, outbox}, directory, nm);
     rt::ComponentConfig driver_config;
     driver_config.name = "primitive driver";
     driver_config.address = kDriver;
@@ -54,7 +54,7 @@ class NodeManagerTest : public ::testing::Test {
   rt::VirtualTime time;
   RecordingOutbox outbox;
   FakeDirectory directory;
-  std::unique_ptr<rt::NodeManager> manager;
+  std::unique_ptr<components::NodeManager> manager;
   std::unique_ptr<TestDriver> driver;
 };
 
@@ -111,7 +111,7 @@ TEST_F(NodeManagerTest, ConfigurationEventsOnEveryChange) {
   deliver(kOcuA, create);
   const auto confirm = outbox.to<msg::ConfirmEventRequest>(kOcuA).at(0);
   EXPECT_EQ(confirm.request_id, 9);
-  EXPECT_EQ(confirm.response_code, rt::event_response::kSuccessful);
+  EXPECT_EQ(confirm.response_code, components::event_response::kSuccessful);
   EXPECT_EQ(manager->event_subscriptions(), 1u);
 
   directory.components = {manager.get()};  // the driver went away
@@ -148,7 +148,7 @@ TEST_F(NodeManagerTest, PeriodicConfigurationEventsAndRefusals) {
   other.report_code = msg::ReportGlobalPose::code;
   deliver(kOcuB, other);
   EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code,
-            rt::event_response::kMessageNotSupported);
+            components::event_response::kMessageNotSupported);
 }
 
 TEST(Communicator, ReportsAndSetsDataLinks) {
@@ -157,7 +157,7 @@ TEST(Communicator, ReportsAndSetsDataLinks) {
   rt::ComponentConfig config;
   config.address = Address{1, 1, 35, 1};
   config.authority = 0;
-  rt::Communicator communicator(config, rt::Environment{time, time, outbox}, 2);
+  components::Communicator communicator(config, rt::Environment{time, time, outbox}, 2);
   communicator.start();
   auto deliver = [&](const Address& from, auto message) {
     std::vector<std::uint8_t> payload(64);
@@ -172,12 +172,12 @@ TEST(Communicator, ReportsAndSetsDataLinks) {
   EXPECT_EQ(communicator.selected_link(), 0);
   deliver(kOcuA, msg::RequestComponentControl{{10}});
   deliver(kOcuA, msg::SetDataLinkSelect{{1}});
-  deliver(kOcuA, msg::SetDataLinkStatus{{rt::data_link::kStandby}});
+  deliver(kOcuA, msg::SetDataLinkStatus{{components::data_link::kStandby}});
   deliver(kOcuA, msg::SetDataLinkSelect{{7}});  // no such link
   EXPECT_EQ(communicator.selected_link(), 1);
   deliver(kOcuB, msg::QueryDataLinkStatus{{1}});
   deliver(kOcuB, msg::QuerySelectedDataLinkStatus{});
-  EXPECT_EQ(outbox.to<msg::ReportDataLinkStatus>(kOcuB).at(0).state, rt::data_link::kStandby);
+  EXPECT_EQ(outbox.to<msg::ReportDataLinkStatus>(kOcuB).at(0).state, components::data_link::kStandby);
   EXPECT_EQ(outbox.to<msg::ReportSelectedDataLinkStatus>(kOcuB).at(0).data_link_id, 1);
 }
 

@@ -1,13 +1,16 @@
-#include "message_json.hpp"
+#include "jaus/ocu/message_json.hpp"
 
 #include "jaus/base/hex.hpp"
 #include "jaus/messages/catalogue.hpp"
+#include "jaus/ocu/names.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 namespace {
 
 using jaus::unexpected;
+
+auto invalid(std::string why) { return unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, std::move(why))); }
 
 constexpr std::uint16_t kQueryClass = 0x2000;
 constexpr std::uint16_t kReportClass = 0x4000;
@@ -51,17 +54,17 @@ std::optional<std::uint16_t> report_code_for(std::uint16_t query_code) {
   return report;
 }
 
-Parsed<PreparedMessage> prepare_query(std::uint16_t code, std::optional<std::uint32_t> presence_vector,
+jaus::Expected<PreparedMessage> prepare_query(std::uint16_t code, std::optional<std::uint32_t> presence_vector,
                                       const Json& fields) {
   const auto* info = jaus::msg::find_message(code);
-  if (!info) return unexpected("unknown message code " + code_text(code));
+  if (!info) return invalid("unknown message code " + code_text(code));
   if (!is_query(code))
-    return unexpected(message_label(code) + " is not a query (queries are 0x2nnn; `jausctl send` sends any message)");
-  if (!fields.is_object()) return unexpected(std::string("--fields must be a JSON object"));
+    return invalid(message_label(code) + " is not a query (queries are 0x2nnn; `jausctl send` sends any message)");
+  if (!fields.is_object()) return invalid("--fields must be a JSON object");
   Json given = fields;
   if (presence_vector) {
     if (given.contains("presence_vector"))
-      return unexpected(std::string("the presence vector is given twice (--pv and --fields)"));
+      return invalid("the presence vector is given twice (--pv and --fields)");
     given["presence_vector"] = *presence_vector;
   }
   Json filled = given;
@@ -78,17 +81,17 @@ Parsed<PreparedMessage> prepare_query(std::uint16_t code, std::optional<std::uin
       continue;
     }
     if (presence_vector && payload.error().detail == "unknown field 'presence_vector'")
-      return unexpected(message_label(code) + " has no presence vector (--pv)");
-    return unexpected(message_label(code) + ": " + describe_error(payload.error()));
+      return invalid(message_label(code) + " has no presence vector (--pv)");
+    return invalid(message_label(code) + ": " + describe_error(payload.error()));
   }
-  return unexpected(message_label(code) + ": cannot fill its fields");
+  return invalid(message_label(code) + ": cannot fill its fields");
 }
 
-Parsed<PreparedMessage> prepare_message(const Json& message, jaus::wire::Dialect dialect) {
+jaus::Expected<PreparedMessage> prepare_message(const Json& message, jaus::wire::Dialect dialect) {
   auto bytes = jaus::msg::message_from_json(message, dialect);
-  if (!bytes) return unexpected(describe_error(bytes.error()));
+  if (!bytes) return invalid(describe_error(bytes.error()));
   auto packet = jaus::decode_packet(*bytes);
-  if (!packet) return unexpected(describe_error(packet.error()));
+  if (!packet) return invalid(describe_error(packet.error()));
   PreparedMessage out;
   out.header = packet->header;
   out.header.data_flag = jaus::DataFlag::single;  // the node splits large payloads itself
@@ -96,7 +99,7 @@ Parsed<PreparedMessage> prepare_message(const Json& message, jaus::wire::Dialect
   return out;
 }
 
-Parsed<Json> message_json(const Received& message, jaus::wire::Dialect dialect) {
+jaus::Expected<Json> message_json(const Received& message, jaus::wire::Dialect dialect) {
   const jaus::Header& h = message.header;
   Json out;
   out["code"] = code_text(h.command_code);
@@ -111,8 +114,9 @@ Parsed<Json> message_json(const Received& message, jaus::wire::Dialect dialect) 
   out["header"] = jaus::msg::header_to_json(h);
   auto fields = info->payload_to_json(message.payload, dialect);
   if (!fields)
-    return unexpected(message_label(h.command_code) + " from " + h.source.to_string() +
-                      " does not decode: " + fields.error().message());
+    return unexpected(jaus::make_error(jaus::ErrorCode::malformed, message_label(h.command_code) + " from " +
+                                                                h.source.to_string() + " does not decode: " +
+                                                                fields.error().message()));
   out["fields"] = std::move(*fields);
   return out;
 }
@@ -121,4 +125,4 @@ std::string json_line(const Json& json) {
   return json.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

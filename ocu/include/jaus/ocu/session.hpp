@@ -1,7 +1,7 @@
-// One OCU on the network: a UDP link to the node it talks to, a JAUS node
-// with a node manager (so the other side hears this OCU's heartbeats and keeps
-// its service connections and control alive) and the OCU component, all on
-// one io_context. Commands are thin: they send, then run the io_context until
+// One OCU on the network: a node host (UDP link, node and a node manager, so
+// the other side hears this OCU's heartbeats and keeps its service
+// connections and control alive) and the OCU component, all on one
+// io_context. Commands are thin: they send, then run the io_context until
 // what they wait for arrives or their time is up.
 //
 // Single-threaded like the runtime: everything here runs on the thread that
@@ -20,12 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "jaus/node/node.hpp"
-#include "jaus/transport/asio_runtime.hpp"
-#include "jaus/transport/udp_link.hpp"
-#include "ocu_component.hpp"
+#include "jaus/host/node_host.hpp"
+#include "jaus/ocu/ocu_component.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 // 254 is the last subsystem ID: vehicles count up from 1, so an OCU there
 // does not collide with them; 40 is the System Commander's component ID, the
@@ -61,9 +59,10 @@ class OcuSession {
   using ListenerId = std::uint64_t;
 
   // Binds the socket and starts the node. `io` null: the session runs its own.
-  // The error is one line, e.g. "0.0.0.0:3794 is already in use".
-  static jaus::Expected<std::unique_ptr<OcuSession>, std::string> open(SessionOptions options,
-                                                                       boost::asio::io_context* io = nullptr);
+  // The error (io, invalid_argument) says it in one line, e.g. "0.0.0.0:3794
+  // is already in use".
+  static jaus::Expected<std::unique_ptr<OcuSession>> open(SessionOptions options,
+                                                         boost::asio::io_context* io = nullptr);
   // Shuts the node down in order: subscriptions still open are terminated.
   ~OcuSession();
   OcuSession(const OcuSession&) = delete;
@@ -72,9 +71,9 @@ class OcuSession {
   const jaus::Address& self() const { return options_.self; }
   const SessionOptions& options() const { return options_; }
   OcuComponent& component() { return *component_; }
-  jaus::node::Node& node() { return *node_; }
-  jaus::transport::UdpLink& link() { return *link_; }
-  jaus::rt::Clock& clock() { return runtime_; }
+  jaus::node::Node& node() { return host_->node(); }
+  jaus::transport::UdpLink& link() { return host_->link(); }
+  jaus::rt::Clock& clock() { return host_->runtime(); }
 
   // Sends from the OCU component; the datagram has left when this returns.
   template <class M>
@@ -105,11 +104,12 @@ class OcuSession {
   bool interrupted() const { return interrupted_; }
 
   // The first message from `from` (255s match any ID) with one of `codes`
-  // (any code when empty); the error is "no reply from 1.1.33.1 within 1 s".
-  jaus::Expected<Received, std::string> await_reply(const jaus::Address& from, std::vector<std::uint16_t> codes,
-                                                    jaus::rt::Duration timeout);
+  // (any code when empty). Errors: timeout ("no reply from 1.1.33.1 within
+  // 1 s") or interrupted.
+  jaus::Expected<Received> await_reply(const jaus::Address& from, std::vector<std::uint16_t> codes,
+                                       jaus::rt::Duration timeout);
   template <class M>
-  jaus::Expected<Received, std::string> request(const jaus::Address& to, const M& message,
+  jaus::Expected<Received> request(const jaus::Address& to, const M& message,
                                                 std::vector<std::uint16_t> reply_codes, jaus::rt::Duration timeout) {
     send(to, message);
     return await_reply(to, std::move(reply_codes), timeout);
@@ -117,16 +117,14 @@ class OcuSession {
 
  private:
   OcuSession(SessionOptions options, boost::asio::io_context* io);
-  void observe(std::span<const std::uint8_t> packet);
+  void observe(const jaus::PacketView& packet);
   void arm_signals();
   void deliver(const Received& message);
 
   SessionOptions options_;
   std::unique_ptr<boost::asio::io_context> owned_io_;
   boost::asio::io_context& io_;
-  jaus::transport::AsioRuntime runtime_;
-  std::unique_ptr<jaus::transport::UdpLink> link_;
-  std::unique_ptr<jaus::node::Node> node_;
+  std::unique_ptr<jaus::host::NodeHost> host_;
   OcuComponent* component_ = nullptr;
   std::optional<boost::asio::signal_set> signals_;
   bool interrupted_ = false;
@@ -135,7 +133,7 @@ class OcuSession {
   std::map<ListenerId, Watcher> watchers_;
 };
 
-// "no reply from 1.1.33.1 within 1 s"
-std::string no_reply_text(const jaus::Address& from, jaus::rt::Duration timeout);
+// timeout: "no reply from 1.1.33.1 within 1 s"
+jaus::Error no_reply_error(const jaus::Address& from, jaus::rt::Duration timeout);
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

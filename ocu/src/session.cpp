@@ -1,12 +1,11 @@
-#include "session.hpp"
+#include "jaus/ocu/session.hpp"
 
 #include <algorithm>
 #include <csignal>
 
-#include "cli_values.hpp"
-#include "jaus/components/node_manager.hpp"
+#include "jaus/ocu/names.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 namespace {
 
@@ -19,68 +18,48 @@ constexpr std::uint8_t kNodeManagerComponent = 1;
 
 }  // namespace
 
-std::string no_reply_text(const jaus::Address& from, jaus::rt::Duration timeout) {
-  return "no reply from " + from.to_string() + " within " + seconds_text(timeout);
+jaus::Error no_reply_error(const jaus::Address& from, jaus::rt::Duration timeout) {
+  return jaus::make_error(jaus::ErrorCode::timeout, "no reply from " + from.to_string() + " within " + seconds_text(timeout));
 }
 
 OcuSession::OcuSession(SessionOptions options, boost::asio::io_context* io)
     : options_(std::move(options)),
       owned_io_(io ? nullptr : std::make_unique<boost::asio::io_context>()),
-      io_(io ? *io : *owned_io_),
-      runtime_(io_) {
-  if (!options_.log) options_.log = [](jaus::rt::LogLevel, const std::string&) {};
+      io_(io ? *io : *owned_io_) {
+  if (!options_.log) options_.log = jaus::rt::silent_log();
 }
 
-jaus::Expected<std::unique_ptr<OcuSession>, std::string> OcuSession::open(SessionOptions options,
-                                                                          boost::asio::io_context* io) {
+jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions options, boost::asio::io_context* io) {
   const jaus::Address self = options.self;
   if (!self.is_valid() || self.is_broadcast() || self.component == kNodeManagerComponent)
-    return unexpected("the OCU's address " + self.to_string() +
-                      " must be a real component (no 0 or 255; component 1 is its node manager)");
+    return unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument,
+                                       "the OCU's address " + self.to_string() +
+                                           " must be a real component (no 0 or 255; component 1 is its node manager)"));
   std::unique_ptr<OcuSession> s(new OcuSession(std::move(options), io));
   const SessionOptions& o = s->options_;
 
-  jaus::transport::UdpLinkOptions link_options;
-  link_options.subsystem = self.subsystem;
-  link_options.node = self.node;
-  link_options.bind = o.bind;
-  link_options.framing = o.framing;
-  for (const auto& peer : o.to) link_options.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
-  auto link = jaus::transport::UdpLink::open(s->io_, s->runtime_, s->runtime_, link_options, o.log);
-  if (!link) return unexpected(link.error());
-  s->link_ = std::move(*link);
+  jaus::host::HostConfig config;
+  config.node.subsystem = self.subsystem;
+  config.node.node = self.node;
+  config.node.dialect = o.dialect;
+  config.link.bind = o.bind;
+  config.link.framing = o.framing;
+  for (const auto& peer : o.to) config.link.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
+  config.settings.identity.subsystem_name = "jausctl";
+  config.settings.identity.subsystem_type = kOcuSubsystemType;
+  config.settings.identity.node_name = "jausctl";
+  config.components = {jaus::host::ComponentSpec{"node_manager", kNodeManagerComponent, 1, 0, "jausctl node manager", {}, 0}};
+  auto host = jaus::host::NodeHost::open(std::move(config), s->io_, o.log);
+  if (!host) return unexpected(host.error());
+  s->host_ = std::move(*host);
+  s->host_->watch([session = s.get()](const jaus::PacketView& packet) { session->observe(packet); });
 
-  jaus::node::NodeConfig node_config;
-  node_config.subsystem = self.subsystem;
-  node_config.node = self.node;
-  node_config.dialect = o.dialect;
-  s->node_ = std::make_unique<jaus::node::Node>(node_config, s->runtime_, s->runtime_, *s->link_, o.log);
-  s->link_->on_packet([session = s.get()](std::span<const std::uint8_t> packet) {
-    session->observe(packet);
-    session->node_->receive(packet);
-  });
-
-  jaus::rt::ComponentConfig manager_config;
-  manager_config.name = "jausctl node manager";
-  manager_config.address = jaus::Address{self.subsystem, self.node, kNodeManagerComponent, 1};
-  jaus::rt::NodeManagerConfig identity;
-  identity.subsystem_name = "jausctl";
-  identity.subsystem_type = kOcuSubsystemType;
-  identity.node_name = "jausctl";
-  auto& manager = s->node_->add(std::make_unique<jaus::rt::NodeManager>(manager_config, s->node_->environment(),
-                                                                         *s->node_, identity));
-  s->node_->set_node_manager(static_cast<jaus::rt::NodeManager*>(&manager));
-
-  jaus::rt::ComponentConfig ocu_config;
-  ocu_config.name = "jausctl";
-  ocu_config.address = self;
+  jaus::rt::ComponentConfig ocu_config = s->host_->component_config("jausctl", self.component, self.instance);
   ocu_config.authority = o.authority;
-  s->component_ = static_cast<OcuComponent*>(&s->node_->add(std::make_unique<OcuComponent>(
-      ocu_config, s->node_->environment(),
-      [session = s.get()](const jaus::Header& h, std::span<const std::uint8_t> payload) {
+  s->component_ = &s->host_->emplace<OcuComponent>(
+      ocu_config, [session = s.get()](const jaus::Header& h, std::span<const std::uint8_t> payload) {
         session->deliver(Received{h, {payload.begin(), payload.end()}});
-      })));
-  s->link_->start();
+      });
   return s;
 }
 
@@ -91,15 +70,13 @@ OcuSession::~OcuSession() {
   }
   // While the link is open: the OCU component's service connections are
   // terminated on the wire, not left to time out on the provider.
-  if (node_) node_->shutdown("jausctl exits");
-  node_.reset();
-  if (link_) link_->close();
+  if (host_) host_->stop("jausctl exits");
 }
 
 void OcuSession::send_raw(jaus::Header header, std::span<const std::uint8_t> payload) {
   header.source = options_.self;
   header.data_size = static_cast<std::uint16_t>(std::min(payload.size(), std::size_t{0xFFFF}));
-  node_->send(header, payload);
+  host_->node().send(header, payload);
 }
 
 OcuSession::ListenerId OcuSession::listen(Listener listener) {
@@ -117,10 +94,8 @@ void OcuSession::unlisten(ListenerId id) {
   watchers_.erase(id);
 }
 
-void OcuSession::observe(std::span<const std::uint8_t> packet) {
-  auto decoded = jaus::decode_packet(packet);
-  if (!decoded) return;  // the node counts and logs it
-  const jaus::Header& h = decoded->header;
+void OcuSession::observe(const jaus::PacketView& packet) {
+  const jaus::Header& h = packet.header;
   if (h.source.subsystem == options_.self.subsystem && h.source.node == options_.self.node) return;
   // Watchers may unlisten themselves (or others) while called: walk the ids.
   std::vector<ListenerId> ids;
@@ -131,7 +106,7 @@ void OcuSession::observe(std::span<const std::uint8_t> packet) {
   // caller still wants to see them (a Confirm Service Connection after `send`).
   if (h.data_flag == jaus::DataFlag::single && h.destination.matches(options_.self) &&
       component_->consumes(h.command_code))
-    deliver(Received{h, {decoded->payload.begin(), decoded->payload.end()}});
+    deliver(Received{h, {packet.payload.begin(), packet.payload.end()}});
 }
 
 void OcuSession::deliver(const Received& message) {
@@ -142,11 +117,11 @@ void OcuSession::deliver(const Received& message) {
 }
 
 bool OcuSession::run_until(const std::function<bool()>& done, jaus::rt::Duration limit) {
-  const auto deadline = runtime_.now() + limit;
+  const auto deadline = clock().now() + limit;
   for (;;) {
     if (done()) return true;
     if (interrupted_) return false;
-    const auto now = runtime_.now();
+    const auto now = clock().now();
     if (now >= deadline) return false;
     if (io_.stopped()) io_.restart();
     io_.run_one_for(std::min(deadline - now, kRunSlice));
@@ -169,7 +144,7 @@ void OcuSession::arm_signals() {
   });
 }
 
-jaus::Expected<Received, std::string> OcuSession::await_reply(const jaus::Address& from,
+jaus::Expected<Received> OcuSession::await_reply(const jaus::Address& from,
                                                               std::vector<std::uint16_t> codes,
                                                               jaus::rt::Duration timeout) {
   std::optional<Received> reply;
@@ -181,8 +156,8 @@ jaus::Expected<Received, std::string> OcuSession::await_reply(const jaus::Addres
   run_until([&] { return reply.has_value(); }, timeout);
   unlisten(id);
   if (reply) return std::move(*reply);
-  if (interrupted_) return unexpected(std::string("interrupted"));
-  return unexpected(no_reply_text(from, timeout));
+  if (interrupted_) return unexpected(jaus::make_error(jaus::ErrorCode::interrupted, "interrupted"));
+  return unexpected(no_reply_error(from, timeout));
 }
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

@@ -8,7 +8,7 @@
 
 #include "jaus/base/time.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 class RateMeter {
  public:
@@ -38,4 +38,4 @@ class RateMeter {
 // "25 reports in 5.0 s (5.00 Hz)"
 std::string summary_text(const RateMeter::Summary& summary);
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

@@ -1,6 +1,6 @@
-#include "discovery.hpp"
+#include "jaus/ocu/discovery.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 namespace {
 
@@ -136,4 +136,4 @@ std::vector<jaus::msg::ServiceEntry> Discovery::services_of(const DiscoveredNode
   return {};
 }
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

@@ -11,7 +11,7 @@
 
 #include "jaus/runtime/component.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 class OcuComponent final : public jaus::rt::Component {
  public:
@@ -43,4 +43,4 @@ class OcuComponent final : public jaus::rt::Component {
   std::vector<std::uint16_t> consumed_;  // input_codes(), sorted; the handler table is fixed after construction
 };
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

@@ -1,10 +1,11 @@
-#include "names.hpp"
+#include "jaus/ocu/names.hpp"
 
+#include <cstdio>
 #include <map>
 
 #include "jaus/runtime/lifecycle.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 std::string component_kind(std::uint8_t id) {
   // RA 3.x component IDs (jaus-wire-notes.md).
@@ -58,4 +59,32 @@ std::string primary_status_text(std::uint8_t primary_status) {
   return std::string(jaus::rt::to_string(static_cast<jaus::msg::PrimaryStatus>(code)));
 }
 
-}  // namespace jausctl::ocu
+std::string seconds_text(jaus::rt::Duration d) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g s", std::chrono::duration<double>(d).count());
+  return text;
+}
+
+std::string elapsed_text(jaus::rt::Duration d) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", std::chrono::duration<double>(d).count());
+  return text;
+}
+
+std::string code_text(std::uint16_t code) {
+  char text[8];
+  std::snprintf(text, sizeof text, "0x%04X", code);
+  return text;
+}
+
+std::string hz_text(double hz) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", hz);
+  std::string out = text;
+  // Scaled rates come back a hair off (5 Hz travels as 4.9989): the decimals that say nothing go.
+  while (out.back() == '0') out.pop_back();
+  if (out.back() == '.') out.pop_back();
+  return out;
+}
+
+}  // namespace jaus::ocu

@@ -20,7 +20,7 @@
 #include "jaus/messages/discovery_messages.hpp"
 #include "jaus/wire/codecs.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 struct Identification {
   std::string name;
@@ -97,4 +97,4 @@ class Discovery {
   std::set<std::tuple<jaus::Address, Kind, std::uint8_t>> asked_;
 };
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu

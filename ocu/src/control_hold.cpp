@@ -1,10 +1,9 @@
-#include "control_hold.hpp"
+#include "jaus/ocu/control_hold.hpp"
 
-#include "cli_values.hpp"
 #include "jaus/messages/core_messages.hpp"
-#include "names.hpp"
+#include "jaus/ocu/names.hpp"
 
-namespace jausctl::ocu {
+namespace jaus::ocu {
 
 namespace {
 using namespace std::chrono_literals;
@@ -25,36 +24,32 @@ ControlHold::~ControlHold() {
 
 ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
   RequestResult r;
-  const std::string what = "control of " + target_.to_string();
   auto reply = session_.request(target_, jaus::msg::RequestComponentControl{{authority_}},
                                 {jaus::msg::ConfirmComponentControl::code, jaus::msg::RejectComponentControl::code},
                                 timeout);
   if (!reply) {
     r.outcome = session_.interrupted() ? Outcome::interrupted : Outcome::no_reply;
-    r.text = reply.error();
+    r.error = reply.error();
     return r;
   }
   if (reply->header.command_code == jaus::msg::RejectComponentControl::code) {
     r.outcome = Outcome::rejected;
-    r.text = what + " refused (Reject Component Control)";
     return r;
   }
   jaus::msg::ConfirmComponentControl confirm{};
   if (jaus::wire::decode_payload_into(reply->payload, confirm, session_.options().dialect, jaus::kHeaderSize)) {
     r.outcome = Outcome::refused;
     r.response_code = 0xFF;
-    r.text = what + ": Confirm Component Control does not decode";
+    r.error = jaus::make_error(jaus::ErrorCode::malformed, "Confirm Component Control from " + target_.to_string() +
+                                                               " does not decode");
     return r;
   }
   r.response_code = confirm.response_code;
   if (confirm.response_code != jaus::msg::control_response::kAccepted) {
     r.outcome = Outcome::refused;
-    r.text = what + " refused: " + control_response_text(confirm.response_code) + " (response " +
-             std::to_string(confirm.response_code) + ")";
     return r;
   }
   r.outcome = Outcome::granted;
-  r.text = what + " granted (authority " + std::to_string(authority_) + ")";
 
   // From now on a Reject means control is gone; the liveness checks show the component watches us.
   listener_ = session_.listen([this](const Received& m) {
@@ -111,14 +106,14 @@ void ControlHold::release() {
   stop_watching_status();
 }
 
-std::string ControlHold::who_has_control(jaus::rt::Duration timeout) {
+std::optional<jaus::msg::ReportComponentControl> ControlHold::who_has_control(jaus::rt::Duration timeout) {
   auto reply = session_.request(target_, jaus::msg::QueryComponentControl{},
                                 {jaus::msg::ReportComponentControl::code}, timeout);
-  if (!reply) return {};
+  if (!reply) return std::nullopt;
   jaus::msg::ReportComponentControl report{};
-  if (jaus::wire::decode_payload_into(reply->payload, report, session_.options().dialect, jaus::kHeaderSize)) return {};
-  if (!report.controller.is_valid()) return "it has no controller now";
-  return "taken over by " + report.controller.to_string() + " (authority " + std::to_string(report.authority) + ")";
+  if (jaus::wire::decode_payload_into(reply->payload, report, session_.options().dialect, jaus::kHeaderSize))
+    return std::nullopt;
+  return report;
 }
 
-}  // namespace jausctl::ocu
+}  // namespace jaus::ocu
