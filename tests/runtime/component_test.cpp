@@ -1,5 +1,7 @@
 // The component runtime under virtual time: lifecycle commands, emergency
 // holders, core queries in every state, malformed input, time.
+#include <algorithm>
+
 #include "harness.hpp"
 
 namespace jaus::test {
@@ -120,6 +122,17 @@ TEST_F(ComponentTest, CoreQueriesAreAnsweredInEveryState) {
     EXPECT_TRUE(time_reports[0].time.has_value());
     EXPECT_FALSE(time_reports[0].date.has_value());
     EXPECT_EQ(outbox.count<msg::ReportHeartbeatPulse>(), 1u);
+    // OCUs ask each component for its services: its own entry, inputs and outputs.
+    deliver(kOcuB, msg::QueryServices{});
+    const auto services = outbox.to<msg::ReportServices>(kOcuB);
+    ASSERT_EQ(services.size(), 1u);
+    ASSERT_EQ(services[0].services.size(), 1u);
+    EXPECT_EQ(services[0].services[0], driver->service_entry());
+    EXPECT_EQ(services[0].services[0].type, kDriver.component);
+    const auto& inputs = services[0].services[0].inputs;
+    EXPECT_TRUE(std::any_of(inputs.begin(), inputs.end(), [](const auto& e) {
+      return e.command_code == msg::QueryServices::code;
+    }));
   };
   check(S::ready);
   deliver(kOcuA, msg::Standby{});

@@ -84,13 +84,7 @@ msg::ReportConfiguration NodeManager::configuration(std::uint8_t) const {
 
 msg::ReportServices NodeManager::services() const {
   msg::ReportServices report;
-  for (const Component* c : directory_.local_components()) {
-    msg::ServiceEntry service;
-    service.type = c->address().component;
-    for (auto code : c->input_codes()) service.inputs.push_back({code, 0});
-    for (const auto& [code, presence] : c->output_codes()) service.outputs.push_back({code, presence});
-    report.services.push_back(std::move(service));
-  }
+  for (const Component* c : directory_.local_components()) report.services.push_back(c->service_entry());
   return report;
 }
 

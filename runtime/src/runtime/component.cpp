@@ -88,6 +88,14 @@ std::vector<std::uint16_t> Component::input_codes() const {
   return codes;
 }
 
+msg::ServiceEntry Component::service_entry() const {
+  msg::ServiceEntry service;
+  service.type = config_.address.component;
+  for (auto code : input_codes()) service.inputs.push_back({code, 0});
+  for (const auto& [code, presence] : output_codes()) service.outputs.push_back({code, presence});
+  return service;
+}
+
 void Component::peer_lost(const Address& peer) {
   services_.end_all_from(peer, "requester gone");
   if (const auto& controller = control_.controller(); controller && peer.covers(controller->address))
@@ -174,6 +182,11 @@ void Component::register_core_handlers() {
       return;
     }
     send(h.source, ReportIdentification{{identification::kComponent, control_.own_authority(), 0, name()}});
+  });
+  // ...and what it does (Query Services); the node manager answers for every
+  // component of its node instead.
+  handle<QueryServices>(Access::anyone, false, [this](const Header& h, const QueryServices&) {
+    send(h.source, ReportServices{{{service_entry()}}});
   });
   handle<QueryComponentStatus>(Access::anyone, false,
                                 [this](const Header& h, const QueryComponentStatus&) { send(h.source, status_report()); });

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "jaus/messages/core_messages.hpp"
+#include "jaus/messages/discovery_messages.hpp"
 #include "jaus/runtime/control_arbiter.hpp"
 #include "jaus/runtime/emergency_latch.hpp"
 #include "jaus/runtime/environment.hpp"
@@ -115,6 +116,8 @@ class Component {
   // Report Services.
   std::vector<std::uint16_t> input_codes() const;
   std::map<std::uint16_t, std::uint32_t> output_codes() const { return services_.provided(); }
+  // What this component accepts and provides, as Report Services lists it.
+  msg::ServiceEntry service_entry() const;
 
   // The node's liveness table says `peer` is gone (a node or subsystem, with
   // 0 below its level: every component under it is gone too): their service
