@@ -1,0 +1,43 @@
+# cmake -DROOT=<tree> -DDOC=<architecture.md> -P check_includes.cmake
+# Every #include "jaus/..." in the libraries' and apps' sources must name a
+# unit that the including file's unit may use (docs/architecture.md). Prints
+# each violation with its file and fails; prints a summary when clean.
+cmake_minimum_required(VERSION 3.25)  # script mode: the policies of the project (IN_LIST)
+include("${CMAKE_CURRENT_LIST_DIR}/layering.cmake")
+if(NOT ROOT OR NOT DOC)
+  message(FATAL_ERROR "usage: cmake -DROOT=<tree> -DDOC=<architecture.md> -P check_includes.cmake")
+endif()
+jaus_read_layering("${DOC}")
+file(GLOB_RECURSE files LIST_DIRECTORIES FALSE
+  "${ROOT}/core/*.?pp" "${ROOT}/runtime/*.?pp" "${ROOT}/components/*.?pp" "${ROOT}/transport/*.?pp"
+  "${ROOT}/host/*.?pp" "${ROOT}/ocu/*.?pp" "${ROOT}/conformance/*.?pp" "${ROOT}/clearpath/*.?pp"
+  "${ROOT}/bridge/*.?pp" "${ROOT}/apps/*.?pp")
+set(problems 0)
+set(checked 0)
+foreach(file IN LISTS files)
+  jaus_unit_of_path("${file}" "${ROOT}" unit)
+  if(NOT unit IN_LIST JAUS_LAYER_UNITS)
+    message(NOTICE "layering violation: ${file}: unit '${unit}' is not in the layering table")
+    math(EXPR problems "${problems} + 1")
+    continue()
+  endif()
+  file(STRINGS "${file}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"jaus/")
+  set(line_number 0)
+  foreach(include_line IN LISTS includes)
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*" "\\1" include "${include_line}")
+    jaus_unit_of_include("${include}" used)
+    math(EXPR checked "${checked} + 1")
+    if(used STREQUAL "")
+      message(NOTICE "layering violation: ${file}: includes \"${include}\", a header of no known unit")
+      math(EXPR problems "${problems} + 1")
+    elseif(NOT used IN_LIST JAUS_LAYER_USES_${unit})
+      message(NOTICE "layering violation: ${file}: ${unit} includes \"${include}\" (${used}); ${unit} may use: ${JAUS_LAYER_USES_${unit}}")
+      math(EXPR problems "${problems} + 1")
+    endif()
+  endforeach()
+endforeach()
+list(LENGTH files count)
+if(problems GREATER 0)
+  message(FATAL_ERROR "${problems} include(s) against the layering of ${DOC}")
+endif()
+message(STATUS "layering: ${checked} includes in ${count} files follow ${DOC}")
