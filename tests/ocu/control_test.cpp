@@ -25,8 +25,9 @@ TEST_F(ControlTest, GrantedHeldPastTheControllerTimeoutAndReleased) {
   ASSERT_TRUE(ocu);
   ocu::ControlHold control(*ocu, kCommunicator, 5);
   const auto requested = control.request(1s);
-  ASSERT_EQ(requested.outcome, ocu::ControlHold::Outcome::granted) << requested.text;
-  EXPECT_EQ(requested.text, "control of 1.1.35.1 granted (authority 5)");
+  ASSERT_EQ(requested.outcome, ocu::ControlHold::Outcome::granted) << ocu::control_request_text(requested, kCommunicator, 5);
+  EXPECT_FALSE(requested.error);
+  EXPECT_EQ(ocu::control_request_text(requested, kCommunicator, 5), "control of 1.1.35.1 granted (authority 5)");
   EXPECT_EQ(controller(), ocu->self());
 
   // Three controller timeouts: without answers to its liveness checks the component would drop us.
@@ -147,7 +148,7 @@ TEST_F(ControlTest, ARejectAsTheAnswerIsARefusal) {
   ocu::ControlHold refused(*b, kCommunicator, 5);
   const auto result = refused.request(1s);
   EXPECT_EQ(result.outcome, ocu::ControlHold::Outcome::rejected);
-  EXPECT_EQ(result.text, "control of 1.1.35.1 refused (Reject Component Control)");
+  EXPECT_EQ(ocu::control_request_text(result, kCommunicator, 5), "control of 1.1.35.1 refused (Reject Component Control)");
 }
 
 TEST_F(ControlTest, NoReplyTimesOut) {

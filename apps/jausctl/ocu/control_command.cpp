@@ -10,8 +10,10 @@ namespace {
 // How long to wait for Report Component Control after a Reject (it only adds detail).
 constexpr jaus::rt::Duration kWhoHasControlTimeout = std::chrono::milliseconds(500);
 
-// "control of 1.1.35.1 granted (authority 5)", "... refused: not available (response 2)", ...
-std::string request_text(const ControlHold::RequestResult& r, const jaus::Address& target, std::uint8_t authority) {
+}  // namespace
+
+std::string control_request_text(const ControlHold::RequestResult& r, const jaus::Address& target,
+                                 std::uint8_t authority) {
   const std::string what = "control of " + target.to_string();
   if (r.error) return r.error->message();
   switch (r.outcome) {
@@ -26,6 +28,8 @@ std::string request_text(const ControlHold::RequestResult& r, const jaus::Addres
   return what + ": no answer";
 }
 
+namespace {
+
 // "; taken over by 254.2.40.1 (authority 9)", "; it has no controller now", or nothing.
 std::string controller_text(const std::optional<jaus::msg::ReportComponentControl>& report) {
   if (!report) return "";
@@ -38,7 +42,7 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
   const std::string target = options.target.to_string();
   ControlHold control(session, options.target, options.authority, options.status_silence);
   const auto requested = control.request(options.timeout);
-  const std::string requested_text = request_text(requested, options.target, options.authority);
+  const std::string requested_text = control_request_text(requested, options.target, options.authority);
   if (requested.outcome != ControlHold::Outcome::granted) {
     io.err << "jausctl control: " << requested_text << "\n";
     return kExitFailure;

@@ -10,6 +10,7 @@
 
 #include "cli_values.hpp"
 #include "exit_codes.hpp"
+#include "jaus/ocu/control_hold.hpp"
 #include "jaus/ocu/message_json.hpp"
 #include "jaus/ocu/session.hpp"
 
@@ -51,6 +52,10 @@ struct ControlOptions {
   jaus::rt::Duration status_silence = std::chrono::seconds(5);
 };
 int run_control(OcuSession& session, const ControlOptions& options, CommandIo io);
+// What run_control says of a request: "control of 1.1.35.1 granted (authority 5)",
+// "control of 1.1.35.1 refused: not available (response 2)", the error's line, ...
+std::string control_request_text(const ControlHold::RequestResult& result, const jaus::Address& target,
+                                 std::uint8_t authority);
 
 struct SubscribeOptions {
   jaus::Address target;
