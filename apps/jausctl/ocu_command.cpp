@@ -75,21 +75,21 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   out.session.to.clear();
   for (const auto& text : c.to) {
     auto to = ocu::parse_endpoint_text(text, jaus::transport::kJausPort, false);
-    if (!to) return jaus::unexpected("--to: " + to.error());
+    if (!to) return ocu::invalid("--to: " + to.error().message());
     out.session.to.push_back(*to);
   }
   auto bind = ocu::parse_endpoint_text(c.bind, 0, true);
-  if (!bind) return jaus::unexpected("--bind: " + bind.error());
+  if (!bind) return ocu::invalid("--bind: " + bind.error().message());
   auto framing = ocu::parse_framing(c.framing);
-  if (!framing) return jaus::unexpected("--framing: " + framing.error());
+  if (!framing) return ocu::invalid("--framing: " + framing.error().message());
   auto self = ocu::parse_address(c.as, false);
-  if (!self) return jaus::unexpected("--as: " + self.error());
+  if (!self) return ocu::invalid("--as: " + self.error().message());
   if (self->component == 1)
-    return jaus::unexpected(std::string("--as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"));
+    return ocu::invalid(std::string("--as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"));
   auto timeout = ocu::parse_seconds(c.timeout);
-  if (!timeout) return jaus::unexpected("--timeout: " + timeout.error());
+  if (!timeout) return ocu::invalid("--timeout: " + timeout.error().message());
   if (c.dialect != "ra" && c.dialect != "openjaus")
-    return jaus::unexpected("--dialect: bad dialect '" + c.dialect + "': expected ra or openjaus");
+    return ocu::invalid("--dialect: bad dialect '" + c.dialect + "': expected ra or openjaus");
   out.session.bind = *bind;
   out.session.framing = *framing;
   out.session.self = *self;
@@ -126,7 +126,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto checked_common = [common](std::string_view name, int& rc) -> std::optional<Common> {
     auto parsed = parse_common(*common);
     if (!parsed) {
-      rc = bad_input(name, parsed.error());
+      rc = bad_input(name, parsed.error().message());
       return std::nullopt;
     }
     return *parsed;
@@ -143,7 +143,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     auto c = checked_common("discover", exit_code);
     if (!c) return;
     auto seconds = ocu::parse_seconds(*wait);
-    if (!seconds) return void(exit_code = bad_input("discover", "--wait: " + seconds.error()));
+    if (!seconds) return void(exit_code = bad_input("discover", "--wait: " + seconds.error().message()));
     const ocu::DiscoverOptions options{*seconds, *json};
     exit_code = with_session("discover", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_discover(s, options, io);
@@ -158,7 +158,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     auto c = checked_common("status", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
-    if (!address) return void(exit_code = bad_input("status", address.error()));
+    if (!address) return void(exit_code = bad_input("status", address.error().message()));
     exit_code = with_session("status", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_status(s, *address, c->timeout, io);
     });
@@ -176,13 +176,13 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     auto c = checked_common("query", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
-    if (!address) return void(exit_code = bad_input("query", address.error()));
+    if (!address) return void(exit_code = bad_input("query", address.error().message()));
     auto parsed_code = ocu::parse_message_code(*code);
-    if (!parsed_code) return void(exit_code = bad_input("query", parsed_code.error()));
+    if (!parsed_code) return void(exit_code = bad_input("query", parsed_code.error().message()));
     std::optional<std::uint32_t> presence;
     if (!pv->empty()) {
       auto parsed_pv = ocu::parse_presence_vector(*pv);
-      if (!parsed_pv) return void(exit_code = bad_input("query", "--pv: " + parsed_pv.error()));
+      if (!parsed_pv) return void(exit_code = bad_input("query", "--pv: " + parsed_pv.error().message()));
       presence = *parsed_pv;
     }
     const auto field_json = ocu::Json::parse(*fields, nullptr, false);
@@ -206,7 +206,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     auto c = checked_common("send", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
-    if (!address) return void(exit_code = bad_input("send", address.error()));
+    if (!address) return void(exit_code = bad_input("send", address.error().message()));
     std::string text = *message;
     if (text == "-") text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
     const auto parsed = ocu::Json::parse(text, nullptr, false);
@@ -233,12 +233,12 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     if (!c) return;
     ocu::ControlOptions options;
     auto address = ocu::parse_address(*target, false);
-    if (!address) return void(exit_code = bad_input("control", address.error()));
+    if (!address) return void(exit_code = bad_input("control", address.error().message()));
     auto level = ocu::parse_authority(*authority);
-    if (!level) return void(exit_code = bad_input("control", "--authority: " + level.error()));
+    if (!level) return void(exit_code = bad_input("control", "--authority: " + level.error().message()));
     if (!hold_for->empty()) {
       auto seconds = ocu::parse_seconds(*hold_for);
-      if (!seconds) return void(exit_code = bad_input("control", "--for: " + seconds.error()));
+      if (!seconds) return void(exit_code = bad_input("control", "--for: " + seconds.error().message()));
       options.hold_for = *seconds;
     }
     options.target = *address;
@@ -268,28 +268,28 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     if (!c) return;
     ocu::SubscribeOptions options;
     auto address = ocu::parse_address(*target, false);
-    if (!address) return void(exit_code = bad_input("subscribe", address.error()));
+    if (!address) return void(exit_code = bad_input("subscribe", address.error().message()));
     auto parsed_code = ocu::parse_message_code(*code);
-    if (!parsed_code) return void(exit_code = bad_input("subscribe", parsed_code.error()));
+    if (!parsed_code) return void(exit_code = bad_input("subscribe", parsed_code.error().message()));
     if (const auto report = ocu::report_code_for(*parsed_code))
       return void(exit_code = bad_input("subscribe", ocu::code_text(*parsed_code) +
                                                          " is a query: subscribe takes the report's code (" +
                                                          ocu::code_text(*report) + ")"));
     auto hz = ocu::parse_rate_hz(*rate);
-    if (!hz) return void(exit_code = bad_input("subscribe", "--rate: " + hz.error()));
+    if (!hz) return void(exit_code = bad_input("subscribe", "--rate: " + hz.error().message()));
     if (!pv->empty()) {
       auto parsed_pv = ocu::parse_presence_vector(*pv);
-      if (!parsed_pv) return void(exit_code = bad_input("subscribe", "--pv: " + parsed_pv.error()));
+      if (!parsed_pv) return void(exit_code = bad_input("subscribe", "--pv: " + parsed_pv.error().message()));
       options.presence_vector = *parsed_pv;
     }
     if (!count->empty()) {
       auto n = ocu::parse_count(*count);
-      if (!n) return void(exit_code = bad_input("subscribe", "--count: " + n.error()));
+      if (!n) return void(exit_code = bad_input("subscribe", "--count: " + n.error().message()));
       options.count = *n;
     }
     if (!run_for->empty()) {
       auto seconds = ocu::parse_seconds(*run_for);
-      if (!seconds) return void(exit_code = bad_input("subscribe", "--for: " + seconds.error()));
+      if (!seconds) return void(exit_code = bad_input("subscribe", "--for: " + seconds.error().message()));
       options.run_for = *seconds;
     }
     options.target = *address;
@@ -311,7 +311,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     auto c = checked_common("emergency", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
-    if (!address) return void(exit_code = bad_input("emergency", address.error()));
+    if (!address) return void(exit_code = bad_input("emergency", address.error().message()));
     if (*action != "set" && *action != "clear")
       return void(exit_code = bad_input("emergency", "bad action '" + *action + "': expected set or clear"));
     exit_code = with_session("emergency", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {

@@ -388,7 +388,7 @@ Framing framing(const Entry& e) { return choice(e, kFramings) == "judp" ? Framin
 
 Ipv4Endpoint endpoint(const Entry& e) {
   auto parsed = jaus::transport::parse_endpoint(e.scalar("an IPv4 address a.b.c.d[:port]"));
-  if (!parsed) fail(e.value_line(), "'" + e.key + "': " + parsed.error());
+  if (!parsed) fail(e.value_line(), "'" + e.key + "': " + parsed.error().message());
   return *parsed;
 }
 
@@ -539,7 +539,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                     if (!item.IsScalar())
                       fail(line_of(item), "'allow' entries must be a.b.c.d/prefix, got " + describe(item));
                     auto cidr = jaus::transport::parse_cidr(item.Scalar());
-                    if (!cidr) fail(line_of(item), "'allow': " + cidr.error());
+                    if (!cidr) fail(line_of(item), "'allow': " + cidr.error().message());
                     t.allow.push_back(*cidr);
                   }
                 }},

@@ -32,7 +32,7 @@ struct CommandLine {
 std::optional<std::string> apply_overrides(jausd::JausdConfig& config, const CommandLine& cl) {
   if (!cl.bind.empty()) {
     auto endpoint = jaus::transport::parse_endpoint(cl.bind);
-    if (!endpoint) return "--bind: " + endpoint.error();
+    if (!endpoint) return "--bind: " + endpoint.error().message();
     config.transport.bind = *endpoint;
   }
   if (cl.subsystem != 0) config.subsystem = static_cast<std::uint8_t>(cl.subsystem);

@@ -36,7 +36,7 @@ using jaus::host::find_component_kind;
 // "a.b.c.d[:port]" as a value (the text is known to be good).
 Ipv4Endpoint endpoint(std::string_view text) {
   const auto parsed = jaus::transport::parse_endpoint(text);
-  if (!parsed) ADD_FAILURE() << parsed.error();
+  if (!parsed) ADD_FAILURE() << parsed.error().message();
   return parsed ? *parsed : Ipv4Endpoint{};
 }
 

@@ -16,9 +16,9 @@ using namespace std::chrono_literals;
 TEST(CliValues, Addresses) {
   EXPECT_EQ(*parse_address("1.1.35.1", false), (jaus::Address{1, 1, 35, 1}));
   EXPECT_EQ(*parse_address("1.255.255.255", true), (jaus::Address{1, 255, 255, 255}));
-  EXPECT_EQ(parse_address("1.255.255.255", false).error(),
+  EXPECT_EQ(parse_address("1.255.255.255", false).error().message(),
             "bad address '1.255.255.255': 255 (broadcast) is not allowed here");
-  EXPECT_EQ(parse_address("1.1.0.1", true).error(), "bad address '1.1.0.1': 0 is not a valid ID at any level");
+  EXPECT_EQ(parse_address("1.1.0.1", true).error().message(), "bad address '1.1.0.1': 0 is not a valid ID at any level");
   EXPECT_FALSE(parse_address("1.1.35", true));
   EXPECT_FALSE(parse_address("1.1.35.256", true));
   EXPECT_FALSE(parse_address("", true));
@@ -28,7 +28,7 @@ TEST(CliValues, MessageCodesByNumberOrName) {
   EXPECT_EQ(*parse_message_code("0x2002"), 0x2002);
   EXPECT_EQ(*parse_message_code("2002"), 0x2002);
   EXPECT_EQ(*parse_message_code("Report Global Pose"), 0x4402);
-  EXPECT_EQ(parse_message_code("0x1234").error(), "unknown message code 0x1234 (jausctl msg list shows every code)");
+  EXPECT_EQ(parse_message_code("0x1234").error().message(), "unknown message code 0x1234 (jausctl msg list shows every code)");
   EXPECT_FALSE(parse_message_code("0x12345"));
   EXPECT_FALSE(parse_message_code("Report Nothing"));
 }

@@ -8,6 +8,10 @@
 namespace jaus::transport {
 
 namespace {
+Unexpected<Error> invalid(std::string why) { return unexpected(make_error(ErrorCode::invalid_argument, std::move(why))); }
+}  // namespace
+
+namespace {
 
 bool all_digits(std::string_view text) {
   return std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
@@ -54,18 +58,18 @@ std::optional<std::uint32_t> parse_ipv4(std::string_view text) {
   return address;
 }
 
-Expected<Ipv4Endpoint, std::string> parse_endpoint(std::string_view text, std::uint16_t default_port) {
-  if (text.empty()) return unexpected(std::string("empty address (expected a.b.c.d[:port])"));
+Expected<Ipv4Endpoint> parse_endpoint(std::string_view text, std::uint16_t default_port) {
+  if (text.empty()) return invalid(("empty address (expected a.b.c.d[:port])"));
   const std::size_t colon = text.find(':');
   const std::string_view host = text.substr(0, colon);
   const auto address = parse_ipv4(host);
-  if (!address) return unexpected(not_ipv4(host));
+  if (!address) return invalid(not_ipv4(host));
   Ipv4Endpoint endpoint{*address, default_port};
   if (colon != std::string_view::npos) {
     const std::string_view port = text.substr(colon + 1);
     const auto value = parse_digits(port, 5);
     if (!value || *value < 1 || *value > 65535)
-      return unexpected("port " + jaus::quoted(port) + " of " + jaus::quoted(text) + " must be 1..65535");
+      return invalid("port " + jaus::quoted(port) + " of " + jaus::quoted(text) + " must be 1..65535");
     endpoint.port = static_cast<std::uint16_t>(*value);
   }
   return endpoint;
@@ -78,23 +82,23 @@ bool Cidr::contains(std::uint32_t address) const {
 
 std::string to_string(const Cidr& c) { return ipv4_to_string(c.network) + "/" + std::to_string(c.prefix_length); }
 
-Expected<Cidr, std::string> parse_cidr(std::string_view text) {
-  if (text.empty()) return unexpected(std::string("empty network (expected a.b.c.d/prefix)"));
+Expected<Cidr> parse_cidr(std::string_view text) {
+  if (text.empty()) return invalid(("empty network (expected a.b.c.d/prefix)"));
   const std::size_t slash = text.find('/');
   const std::string_view host = text.substr(0, slash);
   const auto address = parse_ipv4(host);
-  if (!address) return unexpected(not_ipv4(host));
+  if (!address) return invalid(not_ipv4(host));
   Cidr cidr{*address, 32};
   if (slash != std::string_view::npos) {
     const std::string_view prefix = text.substr(slash + 1);
     const auto value = parse_digits(prefix, 2);
     if (!value || *value > 32)
-      return unexpected("prefix length " + jaus::quoted(prefix) + " of " + jaus::quoted(text) + " must be 0..32");
+      return invalid("prefix length " + jaus::quoted(prefix) + " of " + jaus::quoted(text) + " must be 0..32");
     cidr.prefix_length = static_cast<std::uint8_t>(*value);
   }
   const std::uint32_t mask = mask_of(cidr.prefix_length);
   if ((cidr.network & mask) != cidr.network)
-    return unexpected(jaus::quoted(text) + " has host bits set below the prefix (the network is " +
+    return invalid(jaus::quoted(text) + " has host bits set below the prefix (the network is " +
                       to_string(Cidr{cidr.network & mask, cidr.prefix_length}) + ")");
   return cidr;
 }

@@ -24,11 +24,11 @@ bool parse_hex_u32(std::string_view text, std::uint32_t& out) {
 Parsed<jaus::Address> parse_address(std::string_view text, bool allow_broadcast) {
   const auto address = jaus::Address::parse(text);
   if (!address)
-    return unexpected("bad address '" + std::string(text) + "': expected S.N.C.I (subsystem.node.component.instance)");
+    return invalid("bad address '" + std::string(text) + "': expected S.N.C.I (subsystem.node.component.instance)");
   if (!address->is_valid())
-    return unexpected("bad address '" + std::string(text) + "': 0 is not a valid ID at any level");
+    return invalid("bad address '" + std::string(text) + "': 0 is not a valid ID at any level");
   if (!allow_broadcast && address->is_broadcast())
-    return unexpected("bad address '" + std::string(text) + "': 255 (broadcast) is not allowed here");
+    return invalid("bad address '" + std::string(text) + "': 255 (broadcast) is not allowed here");
   return *address;
 }
 
@@ -36,19 +36,19 @@ Parsed<std::uint16_t> parse_message_code(std::string_view text) {
   std::uint32_t value = 0;
   if (parse_hex_u32(text, value) && value <= 0xFFFF) {
     if (!jaus::msg::find_message(static_cast<std::uint16_t>(value)))
-      return unexpected("unknown message code " + code_text(static_cast<std::uint16_t>(value)) +
+      return invalid("unknown message code " + code_text(static_cast<std::uint16_t>(value)) +
                         " (jausctl msg list shows every code)");
     return static_cast<std::uint16_t>(value);
   }
   if (const auto* info = jaus::msg::find_message(text)) return info->code;
-  return unexpected("unknown message '" + std::string(text) +
+  return invalid("unknown message '" + std::string(text) +
                     "': expected a code such as 0x2002 or a name such as \"Query Component Status\"");
 }
 
 Parsed<std::uint32_t> parse_presence_vector(std::string_view text) {
   std::uint32_t value = 0;
   if (!parse_hex_u32(text, value))
-    return unexpected("bad presence vector '" + std::string(text) + "': expected hex such as 0x1F (at most 32 bits)");
+    return invalid("bad presence vector '" + std::string(text) + "': expected hex such as 0x1F (at most 32 bits)");
   return value;
 }
 
@@ -56,7 +56,7 @@ Parsed<std::uint8_t> parse_authority(std::string_view text) {
   unsigned value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || value > 255)
-    return unexpected("bad authority '" + std::string(text) + "': expected 0..255");
+    return invalid("bad authority '" + std::string(text) + "': expected 0..255");
   return static_cast<std::uint8_t>(value);
 }
 
@@ -65,7 +65,7 @@ Parsed<double> parse_rate_hz(std::string_view text) {
   double value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc{} || end != text.data() + text.size() || !(value > 0) || value > kMaxRate)
-    return unexpected("bad rate '" + std::string(text) + "': expected Hz, more than 0 and at most 1092");
+    return invalid("bad rate '" + std::string(text) + "': expected Hz, more than 0 and at most 1092");
   return value;
 }
 
@@ -73,7 +73,7 @@ Parsed<std::uint64_t> parse_count(std::string_view text) {
   std::uint64_t value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || value == 0)
-    return unexpected("bad count '" + std::string(text) + "': expected 1 or more");
+    return invalid("bad count '" + std::string(text) + "': expected 1 or more");
   return value;
 }
 
@@ -82,7 +82,7 @@ Parsed<jaus::rt::Duration> parse_seconds(std::string_view text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   constexpr double kDay = 86400;
   if (ec != std::errc{} || end != text.data() + text.size() || !std::isfinite(value) || value <= 0 || value > kDay)
-    return unexpected("bad duration '" + std::string(text) + "': expected seconds, more than 0 and at most 86400");
+    return invalid("bad duration '" + std::string(text) + "': expected seconds, more than 0 and at most 86400");
   return std::chrono::duration_cast<jaus::rt::Duration>(std::chrono::duration<double>(value));
 }
 
@@ -91,7 +91,7 @@ Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text,
   // transport::parse_endpoint refuses port 0 (no peer lives there); a bind
   // address may ask for any free port with it, so the port is read here.
   const auto bad = [&](const std::string& why) {
-    return unexpected("bad endpoint '" + std::string(text) + "': " + why);
+    return invalid("bad endpoint '" + std::string(text) + "': " + why);
   };
   std::string_view host = text;
   std::uint32_t port = default_port;
@@ -111,7 +111,7 @@ Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text,
 Parsed<jaus::transport::Framing> parse_framing(std::string_view text) {
   if (text == "opc") return jaus::transport::Framing::opc;
   if (text == "judp") return jaus::transport::Framing::judp;
-  return unexpected("bad framing '" + std::string(text) + "': expected opc or judp");
+  return invalid("bad framing '" + std::string(text) + "': expected opc or judp");
 }
 
 }  // namespace jausctl::ocu

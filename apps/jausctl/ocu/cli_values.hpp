@@ -19,8 +19,12 @@ namespace jausctl::ocu {
 // jausctl's OCU commands are built on the OCU library.
 using namespace jaus::ocu;
 
+// A parsed value, or why the text is not one (invalid_argument, one line).
 template <class T>
-using Parsed = jaus::Expected<T, std::string>;
+using Parsed = jaus::Expected<T>;
+inline jaus::Unexpected<jaus::Error> invalid(std::string why) {
+  return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, std::move(why)));
+}
 
 // "S.N.C.I", each 1..254, or 255 (broadcast) where `allow_broadcast`.
 Parsed<jaus::Address> parse_address(std::string_view text, bool allow_broadcast);

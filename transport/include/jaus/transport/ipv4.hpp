@@ -28,9 +28,9 @@ std::string ipv4_to_string(std::uint32_t address);    // "a.b.c.d"
 // "a.b.c.d": four decimal octets 0..255, no leading zeros, signs or spaces.
 std::optional<std::uint32_t> parse_ipv4(std::string_view text);
 // "a.b.c.d[:port]", port 1..65535 (decimal digits only); a missing port is
-// `default_port`. Errors: "'robot.local' is not an IPv4 address a.b.c.d (host
+// `default_port`. Errors (invalid_argument), as message(): "'robot.local' is not an IPv4 address a.b.c.d (host
 // names are not resolved)", "port '0' of '1.2.3.4:0' must be 1..65535", ...
-Expected<Ipv4Endpoint, std::string> parse_endpoint(std::string_view text, std::uint16_t default_port = kJausPort);
+Expected<Ipv4Endpoint> parse_endpoint(std::string_view text, std::uint16_t default_port = kJausPort);
 
 struct Cidr {
   std::uint32_t network = 0;  // host byte order, host bits cleared
@@ -41,6 +41,6 @@ struct Cidr {
 std::string to_string(const Cidr& cidr);  // "10.0.0.0/8"
 // "a.b.c.d/prefix" (prefix 0..32) or "a.b.c.d" (/32). Host bits set below
 // the prefix ("10.1.2.3/8") are an error that names the network meant.
-Expected<Cidr, std::string> parse_cidr(std::string_view text);
+Expected<Cidr> parse_cidr(std::string_view text);
 
 }  // namespace jaus::transport
