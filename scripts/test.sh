@@ -13,9 +13,12 @@ root=$(pwd)
 jobs=$(nproc)
 run_suite() {  # $1 build dir, remaining args: cmake options
   local dir=$1; shift
+  local start=$SECONDS
   cmake -S "$root" -B "$dir" -G Ninja "$@" >/dev/null
   cmake --build "$dir" -j "$jobs"
+  local built=$SECONDS
   ctest --test-dir "$dir" --output-on-failure -j "$jobs" --timeout 300
+  echo "== $dir: built in $((built - start)) s, tested in $((SECONDS - built)) s"
 }
 
 echo "== release build and tests"
@@ -45,4 +48,4 @@ if command -v clang++ >/dev/null; then
 else
   echo "== clang not found: fuzz targets skipped"
 fi
-echo "== all tests passed"
+echo "== all tests passed in $SECONDS s"
