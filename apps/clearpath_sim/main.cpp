@@ -8,9 +8,10 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
-#include "jaus/bridge/sim/sim_server.hpp"
+#include "jaus/clearpath/sim/sim_server.hpp"
+#include "jaus/transport/asio_runtime.hpp"
 
-namespace sim = jaus::bridge::sim;
+namespace sim = jaus::clearpath::sim;
 
 int main(int argc, char** argv) {
   CLI::App app{"clearpath-sim: simulated Clearpath platform"};
@@ -73,9 +74,10 @@ int main(int argc, char** argv) {
   }
 
   boost::asio::io_context io;
-  sim::SimServer server(io, endpoint, platform, faults);
+  jaus::transport::AsioRuntime runtime(io);  // the clock and scheduler a node runs on
+  sim::SimServer server(io, runtime, runtime, endpoint, platform, faults);
   if (const auto error = server.start()) {
-    std::cerr << "error: " << *error << '\n';
+    std::cerr << "error: " << error->message() << '\n';
     return 1;
   }
   if (endpoint.kind == sim::ServerEndpoint::Kind::pty) std::cout << "pty: " << server.pty_path() << std::endl;

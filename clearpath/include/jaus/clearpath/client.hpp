@@ -1,0 +1,32 @@
+// What a user of a Clearpath platform (the bridge, a tool) needs of its
+// connection, whatever carries it: ClearpathLink (serial, UDP or TCP through
+// Boost.Asio) or sim::LoopbackClient (a simulated platform in the same process,
+// under the runtime's virtual time). Both run ClientCore on the runtime's
+// injected Clock and Scheduler; every call and callback is on that one thread.
+#pragma once
+
+#include <cstdint>
+
+#include "jaus/clearpath/client_core.hpp"
+
+namespace jaus::clearpath {
+
+class Client {
+ public:
+  virtual ~Client() = default;
+
+  // A command or request with ACK, retried; done(outcome) runs once.
+  virtual void send(AnyMessage message, ClientCore::CommandCallback done = {}) = 0;
+  // A subscription kept alive across reconnects.
+  virtual void subscribe(AnyMessage request, ClientCore::CommandCallback done = {}) = 0;
+  // Latest-wins stream resent to feed the platform's watchdog, until cleared.
+  virtual void set_setpoint(AnyMessage command) = 0;
+  virtual void clear_setpoint(std::uint16_t type) = 0;
+  // Every data message from the platform.
+  virtual void on_data(ClientCore::DataCallback callback) = 0;
+
+  virtual ConnectionState state() const = 0;
+  virtual const ClientCounters& counters() const = 0;
+};
+
+}  // namespace jaus::clearpath

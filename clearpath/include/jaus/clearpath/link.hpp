@@ -1,0 +1,90 @@
+// The Clearpath link over Boost.Asio: serial port (115200 8N1 by default),
+// UDP or TCP (frames verbatim, one per datagram). A thin shell around
+// ClientCore: it moves bytes and reopens the port with backoff when it is
+// missing or fails; it never ends the process. Time comes from the runtime's
+// Clock and Scheduler (transport::AsioRuntime on the same io_context in a
+// node), so the link ticks on the node's one thread like every component.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <utility>  // before Asio: Boost 1.74 awaitable.hpp uses std::exchange without it
+
+#include <boost/asio.hpp>
+
+#include "jaus/base/expected.hpp"
+#include "jaus/base/time.hpp"
+#include "jaus/clearpath/client.hpp"
+
+namespace jaus::clearpath {
+
+struct PlatformEndpoint {
+  enum class Kind { serial, udp, tcp } kind = Kind::serial;
+  std::string device = "/dev/ttyUSB0";  // serial
+  unsigned baud = 115200;
+  std::string host = "127.0.0.1";  // udp / tcp
+  std::uint16_t port = 0;
+};
+
+// "serial:/dev/ttyS0[@115200]", "udp:HOST:PORT", "tcp:HOST:PORT"; an
+// invalid_argument error says what is wrong with the text.
+Expected<PlatformEndpoint> parse_platform_endpoint(const std::string& text);
+
+class ClearpathLink final : public Client {
+ public:
+  ClearpathLink(boost::asio::io_context& io, rt::Clock& clock, rt::Scheduler& scheduler, PlatformEndpoint endpoint,
+                ClientConfig config = {});
+  ~ClearpathLink() override;
+  ClearpathLink(const ClearpathLink&) = delete;
+  ClearpathLink& operator=(const ClearpathLink&) = delete;
+
+  void start();
+  void stop();
+
+  // Client: on the io_context's thread, like every runtime callback.
+  void send(AnyMessage message, ClientCore::CommandCallback done = {}) override;
+  void subscribe(AnyMessage request, ClientCore::CommandCallback done = {}) override;
+  void set_setpoint(AnyMessage command) override;
+  void clear_setpoint(std::uint16_t type) override;
+  void on_data(ClientCore::DataCallback callback) override { core_.on_data(std::move(callback)); }
+  ConnectionState state() const override { return core_.state(); }
+  const ClientCounters& counters() const override { return core_.counters(); }
+
+  // Called after each frame has been written.
+  void on_written(std::function<void(std::size_t bytes)> callback) { on_written_ = std::move(callback); }
+  const ClientCore& core() const { return core_; }
+
+ private:
+  void open();
+  void close();
+  void start_read();
+  void pump();
+  void on_tick();
+  void fail(const boost::system::error_code& ec);
+
+  rt::Clock& clock_;
+  rt::Scheduler& scheduler_;
+  PlatformEndpoint endpoint_;
+  ClientCore core_;
+  boost::asio::serial_port serial_;
+  boost::asio::ip::udp::socket udp_;
+  boost::asio::ip::tcp::socket tcp_;
+  rt::TimerId tick_ = rt::kNoTimer;
+  std::array<std::uint8_t, 2048> rx_{};
+  std::vector<std::uint8_t> tx_;
+  bool writing_ = false;
+  bool open_ = false;
+  bool running_ = false;
+  std::uint64_t generation_ = 0;  // handlers of a closed connection are ignored
+  std::function<void(std::size_t)> on_written_;
+  // Aborted handlers may run after destruction: they check this first.
+  std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+};
+
+}  // namespace jaus::clearpath
