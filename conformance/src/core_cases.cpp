@@ -10,8 +10,8 @@ namespace jaus::conform {
 
 namespace {
 
-Outcome pass(std::string detail) { return {Verdict::pass, std::move(detail)}; }
-Outcome fail(std::string detail) { return {Verdict::fail, std::move(detail)}; }
+CaseOutcome pass(std::string detail) { return {Verdict::pass, std::move(detail)}; }
+CaseOutcome fail(std::string detail) { return {Verdict::fail, std::move(detail)}; }
 
 // Sends `query`, waits for a reply of type R from the target and decodes it.
 template <class R, class Q>
@@ -24,7 +24,7 @@ Expected<R> ask(CaseContext& c, const Q& query) {
   return report;
 }
 
-Outcome identification(CaseContext& c) {
+CaseOutcome identification(CaseContext& c) {
   auto report = ask<msg::ReportIdentification>(c, msg::QueryIdentification{{msg::identification::kComponent}});
   if (!report) return fail(report.error().message());
   if (report->query_type != msg::identification::kComponent)
@@ -32,7 +32,7 @@ Outcome identification(CaseContext& c) {
   return pass("Report Identification type 4, '" + report->identification + "'");
 }
 
-Outcome status(CaseContext& c) {
+CaseOutcome status(CaseContext& c) {
   auto report = ask<msg::ReportComponentStatus>(c, msg::QueryComponentStatus{});
   if (!report) return fail(report.error().message());
   const unsigned primary = report->primary_status & 0x0F;
@@ -41,13 +41,13 @@ Outcome status(CaseContext& c) {
   return pass("primary status " + ocu::primary_status_text(report->primary_status));
 }
 
-Outcome authority(CaseContext& c) {
+CaseOutcome authority(CaseContext& c) {
   auto report = ask<msg::ReportComponentAuthority>(c, msg::QueryComponentAuthority{});
   if (!report) return fail(report.error().message());
   return pass("authority " + std::to_string(report->authority));
 }
 
-Outcome services(CaseContext& c) {
+CaseOutcome services(CaseContext& c) {
   auto report = ask<msg::ReportServices>(c, msg::QueryServices{});
   if (!report) return fail(report.error().message());
   // Every component accepts the core queries: a list without Query Component
@@ -59,7 +59,7 @@ Outcome services(CaseContext& c) {
   return fail("Report Services does not list Query Component Status (0x2002) among the inputs");
 }
 
-Outcome control_round_trip(CaseContext& c) {
+CaseOutcome control_round_trip(CaseContext& c) {
   // The lowest authority: a component that grants it must report us as its
   // controller; one that refuses answers Confirm 2 (or Reject); either is conformant.
   auto confirm = c.session.request(c.target, msg::RequestComponentControl{{0}},

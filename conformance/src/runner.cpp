@@ -10,7 +10,7 @@ std::vector<CaseResult> run_cases(ocu::OcuSession& session, const Address& targe
   results.reserve(cases.size());
   for (const auto& c : cases) {
     if (session.interrupted()) {
-      results.push_back({&c, Outcome{Verdict::fail, "interrupted before it ran"}});
+      results.push_back({&c, CaseOutcome{Verdict::fail, "interrupted before it ran"}});
       continue;
     }
     CaseContext context{session, target, reply_timeout};

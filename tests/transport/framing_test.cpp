@@ -10,7 +10,7 @@ namespace jaus::transport {
 namespace {
 
 std::vector<std::uint8_t> framed(Framing framing, const std::vector<std::uint8_t>& message) {
-  const Prefix prefix = frame_prefix(framing, message.size());
+  const FramePrefix prefix = frame_prefix(framing, message.size());
   std::vector<std::uint8_t> out(prefix.view().begin(), prefix.view().end());
   out.insert(out.end(), message.begin(), message.end());
   return out;

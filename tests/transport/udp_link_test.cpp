@@ -57,7 +57,7 @@ std::vector<std::uint8_t> packet_of(const Address& from, const Address& to, cons
 void transmit(UdpLink& link, std::span<const std::uint8_t> packet) { link.transmit(*decode_header(packet), packet); }
 
 std::vector<std::uint8_t> framed(Framing framing, std::span<const std::uint8_t> message) {
-  const Prefix prefix = frame_prefix(framing, message.size());
+  const FramePrefix prefix = frame_prefix(framing, message.size());
   std::vector<std::uint8_t> out(prefix.view().begin(), prefix.view().end());
   out.insert(out.end(), message.begin(), message.end());
   return out;

@@ -62,8 +62,8 @@ Expected<Unframed, FramingError> unframe(std::span<const std::uint8_t> datagram)
   return Unframed{framing, *packet};
 }
 
-Prefix frame_prefix(Framing framing, std::size_t message_size) {
-  Prefix p;
+FramePrefix frame_prefix(Framing framing, std::size_t message_size) {
+  FramePrefix p;
   if (framing == Framing::opc) {
     std::copy(kOpcPrefix.begin(), kOpcPrefix.end(), p.bytes.begin());
     p.size = kOpcPrefix.size();

@@ -222,7 +222,7 @@ void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::strin
 
 void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
   if (closed_) return;
-  const Prefix prefix = frame_prefix(framing, packet.size());
+  const FramePrefix prefix = frame_prefix(framing, packet.size());
   const std::array<asio::const_buffer, 2> buffers = {asio::buffer(prefix.bytes.data(), prefix.size),
                                                      asio::buffer(packet.data(), packet.size())};
   boost::system::error_code ec;

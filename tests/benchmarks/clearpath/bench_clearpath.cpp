@@ -1,4 +1,4 @@
-// Clearpath bridge benchmarks: parser throughput (bytes/s, shown as MB/s) and
+// Clearpath protocol benchmarks: parser throughput (bytes/s, shown as MB/s) and
 // the delay from a setpoint call to its bytes being written on a UDP link.
 #include <benchmark/benchmark.h>
 
@@ -7,6 +7,7 @@
 #include "jaus/clearpath/codec.hpp"
 #include "jaus/clearpath/frame_parser.hpp"
 #include "jaus/clearpath/link.hpp"
+#include "jaus/transport/asio_runtime.hpp"
 
 namespace cp = jaus::clearpath;
 
@@ -60,13 +61,14 @@ BENCHMARK(BM_ParseAndDecode);
 // Setpoint call -> its frame handed to the UDP socket (loopback, no platform).
 void BM_SetpointToWrite(benchmark::State& state) {
   boost::asio::io_context io;
+  jaus::transport::AsioRuntime runtime(io);
   boost::asio::ip::udp::socket sink(io, {boost::asio::ip::make_address("127.0.0.1"), 0});
   cp::PlatformEndpoint target;
   target.kind = cp::PlatformEndpoint::Kind::udp;
   target.port = sink.local_endpoint().port();
   cp::ClientConfig config;
   config.setpoint_period = std::chrono::hours(1);  // only fresh setpoints go out
-  cp::ClearpathLink link(io, target, config);
+  cp::ClearpathLink link(io, runtime, runtime, target, config);
   std::size_t written = 0;
   link.on_written([&](std::size_t) { ++written; });
   link.start();

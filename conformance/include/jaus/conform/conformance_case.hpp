@@ -16,7 +16,7 @@ namespace jaus::conform {
 enum class Verdict { pass, fail };
 std::string_view to_string(Verdict verdict);
 
-struct Outcome {
+struct CaseOutcome {
   Verdict verdict = Verdict::fail;
   std::string detail;  // one line: what was seen ("Report Identification type 4, 'communicator'")
 };
@@ -32,7 +32,7 @@ struct CaseContext {
 struct ConformanceCase {
   std::string_view id;     // stable, for reports and filters: "core.identification"
   std::string_view title;  // what the RA requires, in one line
-  std::function<Outcome(CaseContext&)> run;
+  std::function<CaseOutcome(CaseContext&)> run;
 };
 
 // Cases every RA 3.x component must pass (core messages and discovery).
@@ -40,7 +40,7 @@ std::span<const ConformanceCase> core_cases();
 
 struct CaseResult {
   const ConformanceCase* test_case = nullptr;
-  Outcome outcome;
+  CaseOutcome outcome;
 };
 
 // Runs `cases` in order against `target`; a case that cannot run (no reply,

@@ -52,11 +52,11 @@ struct FramingError {
 Expected<Unframed, FramingError> unframe(std::span<const std::uint8_t> datagram);
 
 // The bytes that go before a message of `message_size` bytes (header included).
-struct Prefix {
+struct FramePrefix {
   std::array<std::uint8_t, kMaxPrefixSize> bytes{};
   std::size_t size = 0;
   std::span<const std::uint8_t> view() const { return std::span(bytes).first(size); }
 };
-Prefix frame_prefix(Framing framing, std::size_t message_size);
+FramePrefix frame_prefix(Framing framing, std::size_t message_size);
 
 }  // namespace jaus::transport
