@@ -13,9 +13,9 @@ namespace {
 
 std::vector<MessageInfo> build_catalogue() {
   std::vector<MessageInfo> all;
-  for (auto part : {detail::core_entries(), detail::communications_entries(), detail::platform_entries(),
-                    detail::manipulator_entries(), detail::environment_entries(),
-                    detail::discovery_and_event_entries()}) {
+  for (auto part : {detail::core_entries(), detail::communications_entries(), detail::platform_state_entries(),
+                    detail::platform_waypoint_entries(), detail::manipulator_entries(),
+                    detail::environment_entries(), detail::discovery_and_event_entries()}) {
     all.insert(all.end(), part.begin(), part.end());
   }
   std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.code < b.code; });

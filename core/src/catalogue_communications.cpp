@@ -1,5 +1,10 @@
 #include "catalogue_entries.hpp"
 
+// The codec of the bodies listed for this file (jaus/messages/compiled_codecs.hpp).
+namespace jaus {
+JAUS_COMMUNICATIONS_BODIES(JAUS_DEFINE_CODEC)
+}  // namespace jaus
+
 namespace jaus::msg::detail {
 std::vector<MessageInfo> communications_entries() { return entries_of(CommunicationsMessages{}); }
 }  // namespace jaus::msg::detail

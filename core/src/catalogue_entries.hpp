@@ -1,9 +1,11 @@
 // Catalogue entries generated from a list of described messages. Included only
-// by the catalogue_*.cpp files, one per subgroup, so they compile in parallel.
+// by the catalogue_*.cpp files, one per subgroup (platform in two), so they
+// compile in parallel.
 #pragma once
 
 #include <nlohmann/json.hpp>
 
+#include "jaus/messages/compiled_codecs.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/messages/catalogue.hpp"
 
@@ -37,15 +39,44 @@ Expected<Bytes, Error> payload_from_json(const Json& fields, wire::Dialect diale
   }
 }
 
+// The functions are instantiated for the message's body: Message<Code, Name,
+// Body> adds only the code and the name, so messages sharing a body (Set X
+// and Report X, the empty queries) share one instantiation.
+template <class M>
+MessageInfo entry_of() {
+  using Body = typename M::body_type;
+  return MessageInfo{M::code, M::name, &payload_to_json<Body>, &payload_from_json<Body>,
+                     [] { return wire::fields_doc<Body>(); }};
+}
+
 template <class... Ms>
 std::vector<MessageInfo> entries_of(TypeList<Ms...>) {
-  return {MessageInfo{Ms::code, Ms::name, &payload_to_json<Ms>, &payload_from_json<Ms>,
-                      [] { return wire::fields_doc<Ms>(); }}...};
+  return {entry_of<Ms>()...};
 }
+
+// The messages of the list whose code satisfies Keep (the others are not
+// instantiated): a subgroup split over files.
+template <bool (*Keep)(std::uint16_t), class... Ms>
+std::vector<MessageInfo> entries_of(TypeList<Ms...>) {
+  std::vector<MessageInfo> entries;
+  ([&] {
+    if constexpr (Keep(Ms::code)) entries.push_back(entry_of<Ms>());
+  }(), ...);
+  return entries;
+}
+
+// Platform, the largest subgroup, in two files of about equal compile cost,
+// split by topic so that a Set X and its Report X (one body) stay together.
+// Specifications, operational data, pose, velocity state, wrench effort,
+// discrete devices, global and local vector: 0x_400 to 0x_408.
+constexpr bool is_platform_state(std::uint16_t code) { return (code & 0xFF) <= 0x08; }
+// Travel speed, waypoints and path segments: 0x_40A to 0x_410.
+constexpr bool is_platform_waypoint(std::uint16_t code) { return !is_platform_state(code); }
 
 std::vector<MessageInfo> core_entries();
 std::vector<MessageInfo> communications_entries();
-std::vector<MessageInfo> platform_entries();
+std::vector<MessageInfo> platform_state_entries();
+std::vector<MessageInfo> platform_waypoint_entries();
 std::vector<MessageInfo> manipulator_entries();
 std::vector<MessageInfo> environment_entries();
 std::vector<MessageInfo> discovery_and_event_entries();

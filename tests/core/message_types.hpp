@@ -14,6 +14,11 @@ struct AsGtestTypes<msg::TypeList<Ms...>> {
   using type = ::testing::Types<Ms...>;
 };
 
+// Every subgroup's list of message types.
+using MessageGroups = msg::TypeList<msg::CoreMessages, msg::CommunicationsMessages, msg::PlatformMessages,
+                                    msg::ManipulatorMessages, msg::EnvironmentMessages, msg::DiscoveryMessages,
+                                    msg::EventMessages>;
+
 // Calls f.template operator()<M>() for every message type of every subgroup.
 template <class F, class... Ms>
 void for_each_in(msg::TypeList<Ms...>, F&& f) {
@@ -21,13 +26,7 @@ void for_each_in(msg::TypeList<Ms...>, F&& f) {
 }
 template <class F>
 void for_each_message_type(F&& f) {
-  for_each_in(msg::CoreMessages{}, f);
-  for_each_in(msg::CommunicationsMessages{}, f);
-  for_each_in(msg::PlatformMessages{}, f);
-  for_each_in(msg::ManipulatorMessages{}, f);
-  for_each_in(msg::EnvironmentMessages{}, f);
-  for_each_in(msg::DiscoveryMessages{}, f);
-  for_each_in(msg::EventMessages{}, f);
+  [&]<class... Groups>(msg::TypeList<Groups...>) { (for_each_in(Groups{}, f), ...); }(MessageGroups{});
 }
 
 }  // namespace jaus::test

@@ -1,0 +1,10 @@
+#include "catalogue_entries.hpp"
+
+// The codec of the bodies listed for this file (jaus/messages/compiled_codecs.hpp).
+namespace jaus {
+JAUS_PLATFORM_STATE_BODIES(JAUS_DEFINE_CODEC)
+}  // namespace jaus
+
+namespace jaus::msg::detail {
+std::vector<MessageInfo> platform_state_entries() { return entries_of<is_platform_state>(PlatformMessages{}); }
+}  // namespace jaus::msg::detail

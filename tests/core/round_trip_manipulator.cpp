@@ -1,5 +1,0 @@
-#include "round_trip.hpp"
-
-namespace jaus::test {
-INSTANTIATE_TYPED_TEST_SUITE_P(Manipulator, RoundTrip, AsGtestTypes<msg::ManipulatorMessages>::type);
-}  // namespace jaus::test
