@@ -227,8 +227,14 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   control->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
   control->add_option("--authority", *authority, "authority of the request, 0..255")->type_name("N")->required();
   control->add_option("--for", *hold_for, "release after this many seconds")->type_name("SECONDS");
+  auto repeated = std::make_shared<std::string>();
+  auto repeat_rate = std::make_shared<std::string>();
+  control->add_option("--send", *repeated,
+                      "while holding control, send this message (JSON as for `send`) to ADDR, repeatedly")
+      ->type_name("JSON");
+  control->add_option("--rate", *repeat_rate, "how often --send sends, in Hz (default 10)")->type_name("HZ");
   add_common_options(control, *common);
-  control->callback([&exit_code, checked_common, target, authority, hold_for] {
+  control->callback([&exit_code, checked_common, target, authority, hold_for, repeated, repeat_rate] {
     auto c = checked_common("control", exit_code);
     if (!c) return;
     ocu::ControlOptions options;
@@ -240,6 +246,20 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       auto seconds = ocu::parse_seconds(*hold_for);
       if (!seconds) return void(exit_code = bad_input("control", "--for: " + seconds.error().message()));
       options.hold_for = *seconds;
+    }
+    if (!repeated->empty()) {
+      const auto parsed = ocu::Json::parse(*repeated, nullptr, false);
+      if (parsed.is_discarded()) return void(exit_code = bad_input("control", "--send: not valid JSON"));
+      auto prepared = ocu::prepare_message(parsed, c->session.dialect);
+      if (!prepared) return void(exit_code = bad_input("control", "--send: " + prepared.error().message()));
+      options.send = std::move(*prepared);
+    } else if (!repeat_rate->empty()) {
+      return void(exit_code = bad_input("control", "--rate needs --send"));
+    }
+    if (!repeat_rate->empty()) {
+      auto hz = ocu::parse_rate_hz(*repeat_rate);
+      if (!hz) return void(exit_code = bad_input("control", "--rate: " + hz.error().message()));
+      options.send_rate_hz = *hz;
     }
     options.target = *address;
     options.authority = *level;

@@ -45,6 +45,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   identity.node_type = config.node_type;
 
   h.components = config.components;
+  h.vehicle = config.vehicle;
   return h;
 }
 

@@ -1,6 +1,7 @@
 #include "jausd_config.hpp"
 
 #include "jaus/base/quoted.hpp"
+#include "jaus/host/component_options.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <functional>
 #include <initializer_list>
+#include <numbers>
 #include <system_error>
 
 namespace jausd {
@@ -28,8 +30,11 @@ using jaus::host::ComponentKind;
 using jaus::host::find_component_kind;
 
 std::vector<ComponentSpec> JausdConfig::default_components() {
-  return {ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0},
-          ComponentSpec{"communicator", 35, 1, 0, "communicator", {}, 0}};
+  return {ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0, {}},
+          ComponentSpec{"communicator", 35, 1, 0, "communicator", {}, 0, {}},
+          ComponentSpec{"primitive_driver", 33, 1, 0, "primitive_driver", {}, 0, {}},
+          ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}},
+          ComponentSpec{"velocity_state_sensor", 42, 1, 0, "velocity_state_sensor", {}, 0, {}}};
 }
 
 // ---------------------------------------------------------------- limits
@@ -58,6 +63,21 @@ struct NumberRange {
   }
 };
 constexpr NumberRange kHeartbeatRange{0, false, 100, "a number > 0 and <= 100"};
+// The simulated vehicle: each range is what the reports can encode or what keeps the model sane.
+constexpr NumberRange kSpeedRange{0, false, 65.534, "a number > 0 and <= 65.534"};
+constexpr NumberRange kYawRateRange{0, false, 32.767, "a number > 0 and <= 32.767"};
+constexpr NumberRange kSteeringRange{0, false, 1.5, "a number > 0 and <= 1.5"};
+constexpr NumberRange kLengthRange{0, false, 65.535, "a number > 0 and <= 65.535"};
+constexpr NumberRange kAccelerationRange{0, false, 100, "a number > 0 and <= 100"};
+constexpr NumberRange kUpdateRateRange{0, false, 1000, "a number > 0 and <= 1000"};
+constexpr NumberRange kAccuracyRange{0, true, 100, "a number 0..100"};
+constexpr NumberRange kPercentRange{0, true, 100, "a number 0..100"};
+constexpr NumberRange kLatitudeRange{-90, true, 90, "a number -90..90"};
+constexpr NumberRange kLongitudeRange{-180, true, 180, "a number -180..180"};
+constexpr NumberRange kAltitudeRange{-10000, true, 35000, "a number -10000..35000"};
+constexpr NumberRange kHeadingRange{-360, true, 360, "a number of degrees -360..360"};
+constexpr std::array<std::string_view, 2> kSteerings{"differential", "ackermann"};
+constexpr std::size_t kMaxPlatformName = 15;  // Report Platform Specifications' name field
 constexpr NumberRange kTimeoutRange{0, true, kMaxSeconds, "a number of seconds 0..86400"};
 constexpr NumberRange kPositiveTimeoutRange{0, false, kMaxSeconds, "a number of seconds > 0 and <= 86400"};
 constexpr NumberRange kRateRange{0, false, 1092, "a number > 0 and <= 1092"};
@@ -180,6 +200,7 @@ std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& l
       return Issue{spec.line, "component id 1 is the node_manager's (" + spec.kind + " has RA id " +
                                   std::to_string(kind->default_id) + ")"};
     }
+    if (auto problem = jaus::host::check_component_options(spec)) return Issue{problem->line, problem->what};
     const auto [it, inserted] = seen.emplace(std::pair<int, int>{spec.id, spec.instance}, spec.line);
     if (!inserted)
       return Issue{spec.line, "duplicate component id " + std::to_string(spec.id) + " instance " +
@@ -246,6 +267,23 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
       {"component_timeout_s", c.liveness.component_timeout_s, &kPositiveTimeoutRange},
       {"node_timeout_s", c.liveness.node_timeout_s, &kPositiveTimeoutRange},
       {"subsystem_timeout_s", c.liveness.subsystem_timeout_s, &kPositiveTimeoutRange},
+      {"max_speed_mps", c.vehicle.max_speed_mps, &kSpeedRange},
+      {"max_yaw_rate_rps", c.vehicle.max_yaw_rate_rps, &kYawRateRange},
+      {"max_steering_rad", c.vehicle.max_steering_rad, &kSteeringRange},
+      {"wheel_base_m", c.vehicle.wheel_base_m, &kLengthRange},
+      {"max_acceleration_mps2", c.vehicle.max_acceleration_mps2, &kAccelerationRange},
+      {"max_deceleration_mps2", c.vehicle.max_deceleration_mps2, &kAccelerationRange},
+      {"max_yaw_acceleration_rps2", c.vehicle.max_yaw_acceleration_rps2, &kAccelerationRange},
+      {"update_rate_hz", c.vehicle.update_rate_hz, &kUpdateRateRange},
+      {"latitude_deg", c.vehicle.start.latitude_deg, &kLatitudeRange},
+      {"longitude_deg", c.vehicle.start.longitude_deg, &kLongitudeRange},
+      {"altitude_m", c.vehicle.start.altitude_m, &kAltitudeRange},
+      {"position_rms_m", c.vehicle.position_rms_m, &kAccuracyRange},
+      {"position_rms_per_m", c.vehicle.position_rms_per_m, &kAccuracyRange},
+      {"attitude_rms_rad", c.vehicle.attitude_rms_rad, &kAccuracyRange},
+      {"velocity_rms_mps", c.vehicle.velocity_rms_mps, &kAccuracyRange},
+      {"rate_rms_rps", c.vehicle.rate_rms_rps, &kAccuracyRange},
+      {"battery_drain_percent_per_hour", c.vehicle.battery_drain_percent_per_hour, &kPercentRange},
   };
   for (const auto& n : numbers)
     if (auto issue = check_number(n.key, n.value, *n.range)) return issue;
@@ -458,12 +496,68 @@ ComponentSpec component(const YAML::Node& node) {
       if (key.empty() || !one_of(key, kind->options))
         fail(line, "unknown option " + jaus::quoted(key) + " for " + spec.kind + " (known: " + join(kind->options) + ")");
       if (spec.options.contains(key)) fail(line, "duplicate option " + jaus::quoted(key));
+      spec.option_lines[key] = line;
       if (!value.IsScalar())
         fail(line, "option " + jaus::quoted(key) + " must be a single value, got " + describe(value));
       spec.options[key] = value.Scalar();
     }
   }
   return spec;
+}
+
+// The simulated vehicle of the mobility components (components/vehicle/simulated_vehicle.hpp).
+void read_vehicle(const Entry& section, jaus::components::SimulatedVehicleConfig& v) {
+  const auto in_range = [](const NumberRange& range) {
+    return [&range](double& target) { return [&range, &target](const Entry& e) { target = number(e, range); }; };
+  };
+  const auto speed = in_range(kSpeedRange), length = in_range(kLengthRange), accel = in_range(kAccelerationRange),
+             accuracy = in_range(kAccuracyRange);
+  read_map(
+      section.value, "vehicle", section.key_line,
+      {{"name",
+        [&](const Entry& e) {
+          const std::string& text = e.scalar("1..15 printable ASCII characters");
+          if (text.empty() || text.size() > kMaxPlatformName ||
+              !std::all_of(text.begin(), text.end(), [](char ch) { return ch >= 0x20 && ch < 0x7F; }))
+            e.must_be("1..15 printable ASCII characters");
+          v.specifications.name = text;
+        }},
+       {"steering",
+        [&](const Entry& e) {
+          v.steering = choice(e, kSteerings) == "ackermann" ? jaus::components::Steering::ackermann
+                                                             : jaus::components::Steering::differential;
+        }},
+       {"max_speed_mps", speed(v.max_speed_mps)},
+       {"max_yaw_rate_rps", in_range(kYawRateRange)(v.max_yaw_rate_rps)},
+       {"max_steering_rad", in_range(kSteeringRange)(v.max_steering_rad)},
+       {"wheel_base_m", length(v.wheel_base_m)},
+       {"track_width_m", [&](const Entry& e) { v.specifications.track_width_m = number(e, kLengthRange); }},
+       {"max_acceleration_mps2", accel(v.max_acceleration_mps2)},
+       {"max_deceleration_mps2", accel(v.max_deceleration_mps2)},
+       {"max_yaw_acceleration_rps2", accel(v.max_yaw_acceleration_rps2)},
+       {"update_rate_hz", in_range(kUpdateRateRange)(v.update_rate_hz)},
+       {"local_frame", [&](const Entry& e) { v.local_frame = boolean(e); }},
+       {"battery_drain_percent_per_hour", in_range(kPercentRange)(v.battery_drain_percent_per_hour)},
+       {"start",
+        [&](const Entry& s) {
+          read_map(s.value, "vehicle.start", s.key_line,
+                   {{"latitude_deg", in_range(kLatitudeRange)(v.start.latitude_deg)},
+                    {"longitude_deg", in_range(kLongitudeRange)(v.start.longitude_deg)},
+                    {"altitude_m", in_range(kAltitudeRange)(v.start.altitude_m)},
+                    {"heading_deg", [&](const Entry& e) {
+                       v.start_heading_rad = number(e, kHeadingRange) * std::numbers::pi / 180;
+                     }}});
+        }},
+       {"accuracy", [&](const Entry& s) {
+          read_map(s.value, "vehicle.accuracy", s.key_line,
+                   {{"position_rms_m", accuracy(v.position_rms_m)},
+                    {"position_rms_per_m", accuracy(v.position_rms_per_m)},
+                    {"attitude_rms_rad", accuracy(v.attitude_rms_rad)},
+                    {"velocity_rms_mps", accuracy(v.velocity_rms_mps)},
+                    {"rate_rms_rps", accuracy(v.rate_rms_rps)}});
+        }}});
+  // The specifications follow the model, so Report Platform Specifications says what it drives like.
+  v.specifications.wheel_base_m = v.wheel_base_m;
 }
 
 JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
@@ -550,6 +644,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
             lines.peers.push_back(p.line);
           }
         }},
+       {"vehicle", [&](const Entry& s) { read_vehicle(s, c.vehicle); }},
        {"components",
         [&](const Entry& e) {
           lines.components = e.key_line;

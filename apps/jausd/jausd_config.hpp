@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "jaus/base/expected.hpp"
+#include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
@@ -65,10 +66,13 @@ struct JausdConfig {
   LivenessSettings liveness;
   std::string dialect = "ra";          // "ra" or "openjaus": how payloads from peers are read
   TransportConfig transport;
+  jaus::components::SimulatedVehicleConfig vehicle;  // what the mobility components drive and read
   std::vector<ComponentSpec> components = default_components();
   std::string log_level = "info";      // debug, info, warn, error
 
-  static std::vector<ComponentSpec> default_components();  // node_manager 1.1 + communicator 35.1
+  // node_manager 1.1, communicator 35.1, primitive_driver 33.1, global_pose_sensor 38.1,
+  // velocity_state_sensor 42.1
+  static std::vector<ComponentSpec> default_components();
 };
 
 struct ConfigError {

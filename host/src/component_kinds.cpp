@@ -1,6 +1,10 @@
 #include "jaus/host/component_kinds.hpp"
 
 #include "jaus/components/communicator.hpp"
+#include "jaus/components/global_pose_sensor.hpp"
+#include "jaus/components/primitive_driver.hpp"
+#include "jaus/components/velocity_state_sensor.hpp"
+#include "jaus/host/component_options.hpp"
 
 namespace jaus::host {
 
@@ -11,6 +15,9 @@ const std::vector<ComponentKind>& kinds() {
   static const std::vector<ComponentKind> registry{
       {"node_manager", 1, {}},
       {"communicator", 35, {}},
+      {"primitive_driver", 33, {"command_timeout_s", "stop_brake_percent"}},
+      {"global_pose_sensor", 38, {"stale_after_s", "local_pose"}},
+      {"velocity_state_sensor", 42, {"stale_after_s"}},
   };
   return registry;
 }
@@ -25,8 +32,12 @@ const ComponentKind* find_component_kind(std::string_view name) {
   return nullptr;
 }
 
+bool needs_vehicle(std::string_view kind) {
+  return kind == "primitive_driver" || kind == "global_pose_sensor" || kind == "velocity_state_sensor";
+}
+
 Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spec, const ComponentSettings& settings,
-                                                        node::Node& node) {
+                                                        node::Node& node, const VehicleBackends& vehicle) {
   rt::ComponentConfig c = settings.defaults;
   c.name = spec.name.empty() ? spec.kind : spec.name;
   c.address = Address{node.config().subsystem, node.config().node, spec.id, spec.instance};
@@ -36,6 +47,26 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
     made = std::make_unique<components::NodeManager>(c, node.environment(), node, settings.identity);
   else if (spec.kind == "communicator")
     made = std::make_unique<components::Communicator>(c, node.environment());
+  else if (needs_vehicle(spec.kind)) {
+    const bool drives = spec.kind == "primitive_driver";
+    if (drives ? !vehicle.drive : !vehicle.pose)
+      return unexpected(make_error(ErrorCode::invalid_argument, spec.kind + " needs a vehicle " +
+                                                                    (drives ? "drive" : "pose source") +
+                                                                    " and the host has none"));
+    if (spec.kind == "primitive_driver") {
+      auto options = primitive_driver_options(spec);
+      if (!options) return unexpected(options.error());
+      made = std::make_unique<components::PrimitiveDriver>(c, node.environment(), *vehicle.drive, *options);
+    } else if (spec.kind == "global_pose_sensor") {
+      auto options = global_pose_sensor_options(spec);
+      if (!options) return unexpected(options.error());
+      made = std::make_unique<components::GlobalPoseSensor>(c, node.environment(), *vehicle.pose, *options);
+    } else {
+      auto options = velocity_state_sensor_options(spec);
+      if (!options) return unexpected(options.error());
+      made = std::make_unique<components::VelocityStateSensor>(c, node.environment(), *vehicle.pose, *options);
+    }
+  }
   if (made) return made;
   return unexpected(make_error(ErrorCode::invalid_argument,
                                "component kind '" + spec.kind + "' cannot be hosted by this build"));

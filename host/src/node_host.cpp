@@ -18,8 +18,14 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     if (host->watcher_) host->watcher_(packet);
     host->node_->receive(packet);
   });
+  VehicleBackends backends;
+  for (const auto& spec : h->config_.components)
+    if (needs_vehicle(spec.kind) && !h->vehicle_) {
+      h->vehicle_ = std::make_unique<components::SimulatedVehicle>(h->config_.vehicle, h->runtime_);
+      backends = {h->vehicle_.get(), h->vehicle_.get()};
+    }
   for (const auto& spec : h->config_.components) {
-    auto component = make_component(spec, h->config_.settings, *h->node_);
+    auto component = make_component(spec, h->config_.settings, *h->node_, backends);
     if (!component) return unexpected(component.error());
     h->node_->add(std::move(*component));
   }

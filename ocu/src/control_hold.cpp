@@ -1,5 +1,7 @@
 #include "jaus/ocu/control_hold.hpp"
 
+#include <algorithm>
+
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/ocu/names.hpp"
 
@@ -87,18 +89,37 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
   if (state_ && on_state_) on_state_(primary_status_text(*state_));  // reported before the hold began
   auto& clock = session_.clock();
   const auto until = limit ? clock.now() + *limit : jaus::rt::TimePoint::max();
+  auto next_send = clock.now();
   for (;;) {
     if (rejected_) return End::rejected;
     if (session_.interrupted()) return End::interrupted;
     const auto now = clock.now();
     if (now >= until) return End::time_up;
+    auto slice = std::min<jaus::rt::Duration>(until - now, kHoldSlice);
+    if (repeated_) {
+      if (now >= next_send) {
+        jaus::Header header = repeated_->header;
+        header.destination = target_;
+        session_.send_raw(header, repeated_->payload);
+        ++sent_while_held_;
+        // From the ideal times, so a late wake-up does not slow the rate down.
+        next_send += repeat_period_;
+        if (next_send < now) next_send = now + repeat_period_;
+      }
+      slice = std::min<jaus::rt::Duration>(slice, next_send - now);
+    }
     // Only reports that came can stop: a component that does not provide its
     // status (refused, or a peer without service connections) is held without
     // this check. (The connection's own `confirmed` is reset while the client
     // re-creates it after a silence, so it cannot tell.)
     if (state_ && now - status_heard_ > status_silence_) return End::silent;
-    session_.run_until([this] { return rejected_; }, std::min<jaus::rt::Duration>(until - now, kHoldSlice));
+    session_.run_until([this] { return rejected_; }, slice);
   }
+}
+
+void ControlHold::send_while_held(PreparedMessage message, jaus::rt::Duration period) {
+  repeated_ = std::move(message);
+  repeat_period_ = std::max<jaus::rt::Duration>(period, 1ms);
 }
 
 void ControlHold::release() {

@@ -48,7 +48,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.settings.identity.subsystem_name = "jausctl";
   config.settings.identity.subsystem_type = kOcuSubsystemType;
   config.settings.identity.node_name = "jausctl";
-  config.components = {jaus::host::ComponentSpec{"node_manager", kNodeManagerComponent, 1, 0, "jausctl node manager", {}, 0}};
+  config.components = {jaus::host::ComponentSpec{"node_manager", kNodeManagerComponent, 1, 0, "jausctl node manager", {}, 0, {}}};
   auto host = jaus::host::NodeHost::open(std::move(config), s->io_, o.log);
   if (!host) return unexpected(host.error());
   s->host_ = std::move(*host);

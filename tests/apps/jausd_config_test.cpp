@@ -1,8 +1,11 @@
 // jausd configuration: defaults, every key read, and one "file:line: what"
 // error for every kind of mistake.
 #include "jausd_config.hpp"
+#include "jaus/host/component_options.hpp"
 
 #include <gtest/gtest.h>
+
+#include <numbers>
 
 #include <cstdio>
 #include <filesystem>
@@ -82,7 +85,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_TRUE(c.transport.peers.empty());
   EXPECT_TRUE(c.transport.allow.empty());
   EXPECT_EQ(c.transport.max_peers, 256u);
-  ASSERT_EQ(c.components.size(), 2u);
+  ASSERT_EQ(c.components.size(), 5u);
   EXPECT_EQ(c.components[0].kind, "node_manager");
   EXPECT_EQ(c.components[0].id, 1);
   EXPECT_EQ(c.components[0].instance, 1);
@@ -91,6 +94,27 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 35);
   EXPECT_EQ(c.components[1].instance, 1);
+  EXPECT_EQ(c.components[2].kind, "primitive_driver");
+  EXPECT_EQ(c.components[2].id, 33);
+  EXPECT_EQ(c.components[3].kind, "global_pose_sensor");
+  EXPECT_EQ(c.components[3].id, 38);
+  EXPECT_EQ(c.components[4].kind, "velocity_state_sensor");
+  EXPECT_EQ(c.components[4].id, 42);
+  // Options written in the default file are their defaults.
+  for (const auto& spec : c.components) EXPECT_FALSE(jaus::host::check_component_options(spec)) << spec.kind;
+  const jaus::components::SimulatedVehicleConfig vehicle;
+  EXPECT_EQ(c.vehicle.specifications.name, vehicle.specifications.name);
+  EXPECT_EQ(c.vehicle.steering, vehicle.steering);
+  EXPECT_EQ(c.vehicle.max_speed_mps, vehicle.max_speed_mps);
+  EXPECT_EQ(c.vehicle.max_yaw_rate_rps, vehicle.max_yaw_rate_rps);
+  EXPECT_EQ(c.vehicle.max_acceleration_mps2, vehicle.max_acceleration_mps2);
+  EXPECT_EQ(c.vehicle.max_deceleration_mps2, vehicle.max_deceleration_mps2);
+  EXPECT_EQ(c.vehicle.update_rate_hz, vehicle.update_rate_hz);
+  EXPECT_EQ(c.vehicle.start, vehicle.start);
+  EXPECT_EQ(c.vehicle.start_heading_rad, vehicle.start_heading_rad);
+  EXPECT_EQ(c.vehicle.position_rms_m, vehicle.position_rms_m);
+  EXPECT_EQ(c.vehicle.position_rms_per_m, vehicle.position_rms_per_m);
+  EXPECT_EQ(c.vehicle.local_frame, vehicle.local_frame);
   EXPECT_EQ(c.log_level, "info");
 }
 
@@ -118,7 +142,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().to_string();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 42);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 70);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -187,6 +211,8 @@ components:
     id: 36
     authority: 7
     options: {}
+  - kind: primitive_driver
+    options: {command_timeout_s: 0.2, stop_brake_percent: 0}
 logging:
   level: debug
 )");
@@ -220,7 +246,7 @@ logging:
   EXPECT_EQ(c.transport.allow[1], (Cidr{0x0A000000, 8}));
   EXPECT_EQ(c.transport.allow[2], (Cidr{0xC0A80107, 32}));
   EXPECT_EQ(c.transport.max_peers, 1u);  // learnt peers; static ones come on top
-  ASSERT_EQ(c.components.size(), 2u);
+  ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
   EXPECT_EQ(c.components[0].line, 36);
@@ -230,6 +256,9 @@ logging:
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
   EXPECT_EQ(c.components[1].line, 39);
+  EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
+  EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 45);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -322,7 +351,7 @@ TEST(JausdConfigErrors, TheFileMustBeAMap) {
 TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
   expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
-               "service_connections, liveness, transport, components, logging)");
+               "service_connections, liveness, transport, vehicle, components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
                "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
                "node, node_name, node_type)");
@@ -500,10 +529,84 @@ TEST(JausdConfigErrors, Peers) {
 // ------------------------------------------------------------ components
 
 TEST(JausdConfigErrors, ComponentKinds) {
-  expect_error("components:\n  - kind: node_manager\n  - kind: primitive_driver\n", 3,
-               "unknown component kind 'primitive_driver' (known: node_manager, communicator)");
+  expect_error("components:\n  - kind: node_manager\n  - kind: visual_sensor\n", 3,
+               "unknown component kind 'visual_sensor' (known: node_manager, communicator, primitive_driver, "
+               "global_pose_sensor, velocity_state_sensor)");
   expect_error("components:\n  - kind: node_manager\n  - id: 35\n", 3,
-               "a component needs a 'kind' (one of node_manager, communicator)");
+               "a component needs a 'kind' (one of node_manager, communicator, primitive_driver, "
+               "global_pose_sensor, velocity_state_sensor)");
+}
+
+TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
+  expect_error("components:\n  - kind: node_manager\n  - kind: primitive_driver\n    options:\n"
+               "      stop_brake_percent: 50\n      command_timeout_s: soon\n",
+               6, "primitive_driver option 'command_timeout_s' must be a number 0..60, got 'soon'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: global_pose_sensor\n    options:\n"
+               "      local_pose: maybe\n",
+               5, "global_pose_sensor option 'local_pose' must be true or false, got 'maybe'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: velocity_state_sensor\n    options:\n"
+               "      stale_after_s: 0\n",
+               5, "velocity_state_sensor option 'stale_after_s' must be a number > 0 and <= 60, got '0'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: primitive_driver\n    options:\n"
+               "      brake: 50\n",
+               5, "unknown option 'brake' for primitive_driver (known: command_timeout_s, stop_brake_percent)");
+}
+
+TEST(JausdConfig, VehicleKeysAreRead) {
+  const auto c = expect_ok(R"(
+vehicle:
+  name: husky
+  steering: ackermann
+  max_speed_mps: 2.5
+  max_yaw_rate_rps: 0.8
+  max_steering_rad: 0.6
+  wheel_base_m: 0.9
+  track_width_m: 0.7
+  max_acceleration_mps2: 0.5
+  max_deceleration_mps2: 4
+  max_yaw_acceleration_rps2: 2
+  update_rate_hz: 100
+  local_frame: false
+  battery_drain_percent_per_hour: 0
+  start: {latitude_deg: -33.9, longitude_deg: 151.2, altitude_m: 12, heading_deg: 90}
+  accuracy: {position_rms_m: 2, position_rms_per_m: 0.05, attitude_rms_rad: 0.1, velocity_rms_mps: 0.3,
+             rate_rms_rps: 0.2}
+)");
+  const auto& v = c.vehicle;
+  EXPECT_EQ(v.specifications.name, "husky");
+  EXPECT_EQ(v.steering, jaus::components::Steering::ackermann);
+  EXPECT_EQ(v.max_speed_mps, 2.5);
+  EXPECT_EQ(v.max_yaw_rate_rps, 0.8);
+  EXPECT_EQ(v.max_steering_rad, 0.6);
+  EXPECT_EQ(v.wheel_base_m, 0.9);
+  EXPECT_EQ(v.specifications.wheel_base_m, 0.9);
+  EXPECT_EQ(v.specifications.track_width_m, 0.7);
+  EXPECT_EQ(v.max_acceleration_mps2, 0.5);
+  EXPECT_EQ(v.max_deceleration_mps2, 4);
+  EXPECT_EQ(v.max_yaw_acceleration_rps2, 2);
+  EXPECT_EQ(v.update_rate_hz, 100);
+  EXPECT_FALSE(v.local_frame);
+  EXPECT_EQ(v.battery_drain_percent_per_hour, 0);
+  EXPECT_EQ(v.start, (jaus::components::GeoPosition{-33.9, 151.2, 12}));
+  EXPECT_NEAR(v.start_heading_rad, std::numbers::pi / 2, 1e-12);
+  EXPECT_EQ(v.position_rms_m, 2);
+  EXPECT_EQ(v.position_rms_per_m, 0.05);
+  EXPECT_EQ(v.attitude_rms_rad, 0.1);
+  EXPECT_EQ(v.velocity_rms_mps, 0.3);
+  EXPECT_EQ(v.rate_rms_rps, 0.2);
+}
+
+TEST(JausdConfigErrors, VehicleValues) {
+  expect_error("vehicle:\n  max_speed_mps: 0\n", 2, "'max_speed_mps' must be a number > 0 and <= 65.534, got '0'");
+  expect_error("vehicle:\n  steering: tank\n", 2,
+               "'steering' must be one of differential, ackermann, got 'tank'");
+  expect_error("vehicle:\n  name: a name far too long\n", 2,
+               "'name' must be 1..15 printable ASCII characters, got 'a name far too long'");
+  expect_error("vehicle:\n  start:\n    latitude_deg: 91\n", 3, "'latitude_deg' must be a number -90..90, got '91'");
+  expect_error("vehicle:\n  accuracy:\n    rms: 1\n", 3,
+               "unknown key 'rms' in vehicle.accuracy (known: position_rms_m, position_rms_per_m, attitude_rms_rad, "
+               "velocity_rms_mps, rate_rms_rps)");
+  expect_error("vehicle: [1]\n", 1, "'vehicle' must be a map of keys, got a list");
 }
 
 TEST(JausdConfigErrors, DuplicateComponent) {
@@ -646,7 +749,12 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
   EXPECT_EQ(broken([](JausdConfig& c) { c.components.push_back(c.components[1]); }),
             "duplicate component id 35 instance 1");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "visual_sensor"; }),
-            "unknown component kind 'visual_sensor' (known: node_manager, communicator)");
+            "unknown component kind 'visual_sensor' (known: node_manager, communicator, primitive_driver, "
+            "global_pose_sensor, velocity_state_sensor)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components[2].options["stop_brake_percent"] = "150"; }),
+            "primitive_driver option 'stop_brake_percent' must be a number 0..100, got '150'");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.vehicle.update_rate_hz = 0; }),
+            "'update_rate_hz' must be a number > 0 and <= 1000, got 0");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].options["x"] = "1"; }),
             "unknown option 'x' for communicator (known: none)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].instance = 255; }),
@@ -658,14 +766,20 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
 // ------------------------------------------------------------ registry
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
-  ASSERT_EQ(component_kinds().size(), 2u);
+  ASSERT_EQ(component_kinds().size(), 5u);
   EXPECT_EQ(component_kinds()[0].name, "node_manager");
   EXPECT_EQ(component_kinds()[0].default_id, 1);
   EXPECT_EQ(component_kinds()[1].name, "communicator");
   EXPECT_EQ(component_kinds()[1].default_id, 35);
+  EXPECT_EQ(component_kinds()[2].name, "primitive_driver");
+  EXPECT_EQ(component_kinds()[2].default_id, 33);
+  EXPECT_EQ(component_kinds()[3].name, "global_pose_sensor");
+  EXPECT_EQ(component_kinds()[3].default_id, 38);
+  EXPECT_EQ(component_kinds()[4].name, "velocity_state_sensor");
+  EXPECT_EQ(component_kinds()[4].default_id, 42);
   ASSERT_NE(find_component_kind("communicator"), nullptr);
   EXPECT_TRUE(find_component_kind("communicator")->options.empty());
-  EXPECT_EQ(find_component_kind("primitive_driver"), nullptr);
+  EXPECT_EQ(find_component_kind("visual_sensor"), nullptr);  // registered when implemented
   EXPECT_EQ(to_string(Framing::opc), "opc");
   EXPECT_EQ(to_string(Framing::judp), "judp");
 }

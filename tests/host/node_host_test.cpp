@@ -6,6 +6,7 @@
 #include <boost/asio/io_context.hpp>
 
 #include "jaus/base/virtual_time.hpp"
+#include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
 
 namespace jaus::host {
@@ -17,7 +18,7 @@ HostConfig loopback_config() {
   HostConfig config;
   config.link.bind = transport::Ipv4Endpoint{kLoopback, 0};
   for (const auto& kind : component_kinds())
-    config.components.push_back(ComponentSpec{std::string(kind.name), kind.default_id, 1, 0, "", {}, 0});
+    config.components.push_back(ComponentSpec{std::string(kind.name), kind.default_id, 1, 0, "", {}, 0, {}});
   return config;
 }
 
@@ -28,17 +29,64 @@ TEST(ComponentKinds, EveryRegisteredKindIsBuiltWithItsIdAndName) {
   } link;
   node::Node node(node::NodeConfig{}, time, time, link);
   ComponentSettings settings;
+  components::SimulatedVehicle vehicle({}, time);
+  const VehicleBackends backends{&vehicle, &vehicle};
   ASSERT_FALSE(component_kinds().empty());
   for (const auto& kind : component_kinds()) {
-    auto made = make_component(ComponentSpec{std::string(kind.name), kind.default_id, 2, 7, "", {}, 0}, settings, node);
+    auto made = make_component(ComponentSpec{std::string(kind.name), kind.default_id, 2, 7, "", {}, 0, {}}, settings,
+                               node, backends);
     ASSERT_TRUE(made) << kind.name << ": " << made.error().message();
     EXPECT_EQ((*made)->address(), (Address{1, 1, kind.default_id, 2}));
     EXPECT_EQ((*made)->name(), kind.name);  // no name given: the kind's
     EXPECT_EQ((*made)->control().own_authority(), 7);
   }
-  auto unknown = make_component(ComponentSpec{"warp_drive", 99, 1, 0, "", {}, 0}, settings, node);
+  auto unknown = make_component(ComponentSpec{"warp_drive", 99, 1, 0, "", {}, 0, {}}, settings, node);
   ASSERT_FALSE(unknown);
   EXPECT_EQ(unknown.error().code, ErrorCode::invalid_argument);
+}
+
+TEST(ComponentKinds, AVehicleComponentWithoutAVehicleOrWithABadOptionIsOneError) {
+  rt::VirtualTime time;
+  struct NullLink : node::Link {
+    void transmit(const Header&, std::span<const std::uint8_t>) override {}
+  } link;
+  node::Node node(node::NodeConfig{}, time, time, link);
+  auto driverless = make_component(ComponentSpec{"primitive_driver", 33, 1, 0, "", {}, 0, {}}, {}, node);
+  ASSERT_FALSE(driverless);
+  EXPECT_EQ(driverless.error().message(), "primitive_driver needs a vehicle drive and the host has none");
+
+  components::SimulatedVehicle vehicle({}, time);
+  auto bad = make_component(ComponentSpec{"primitive_driver", 33, 1, 0, "", {{"command_timeout_s", "soon"}}, 0, {}}, {},
+                            node, {&vehicle, &vehicle});
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().code, ErrorCode::invalid_argument);
+  EXPECT_EQ(bad.error().field, "command_timeout_s");
+  EXPECT_NE(bad.error().message().find("'soon'"), std::string::npos) << bad.error().message();
+}
+
+TEST(ComponentOptions, EachKindsOptionsAreReadAndCheckedWithTheirLine) {
+  ComponentSpec driver{"primitive_driver", 33, 1, 0, "", {{"command_timeout_s", "0.25"}, {"stop_brake_percent", "40"}},
+                       7, {}};
+  const auto options = primitive_driver_options(driver);
+  ASSERT_TRUE(options) << options.error().message();
+  EXPECT_EQ(options->command_timeout, std::chrono::milliseconds(250));
+  EXPECT_EQ(options->stop_brake_percent, 40);
+
+  ComponentSpec sensor{"global_pose_sensor", 38, 1, 0, "", {{"stale_after_s", "2"}, {"local_pose", "false"}}, 9, {}};
+  const auto pose = global_pose_sensor_options(sensor);
+  ASSERT_TRUE(pose) << pose.error().message();
+  EXPECT_EQ(pose->sensor.stale_after, std::chrono::seconds(2));
+  EXPECT_FALSE(pose->local_pose);
+  EXPECT_FALSE(check_component_options(sensor));
+
+  ComponentSpec bad{"velocity_state_sensor", 42, 1, 0, "", {{"stale_after_s", "0"}}, 11, {{"stale_after_s", 13}}};
+  const auto problem = check_component_options(bad);
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->line, 13);  // the option's own line
+  EXPECT_NE(problem->what.find("stale_after_s"), std::string::npos) << problem->what;
+  ComponentSpec brake{"primitive_driver", 33, 1, 0, "", {{"stop_brake_percent", "101"}}, 5, {}};
+  ASSERT_TRUE(check_component_options(brake));
+  EXPECT_EQ(check_component_options(brake)->line, 5);  // no option line known: the component's
 }
 
 TEST(NodeHost, HostsConfiguredAndAddedComponentsAndStopsThemFirst) {
@@ -77,7 +125,7 @@ TEST(NodeHost, ABusyAddressIsOneIoError) {
 TEST(NodeHost, AnUnknownKindInTheConfigurationIsAnError) {
   boost::asio::io_context io;
   HostConfig config = loopback_config();
-  config.components.push_back(ComponentSpec{"warp_drive", 99, 1, 0, "", {}, 0});
+  config.components.push_back(ComponentSpec{"warp_drive", 99, 1, 0, "", {}, 0, {}});
   auto host = NodeHost::open(config, io);
   ASSERT_FALSE(host);
   EXPECT_EQ(host.error().message(), "component kind 'warp_drive' cannot be hosted by this build");

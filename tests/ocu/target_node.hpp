@@ -70,8 +70,8 @@ class TargetNode {
     config.settings.defaults.reject_refused_requests = options.reject_refused;
     config.settings.identity.subsystem_name = "test-vehicle";
     config.settings.identity.node_name = "test-node";
-    config.components = {jaus::host::ComponentSpec{"node_manager", kTargetManager.component, 1, 0, "node manager", {}, 0},
-                         jaus::host::ComponentSpec{"communicator", kCommunicator.component, 1, 0, "communicator", {}, 0}};
+    config.components = {jaus::host::ComponentSpec{"node_manager", kTargetManager.component, 1, 0, "node manager", {}, 0, {}},
+                         jaus::host::ComponentSpec{"communicator", kCommunicator.component, 1, 0, "communicator", {}, 0, {}}};
     auto host = jaus::host::NodeHost::open(config, io);
     if (!host) throw std::runtime_error(host.error().message());
     host_ = std::move(*host);

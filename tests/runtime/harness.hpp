@@ -155,3 +155,23 @@ class ComponentTest : public ::testing::Test {
 };
 
 }  // namespace jaus::test
+
+namespace jaus::test {
+
+// Delivers `message` from `from` to `component` as its node would (header
+// filled, payload encoded in the RA dialect), then runs whatever became due.
+template <class M>
+void deliver_to(rt::Component& component, rt::VirtualTime& time, const Address& from, const M& message) {
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  const auto size = wire::encode_payload(message, payload);
+  ASSERT_TRUE(size) << M::name;
+  Header h;
+  h.command_code = M::code;
+  h.source = from;
+  h.destination = component.address();
+  h.data_size = static_cast<std::uint16_t>(*size);
+  component.receive(h, std::span(payload).first(*size));
+  time.run_ready();
+}
+
+}  // namespace jaus::test

@@ -74,7 +74,7 @@ class TwoNodes : public ::testing::Test {
                          {*transport::parse_endpoint("127.0.0.22:3794"), transport::Framing::judp}};
     config.settings.identity.subsystem_type = 20001;
     config.settings.identity.heartbeat_period = 200ms;
-    config.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "ocu node manager", {}, 0}};
+    config.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "ocu node manager", {}, 0, {}}};
     auto opened = host::NodeHost::open(config, io);
     ASSERT_TRUE(opened) << opened.error().message();
     node_host = std::move(*opened);

@@ -73,7 +73,7 @@ class UdpNodeTest : public ::testing::Test {
     host::HostConfig config;
     config.link = options;
     config.link.bind = Ipv4Endpoint{kLoopback1, 0};
-    config.components = {host::ComponentSpec{"node_manager", kManager.component, 1, 0, "node manager", {}, 0}};
+    config.components = {host::ComponentSpec{"node_manager", kManager.component, 1, 0, "node manager", {}, 0, {}}};
     // What jausd's default level (info) would print.
     auto opened = host::NodeHost::open(config, io, [this](rt::LogLevel level, const std::string& line) {
       if (level != rt::LogLevel::debug) logs.push_back(line);

@@ -48,6 +48,9 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
     return kExitFailure;
   }
   io.out << requested_text << "\n" << std::flush;
+  if (options.send)
+    control.send_while_held(*options.send, std::chrono::duration_cast<jaus::rt::Duration>(
+                                               std::chrono::duration<double>(1.0 / options.send_rate_hz)));
 
   const auto start = session.clock().now();
   const auto end = control.hold(options.hold_for, [&](const std::string& state) {
@@ -69,7 +72,9 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
   }
   control.release();
   io.out << "control of " << target << " released after " << held << " (" << control.liveness_checks()
-         << " liveness checks answered)\n";
+         << " liveness checks answered";
+  if (options.send) io.out << ", " << control.sent_while_held() << " commands sent";
+  io.out << ")\n";
   return kExitOk;
 }
 

@@ -50,6 +50,9 @@ struct ControlOptions {
   jaus::rt::Duration timeout = std::chrono::seconds(1);
   // No Report Component Status (5 Hz service connection) for this long: control is lost.
   jaus::rt::Duration status_silence = std::chrono::seconds(5);
+  // A command sent to the target at `send_rate_hz` while control is held (--send, --rate).
+  std::optional<PreparedMessage> send;
+  double send_rate_hz = 10;
 };
 int run_control(OcuSession& session, const ControlOptions& options, CommandIo io);
 // What run_control says of a request: "control of 1.1.35.1 granted (authority 5)",

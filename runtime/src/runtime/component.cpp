@@ -69,11 +69,13 @@ void Component::transition(LifecycleEvent event, const Address& by) {
                           std::string(to_string(event)) + " from " + by.to_string() + ")");
   // Safety: leaving Ready, or re-entering a non-Ready state, always stops the platform.
   if (after != PrimaryStatus::ready) enforce_stop(std::string("entered ") + std::string(to_string(after)));
+  if (after == PrimaryStatus::initialize || after == PrimaryStatus::shutdown) failure_declared_ = false;
   if (after == PrimaryStatus::shutdown) {
     take_control_away("component shut down");
     services_.end_all("component shut down");
     subscriptions_.unsubscribe_all();
   }
+  state_changed(before, after);
 }
 
 void Component::shutdown(std::string_view why) {
@@ -91,7 +93,10 @@ std::vector<std::uint16_t> Component::input_codes() const {
 msg::ServiceEntry Component::service_entry() const {
   msg::ServiceEntry service;
   service.type = config_.address.component;
-  for (auto code : input_codes()) service.inputs.push_back({code, 0});
+  for (auto code : input_codes()) {
+    const auto declared = input_presence_.find(code);
+    service.inputs.push_back({code, declared != input_presence_.end() ? declared->second : 0});
+  }
   for (const auto& [code, presence] : output_codes()) service.outputs.push_back({code, presence});
   return service;
 }
@@ -100,6 +105,24 @@ void Component::peer_lost(const Address& peer) {
   services_.end_all_from(peer, "requester gone");
   if (const auto& controller = control_.controller(); controller && peer.covers(controller->address))
     take_control_away("controller " + controller->address.to_string() + " gone");
+}
+
+void Component::declare_failure(std::string_view why) {
+  const PrimaryStatus state = lifecycle_.state();
+  if (state != PrimaryStatus::ready && state != PrimaryStatus::standby) return;
+  log(LogLevel::warn, "failure: " + std::string(why));
+  transition(LifecycleEvent::failure_detected, config_.address);
+  failure_declared_ = lifecycle_.state() == PrimaryStatus::failure;
+}
+
+void Component::clear_failure(std::string_view why) {
+  if (!failure_declared_) return;
+  // In Emergency the failure is what the emergency interrupted: it stays
+  // declared, and clears once the emergency has returned to Failure.
+  if (lifecycle_.state() != PrimaryStatus::failure) return;
+  log(LogLevel::info, "failure cleared: " + std::string(why));
+  failure_declared_ = false;
+  transition(LifecycleEvent::failure_cleared, config_.address);
 }
 
 void Component::enforce_stop(std::string_view why) {

@@ -1,7 +1,7 @@
 // Boost.MSM's transition tables are Boost.MPL vectors; this table has more
 // rows than MPL's default limit of 20.
 #define BOOST_MPL_CFG_NO_PREPROCESSED_HEADERS
-#define BOOST_MPL_LIMIT_VECTOR_SIZE 30
+#define BOOST_MPL_LIMIT_VECTOR_SIZE 30  // 25 rows
 #define BOOST_MPL_LIMIT_MAP_SIZE 30
 
 #include "jaus/runtime/lifecycle.hpp"
@@ -25,6 +25,8 @@ struct EmergencySet {};
 struct EmergencyCleared {};
 struct ResetRequested {};
 struct ShutdownRequested {};
+struct FailureDetected {};
+struct FailureCleared {};
 
 struct LifecycleDef : msmf::state_machine_def<LifecycleDef> {
   // Each state records itself as the primary status on entry.
@@ -81,6 +83,9 @@ struct LifecycleDef : msmf::state_machine_def<LifecycleDef> {
       Row<Ready,      ResetRequested,   Initialize>,
       Row<Standby,    ResetRequested,   Initialize>,
       Row<Failure,    ResetRequested,   Initialize>,
+      Row<Ready,      FailureDetected,  Failure>,
+      Row<Standby,    FailureDetected,  Failure>,
+      Row<Failure,    FailureCleared,   Ready>,
       Row<Emergency,  ResetRequested,   Initialize>,
       Row<Initialize, ShutdownRequested, Shutdown>,
       Row<Ready,      ShutdownRequested, Shutdown>,
@@ -129,6 +134,8 @@ bool Lifecycle::process(LifecycleEvent event) {
     case LifecycleEvent::emergency_cleared: return apply<EmergencyCleared>(sm);
     case LifecycleEvent::reset: return apply<ResetRequested>(sm);
     case LifecycleEvent::shutdown: return apply<ShutdownRequested>(sm);
+    case LifecycleEvent::failure_detected: return apply<FailureDetected>(sm);
+    case LifecycleEvent::failure_cleared: return apply<FailureCleared>(sm);
   }
   return false;
 }
@@ -157,6 +164,8 @@ std::string_view to_string(LifecycleEvent event) {
     case LifecycleEvent::emergency_cleared: return "Clear Emergency";
     case LifecycleEvent::reset: return "Reset";
     case LifecycleEvent::shutdown: return "Shutdown";
+    case LifecycleEvent::failure_detected: return "failure detected";
+    case LifecycleEvent::failure_cleared: return "failure cleared";
   }
   return "?";
 }

@@ -42,8 +42,8 @@ void ServiceConnectionProvider::log(LogLevel level, const std::string& text) con
 }
 
 void ServiceConnectionProvider::provide(std::uint16_t report_code, std::uint32_t available_presence,
-                                        Producer producer) {
-  provided_[report_code] = Provided{available_presence, std::move(producer)};
+                                        Producer producer, double max_rate_hz) {
+  provided_[report_code] = Provided{available_presence, std::move(producer), max_rate_hz};
 }
 
 void ServiceConnectionProvider::confirm(const Header& h, std::uint16_t code, std::uint8_t instance, double rate,
@@ -99,8 +99,10 @@ void ServiceConnectionProvider::on_create(const Header& h, const msg::CreateServ
   if (existing == connections_.end() && connections_.size() >= limits_.max_connections)
     return confirm(h, code, 0, 0, kRefused);
 
-  // The confirmed rate never exceeds the requested one.
-  const double rate = std::min(m.periodic_rate_hz, limits_.max_rate_hz);
+  // The confirmed rate never exceeds the requested one, the limits' maximum,
+  // nor the rate the report's source updates at.
+  double rate = std::min(m.periodic_rate_hz, limits_.max_rate_hz);
+  if (!command && provided->second.max_rate_hz > 0) rate = std::min(rate, provided->second.max_rate_hz);
   Connection& c = existing != connections_.end() ? existing->second : connections_[key];
   if (c.timer != kNoTimer) env_.scheduler.cancel(c.timer);
   c = Connection{};

@@ -1,4 +1,8 @@
-// The one place where Clearpath's axes and angles become JAUS's and back.
+// Where Clearpath's body axes and turn sense become JAUS's and back. The
+// general conversions (Vector3, EulerAngles, wrap_angle, ENU yaw <-> NED
+// heading, ENU <-> NED) live in components/vehicle's navigation_frames.hpp,
+// shared with the simulated vehicle; they are re-exported here so the
+// bridge's code says bridge::wrap_angle as before.
 //
 //   Clearpath: body x forward, y left, z up (FLU); yaw positive turning left
 //              (counter-clockwise seen from above); a world yaw is measured
@@ -14,21 +18,15 @@
 // docs/bridge.md states where each Clearpath message's values go.
 #pragma once
 
+#include "jaus/components/navigation_frames.hpp"
+
 namespace jaus::bridge {
 
-struct Vector3 {
-  double x = 0, y = 0, z = 0;
-  bool operator==(const Vector3&) const = default;
-};
-
-// Roll about x, pitch about y, yaw about z, radians.
-struct EulerAngles {
-  double roll = 0, pitch = 0, yaw = 0;
-  bool operator==(const EulerAngles&) const = default;
-};
-
-// An angle in (-pi, pi], the range JAUS's angle fields encode.
-double wrap_angle(double radians);
+using components::enu_yaw_to_ned_heading;
+using components::EulerAngles;
+using components::ned_heading_to_enu_yaw;
+using components::Vector3;
+using components::wrap_angle;
 
 // Body-frame vectors (positions, velocities, accelerations, angular rates).
 Vector3 flu_to_frd(const Vector3& clearpath);
@@ -37,11 +35,6 @@ Vector3 frd_to_flu(const Vector3& jaus);
 // Body attitude: roll kept, pitch and yaw negated (yaw wrapped).
 EulerAngles flu_to_frd(const EulerAngles& clearpath);
 EulerAngles frd_to_flu(const EulerAngles& jaus);
-
-// A world yaw counter-clockwise from east (ENU) <-> a heading clockwise from
-// north (NED), both wrapped to (-pi, pi].
-double enu_yaw_to_ned_heading(double yaw_from_east_ccw);
-double ned_heading_to_enu_yaw(double heading_from_north_cw);
 
 // A turn command: JAUS's rotational effort or rate is positive to the right,
 // Clearpath's to the left.

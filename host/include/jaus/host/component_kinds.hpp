@@ -12,7 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "jaus/components/drive.hpp"
 #include "jaus/components/node_manager.hpp"
+#include "jaus/components/pose_source.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/runtime/component.hpp"
 
@@ -35,6 +37,14 @@ struct ComponentSpec {
   std::string name;       // Report Identification of the component (default: the kind)
   std::map<std::string, std::string> options;  // kind-specific, keys checked against the kind
   int line = 0;           // where a configuration file declares it (0: not from a file)
+  std::map<std::string, int> option_lines;     // where each option is (from a file)
+};
+
+// The hardware a node's vehicle components drive and read
+// (components/vehicle/): the host's simulated vehicle by default.
+struct VehicleBackends {
+  components::Drive* drive = nullptr;
+  components::PoseSource* pose = nullptr;
 };
 
 // What every component of the node shares, and what the node manager says of it.
@@ -43,9 +53,13 @@ struct ComponentSettings {
   components::NodeManagerConfig identity;  // subsystem and node names and types, heartbeat period
 };
 
-// The component `spec` asks for, on `node` at (subsystem, node) of the node.
-// An error (invalid_argument) when this build cannot make the kind.
+// The component `spec` asks for, on `node` at (subsystem, node) of the node,
+// on `vehicle` for the kinds that drive or sense it. An error
+// (invalid_argument) when this build cannot make the kind, an option is
+// invalid, or the kind needs a backend `vehicle` lacks.
 Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spec, const ComponentSettings& settings,
-                                                        node::Node& node);
+                                                        node::Node& node, const VehicleBackends& vehicle = {});
+// Whether a kind drives or reads the vehicle (the host then makes one).
+bool needs_vehicle(std::string_view kind);
 
 }  // namespace jaus::host

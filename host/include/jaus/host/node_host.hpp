@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
@@ -24,6 +25,9 @@ struct HostConfig {
   transport::UdpLinkOptions link;   // bind, framing, peers, ...; its IDs are the node's
   ComponentSettings settings;       // what every component shares, the node manager's identity
   std::vector<ComponentSpec> components;
+  // The vehicle the mobility components drive and read, made when one of
+  // them is configured, on the host's clock.
+  components::SimulatedVehicleConfig vehicle;
 };
 
 class NodeHost {
@@ -64,6 +68,8 @@ class NodeHost {
   transport::UdpLink& link() { return *link_; }
   const transport::UdpLink& link() const { return *link_; }
   transport::AsioRuntime& runtime() { return runtime_; }
+  // The simulated vehicle, when a configured component needs one.
+  components::SimulatedVehicle* vehicle() { return vehicle_.get(); }
 
  private:
   NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
@@ -72,6 +78,8 @@ class NodeHost {
   transport::AsioRuntime runtime_;
   rt::LogFn log_;
   std::unique_ptr<transport::UdpLink> link_;
+  // Declared before the node: components refer to it, so it outlives them.
+  std::unique_ptr<components::SimulatedVehicle> vehicle_;
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;

@@ -17,6 +17,7 @@
 
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/runtime/service_connection_client.hpp"
+#include "jaus/ocu/message_json.hpp"
 #include "jaus/ocu/session.hpp"
 
 namespace jaus::ocu {
@@ -48,6 +49,14 @@ class ControlHold {
   // primary status when first reported and on every change ("Ready",
   // "Ready -> Emergency").
   End hold(std::optional<jaus::rt::Duration> limit, std::function<void(const std::string&)> on_state = {});
+  // While held, sends `message` (header code and payload; the destination is
+  // the target) every `period`, the first at the start of hold(): a driving
+  // OCU repeats its Set Wrench Effort so that the driver's command timeout
+  // never stops it while the operator holds the stick. Nothing is sent after
+  // the hold ends.
+  void send_while_held(PreparedMessage message, jaus::rt::Duration period);
+  std::uint64_t sent_while_held() const { return sent_while_held_; }
+
   // Release Component Control (fire and forget: the RA has no reply to it)
   // and end the status service connection.
   void release();
@@ -74,6 +83,9 @@ class ControlHold {
   std::optional<std::uint8_t> state_;  // last primary status reported
   jaus::rt::TimePoint status_heard_{};
   std::function<void(const std::string&)> on_state_;
+  std::optional<PreparedMessage> repeated_;
+  jaus::rt::Duration repeat_period_{};
+  std::uint64_t sent_while_held_ = 0;
 };
 
 }  // namespace jaus::ocu

@@ -171,9 +171,10 @@ class Component {
 
   // A report this component can send on service connections: `produce`
   // returns the report with every field it has; fields outside the requested
-  // presence vector are removed before sending.
+  // presence vector are removed before sending. A source that updates at
+  // most `max_rate_hz` (0: no limit of its own) confirms no faster rate.
   template <class M>
-  void provide(std::uint32_t available_presence, std::function<M()> produce) {
+  void provide(std::uint32_t available_presence, std::function<M()> produce, double max_rate_hz = 0) {
     services_.provide(M::code, available_presence,
                       [this, produce = std::move(produce)](std::uint32_t mask)
                           -> std::optional<std::vector<std::uint8_t>> {
@@ -188,8 +189,26 @@ class Component {
                         }
                         payload.resize(*size);
                         return payload;
-                      });
+                      },
+                      max_rate_hz);
   }
+
+  // The fields of input `code` this component acts on (a command) or can
+  // report (a query), for Report Services; 0 when not declared.
+  void declare_input_presence(std::uint16_t code, std::uint32_t presence) { input_presence_[code] = presence; }
+
+  // Safety: commands the platform to stop now (command_stop), as leaving
+  // Ready does, for a reason of the component's own (a command timeout).
+  void stop_platform(std::string_view why) { enforce_stop(why); }
+
+  // A fault of the component's own (its data source went stale): Ready or
+  // Standby -> Failure, which stops the platform; clear_failure() returns to
+  // Ready once the fault is gone. Only a failure declared here is cleared
+  // here: a failed initialisation still needs a Reset. Both are no-ops when
+  // they do not apply (already failed, in Emergency, not failed by us).
+  void declare_failure(std::string_view why);
+  void clear_failure(std::string_view why);
+  bool failure_declared() const { return failure_declared_; }
 
   // Hooks for derived components.
   virtual bool initialize() { return true; }
@@ -198,6 +217,10 @@ class Component {
   // A message no handler is registered for (reports to an OCU, say). Return
   // true when taken; otherwise it is counted as unsupported.
   virtual bool unhandled(const Header& /*header*/, std::span<const std::uint8_t> /*payload*/) { return false; }
+  // After every change of the lifecycle state (already in effect, the
+  // platform already stopped when `after` is not Ready): a component that
+  // must look at its hardware on entering a state does it here.
+  virtual void state_changed(PrimaryStatus /*before*/, PrimaryStatus /*after*/) {}
   // Component-specific secondary status bits (16-31 of Report Component Status).
   virtual std::uint32_t component_status_bits() const { return 0; }
 
@@ -249,6 +272,8 @@ class Component {
   Duration time_offset_{};  // Set Time moves this component's clock, not the system's
   std::map<Address, TimePoint> refusal_logged_;  // rate limit of "not the controller" logs
   std::vector<std::uint8_t> send_buffer_;
+  bool failure_declared_ = false;
+  std::map<std::uint16_t, std::uint32_t> input_presence_;  // Report Services' input presence vectors  // Failure entered by declare_failure(), not by initialisation
 };
 
 }  // namespace jaus::rt

@@ -11,6 +11,9 @@
 //    interrupted: Ready, Standby, Initialize or Failure)
 //   any state but Shutdown --- reset --> Initialize
 //   any state but Shutdown --- shutdown --> Shutdown (final)
+//   Ready or Standby --- failure detected --> Failure --- failure cleared --> Ready
+//   (a component's own fault, a stale sensor say, and its recovery; a failed
+//    initialisation leaves Failure only by Reset)
 //
 // Written with Boost.MSM; the machine itself lives in lifecycle.cpp so that
 // its compile cost is paid once. A refused event (Standby while in Emergency,
@@ -36,6 +39,8 @@ enum class LifecycleEvent : std::uint8_t {
   emergency_cleared,  // every emergency condition has been cleared
   reset,
   shutdown,
+  failure_detected,  // the component found a fault of its own (its data source went stale)
+  failure_cleared,   // ...and the fault is gone
 };
 
 std::string_view to_string(PrimaryStatus state);

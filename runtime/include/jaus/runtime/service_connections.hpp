@@ -58,8 +58,10 @@ class ServiceConnectionProvider {
                             MayCommand may_command, CommandLost command_lost);
   ~ServiceConnectionProvider();
 
-  // Reports this component can send on inform SCs, with the fields it has.
-  void provide(std::uint16_t report_code, std::uint32_t available_presence, Producer producer);
+  // Reports this component can send on inform SCs, with the fields it has
+  // and the fastest rate its source updates (0: only the limits' maximum).
+  void provide(std::uint16_t report_code, std::uint32_t available_presence, Producer producer,
+               double max_rate_hz = 0);
   // Commands this component accepts on command SCs.
   void accept_commands(std::uint16_t command_code) { command_codes_.push_back(command_code); }
 
@@ -107,6 +109,7 @@ class ServiceConnectionProvider {
   struct Provided {
     std::uint32_t available = 0;
     Producer produce;
+    double max_rate_hz = 0;
   };
 
   void confirm(const Header& h, std::uint16_t code, std::uint8_t instance, double rate, std::uint8_t response);
