@@ -8,6 +8,7 @@ packages=(
   clang                 # optional: libFuzzer targets
   libboost-dev          # Asio, MSM, CRC (header-only parts)
   libyaml-cpp-dev       # configuration files
+  libgeographiclib-dev  # WGS 84 <-> local frame of the simulated vehicle
   nlohmann-json3-dev    # JSON form of messages
   libcli11-dev          # command-line parsing
   libspdlog-dev libfmt-dev
