@@ -58,6 +58,12 @@ class RecordingDrive final : public components::Drive {
     return d;
   }
 
+  void on_fault(FaultListener listener) override { fault_listener = std::move(listener); }
+  void fault(std::optional<std::string> what) {
+    if (fault_listener) fault_listener(what);
+  }
+  FaultListener fault_listener;
+
   bool propelling() const { return applied.propulsive_linear != Axes{} || applied.propulsive_rotational != Axes{}; }
 
   WrenchEffort applied;
@@ -250,8 +256,37 @@ TEST_F(PrimitiveDriverTest, EveryStopPathStopsTheDriveAndNothingResumesWithoutAN
   EXPECT_EQ(driver->driver_counters().command_timeouts, 1u);
 
   expect_stop_and_no_resume(
+      "drive fault (Failure)", [&] { drive.fault("link to the platform lost"); },
+      [&] { drive.fault(std::nullopt); });
+  ASSERT_EQ(driver->state(), msg::PrimaryStatus::ready);
+
+  expect_stop_and_no_resume(
       "shutdown", [&] { deliver(kOcuA, msg::Shutdown{}); }, [] {});
   EXPECT_EQ(driver->state(), msg::PrimaryStatus::shutdown);
+}
+
+TEST_F(PrimitiveDriverTest, ADriveFaultIsAFailureUntilItClearsEvenAcrossAnEmergency) {
+  take_control(kOcuA);
+  drive.fault("motor controller tripped");
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::failure);
+  effort(kOcuA, 50);
+  EXPECT_TRUE(drive.efforts.empty());  // refused in Failure
+
+  // A fault that clears during an Emergency: back to Failure, then Ready at once.
+  deliver(kOcuB, msg::SetEmergency{{1}});
+  drive.fault(std::nullopt);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::emergency);
+  deliver(kOcuB, msg::ClearEmergency{{1}});
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
+
+  // A fault that appears during an Emergency: Failure once the emergency clears, never Ready.
+  deliver(kOcuB, msg::SetEmergency{{1}});
+  drive.fault("link to the platform lost");
+  deliver(kOcuB, msg::ClearEmergency{{1}});
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::failure);
+  drive.fault(std::nullopt);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
+  EXPECT_TRUE(drive.efforts.empty());
 }
 
 TEST_F(PrimitiveDriverTest, ControllerSilenceStopsTheDrive) {

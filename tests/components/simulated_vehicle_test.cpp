@@ -390,6 +390,21 @@ TEST_F(SimulatedVehicleTest, OutOfRangeAndNonFiniteEffortsAreClamped) {
   EXPECT_EQ(vehicle.applied_effort(), effort(0, 0, 0));
 }
 
+TEST_F(SimulatedVehicleTest, AnInjectedDriveFaultReachesTheListenerOnChangesOnly) {
+  std::vector<std::optional<std::string>> heard;
+  vehicle.on_fault([&](const std::optional<std::string>& fault) { heard.push_back(fault); });
+  vehicle.inject_drive_fault("link lost");
+  vehicle.inject_drive_fault("link lost");  // no change
+  vehicle.inject_drive_fault(std::nullopt);
+  vehicle.inject_drive_fault(std::nullopt);  // no change
+  ASSERT_EQ(heard.size(), 2u);
+  EXPECT_EQ(heard[0], "link lost");
+  EXPECT_EQ(heard[1], std::nullopt);
+  vehicle.on_fault({});  // no listener: nothing is called
+  vehicle.inject_drive_fault("again");
+  EXPECT_EQ(heard.size(), 2u);
+}
+
 TEST_F(SimulatedVehicleTest, ReportsItsFieldsDevicesAndSpecifications) {
   EXPECT_EQ(vehicle.effort_fields(), effort_field::kPropulsiveLinearX | effort_field::kPropulsiveRotationalZ |
                                          effort_field::kResistiveLinearX);

@@ -59,6 +59,15 @@ PrimitiveDriver::PrimitiveDriver(ComponentConfig config, Environment env, Drive&
   provide<ReportPlatformOperationalData>(wire::presence_of(operational_data_report()),
                                          [this] { return operational_data_report(); });
 
+  // A drive fault is a Failure of the driver (the drive stops), and its end a recovery.
+  drive_.on_fault([this](const std::optional<std::string>& fault) {
+    drive_fault_ = fault;
+    if (fault)
+      declare_failure("drive fault: " + *fault);
+    else
+      clear_failure("drive fault cleared");
+  });
+
   // Report Services: the fields each command acts on and each query can get.
   declare_input_presence(SetWrenchEffort::code, drive_.effort_fields());
   declare_input_presence(QueryWrenchEffort::code, drive_.effort_fields());
@@ -68,7 +77,22 @@ PrimitiveDriver::PrimitiveDriver(ComponentConfig config, Environment env, Drive&
   declare_input_presence(QueryPlatformOperationalData::code, wire::presence_of(operational_data_report()));
 }
 
-PrimitiveDriver::~PrimitiveDriver() { cancel_command_timeout(); }
+PrimitiveDriver::~PrimitiveDriver() {
+  drive_.on_fault({});
+  cancel_command_timeout();
+}
+
+// A fault that arrived while the driver could not enter Failure (in
+// Emergency, or initialising) takes effect as soon as it is Ready or in
+// Standby again: never Ready on a faulted drive.
+// Likewise a fault that cleared during an Emergency that interrupted the
+// Failure: back in Failure, the driver recovers at once.
+void PrimitiveDriver::state_changed(rt::PrimaryStatus, rt::PrimaryStatus after) {
+  if (drive_fault_ && (after == rt::PrimaryStatus::ready || after == rt::PrimaryStatus::standby))
+    declare_failure("drive fault: " + *drive_fault_);
+  else if (!drive_fault_ && after == rt::PrimaryStatus::failure && failure_declared())
+    clear_failure("drive fault cleared");
+}
 
 msg::ReportWrenchEffort PrimitiveDriver::wrench_effort_report() const {
   msg::ReportWrenchEffort report;

@@ -65,6 +65,8 @@ struct SimulatedVehicle::State {
   std::int64_t powered_steps = 0;  // counted, not summed: the battery stays deterministic
 
   std::optional<PoseSample> frozen;
+  FaultListener fault_listener;
+  std::optional<std::string> fault;
 
   bool held() const { return parking_brake || gear == kGearPark; }
   bool engaged() const { return main_power && !held() && gear != kGearNeutral; }
@@ -249,6 +251,14 @@ void SimulatedVehicle::freeze_samples(bool frozen) {
   } else if (!state_->frozen) {
     state_->frozen = state_->make_sample();
   }
+}
+
+void SimulatedVehicle::on_fault(FaultListener listener) { state_->fault_listener = std::move(listener); }
+
+void SimulatedVehicle::inject_drive_fault(std::optional<std::string> fault) {
+  if (fault == state_->fault) return;  // listeners hear changes only
+  state_->fault = std::move(fault);
+  if (state_->fault_listener) state_->fault_listener(state_->fault);
 }
 
 double SimulatedVehicle::speed_mps() {

@@ -9,7 +9,9 @@
 // Standby, Emergency, Failure, Reset, Shutdown, control release or takeover,
 // controller silence and the command service connection's deadman
 // (rt::Component::enforce_stop); and here, when no Set Wrench Effort has
-// arrived within the command timeout. The driver keeps no effort to resume:
+// arrived within the command timeout. A fault of the drive (Drive::on_fault:
+// a lost link to the platform) is a Failure, so it stops the drive too, and
+// the driver is Ready again only once the fault has cleared. The driver keeps no effort to resume:
 // after Resume or Clear Emergency the drive stays stopped until the
 // controller sends a new Set Wrench Effort.
 #pragma once
@@ -51,6 +53,7 @@ class PrimitiveDriver final : public rt::Component {
 
  protected:
   void command_stop(std::string_view why) override;
+  void state_changed(rt::PrimaryStatus before, rt::PrimaryStatus after) override;
 
  private:
   void on_set_wrench_effort(const Header& h, const msg::SetWrenchEffort& m);
@@ -63,6 +66,7 @@ class PrimitiveDriver final : public rt::Component {
   PrimitiveDriverOptions options_;
   PrimitiveDriverCounters driver_counters_;
   rt::TimerId command_timer_ = rt::kNoTimer;
+  std::optional<std::string> drive_fault_;  // as the drive last reported it
 };
 
 // The conversions between Part 3's message bodies and the Drive's terms

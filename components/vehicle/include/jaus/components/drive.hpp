@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -80,7 +81,17 @@ struct OperationalData {
 
 class Drive {
  public:
+  // Hears a fault of the drive when it appears (what is wrong: "link to the
+  // platform lost") and when it clears (nullopt). Called on the runtime's
+  // thread.
+  using FaultListener = std::function<void(const std::optional<std::string>& fault)>;
+
   virtual ~Drive() = default;
+
+  // A drive that can fail (a lost link, a motor controller fault) tells the
+  // listener; the driver then goes to Failure and stops the drive. The
+  // default never faults.
+  virtual void on_fault(FaultListener listener) { (void)listener; }
 
   // The wrench effort fields this drive acts on (effort_field bits).
   virtual std::uint16_t effort_fields() const = 0;

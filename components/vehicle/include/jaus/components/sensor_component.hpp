@@ -90,6 +90,7 @@ class SensorComponent : public rt::Component {
       send(h.source, report);
     });
     provide<Report>(available, current, source_.update_rate_hz());
+    declare_input_presence(Query::code, available);  // Report Services: the fields a query can get
   }
 
  private:

@@ -90,7 +90,11 @@ class SimulatedVehicle final : public Drive, public PoseSource {
   std::optional<PoseSample> sample() override;
   double update_rate_hz() const override;
 
-  // Tests and faults: a frozen source keeps returning its last sample (a
+  void on_fault(FaultListener listener) override;
+  // Tests and faults: a drive fault as a real platform would raise one (a
+  // lost link, a tripped motor controller), or its end (nullopt).
+  void inject_drive_fault(std::optional<std::string> fault);
+  // A frozen source keeps returning its last sample (a
   // navigation receiver that stopped updating); the vehicle still moves.
   void freeze_samples(bool frozen);
 
