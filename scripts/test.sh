@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Installs what the project needs, builds it and runs every test:
-#   1. Release build (-O3, -Wall -Wextra -Werror), whole test suite and the benchmarks built;
-#   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (-Werror), whole test suite;
-#   3. libFuzzer targets (clang), each run briefly on its seed corpus.
+#   1. Release build (-O3, -Wall -Wextra -Werror): libraries, apps, benchmarks, and the suites on
+#      real sockets, processes and clocks (system, transport, host, OCU, conformance, Clearpath link);
+#   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (-Werror): every suite, the
+#      deterministic unit suites included (they run once, where the sanitizers watch them; line
+#      tables only (-g1): all a sanitizer report needs, and a third less to compile);
+#   3. libFuzzer targets (clang, -O1), each run briefly on its seed corpus.
 # Usage: ./scripts/test.sh        (from anywhere; builds go to build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,14 +25,15 @@ run_suite() {  # $1 build dir, remaining args: cmake options
 }
 
 echo "== release build and tests"
-run_suite build/release -DCMAKE_BUILD_TYPE=Release
+run_suite build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_BUILD_UNIT_TESTS=OFF
 
 echo "== debug build with address + undefined-behaviour sanitizers, tests"
-run_suite build/asan -DCMAKE_BUILD_TYPE=Debug -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF
+run_suite build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF
 
 if command -v clang++ >/dev/null; then
   echo "== fuzz targets (libFuzzer, short smoke run)"
   CXX=clang++ cmake -S "$root" -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
     -DJAUS_BUILD_FUZZERS=ON -DJAUS_BUILD_TESTS=OFF -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
   cmake --build build/fuzz -j "$jobs" --target fuzz_targets
   for target in build/fuzz/fuzz/fuzz_*; do

@@ -99,16 +99,7 @@ class PoseSensorTest : public ::testing::Test {
 
   template <class M>
   void deliver(rt::Component& to, const Address& from, const M& message) {
-    std::vector<std::uint8_t> payload(kMaxPayloadSize);
-    const auto size = wire::encode_payload(message, payload);
-    ASSERT_TRUE(size);
-    Header h;
-    h.command_code = M::code;
-    h.source = from;
-    h.destination = to.address();
-    h.data_size = static_cast<std::uint16_t>(*size);
-    to.receive(h, std::span(payload).first(*size));
-    time.run_ready();
+    deliver_to(to, time, from, message);
   }
 
   // The one report answering `query`, sent by `to` to kOcuA.

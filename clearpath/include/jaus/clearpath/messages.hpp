@@ -44,9 +44,18 @@ using MessageVariant = std::variant<
     EncoderConfigData, AbsoluteJointsData, RelativeJointsData, JointControlData, JointHomingData, JointTorqueData,
     EndEffectorPositionData, EndEffectorPoseSetpointData, EndEffectorPoseData>;
 
-// A named type rather than an alias keeps symbol names (and object files) short.
+// A named type rather than an alias keeps symbol names (and object files)
+// short. Copying, moving and destroying a variant of this many alternatives
+// instantiates code for every one of them (quadratically many helpers in
+// libstdc++'s recursive union): defined once, in messages.cpp, rather than in
+// every file that passes a message around.
 struct AnyMessage : MessageVariant {
   using MessageVariant::MessageVariant;
+  AnyMessage(const AnyMessage& other);
+  AnyMessage(AnyMessage&& other) noexcept;
+  AnyMessage& operator=(const AnyMessage& other);
+  AnyMessage& operator=(AnyMessage&& other) noexcept;
+  ~AnyMessage();
 };
 
 // A type code of the document and its message name.
