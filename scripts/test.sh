@@ -36,8 +36,9 @@ if command -v clang++ >/dev/null; then
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
     -DJAUS_BUILD_FUZZERS=ON -DJAUS_BUILD_TESTS=OFF -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
   cmake --build build/fuzz -j "$jobs" --target fuzz_targets
-  for target in build/fuzz/fuzz/fuzz_*; do
-    [ -x "$target" ] || continue
+  # Each target runs 20 s on its seed corpus, as many at once as there are cores.
+  fuzz_one() {  # $1 target; its output goes to build/fuzz/<name>.log
+    local target=$1 name corpus status=0
     name=$(basename "$target")
     corpus=$(mktemp -d)
     cp -r "$root/tests/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
@@ -46,8 +47,24 @@ if command -v clang++ >/dev/null; then
       grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
         while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done
     fi
-    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/build/fuzz/" 2>&1 | tail -n 2
+    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/build/fuzz/" \
+      > "$root/build/fuzz/$name.log" 2>&1 || status=$?
     rm -rf "$corpus"
+    return $status
+  }
+  targets=()
+  for target in build/fuzz/fuzz/fuzz_*; do if [ -x "$target" ]; then targets+=("$target"); fi; done
+  for ((i = 0; i < ${#targets[@]}; i += jobs)); do
+    pids=()
+    batch=("${targets[@]:i:jobs}")
+    for target in "${batch[@]}"; do fuzz_one "$target" & pids+=($!); done
+    for k in "${!batch[@]}"; do
+      name=$(basename "${batch[$k]}")
+      if ! wait "${pids[$k]}"; then
+        echo "== $name failed:"; tail -n 40 "build/fuzz/$name.log"; exit 1
+      fi
+      echo "$name: $(grep -E '^Done [0-9]+ runs' "build/fuzz/$name.log" | tail -n 1)"
+    done
   done
 else
   echo "== clang not found: fuzz targets skipped"

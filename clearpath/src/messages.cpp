@@ -75,12 +75,6 @@ std::optional<MessageTypeInfo> find_message(std::string_view name) {
   return std::nullopt;
 }
 
-AnyMessage::AnyMessage(const AnyMessage& other) = default;
-AnyMessage::AnyMessage(AnyMessage&& other) noexcept = default;
-AnyMessage& AnyMessage::operator=(const AnyMessage& other) = default;
-AnyMessage& AnyMessage::operator=(AnyMessage&& other) noexcept = default;
-AnyMessage::~AnyMessage() = default;
-
 std::optional<AnyMessage> make_message(std::uint16_t type) {
   const auto at = sorted_position(type);
   if (!at) return std::nullopt;

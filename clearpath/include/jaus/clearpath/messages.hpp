@@ -47,8 +47,8 @@ using MessageVariant = std::variant<
 // A named type rather than an alias keeps symbol names (and object files)
 // short. Copying, moving and destroying a variant of this many alternatives
 // instantiates code for every one of them (quadratically many helpers in
-// libstdc++'s recursive union): defined once, in messages.cpp, rather than in
-// every file that passes a message around.
+// libstdc++'s recursive union): defined once (any_message.cpp) rather than
+// in every file that passes a message on.
 struct AnyMessage : MessageVariant {
   using MessageVariant::MessageVariant;
   AnyMessage(const AnyMessage& other);
