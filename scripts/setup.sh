@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev       # configuration files
   libgeographiclib-dev  # WGS 84 <-> local frame of the simulated vehicle
   nlohmann-json3-dev    # JSON form of messages
+  libpng-dev libjpeg62-turbo-dev  # the visual sensor's images (PNG, JPEG)
   libcli11-dev          # command-line parsing
   libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev

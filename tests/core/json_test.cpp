@@ -72,11 +72,12 @@ INSTANTIATE_TEST_SUITE_P(
                                "array length disagrees with its count"},
                       BadInput{R"({"code":"0x4402","header":{"priority":99}})", "bad value for 'priority'"},
                       BadInput{R"({"code":"0x4402","header":{"colour":"red"}})", "unknown key 'colour'"},
-                      BadInput{R"({"code":"0x4807","fields":{"data":"0G"}})", "not a hex digit"}));
+                      BadInput{R"({"code":"0x4807","fields":{"camera_id":1,"image_format":11,"data":"0G"}})", "not a hex digit"}));
 
 TEST(MessageJson, RejectsPayloadsLargerThanOnePacket) {
   const std::string data(2 * 5000, 'A');
-  auto result = message_from_json(Json{{"code", "0x4807"}, {"fields", {{"data", data}}}});
+  auto result =
+      message_from_json(Json{{"code", "0x4807"}, {"fields", {{"camera_id", 1}, {"image_format", 11}, {"data", data}}}});
   ASSERT_FALSE(result);
   EXPECT_EQ(result.error().code, ErrorCode::payload_too_large);
 }

@@ -202,10 +202,9 @@ Json expected_fields(const std::string& code, const std::map<std::string, Json>&
     return out;
   }
   if (code == "4807") {
-    // Report Image is opaque in Part 3: camera ID and format are the first bytes of the data.
-    char prefix[5];
-    std::snprintf(prefix, sizeof prefix, "%02X%02X", f.at("cameraID").get<int>(), f.at("videoFormat").get<int>());
-    out["data"] = std::string(prefix) + f.at("data").get<std::string>();
+    out["camera_id"] = f.at("cameraID");
+    out["image_format"] = f.at("videoFormat");
+    out["data"] = f.at("data");
     return out;
   }
   if (code == "400D") {

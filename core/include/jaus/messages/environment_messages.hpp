@@ -237,11 +237,22 @@ struct CameraFormatReportBody {
   }
 };
 
-// Report Image: one frame of data in a format JAUS does not define.
+// Report Image: one frame. Part 3 leaves the data undefined ("the JTA and
+// best commercial practices dictate the content"); this is the layout the
+// common RA 3.3 peer sends and reads: the camera ID, the image format code of
+// Set Camera Format Options (7 JPEG, 11 PNG, ...), then the encoded image (a
+// whole PNG or JPEG file), to the end of the message. A frame over one
+// packet travels as a large data set.
 struct ImageBody {
+  std::uint8_t camera_id = 1;
+  std::uint8_t image_format = 0;
   std::vector<std::uint8_t> data;
   bool operator==(const ImageBody&) const = default;
-  static constexpr auto describe() { return std::make_tuple(wire::field("data", &ImageBody::data, wire::Bytes<>{})); }
+  static constexpr auto describe() {
+    return std::make_tuple(wire::field("camera_id", &ImageBody::camera_id, Byte{}),
+                           wire::field("image_format", &ImageBody::image_format, Byte{}),
+                           wire::field("data", &ImageBody::data, wire::Bytes<>{}));
+  }
 };
 
 using SetCameraPose = Message<0x0801, "Set Camera Pose", CameraPoseCommandBody>;

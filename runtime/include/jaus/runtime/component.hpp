@@ -173,15 +173,32 @@ class Component {
   // returns the report with every field it has; fields outside the requested
   // presence vector are removed before sending. A source that updates at
   // most `max_rate_hz` (0: no limit of its own) confirms no faster rate.
+  // A report over one packet (Report Image) goes as a large data set.
   template <class M>
   void provide(std::uint32_t available_presence, std::function<M()> produce, double max_rate_hz = 0) {
+    provide_if<M>(
+        available_presence, [produce = std::move(produce)]() -> std::optional<M> { return produce(); }, max_rate_hz);
+  }
+  // The same for a source that has nothing to send at times (a camera
+  // outside Ready): a period whose `produce` returns nullopt sends nothing,
+  // and the connection stays. Calling it (or provide) again for the same
+  // report replaces the source (for every connection) and its rate (for
+  // connections created after: the others keep their confirmed rate).
+  template <class M>
+  void provide_if(std::uint32_t available_presence, std::function<std::optional<M>()> produce,
+                  double max_rate_hz = 0) {
     services_.provide(M::code, available_presence,
                       [this, produce = std::move(produce)](std::uint32_t mask)
                           -> std::optional<std::vector<std::uint8_t>> {
-                        M report = produce();
-                        wire::mask_presence(report, mask);
+                        std::optional<M> report = produce();
+                        if (!report) return std::nullopt;
+                        wire::mask_presence(*report, mask);
                         std::vector<std::uint8_t> payload(kMaxPayloadSize);
-                        auto size = wire::encode_payload(report, payload);
+                        auto size = wire::encode_payload(*report, payload);
+                        if (!size && size.error().code == ErrorCode::output_too_small) {
+                          payload.resize(kMaxLargeDataSetSize);  // the node sends a large data set
+                          size = wire::encode_payload(*report, payload);
+                        }
                         if (!size) {
                           log(LogLevel::error, std::string("cannot encode ") + std::string(M::name) + ": " +
                                                    size.error().message());

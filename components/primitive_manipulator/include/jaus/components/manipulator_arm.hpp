@@ -2,29 +2,31 @@
 // asks of an arm, in joint space and SI units (radians, metres, newtons).
 // Backends: a simulated arm (components/primitive_manipulator) and the
 // Clearpath arm (bridge/). The component decides who may move the arm and
-// when; a backend only moves it, and says when it cannot.
+// when, checks every command against the arm's geometry and limits, and
+// computes the kinematics; a backend only moves the joints, and says when it
+// cannot.
 #pragma once
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "jaus/base/expected.hpp"
 #include "jaus/base/time.hpp"
+#include "jaus/components/arm_config.hpp"
 
 namespace jaus::components {
 
-struct JointLimits {
-  double min_position = 0;  // rad (revolute) or m (prismatic)
-  double max_position = 0;
-  double max_velocity = 0;  // rad/s or m/s
-  bool prismatic = false;
-};
+// A value within this of a joint's limit (the rounding of a scaled integer on
+// the wire) counts as at the limit, and is clamped to it.
+inline constexpr double kJointLimitSlack = 1e-6;
 
 struct JointSample {
-  std::vector<double> positions;       // one per joint
-  std::vector<double> velocities;      // empty when the arm does not measure them
-  std::vector<double> force_torques;   // N or N·m; empty when not measured
+  std::vector<double> positions;       // one per joint, rad or m
+  std::vector<double> velocities;      // rad/s or m/s; empty when the arm does not measure them
+  std::vector<double> force_torques;   // N m or N; empty when not measured
+  std::vector<double> efforts_percent; // effort applied now, percent of max_effort; empty when not known
   rt::TimePoint sampled_at{};
 };
 
@@ -32,13 +34,28 @@ class ManipulatorArm {
  public:
   virtual ~ManipulatorArm() = default;
 
-  virtual std::vector<JointLimits> joints() const = 0;
-  // Targets outside a joint's limits are refused, not clamped: the error says which joint.
+  // The arm's joints (Denavit-Hartenberg table, limits) and its base frame on
+  // the vehicle; fixed for the arm's lifetime. The component reports it
+  // (Report Manipulator Specifications) and computes kinematics from it.
+  virtual const ArmConfig& geometry() const = 0;
+
+  // Every command gives one value per joint. A wrong count or a value outside
+  // a joint's limits is refused whole (nothing moves), not clamped: the
+  // error says which joint. A new command replaces the previous one.
+  //
+  // Each joint toward its position at its speed limit, then holds it there.
   virtual Expected<bool> move_to_positions(const std::vector<double>& positions) = 0;
+  // Each joint at its velocity (within max_velocity) until told otherwise;
+  // a joint stops at its position limits.
   virtual Expected<bool> move_at_velocities(const std::vector<double>& velocities) = 0;
-  // Safety: hold every joint where it is now. Called on every stop of the
-  // component (Standby, Emergency, control loss, Reset, Shutdown); never fails.
+  // Each joint with an effort, percent of its max_effort (-100..100); what an
+  // effort does is the backend's (the simulated arm documents its model).
+  virtual Expected<bool> apply_efforts(const std::vector<double>& efforts_percent) = 0;
+  // Safety: hold every joint where it is now (for an arm, zero effort is not
+  // a stop: it would fall). Called on every stop of the component (Standby,
+  // Emergency, control loss, command timeout, Reset, Shutdown); never fails.
   virtual void hold() = 0;
+
   // The latest sample; none before the arm has reported once.
   virtual std::optional<JointSample> sample() const = 0;
 };
