@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "ocu/cli_values.hpp"
+#include "jaus/messages/environment_messages.hpp"
 #include "jaus/ocu/message_json.hpp"
 #include "ocu/ocu_commands.hpp"
 
@@ -171,8 +172,11 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   query->add_option("CODE", *code, "query code (0x2402) or name (\"Query Global Pose\")")->type_name("CODE")->required();
   query->add_option("--pv", *pv, "presence vector of the query, hex (which fields the report should carry)")->type_name("HEX");
   query->add_option("--fields", *fields, "the query's other fields as JSON, e.g. '{\"camera_id\":1}' (default 0)")->type_name("JSON");
+  auto save_image = std::make_shared<std::string>();
+  query->add_option("--save-image", *save_image, "write the picture of a Report Image to FILE (PNG or JPEG as sent)")
+      ->type_name("FILE");
   add_common_options(query, *common);
-  query->callback([&exit_code, checked_common, target, code, pv, fields] {
+  query->callback([&exit_code, checked_common, target, code, pv, fields, save_image] {
     auto c = checked_common("query", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
@@ -191,8 +195,14 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     if (!prepared) return void(exit_code = bad_input("query", prepared.error().message()));
     const auto report = ocu::report_code_for(*parsed_code);
     if (!report) return void(exit_code = bad_input("query", "no report is known for " + ocu::code_text(*parsed_code)));
+    std::optional<std::string> image_file;
+    if (!save_image->empty()) {
+      if (*report != jaus::msg::ReportImage::code)
+        return void(exit_code = bad_input("query", "--save-image needs Query Image (0x2807)"));
+      image_file = *save_image;
+    }
     exit_code = with_session("query", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
-      return ocu::run_query(s, *address, *prepared, *report, c->timeout, io);
+      return ocu::run_query(s, *address, *prepared, *report, c->timeout, io, image_file);
     });
   });
 
@@ -282,8 +292,11 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   subscribe->add_option("--pv", *pv, "presence vector, hex (which fields each report carries)")->type_name("HEX");
   subscribe->add_option("--count", *count, "stop after this many reports")->type_name("N");
   subscribe->add_option("--for", *run_for, "stop after this many seconds")->type_name("SECONDS");
+  subscribe->add_option("--save-image", *save_image,
+                        "write the picture of each Report Image over FILE (the latest one stays)")
+      ->type_name("FILE");
   add_common_options(subscribe, *common);
-  subscribe->callback([&exit_code, checked_common, target, code, rate, pv, count, run_for] {
+  subscribe->callback([&exit_code, checked_common, target, code, rate, pv, count, run_for, save_image] {
     auto c = checked_common("subscribe", exit_code);
     if (!c) return;
     ocu::SubscribeOptions options;
@@ -311,6 +324,11 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       auto seconds = ocu::parse_seconds(*run_for);
       if (!seconds) return void(exit_code = bad_input("subscribe", "--for: " + seconds.error().message()));
       options.run_for = *seconds;
+    }
+    if (!save_image->empty()) {
+      if (*parsed_code != jaus::msg::ReportImage::code)
+        return void(exit_code = bad_input("subscribe", "--save-image needs Report Image (0x4807)"));
+      options.save_image = *save_image;
     }
     options.target = *address;
     options.report_code = *parsed_code;

@@ -46,6 +46,8 @@ host::HostConfig host_config(const JausdConfig& config) {
 
   h.components = config.components;
   h.vehicle = config.vehicle;
+  h.cameras = config.cameras;
+  h.arm = config.manipulator;
   return h;
 }
 

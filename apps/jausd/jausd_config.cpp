@@ -1,5 +1,8 @@
 #include "jausd_config.hpp"
 
+#include "config_reader.hpp"
+#include "hardware_config.hpp"
+
 #include "jaus/base/quoted.hpp"
 #include "jaus/host/component_options.hpp"
 
@@ -21,6 +24,8 @@
 
 namespace jausd {
 
+using namespace yaml_reader;
+
 using jaus::transport::Cidr;
 using jaus::transport::Framing;
 using jaus::transport::Ipv4Endpoint;
@@ -34,8 +39,13 @@ std::vector<ComponentSpec> JausdConfig::default_components() {
           ComponentSpec{"communicator", 35, 1, 0, "communicator", {}, 0, {}},
           ComponentSpec{"primitive_driver", 33, 1, 0, "primitive_driver", {}, 0, {}},
           ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}},
-          ComponentSpec{"velocity_state_sensor", 42, 1, 0, "velocity_state_sensor", {}, 0, {}}};
+          ComponentSpec{"velocity_state_sensor", 42, 1, 0, "velocity_state_sensor", {}, 0, {}},
+          ComponentSpec{"visual_sensor", 37, 1, 0, "visual_sensor", {}, 0, {}},
+          ComponentSpec{"primitive_manipulator", 49, 1, 0, "primitive_manipulator", {}, 0, {}}};
 }
+
+jaus::components::VisualSensorConfig JausdConfig::default_cameras() { return jausd::default_cameras(); }
+jaus::components::ArmConfig JausdConfig::default_arm() { return jausd::default_arm(); }
 
 // ---------------------------------------------------------------- limits
 
@@ -52,16 +62,6 @@ constexpr std::array<std::string_view, 4> kLogLevels{"debug", "info", "warn", "e
 constexpr std::array<std::string_view, 2> kDialects{"ra", "openjaus"};
 constexpr std::array<std::string_view, 2> kFramings{"opc", "judp"};
 
-// A closed or half-open interval of doubles with its wording for errors.
-struct NumberRange {
-  double min;
-  bool min_inclusive;
-  double max;
-  std::string_view text;  // "a number > 0 and <= 100"
-  bool contains(double v) const {
-    return std::isfinite(v) && (min_inclusive ? v >= min : v > min) && v <= max;
-  }
-};
 constexpr NumberRange kHeartbeatRange{0, false, 100, "a number > 0 and <= 100"};
 // The simulated vehicle: each range is what the reports can encode or what keeps the model sane.
 constexpr NumberRange kSpeedRange{0, false, 65.534, "a number > 0 and <= 65.534"};
@@ -82,49 +82,6 @@ constexpr NumberRange kTimeoutRange{0, true, kMaxSeconds, "a number of seconds 0
 constexpr NumberRange kPositiveTimeoutRange{0, false, kMaxSeconds, "a number of seconds > 0 and <= 86400"};
 constexpr NumberRange kRateRange{0, false, 1092, "a number > 0 and <= 1092"};
 constexpr NumberRange kDeadmanPeriodsRange{1, true, 1000, "a number 1..1000"};
-
-std::string join(auto const& names) {
-  std::string out;
-  for (const auto& name : names) {
-    if (!out.empty()) out += ", ";
-    out += name;
-  }
-  return out.empty() ? "none" : out;
-}
-
-
-std::string number_text(double v) {
-  std::array<char, 32> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), r.ptr);
-}
-
-// A leading '+' is allowed (YAML's own integers allow it), one sign only.
-std::string_view without_plus(std::string_view text) {
-  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
-  return text;
-}
-
-std::optional<long long> to_integer(std::string_view text) {
-  text = without_plus(text);
-  long long v = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size()) return std::nullopt;
-  return v;
-}
-
-std::optional<double> to_number(std::string_view text) {
-  text = without_plus(text);
-  double v = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v, std::chars_format::general);
-  if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size() || !std::isfinite(v))
-    return std::nullopt;
-  return v;
-}
-
-bool one_of(std::string_view value, auto const& choices) {
-  return std::find(choices.begin(), choices.end(), value) != choices.end();
-}
 
 // Empty when `text` is a valid identification string, else what is wrong.
 std::string identification_problem(std::string_view key, std::string_view text) {
@@ -158,12 +115,13 @@ struct Issue {
 // Lines of what the file declared, for cross-field errors (0 = unknown).
 struct SourceLines {
   int components = 0;       // the 'components' key
+  int cameras = 0;          // the 'cameras' key
+  int manipulator = 0;      // the 'manipulator' key
   std::vector<int> peers;   // one per transport.peers entry
 };
 
 int line_at(const std::vector<int>& lines, std::size_t i) { return i < lines.size() ? lines[i] : 0; }
 
-std::string first_at(int line) { return line > 0 ? " (first at line " + std::to_string(line) + ")" : ""; }
 
 std::optional<Issue> check_number(std::string_view key, double v, const NumberRange& range) {
   if (range.contains(v)) return std::nullopt;
@@ -294,6 +252,8 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (!one_of(c.log_level, kLogLevels))
     return Issue{0, "'level' must be one of " + join(kLogLevels) + ", got " + jaus::quoted(c.log_level)};
   if (auto issue = check_transport(c.transport, lines)) return issue;
+  if (auto problem = check_cameras(c.cameras)) return Issue{lines.cameras, *problem};
+  if (auto problem = check_arm(c.manipulator)) return Issue{lines.manipulator, *problem};
   return check_components(c, lines);
 }
 
@@ -308,117 +268,10 @@ std::optional<std::string> validate(const JausdConfig& config) {
 
 namespace {
 
-// The first error found; thrown inside the reader only, caught in load_config_string.
-struct Failure {
-  int line;
-  std::string what;
-};
-
-[[noreturn]] void fail(int line, std::string what) { throw Failure{line, std::move(what)}; }
-
-int line_of(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.is_null() ? 0 : mark.line + 1;
-}
-
-std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Scalar: return jaus::quoted(node.Scalar());
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a map";
-    default: return "nothing";
-  }
-}
-
-// One key of a map and its value.
-struct Entry {
-  std::string key;
-  int key_line;
-  YAML::Node value;
-  bool is_null() const { return !value.IsDefined() || value.IsNull(); }
-  // Errors about the value point at it; a missing value has no line of its own.
-  int value_line() const { return is_null() ? key_line : line_of(value); }
-  [[noreturn]] void must_be(std::string_view what) const {
-    fail(value_line(), "'" + key + "' must be " + std::string(what) + ", got " + describe(value));
-  }
-  const std::string& scalar(std::string_view what) const {
-    if (!value.IsScalar()) must_be(what);
-    return value.Scalar();
-  }
-};
-
-struct Key {
-  std::string_view name;
-  std::function<void(const Entry&)> read;
-};
-
-std::string in(std::string_view where) { return where.empty() ? "" : " in " + std::string(where); }
-
-// Reads a map in file order: every key must be one of `keys` and appear once.
-// A missing or empty (null) map reads as all defaults.
-void read_map(const YAML::Node& node, std::string_view where, int where_line, std::initializer_list<Key> keys) {
-  if (!node.IsDefined() || node.IsNull()) return;
-  if (!node.IsMap()) {
-    if (where.empty()) fail(line_of(node), "the configuration must be a map of keys, got " + describe(node));
-    fail(where_line, "'" + std::string(where) + "' must be a map of keys, got " + describe(node));
-  }
-  std::map<std::string, int> seen;
-  for (auto it = node.begin(); it != node.end(); ++it) {
-    // Copies: the iterator's pair is a temporary proxy.
-    const YAML::Node key = it->first;
-    const YAML::Node value = it->second;
-    if (!key.IsScalar()) fail(line_of(key), "keys must be plain names, got " + describe(key) + in(where));
-    const std::string& name = key.Scalar();
-    const int line = line_of(key);
-    if (const auto [first, inserted] = seen.emplace(name, line); !inserted)
-      fail(line, "duplicate key " + jaus::quoted(name) + in(where) + first_at(first->second));
-    const auto handler = std::find_if(keys.begin(), keys.end(), [&](const Key& k) { return k.name == name; });
-    if (handler == keys.end()) {
-      std::vector<std::string_view> names;
-      for (const auto& k : keys) names.push_back(k.name);
-      fail(line, "unknown key " + jaus::quoted(name) + in(where) + " (known: " + join(names) + ")");
-    }
-    handler->read(Entry{name, line, value});
-  }
-}
-
-// A list; null reads as empty.
-std::vector<YAML::Node> read_list(const Entry& e) {
-  if (e.is_null()) return {};
-  if (!e.value.IsSequence()) e.must_be("a list");
-  return {e.value.begin(), e.value.end()};
-}
-
-template <class T>
-T integer(const Entry& e, long long min, long long max) {
-  const std::string what = "an integer " + std::to_string(min) + ".." + std::to_string(max);
-  const auto v = to_integer(e.scalar(what));
-  if (!v || *v < min || *v > max) e.must_be(what);
-  return static_cast<T>(*v);
-}
-
-double number(const Entry& e, const NumberRange& range) {
-  const auto v = to_number(e.scalar(range.text));
-  if (!v || !range.contains(*v)) e.must_be(range.text);
-  return *v;
-}
-
-bool boolean(const Entry& e) {
-  bool v = false;
-  if (!YAML::convert<bool>::decode(e.value, v)) e.must_be("true or false");
-  return v;
-}
 
 std::string identification(const Entry& e) {
   const std::string& text = e.scalar("1..80 printable ASCII characters");
   if (auto problem = identification_problem(e.key, text); !problem.empty()) fail(e.value_line(), problem);
-  return text;
-}
-
-std::string choice(const Entry& e, auto const& choices) {
-  const std::string what = "one of " + join(choices);
-  const std::string& text = e.scalar(what);
-  if (!one_of(text, choices)) e.must_be(what);
   return text;
 }
 
@@ -645,6 +498,16 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
           }
         }},
        {"vehicle", [&](const Entry& s) { read_vehicle(s, c.vehicle); }},
+       {"cameras",
+        [&](const Entry& s) {
+          lines.cameras = s.key_line;
+          read_cameras(s, c.cameras);
+        }},
+       {"manipulator",
+        [&](const Entry& s) {
+          lines.manipulator = s.key_line;
+          read_manipulator(s, c.manipulator);
+        }},
        {"components",
         [&](const Entry& e) {
           lines.components = e.key_line;

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "jaus/base/expected.hpp"
+#include "jaus/components/arm_config.hpp"
+#include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/transport/ipv4.hpp"
@@ -67,12 +69,17 @@ struct JausdConfig {
   std::string dialect = "ra";          // "ra" or "openjaus": how payloads from peers are read
   TransportConfig transport;
   jaus::components::SimulatedVehicleConfig vehicle;  // what the mobility components drive and read
+  jaus::components::VisualSensorConfig cameras = default_cameras();  // the visual sensor's (hardware_config.hpp)
+  jaus::components::ArmConfig manipulator = default_arm();           // the primitive manipulator's arm
   std::vector<ComponentSpec> components = default_components();
   std::string log_level = "info";      // debug, info, warn, error
 
   // node_manager 1.1, communicator 35.1, primitive_driver 33.1, global_pose_sensor 38.1,
-  // velocity_state_sensor 42.1
+  // velocity_state_sensor 42.1, visual_sensor 37.1, primitive_manipulator 49.1
   static std::vector<ComponentSpec> default_components();
+  // Two cameras (front pan-tilt-zoom, rear fixed) and a six-joint arm.
+  static jaus::components::VisualSensorConfig default_cameras();
+  static jaus::components::ArmConfig default_arm();
 };
 
 struct ConfigError {

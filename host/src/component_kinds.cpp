@@ -3,6 +3,8 @@
 #include "jaus/components/communicator.hpp"
 #include "jaus/components/global_pose_sensor.hpp"
 #include "jaus/components/primitive_driver.hpp"
+#include "jaus/components/primitive_manipulator.hpp"
+#include "jaus/components/visual_sensor.hpp"
 #include "jaus/components/velocity_state_sensor.hpp"
 #include "jaus/host/component_options.hpp"
 
@@ -18,6 +20,8 @@ const std::vector<ComponentKind>& kinds() {
       {"primitive_driver", 33, {"command_timeout_s", "stop_brake_percent"}},
       {"global_pose_sensor", 38, {"stale_after_s", "local_pose"}},
       {"velocity_state_sensor", 42, {"stale_after_s"}},
+      {"visual_sensor", 37, {}},
+      {"primitive_manipulator", 49, {"command_timeout_s"}},
   };
   return registry;
 }
@@ -32,9 +36,15 @@ const ComponentKind* find_component_kind(std::string_view name) {
   return nullptr;
 }
 
-bool needs_vehicle(std::string_view kind) {
-  return kind == "primitive_driver" || kind == "global_pose_sensor" || kind == "velocity_state_sensor";
+Hardware hardware_of(std::string_view kind) {
+  if (kind == "primitive_driver" || kind == "global_pose_sensor" || kind == "velocity_state_sensor")
+    return Hardware::vehicle;
+  if (kind == "visual_sensor") return Hardware::cameras;
+  if (kind == "primitive_manipulator") return Hardware::arm;
+  return Hardware::none;
 }
+
+bool needs_vehicle(std::string_view kind) { return hardware_of(kind) == Hardware::vehicle; }
 
 Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spec, const ComponentSettings& settings,
                                                         node::Node& node, const VehicleBackends& vehicle) {
@@ -66,6 +76,20 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
       if (!options) return unexpected(options.error());
       made = std::make_unique<components::VelocityStateSensor>(c, node.environment(), *vehicle.pose, *options);
     }
+  }
+  else if (spec.kind == "visual_sensor") {
+    if (!vehicle.cameras)
+      return unexpected(make_error(ErrorCode::invalid_argument, "visual_sensor needs cameras and the host has none"));
+    auto options = visual_sensor_options(spec);
+    if (!options) return unexpected(options.error());
+    made = std::make_unique<components::VisualSensor>(c, node.environment(), *vehicle.cameras, *options);
+  } else if (spec.kind == "primitive_manipulator") {
+    if (!vehicle.arm)
+      return unexpected(
+          make_error(ErrorCode::invalid_argument, "primitive_manipulator needs an arm and the host has none"));
+    auto options = primitive_manipulator_options(spec);
+    if (!options) return unexpected(options.error());
+    made = std::make_unique<components::PrimitiveManipulator>(c, node.environment(), *vehicle.arm, *options);
   }
   if (made) return made;
   return unexpected(make_error(ErrorCode::invalid_argument,

@@ -93,6 +93,19 @@ Expected<components::SensorOptions> velocity_state_sensor_options(const Componen
   return sensor_options(spec);
 }
 
+Expected<components::VisualSensorOptions> visual_sensor_options(const ComponentSpec&) {
+  return components::VisualSensorOptions{};
+}
+
+Expected<components::PrimitiveManipulatorOptions> primitive_manipulator_options(const ComponentSpec& spec) {
+  components::PrimitiveManipulatorOptions o;
+  const auto timeout = number(spec, "command_timeout_s", 0, kMaxTimeoutS,
+                              std::chrono::duration<double>(o.command_timeout).count());
+  if (!timeout) return unexpected(timeout.error());
+  o.command_timeout = seconds(*timeout);
+  return o;
+}
+
 std::optional<OptionProblem> check_component_options(const ComponentSpec& spec) {
   std::optional<Error> error;
   if (spec.kind == "primitive_driver") {
@@ -101,6 +114,8 @@ std::optional<OptionProblem> check_component_options(const ComponentSpec& spec) 
     if (auto o = global_pose_sensor_options(spec); !o) error = o.error();
   } else if (spec.kind == "velocity_state_sensor") {
     if (auto o = velocity_state_sensor_options(spec); !o) error = o.error();
+  } else if (spec.kind == "primitive_manipulator") {
+    if (auto o = primitive_manipulator_options(spec); !o) error = o.error();
   }
   if (!error) return std::nullopt;
   const auto line = spec.option_lines.find(error->field);

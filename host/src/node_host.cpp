@@ -18,12 +18,22 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     if (host->watcher_) host->watcher_(packet);
     host->node_->receive(packet);
   });
+  // The simulated hardware the configured components need, each made once.
   VehicleBackends backends;
-  for (const auto& spec : h->config_.components)
-    if (needs_vehicle(spec.kind) && !h->vehicle_) {
+  for (const auto& spec : h->config_.components) {
+    const Hardware hardware = hardware_of(spec.kind);
+    if (hardware == Hardware::vehicle && !h->vehicle_) {
       h->vehicle_ = std::make_unique<components::SimulatedVehicle>(h->config_.vehicle, h->runtime_);
-      backends = {h->vehicle_.get(), h->vehicle_.get()};
+      backends.drive = h->vehicle_.get();
+      backends.pose = h->vehicle_.get();
+    } else if (hardware == Hardware::cameras && !h->cameras_) {
+      h->cameras_ = std::make_unique<components::SimulatedCameras>(h->config_.cameras, h->runtime_);
+      backends.cameras = h->cameras_.get();
+    } else if (hardware == Hardware::arm && !h->arm_) {
+      h->arm_ = std::make_unique<components::SimulatedArm>(h->config_.arm, h->runtime_);
+      backends.arm = h->arm_.get();
     }
+  }
   for (const auto& spec : h->config_.components) {
     auto component = make_component(spec, h->config_.settings, *h->node_, backends);
     if (!component) return unexpected(component.error());

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <ostream>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 
 #include "jaus/transport/ipv4.hpp"
@@ -60,6 +61,56 @@ JausdConfig expect_ok(std::string_view yaml) {
   return result ? *result : JausdConfig{};
 }
 
+// The two cameras and the six-joint arm of the default configuration, whether
+// from the code's defaults or from config/jausd.yaml (which must agree).
+void expect_default_hardware(const JausdConfig& c) {
+  const auto cameras = JausdConfig::default_cameras().cameras;
+  ASSERT_EQ(c.cameras.cameras.size(), 2u);
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const auto& got = c.cameras.cameras[i];
+    const auto& want = cameras[i];
+    EXPECT_EQ(got.id, want.id);
+    EXPECT_EQ(got.name, want.name);
+    EXPECT_EQ(got.description, want.description);
+    EXPECT_EQ(std::tie(got.x_m, got.y_m, got.z_m), std::tie(want.x_m, want.y_m, want.z_m));
+    EXPECT_NEAR(got.home_yaw_rad, want.home_yaw_rad, 1e-12);
+    EXPECT_NEAR(got.home_pitch_rad, want.home_pitch_rad, 1e-12);
+    for (auto [g, w] : {std::pair{got.pan, want.pan}, std::pair{got.tilt, want.tilt}, std::pair{got.zoom, want.zoom}}) {
+      EXPECT_NEAR(g.min, w.min, 1e-12) << want.name;
+      EXPECT_NEAR(g.max, w.max, 1e-12) << want.name;
+      EXPECT_NEAR(g.max_rate, w.max_rate, 1e-12) << want.name;
+    }
+    EXPECT_NEAR(got.widest_horizontal_fov_rad, want.widest_horizontal_fov_rad, 1e-12);
+    EXPECT_NEAR(got.narrowest_horizontal_fov_rad, want.narrowest_horizontal_fov_rad, 1e-12);
+    EXPECT_EQ(std::tie(got.width, got.height, got.min_width, got.min_height, got.max_width, got.max_height),
+              std::tie(want.width, want.height, want.min_width, want.min_height, want.max_width, want.max_height));
+    EXPECT_EQ(std::tie(got.frame_rate_fps, got.min_frame_rate_fps, got.max_frame_rate_fps),
+              std::tie(want.frame_rate_fps, want.min_frame_rate_fps, want.max_frame_rate_fps));
+    EXPECT_EQ(got.image_formats, want.image_formats);
+    EXPECT_EQ(got.image_directory, "");
+  }
+  const auto arm = JausdConfig::default_arm();
+  ASSERT_EQ(c.manipulator.joints.size(), 6u);
+  EXPECT_EQ(std::tie(c.manipulator.base_x_m, c.manipulator.base_y_m, c.manipulator.base_z_m),
+            std::tie(arm.base_x_m, arm.base_y_m, arm.base_z_m));
+  EXPECT_EQ(c.manipulator.base_quaternion_d, 1);
+  EXPECT_EQ(c.manipulator.update_rate_hz, arm.update_rate_hz);
+  for (std::size_t i = 0; i < arm.joints.size(); ++i) {
+    const auto& got = c.manipulator.joints[i];
+    const auto& want = arm.joints[i];
+    EXPECT_EQ(got.name, want.name);
+    EXPECT_EQ(got.prismatic, want.prismatic);
+    EXPECT_NEAR(got.link_length_m, want.link_length_m, 1e-12) << want.name;
+    EXPECT_NEAR(got.twist_angle_rad, want.twist_angle_rad, 1e-12) << want.name;
+    EXPECT_NEAR(got.offset, want.offset, 1e-12) << want.name;
+    EXPECT_NEAR(got.min_position, want.min_position, 1e-12) << want.name;
+    EXPECT_NEAR(got.max_position, want.max_position, 1e-12) << want.name;
+    EXPECT_NEAR(got.max_velocity, want.max_velocity, 1e-12) << want.name;
+    EXPECT_EQ(got.max_effort, want.max_effort) << want.name;
+    EXPECT_EQ(got.initial_position, 0) << want.name;
+  }
+}
+
 void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.subsystem, 1);
   EXPECT_EQ(c.node, 1);
@@ -85,7 +136,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_TRUE(c.transport.peers.empty());
   EXPECT_TRUE(c.transport.allow.empty());
   EXPECT_EQ(c.transport.max_peers, 256u);
-  ASSERT_EQ(c.components.size(), 5u);
+  ASSERT_EQ(c.components.size(), 7u);
   EXPECT_EQ(c.components[0].kind, "node_manager");
   EXPECT_EQ(c.components[0].id, 1);
   EXPECT_EQ(c.components[0].instance, 1);
@@ -100,6 +151,11 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.components[3].id, 38);
   EXPECT_EQ(c.components[4].kind, "velocity_state_sensor");
   EXPECT_EQ(c.components[4].id, 42);
+  EXPECT_EQ(c.components[5].kind, "visual_sensor");
+  EXPECT_EQ(c.components[5].id, 37);
+  EXPECT_EQ(c.components[6].kind, "primitive_manipulator");
+  EXPECT_EQ(c.components[6].id, 49);
+  expect_default_hardware(c);
   // Options written in the default file are their defaults.
   for (const auto& spec : c.components) EXPECT_FALSE(jaus::host::check_component_options(spec)) << spec.kind;
   const jaus::components::SimulatedVehicleConfig vehicle;
@@ -142,7 +198,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().to_string();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 70);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 124);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -351,7 +407,7 @@ TEST(JausdConfigErrors, TheFileMustBeAMap) {
 TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
   expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
-               "service_connections, liveness, transport, vehicle, components, logging)");
+               "service_connections, liveness, transport, vehicle, cameras, manipulator, components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
                "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
                "node, node_name, node_type)");
@@ -529,12 +585,12 @@ TEST(JausdConfigErrors, Peers) {
 // ------------------------------------------------------------ components
 
 TEST(JausdConfigErrors, ComponentKinds) {
-  expect_error("components:\n  - kind: node_manager\n  - kind: visual_sensor\n", 3,
-               "unknown component kind 'visual_sensor' (known: node_manager, communicator, primitive_driver, "
-               "global_pose_sensor, velocity_state_sensor)");
+  expect_error("components:\n  - kind: node_manager\n  - kind: world_model_vector_store\n", 3,
+               "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
+               "primitive_driver, global_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
   expect_error("components:\n  - kind: node_manager\n  - id: 35\n", 3,
                "a component needs a 'kind' (one of node_manager, communicator, primitive_driver, "
-               "global_pose_sensor, velocity_state_sensor)");
+               "global_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
 }
 
 TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
@@ -607,6 +663,120 @@ TEST(JausdConfigErrors, VehicleValues) {
                "unknown key 'rms' in vehicle.accuracy (known: position_rms_m, position_rms_per_m, attitude_rms_rad, "
                "velocity_rms_mps, rate_rms_rps)");
   expect_error("vehicle: [1]\n", 1, "'vehicle' must be a map of keys, got a list");
+}
+
+TEST(JausdConfig, CamerasAndManipulatorAreRead) {
+  const std::string images = std::filesystem::temp_directory_path().string();
+  const auto c = expect_ok(R"(
+cameras:
+  - id: 7
+    name: mast
+    description: mast camera
+    position_m: [0.1, -0.2, -1.5]
+    home_yaw_deg: 90
+    home_pitch_deg: -45
+    pan: {min_deg: -90, max_deg: 90, max_rate_deg_s: 30}
+    tilt: {min_deg: -10, max_deg: 10, max_rate_deg_s: 5}
+    zoom: {max_rate_percent_s: 25}
+    field_of_view_deg: {widest: 90, narrowest: 30}
+    width: 64
+    height: 48
+    min_width: 32
+    min_height: 24
+    max_width: 640
+    max_height: 480
+    frame_rate_fps: 2
+    min_frame_rate_fps: 1
+    max_frame_rate_fps: 4
+    formats: [jpeg, png]
+    image_directory: )" + images + R"(
+manipulator:
+  base: {position_m: [0.5, 0, -0.1], quaternion: [0, 0, 0, 1]}
+  update_rate_hz: 50
+  joints:
+    - {name: turret, type: revolute, link_length_m: 0.2, twist_deg: 90, offset_m: 0.1,
+       min_deg: -45, max_deg: 45, max_speed_deg_s: 90, max_torque_nm: 30, initial_deg: 10}
+    - {name: slide, type: prismatic, twist_deg: 0, offset_deg: 90,
+       min_m: 0, max_m: 0.4, max_speed_m_s: 0.2, max_force_n: 150, initial_m: 0.1}
+)");
+  const double deg = std::numbers::pi / 180;
+  ASSERT_EQ(c.cameras.cameras.size(), 1u);
+  const auto& cam = c.cameras.cameras[0];
+  EXPECT_EQ(cam.id, 7);
+  EXPECT_EQ(cam.name, "mast");
+  EXPECT_EQ(cam.description, "mast camera");
+  EXPECT_EQ(std::tie(cam.x_m, cam.y_m, cam.z_m), std::make_tuple(0.1, -0.2, -1.5));
+  EXPECT_NEAR(cam.home_yaw_rad, 90 * deg, 1e-12);
+  EXPECT_NEAR(cam.home_pitch_rad, -45 * deg, 1e-12);
+  EXPECT_NEAR(cam.pan.min, -90 * deg, 1e-12);
+  EXPECT_NEAR(cam.pan.max_rate, 30 * deg, 1e-12);
+  EXPECT_NEAR(cam.tilt.max, 10 * deg, 1e-12);
+  EXPECT_EQ(cam.zoom.min, 0);
+  EXPECT_EQ(cam.zoom.max, 100);
+  EXPECT_EQ(cam.zoom.max_rate, 25);
+  EXPECT_NEAR(cam.widest_horizontal_fov_rad, 90 * deg, 1e-12);
+  EXPECT_NEAR(cam.narrowest_horizontal_fov_rad, 30 * deg, 1e-12);
+  EXPECT_EQ(std::tie(cam.width, cam.height, cam.min_width, cam.min_height, cam.max_width, cam.max_height),
+            std::make_tuple(64, 48, 32, 24, 640, 480));
+  EXPECT_EQ(std::tie(cam.frame_rate_fps, cam.min_frame_rate_fps, cam.max_frame_rate_fps), std::make_tuple(2, 1, 4));
+  EXPECT_EQ(cam.image_formats, (std::vector<std::uint8_t>{7, 11}));
+  EXPECT_EQ(cam.image_directory, images);
+
+  const auto& arm = c.manipulator;
+  EXPECT_EQ(std::tie(arm.base_x_m, arm.base_y_m, arm.base_z_m), std::make_tuple(0.5, 0.0, -0.1));
+  EXPECT_EQ(std::tie(arm.base_quaternion_d, arm.base_quaternion_c), std::make_tuple(0.0, 1.0));
+  EXPECT_EQ(arm.update_rate_hz, 50);
+  ASSERT_EQ(arm.joints.size(), 2u);
+  const auto& turret = arm.joints[0];
+  EXPECT_FALSE(turret.prismatic);
+  EXPECT_EQ(turret.link_length_m, 0.2);
+  EXPECT_NEAR(turret.twist_angle_rad, 90 * deg, 1e-12);
+  EXPECT_EQ(turret.offset, 0.1);
+  EXPECT_NEAR(turret.min_position, -45 * deg, 1e-12);
+  EXPECT_NEAR(turret.max_velocity, 90 * deg, 1e-12);
+  EXPECT_EQ(turret.max_effort, 30);
+  EXPECT_NEAR(turret.initial_position, 10 * deg, 1e-12);
+  const auto& slide = arm.joints[1];
+  EXPECT_TRUE(slide.prismatic);
+  EXPECT_NEAR(slide.offset, 90 * deg, 1e-12);  // a prismatic joint's fixed parameter is its angle
+  EXPECT_EQ(std::tie(slide.min_position, slide.max_position, slide.max_velocity, slide.max_effort,
+                     slide.initial_position),
+            std::make_tuple(0.0, 0.4, 0.2, 150.0, 0.1));
+}
+
+TEST(JausdConfigErrors, CameraValues) {
+  expect_error("cameras:\n  - id: 1\n    name: a\n  - id: 1\n    name: b\n", 4,
+               "duplicate camera id 1 (first at line 2)");
+  expect_error("cameras:\n  - id: 1\n    formats: [png, gif]\n", 3,
+               "'formats' must be one of png, jpeg, got 'gif'");
+  expect_error("cameras:\n  - name: far too long a name\n", 2,
+               "'name' must be 1..15 printable ASCII characters, got 'far too long a name'");
+  expect_error("cameras:\n  - field_of_view_deg: {widest: 10, narrowest: 20}\n", 2,
+               "camera 1 (camera): 'field_of_view_deg' needs 0 < narrowest <= widest <= 180");
+  expect_error("cameras:\n  - width: 2000\n", 2,
+               "camera 1 (camera): 'width' and 'height' must be within min_width..max_width and "
+               "min_height..max_height");
+  expect_error("cameras:\n  - image_directory: /no/such/directory\n", 2,
+               "'image_directory' '/no/such/directory' is not a directory");
+  expect_error("cameras:\n  - pan: {min_deg: -10, max_deg: 10, rate: 5}\n", 2,
+               "unknown key 'rate' in cameras.pan (known: min_deg, max_deg, max_rate_deg_s)");
+  expect_error("cameras: []\n", 1, "'cameras' must list 1..255 cameras");
+}
+
+TEST(JausdConfigErrors, JointValues) {
+  expect_error("manipulator:\n  joints:\n    - {type: revolute, min_m: 0}\n", 3,
+               "'min_m' is for prismatic joints; joint 1 is revolute: use 'min_deg'");
+  expect_error("manipulator:\n  joints:\n    - {name: lift, min_deg: 0}\n", 3,
+               "joint 1 (lift) needs a 'type' (revolute or prismatic)");
+  expect_error("manipulator:\n  joints:\n    - {type: revolute, min_deg: 10, max_deg: 10}\n", 3,
+               "joint 1: the minimum position must be below the maximum");
+  expect_error("manipulator:\n  joints:\n    - {type: prismatic, max_m: 0.5, initial_m: 0.6}\n", 3,
+               "joint 1: the initial position must be within its limits");
+  expect_error("manipulator:\n  joints:\n    - {type: telescopic}\n", 3,
+               "'type' must be one of revolute, prismatic, got 'telescopic'");
+  expect_error("manipulator:\n  joints: []\n", 2, "'joints' must be a list of 1..255 joints, got an empty list");
+  expect_error("manipulator:\n  base: {quaternion: [1, 1, 0, 0]}\n", 2,
+               "'quaternion' must be a unit quaternion [d, a, b, c], got a list");
 }
 
 TEST(JausdConfigErrors, DuplicateComponent) {
@@ -748,9 +918,9 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
             "a node_manager component is required (id 1, instance 1)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components.push_back(c.components[1]); }),
             "duplicate component id 35 instance 1");
-  EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "visual_sensor"; }),
-            "unknown component kind 'visual_sensor' (known: node_manager, communicator, primitive_driver, "
-            "global_pose_sensor, velocity_state_sensor)");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "world_model_vector_store"; }),
+            "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
+            "primitive_driver, global_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[2].options["stop_brake_percent"] = "150"; }),
             "primitive_driver option 'stop_brake_percent' must be a number 0..100, got '150'");
   EXPECT_EQ(broken([](JausdConfig& c) { c.vehicle.update_rate_hz = 0; }),
@@ -766,7 +936,7 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
 // ------------------------------------------------------------ registry
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
-  ASSERT_EQ(component_kinds().size(), 5u);
+  ASSERT_EQ(component_kinds().size(), 7u);
   EXPECT_EQ(component_kinds()[0].name, "node_manager");
   EXPECT_EQ(component_kinds()[0].default_id, 1);
   EXPECT_EQ(component_kinds()[1].name, "communicator");
@@ -777,9 +947,15 @@ TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
   EXPECT_EQ(component_kinds()[3].default_id, 38);
   EXPECT_EQ(component_kinds()[4].name, "velocity_state_sensor");
   EXPECT_EQ(component_kinds()[4].default_id, 42);
+  EXPECT_EQ(component_kinds()[5].name, "visual_sensor");
+  EXPECT_EQ(component_kinds()[5].default_id, 37);
+  EXPECT_EQ(component_kinds()[6].name, "primitive_manipulator");
+  EXPECT_EQ(component_kinds()[6].default_id, 49);
   ASSERT_NE(find_component_kind("communicator"), nullptr);
   EXPECT_TRUE(find_component_kind("communicator")->options.empty());
-  EXPECT_EQ(find_component_kind("visual_sensor"), nullptr);  // registered when implemented
+  ASSERT_NE(find_component_kind("primitive_manipulator"), nullptr);
+  EXPECT_EQ(find_component_kind("primitive_manipulator")->options, std::vector<std::string_view>{"command_timeout_s"});
+  EXPECT_EQ(find_component_kind("world_model_vector_store"), nullptr);  // registered when implemented
   EXPECT_EQ(to_string(Framing::opc), "opc");
   EXPECT_EQ(to_string(Framing::judp), "judp");
 }

@@ -30,7 +30,9 @@ TEST(ComponentKinds, EveryRegisteredKindIsBuiltWithItsIdAndName) {
   node::Node node(node::NodeConfig{}, time, time, link);
   ComponentSettings settings;
   components::SimulatedVehicle vehicle({}, time);
-  const VehicleBackends backends{&vehicle, &vehicle};
+  components::SimulatedCameras cameras(components::VisualSensorConfig{{components::CameraConfig{}}}, time);
+  components::SimulatedArm arm(components::ArmConfig{{components::JointConfig{}}}, time);
+  const VehicleBackends backends{&vehicle, &vehicle, &cameras, &arm};
   ASSERT_FALSE(component_kinds().empty());
   for (const auto& kind : component_kinds()) {
     auto made = make_component(ComponentSpec{std::string(kind.name), kind.default_id, 2, 7, "", {}, 0, {}}, settings,
@@ -54,6 +56,12 @@ TEST(ComponentKinds, AVehicleComponentWithoutAVehicleOrWithABadOptionIsOneError)
   auto driverless = make_component(ComponentSpec{"primitive_driver", 33, 1, 0, "", {}, 0, {}}, {}, node);
   ASSERT_FALSE(driverless);
   EXPECT_EQ(driverless.error().message(), "primitive_driver needs a vehicle drive and the host has none");
+  auto blind = make_component(ComponentSpec{"visual_sensor", 37, 1, 0, "", {}, 0, {}}, {}, node);
+  ASSERT_FALSE(blind);
+  EXPECT_EQ(blind.error().message(), "visual_sensor needs cameras and the host has none");
+  auto armless = make_component(ComponentSpec{"primitive_manipulator", 49, 1, 0, "", {}, 0, {}}, {}, node);
+  ASSERT_FALSE(armless);
+  EXPECT_EQ(armless.error().message(), "primitive_manipulator needs an arm and the host has none");
 
   components::SimulatedVehicle vehicle({}, time);
   auto bad = make_component(ComponentSpec{"primitive_driver", 33, 1, 0, "", {{"command_timeout_s", "soon"}}, 0, {}}, {},
@@ -84,6 +92,14 @@ TEST(ComponentOptions, EachKindsOptionsAreReadAndCheckedWithTheirLine) {
   ASSERT_TRUE(problem);
   EXPECT_EQ(problem->line, 13);  // the option's own line
   EXPECT_NE(problem->what.find("stale_after_s"), std::string::npos) << problem->what;
+  ComponentSpec arm{"primitive_manipulator", 49, 1, 0, "", {{"command_timeout_s", "1.5"}}, 3, {}};
+  const auto manipulator = primitive_manipulator_options(arm);
+  ASSERT_TRUE(manipulator) << manipulator.error().message();
+  EXPECT_EQ(manipulator->command_timeout, std::chrono::milliseconds(1500));
+  arm.options["command_timeout_s"] = "-1";
+  ASSERT_TRUE(check_component_options(arm));
+  EXPECT_NE(check_component_options(arm)->what.find("command_timeout_s"), std::string::npos);
+
   ComponentSpec brake{"primitive_driver", 33, 1, 0, "", {{"stop_brake_percent", "101"}}, 5, {}};
   ASSERT_TRUE(check_component_options(brake));
   EXPECT_EQ(check_component_options(brake)->line, 5);  // no option line known: the component's

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <ostream>
+#include <string>
 
 #include "cli_values.hpp"
 #include "exit_codes.hpp"
@@ -30,9 +31,12 @@ int run_discover(OcuSession& session, const DiscoverOptions& options, CommandIo 
 // Query Component Status -> {"component":"1.1.35.1","primary_status":"Ready",...}
 int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Duration timeout, CommandIo io);
 
-// Sends a prepared query and prints the report (`jausctl msg decode` form).
+// Sends a prepared query and prints the report (`jausctl msg decode` form);
+// with `save_image`, a Report Image's picture goes to that file
+// (image_file.hpp) and the printed line says so.
 int run_query(OcuSession& session, const jaus::Address& target, const PreparedMessage& query,
-              std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io);
+              std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io,
+              const std::optional<std::string>& save_image = std::nullopt);
 
 // Sends any message; prints the first message the target sends back within
 // the timeout, if any.
@@ -69,6 +73,7 @@ struct SubscribeOptions {
   std::optional<jaus::rt::Duration> run_for;   // stop after this long
   jaus::rt::Duration timeout = std::chrono::seconds(1);
   jaus::rt::Duration rate_every = std::chrono::seconds(5);  // measured rate on `err` this often
+  std::optional<std::string> save_image;  // each Report Image's picture written over this file
 };
 int run_subscribe(OcuSession& session, const SubscribeOptions& options, CommandIo io);
 

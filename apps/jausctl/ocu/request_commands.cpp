@@ -2,6 +2,7 @@
 // message and waits (up to the timeout) for the answer.
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/ocu/names.hpp"
+#include "image_file.hpp"
 #include "ocu_commands.hpp"
 
 namespace jausctl::ocu {
@@ -48,7 +49,8 @@ int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Durat
 }
 
 int run_query(OcuSession& session, const jaus::Address& target, const PreparedMessage& query,
-              std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io) {
+              std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io,
+              const std::optional<std::string>& save_image) {
   jaus::Header header = query.header;
   header.destination = target;
   session.send_raw(header, query.payload);
@@ -56,6 +58,11 @@ int run_query(OcuSession& session, const jaus::Address& target, const PreparedMe
   if (!reply) return fail(io, "query", reply.error());
   auto json = message_json(*reply, session.options().dialect);
   if (!json) return fail(io, "query", json.error());
+  if (save_image) {
+    auto saved = save_report_image(*reply, *save_image);
+    if (!saved) return fail(io, "query", saved.error());
+    *json = with_saved_image(std::move(*json), *saved, *save_image);
+  }
   io.out << json_line(*json) << "\n";
   return kExitOk;
 }

@@ -6,6 +6,7 @@
 
 #include "jaus/messages/catalogue.hpp"
 #include "jaus/ocu/names.hpp"
+#include "image_file.hpp"
 #include "ocu_commands.hpp"
 #include "jaus/ocu/rate_meter.hpp"
 
@@ -29,10 +30,19 @@ int run_subscribe(OcuSession& session, const SubscribeOptions& o, CommandIo io) 
       o.target, o.report_code, o.rate_hz, o.presence_vector,
       [&](const jaus::Header& h, std::span<const std::uint8_t> payload) {
         meter.tick(clock.now());
-        auto json = message_json(Received{h, {payload.begin(), payload.end()}}, session.options().dialect);
+        const Received report{h, {payload.begin(), payload.end()}};
+        auto json = message_json(report, session.options().dialect);
         if (!json) {
           io.err << "jausctl subscribe: " << json.error().message() << "\n";
           return;
+        }
+        if (o.save_image) {
+          auto saved = save_report_image(report, *o.save_image);
+          if (!saved) {
+            io.err << "jausctl subscribe: " << saved.error().message() << "\n";
+            return;
+          }
+          *json = with_saved_image(std::move(*json), *saved, *o.save_image);
         }
         io.out << json_line(*json) << "\n" << std::flush;
         output_broken = !io.out;  // a closed pipe (| head): stop and terminate the connection

@@ -12,7 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "jaus/components/camera.hpp"
 #include "jaus/components/drive.hpp"
+#include "jaus/components/manipulator_arm.hpp"
 #include "jaus/components/node_manager.hpp"
 #include "jaus/components/pose_source.hpp"
 #include "jaus/node/node.hpp"
@@ -40,11 +42,14 @@ struct ComponentSpec {
   std::map<std::string, int> option_lines;     // where each option is (from a file)
 };
 
-// The hardware a node's vehicle components drive and read
-// (components/vehicle/): the host's simulated vehicle by default.
+// The hardware a node's vehicle components drive and read: the host's
+// simulated vehicle, cameras and arm by default (a Clearpath platform's
+// backends in bridge/ otherwise).
 struct VehicleBackends {
   components::Drive* drive = nullptr;
   components::PoseSource* pose = nullptr;
+  components::Cameras* cameras = nullptr;
+  components::ManipulatorArm* arm = nullptr;
 };
 
 // What every component of the node shares, and what the node manager says of it.
@@ -59,7 +64,9 @@ struct ComponentSettings {
 // invalid, or the kind needs a backend `vehicle` lacks.
 Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spec, const ComponentSettings& settings,
                                                         node::Node& node, const VehicleBackends& vehicle = {});
-// Whether a kind drives or reads the vehicle (the host then makes one).
-bool needs_vehicle(std::string_view kind);
+// The hardware a kind drives or reads (the host then makes its simulation).
+enum class Hardware { none, vehicle, cameras, arm };
+Hardware hardware_of(std::string_view kind);
+bool needs_vehicle(std::string_view kind);  // hardware_of(kind) == Hardware::vehicle
 
 }  // namespace jaus::host

@@ -9,6 +9,8 @@
 
 #include "jaus/components/global_pose_sensor.hpp"
 #include "jaus/components/primitive_driver.hpp"
+#include "jaus/components/primitive_manipulator.hpp"
+#include "jaus/components/visual_sensor.hpp"
 #include "jaus/components/sensor_component.hpp"
 #include "jaus/host/component_kinds.hpp"
 
@@ -18,6 +20,8 @@ namespace jaus::host {
 Expected<components::PrimitiveDriverOptions> primitive_driver_options(const ComponentSpec& spec);
 Expected<components::GlobalPoseSensorOptions> global_pose_sensor_options(const ComponentSpec& spec);
 Expected<components::SensorOptions> velocity_state_sensor_options(const ComponentSpec& spec);
+Expected<components::VisualSensorOptions> visual_sensor_options(const ComponentSpec& spec);
+Expected<components::PrimitiveManipulatorOptions> primitive_manipulator_options(const ComponentSpec& spec);
 
 // The first problem with the spec's options, or nothing; `line` is the
 // option's line when the spec came from a file and knows it.

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "jaus/components/simulated_arm.hpp"
+#include "jaus/components/simulated_cameras.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/node/node.hpp"
@@ -28,6 +30,10 @@ struct HostConfig {
   // The vehicle the mobility components drive and read, made when one of
   // them is configured, on the host's clock.
   components::SimulatedVehicleConfig vehicle;
+  // The visual sensor's cameras and the manipulator's arm, simulated on the
+  // host's clock when those components are configured.
+  components::VisualSensorConfig cameras;
+  components::ArmConfig arm;
 };
 
 class NodeHost {
@@ -68,8 +74,10 @@ class NodeHost {
   transport::UdpLink& link() { return *link_; }
   const transport::UdpLink& link() const { return *link_; }
   transport::AsioRuntime& runtime() { return runtime_; }
-  // The simulated vehicle, when a configured component needs one.
+  // The simulated hardware, when a configured component needs it.
   components::SimulatedVehicle* vehicle() { return vehicle_.get(); }
+  components::SimulatedCameras* cameras() { return cameras_.get(); }
+  components::SimulatedArm* arm() { return arm_.get(); }
 
  private:
   NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
@@ -78,8 +86,10 @@ class NodeHost {
   transport::AsioRuntime runtime_;
   rt::LogFn log_;
   std::unique_ptr<transport::UdpLink> link_;
-  // Declared before the node: components refer to it, so it outlives them.
+  // Declared before the node: components refer to them, so they outlive them.
   std::unique_ptr<components::SimulatedVehicle> vehicle_;
+  std::unique_ptr<components::SimulatedCameras> cameras_;
+  std::unique_ptr<components::SimulatedArm> arm_;
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;
