@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "jaus/messages/compiled_codecs.hpp"
+#include "jaus/messages/compiled_json_codecs.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/messages/catalogue.hpp"
 

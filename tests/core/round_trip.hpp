@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 // The codec of every body comes compiled from jaus_core: the checks call it.
-#include "jaus/messages/compiled_codecs.hpp"
+#include "jaus/messages/compiled_json_codecs.hpp"
 #include "described_values.hpp"
 #include "message_types.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 // The codec of every body comes compiled from jaus_core: the comparison calls it.
-#include "jaus/messages/compiled_codecs.hpp"
+#include "jaus/messages/compiled_json_codecs.hpp"
 #include "described_values.hpp"
 #include "jaus/base/hex.hpp"
 #include "vector_compare.hpp"

@@ -1,11 +1,13 @@
-// The codec of every message body (encode, decode, and the JSON form of its
-// fields) is compiled once, in jaus_core, by the catalogue file of the body's
-// group; this header declares those instantiations extern. Code that calls
-// the codec for a body type (the typed tests in tests/core) includes it to
-// call the library's code rather than compile it again; in optimised builds
-// the tests so check the library's own -O3 code. A Message<Code, Name, Body>
-// adds only the code and the name to its body, so the body is what the codec
-// is compiled for.
+// The codec of every message body (encode and decode; the JSON form of its
+// fields in compiled_json_codecs.hpp) is compiled once, in jaus_core, by the
+// catalogue file of the body's group; this header declares those
+// instantiations extern. A Message<Code, Name, Body> is encoded as its body
+// (wire/message.hpp), so every message with that body uses them. The
+// component base (runtime/component.hpp) includes it, so components, the
+// OCU and the tests call the library's code rather than compile the codec
+// again in every file: under the sanitizers that halves a component's
+// compile time. In optimised builds the tests so check the library's own
+// -O3 code.
 #pragma once
 
 #include <cstddef>
@@ -13,8 +15,6 @@
 #include <optional>
 #include <span>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "jaus/messages/all.hpp"
 
@@ -61,12 +61,8 @@
                                                                                  wire::Dialect);               \
   extern_or_not template std::optional<Error> wire::decode_payload_into<Body>(std::span<const std::uint8_t>,   \
                                                                               Body&, wire::Dialect,            \
-                                                                              std::size_t);                    \
-  extern_or_not template nlohmann::ordered_json wire::fields_to_json<nlohmann::ordered_json, Body>(const Body&); \
-  extern_or_not template bool wire::fields_from_json<nlohmann::ordered_json, Body>(const nlohmann::ordered_json&, \
-                                                                                   Body&, std::string&);
+                                                                              std::size_t);
 #define JAUS_DECLARE_CODEC(Body) JAUS_CODEC_INSTANCES(extern, Body)
-#define JAUS_DEFINE_CODEC(Body) JAUS_CODEC_INSTANCES(, Body)
 
 namespace jaus {
 

@@ -8,6 +8,7 @@
 #include <span>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
 
 #include "jaus/base/expected.hpp"
 #include "jaus/core/header.hpp"
@@ -43,21 +44,32 @@ concept MessageType = requires {
   M::describe();
 };
 
+namespace detail {
+// A Message<Code, Name, Body> is encoded as its Body: the codec is compiled
+// once per body (in jaus_core, compiled_codecs.hpp), not once per message.
+template <class M>
+concept IsMessageOfOtherBody = requires { typename M::body_type; } && !std::is_same_v<M, typename M::body_type>;
+}  // namespace detail
+
 // Encodes the payload (no header) into `out`; returns the number of bytes.
 // The payload may exceed one packet: the node splits it into a large data set.
 template <class M>
 Expected<std::size_t, Error> encode_payload(const M& message, std::span<std::uint8_t> out,
                                             Dialect dialect = Dialect::ra) {
-  ByteWriter w(out);
-  if (dialect == Dialect::openjaus) {
-    DialectContext<Dialect::openjaus> ctx;
-    encode_fields(message, w, ctx);
+  if constexpr (detail::IsMessageOfOtherBody<M>) {
+    return encode_payload<typename M::body_type>(message, out, dialect);  // one instantiation per body
   } else {
-    DialectContext<Dialect::ra> ctx;
-    encode_fields(message, w, ctx);
+    ByteWriter w(out);
+    if (dialect == Dialect::openjaus) {
+      DialectContext<Dialect::openjaus> ctx;
+      encode_fields(message, w, ctx);
+    } else {
+      DialectContext<Dialect::ra> ctx;
+      encode_fields(message, w, ctx);
+    }
+    if (w.failed()) return unexpected(w.error());
+    return w.size();
   }
-  if (w.failed()) return unexpected(w.error());
-  return w.size();
 }
 
 // Decodes a payload into an existing object (reusing its storage: no heap
@@ -65,20 +77,24 @@ Expected<std::size_t, Error> encode_payload(const M& message, std::span<std::uin
 template <class M>
 std::optional<Error> decode_payload_into(std::span<const std::uint8_t> payload, M& out,
                                          Dialect dialect = Dialect::ra, std::size_t base_offset = 0) {
-  ByteReader r(payload, base_offset);
-  if (dialect == Dialect::openjaus) {
-    DialectContext<Dialect::openjaus> ctx;
-    decode_fields(r, out, ctx);
+  if constexpr (detail::IsMessageOfOtherBody<M>) {
+    return decode_payload_into<typename M::body_type>(payload, out, dialect, base_offset);
   } else {
-    DialectContext<Dialect::ra> ctx;
-    decode_fields(r, out, ctx);
+    ByteReader r(payload, base_offset);
+    if (dialect == Dialect::openjaus) {
+      DialectContext<Dialect::openjaus> ctx;
+      decode_fields(r, out, ctx);
+    } else {
+      DialectContext<Dialect::ra> ctx;
+      decode_fields(r, out, ctx);
+    }
+    if (!r.failed() && r.remaining() != 0) {
+      r.set_field({});
+      r.fail(ErrorCode::trailing_bytes, std::to_string(r.remaining()) + " bytes");
+    }
+    if (!r.failed()) return std::nullopt;
+    return r.error();
   }
-  if (!r.failed() && r.remaining() != 0) {
-    r.set_field({});
-    r.fail(ErrorCode::trailing_bytes, std::to_string(r.remaining()) + " bytes");
-  }
-  if (!r.failed()) return std::nullopt;
-  return r.error();
 }
 
 template <class M>

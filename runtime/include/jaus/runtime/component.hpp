@@ -20,6 +20,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "jaus/messages/compiled_codecs.hpp"
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/messages/discovery_messages.hpp"
 #include "jaus/runtime/control_arbiter.hpp"
