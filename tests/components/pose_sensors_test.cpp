@@ -140,11 +140,7 @@ class PoseSensorTest : public ::testing::Test {
     return out;
   }
 
-  bool logged(const std::string& text) const {
-    for (const auto& l : logs)
-      if (l.find(text) != std::string::npos) return true;
-    return false;
-  }
+  bool logged(const std::string& text) const { return any_line_contains(logs, text); }
 
   // What a component without services of its own lists (the core messages).
   msg::ServiceEntry core_services(const Address& address) {

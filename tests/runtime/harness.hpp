@@ -15,6 +15,13 @@
 
 namespace jaus::test {
 
+// Whether one of the logged `lines` contains `text`.
+inline bool any_line_contains(const std::vector<std::string>& lines, const std::string& text) {
+  for (const auto& line : lines)
+    if (line.find(text) != std::string::npos) return true;
+  return false;
+}
+
 struct Sent {
   Header header;
   std::vector<std::uint8_t> payload;
@@ -142,11 +149,7 @@ class ComponentTest : public ::testing::Test {
     return confirms.back().response_code;
   }
 
-  bool logged(const std::string& text) const {
-    for (const auto& l : logs)
-      if (l.find(text) != std::string::npos) return true;
-    return false;
-  }
+  bool logged(const std::string& text) const { return any_line_contains(logs, text); }
 
   rt::VirtualTime time;
   RecordingOutbox outbox;

@@ -93,11 +93,7 @@ class NodeTest : public ::testing::Test {
     h.ack_nak = ack;
     return packet(h, std::span(payload).first(*size));
   }
-  bool logged(const std::string& text) const {
-    for (const auto& l : logs)
-      if (l.find(text) != std::string::npos) return true;
-    return false;
-  }
+  bool logged(const std::string& text) const { return any_line_contains(logs, text); }
 
   static inline const Address kOcu{2, 1, 40, 1};
   rt::VirtualTime time;

@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <numbers>
 #include <set>
@@ -18,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "child_process.hpp"
+#include "default_jausd.hpp"
 
 namespace jaus::test {
 namespace {
@@ -34,15 +33,7 @@ constexpr const char* kVisualSensor = "6.1.37.1";
 class ArmAndCamera : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("jaus-arm-camera-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    const fs::path config = dir / "jausd.yaml";
-    // The default components, cameras and arm.
-    std::ofstream(config) << "identification: {subsystem: 6, node: 1}\n"
-                             "transport: {bind: " << kNode << ":3794}\n";
-    jausd = std::make_unique<ChildProcess>(
-        std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
-        (dir / "jausd.log").string());
+    jausd = std::make_unique<DefaultJausd>("arm-camera", 6, kNode);
     ASSERT_TRUE(jausd->started());
     // The daemon takes a moment to start (longer under sanitizers).
     const auto until = std::chrono::steady_clock::now() + 20s;
@@ -51,22 +42,14 @@ class ArmAndCamera : public ::testing::Test {
       std::this_thread::sleep_for(100ms);
     }
   }
-  void TearDown() override {
-    jausd.reset();
-    std::error_code ignored;
-    fs::remove_all(dir, ignored);
-  }
+  void TearDown() override { jausd.reset(); }
 
+  // Each bind address its own OCU node ID (127.0.0.30 -> 254.30.40.1): the node answers an ID at the
+  // endpoint it last heard it from, so a query beside a controller must not share the controller's ID.
   std::unique_ptr<ChildProcess> jausctl(const std::string& name, std::vector<std::string> args,
                                         const std::string& bind) {
-    args.insert(args.begin(), JAUSCTL_PATH);
-    // Each bind address its own OCU node ID (127.0.0.30 -> 254.30.40.1): the node answers an ID at the
-    // endpoint it last heard it from, so a query beside a controller must not share the controller's ID.
     const std::string octet = bind.substr(bind.rfind('.') + 1, bind.find(':') - bind.rfind('.') - 1);
-    for (const std::string& option :
-         {std::string("--to"), std::string(kNode), std::string("--bind"), bind, std::string("--as"), "254." + octet + ".40.1"})
-      args.push_back(option);
-    auto child = std::make_unique<ChildProcess>(args, (dir / (name + ".log")).string());
+    auto child = jausd->jausctl(name, std::move(args), bind, "254." + octet + ".40.1");
     EXPECT_TRUE(child->started());
     return child;
   }
@@ -97,8 +80,7 @@ class ArmAndCamera : public ::testing::Test {
     return last;
   }
 
-  fs::path dir;
-  std::unique_ptr<ChildProcess> jausd;
+  std::unique_ptr<DefaultJausd> jausd;
 };
 
 TEST_F(ArmAndCamera, JausctlMovesAJointAndReadsItBack) {
@@ -158,7 +140,7 @@ TEST_F(ArmAndCamera, JausctlPointsTheCameraAndSavesAnImageThatOpens) {
   EXPECT_TRUE(pointer->wait(10s));
 
   // Two images on a service connection; the last one stays in the file.
-  const fs::path image = dir / "frame.png";
+  const fs::path image = jausd->dir() / "frame.png";
   auto subscriber = jausctl("subscribe",
                             {"subscribe", kVisualSensor, "Report Image", "--rate", "2", "--count", "2",
                              "--save-image", image.string(), "--timeout", "5"},

@@ -7,10 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
-#include <filesystem>
-#include <fstream>
 
-#include "child_process.hpp"
+#include "default_jausd.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
 
@@ -18,7 +16,6 @@ namespace jaus::test {
 namespace {
 
 using namespace std::chrono_literals;
-namespace fs = std::filesystem;
 
 const Address kObserver{9, 1, 40, 1};
 const Address kManager{5, 1, 1, 1}, kDriver{5, 1, 33, 1}, kPoseSensor{5, 1, 38, 1}, kVelocitySensor{5, 1, 42, 1};
@@ -51,15 +48,7 @@ class Observer : public rt::Component {
 class DriveAVehicle : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("jaus-drive-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    const fs::path config = dir / "jausd.yaml";
-    // The default components on the default simulated vehicle.
-    std::ofstream(config) << "identification: {subsystem: 5, node: 1}\n"
-                             "transport: {bind: " << kNode << ":3794}\n";
-    jausd = std::make_unique<ChildProcess>(
-        std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
-        (dir / "jausd.log").string());
+    jausd = std::make_unique<DefaultJausd>("drive", 5, kNode);
     ASSERT_TRUE(jausd->started());
 
     host::HostConfig host;
@@ -83,16 +72,11 @@ class DriveAVehicle : public ::testing::Test {
     controller.reset();
     node_host.reset();
     jausd.reset();
-    std::error_code ignored;
-    fs::remove_all(dir, ignored);
   }
 
   std::unique_ptr<ChildProcess> jausctl(const std::string& name, std::vector<std::string> args,
                                         const std::string& bind) {
-    args.insert(args.begin(), JAUSCTL_PATH);
-    for (const std::string& option : {std::string("--to"), std::string(kNode), std::string("--bind"), bind})
-      args.push_back(option);
-    auto child = std::make_unique<ChildProcess>(args, (dir / (name + ".log")).string());
+    auto child = jausd->jausctl(name, std::move(args), bind);
     EXPECT_TRUE(child->started());
     return child;
   }
@@ -125,8 +109,8 @@ class DriveAVehicle : public ::testing::Test {
     return v && v->velocity_x_mps ? *v->velocity_x_mps : -1;
   }
 
-  fs::path dir;
-  std::unique_ptr<ChildProcess> jausd, controller;
+  std::unique_ptr<DefaultJausd> jausd;
+  std::unique_ptr<ChildProcess> controller;
   boost::asio::io_context io;
   std::unique_ptr<host::NodeHost> node_host;
   Observer* observer = nullptr;

@@ -107,11 +107,7 @@ class PrimitiveManipulatorTest : public ::testing::Test {
     EXPECT_LE(kin::norm(kin::rotation_error(pose->orientation, target.orientation)), tol);
   }
 
-  bool logged(const std::string& text) const {
-    for (const auto& l : logs)
-      if (l.find(text) != std::string::npos) return true;
-    return false;
-  }
+  bool logged(const std::string& text) const { return any_line_contains(logs, text); }
   const components::PrimitiveManipulatorCounters& counters() const { return manipulator->manipulator_counters(); }
 
   // The OCUs here send nothing between commands: control is kept for the

@@ -99,11 +99,7 @@ class VisualSensorTest : public ::testing::Test {
     if (images.size() != 1) return std::nullopt;
     return images.front();
   }
-  bool logged(const std::string& text) const {
-    for (const auto& l : logs)
-      if (l.find(text) != std::string::npos) return true;
-    return false;
-  }
+  bool logged(const std::string& text) const { return any_line_contains(logs, text); }
 
   rt::VirtualTime time;
   RecordingOutbox outbox;

@@ -1,0 +1,64 @@
+// A jausd with its default components (vehicle, cameras, arm) on a loopback
+// address, port 3794, in a temporary directory of its own (its configuration
+// and every process's log); and jausctl run against it. Shared by the
+// system tests, which each start their own daemon.
+#pragma once
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "child_process.hpp"
+
+namespace jaus::test {
+
+class DefaultJausd {
+ public:
+  // `name` names the directory; the node is `subsystem`.1 at `address`:3794.
+  DefaultJausd(const std::string& name, int subsystem, std::string address)
+      : dir_(std::filesystem::temp_directory_path() / ("jaus-" + name + "-" + std::to_string(::getpid()))),
+        address_(std::move(address)) {
+    std::filesystem::create_directories(dir_);
+    const auto config = dir_ / "jausd.yaml";
+    std::ofstream(config) << "identification: {subsystem: " << subsystem << ", node: 1}\n"
+                          << "transport: {bind: " << address_ << ":3794}\n";
+    process_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
+        (dir_ / "jausd.log").string());
+  }
+  ~DefaultJausd() {
+    process_.reset();  // stopped before its directory goes
+    std::error_code ignored;
+    std::filesystem::remove_all(dir_, ignored);
+  }
+  DefaultJausd(const DefaultJausd&) = delete;
+  DefaultJausd& operator=(const DefaultJausd&) = delete;
+
+  bool started() const { return process_->started(); }
+  std::string output() const { return process_->output(); }
+  bool output_contains(const std::string& text) const { return process_->output_contains(text); }
+  const std::filesystem::path& dir() const { return dir_; }
+  const std::string& address() const { return address_; }
+
+  // `jausctl ARGS --to <the node> --bind BIND [--as AS]`, its output in <dir>/<log_name>.log.
+  std::unique_ptr<ChildProcess> jausctl(const std::string& log_name, std::vector<std::string> args,
+                                        const std::string& bind, const std::optional<std::string>& as = {}) const {
+    args.insert(args.begin(), JAUSCTL_PATH);
+    for (const std::string& option : {std::string("--to"), address_, std::string("--bind"), bind})
+      args.push_back(option);
+    if (as) args.insert(args.end(), {"--as", *as});
+    return std::make_unique<ChildProcess>(args, (dir_ / (log_name + ".log")).string());
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::string address_;
+  std::unique_ptr<ChildProcess> process_;
+};
+
+}  // namespace jaus::test
