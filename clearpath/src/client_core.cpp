@@ -68,15 +68,22 @@ void ClientCore::unsubscribe(std::uint16_t request_type, std::uint8_t selector) 
   send(std::move(cancel));
 }
 
-void ClientCore::set_setpoint(AnyMessage command) {
+void ClientCore::set_setpoint(AnyMessage command, rt::TimePoint now) {
   const auto type = type_of(command);
   if (!type || kind_of(*type) != MessageKind::command) return;
-  auto [it, inserted] = setpoints_.try_emplace(*type, Setpoint{command});
+  auto [it, inserted] = setpoints_.try_emplace(*type, Setpoint{command, now});
   if (!inserted) {
     if (it->second.fresh) ++counters_.setpoints_replaced;  // the older one never went out
-    it->second.message = std::move(command);
-    it->second.fresh = true;
+    it->second = Setpoint{std::move(command), now};
   }
+}
+
+void ClientCore::stop_setpoint(AnyMessage stop, rt::TimePoint now) {
+  const auto type = type_of(stop);
+  if (!type || kind_of(*type) != MessageKind::command) return;
+  Setpoint setpoint{std::move(stop), now};
+  setpoint.stop_once = true;
+  setpoints_.insert_or_assign(*type, std::move(setpoint));
 }
 
 void ClientCore::clear_setpoint(std::uint16_t type) { setpoints_.erase(type); }
@@ -86,16 +93,30 @@ std::vector<std::uint8_t> ClientCore::take_frame(rt::TimePoint now) {
   if (state_ != ConnectionState::connected && state_ != ConnectionState::retrying) return frame;
 
   // Setpoints first: a fresh one at once, the current one again every period.
-  for (auto& [type, setpoint] : setpoints_) {
-    if (!setpoint.fresh && now - setpoint.last_sent < config_.setpoint_period) continue;
+  // Safety: a setpoint older than setpoint_max_age is never written again
+  // (its stream ends and the platform's watchdog stops the platform), and a
+  // stop is written once and ends its stream.
+  for (auto it = setpoints_.begin(); it != setpoints_.end();) {
+    auto& [type, setpoint] = *it;
+    if (!setpoint.stop_once && config_.setpoint_max_age.count() > 0 && now - setpoint.set_at > config_.setpoint_max_age) {
+      ++counters_.setpoints_expired;
+      it = setpoints_.erase(it);
+      continue;
+    }
+    if (!setpoint.fresh && now - setpoint.last_sent < config_.setpoint_period) {
+      ++it;
+      continue;
+    }
     // Suppress the ACK: the stream itself is the retry mechanism.
     const Envelope e{{config_.version, next_timestamp(now), kFlagSuppressAck, type}, setpoint.message};
-    if (!append_encoded(frame, e)) {
-      setpoints_.erase(type);  // cannot be encoded: drop it rather than loop on it
-      return {};
+    const bool encoded = append_encoded(frame, e).has_value();
+    if (!encoded || setpoint.stop_once) {
+      setpoints_.erase(it);  // a stop goes once; one that cannot be encoded is dropped rather than looped on
+      if (!encoded) return {};
+    } else {
+      setpoint.fresh = false;
+      setpoint.last_sent = now;
     }
-    setpoint.fresh = false;
-    setpoint.last_sent = now;
     ++counters_.setpoints_sent;
     ++counters_.frames_sent;
     return frame;
@@ -145,7 +166,7 @@ void ClientCore::tick(rt::TimePoint now) {
     ++counters_.timeouts;
     if (pending.attempts < config_.max_attempts) {
       ++counters_.retries;
-      state_ = ConnectionState::retrying;
+      set_state(ConnectionState::retrying);
       queue_.push_front(std::move(pending));  // goes out again with a new timestamp
     } else {
       finish(pending, CommandOutcome{CommandError::no_ack, 0, pending.attempts});
@@ -187,7 +208,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
   in_flight_.erase(it);
   if (ack->result == 0) {
     ++counters_.acks_ok;
-    if (state_ == ConnectionState::retrying && in_flight_.empty()) state_ = ConnectionState::connected;
+    if (state_ == ConnectionState::retrying && in_flight_.empty()) set_state(ConnectionState::connected);
     finish(pending, CommandOutcome{});
     return;
   }
@@ -196,7 +217,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
     ++counters_.bad_checksum_acks;
     if (pending.attempts < config_.max_attempts) {
       ++counters_.retries;
-      state_ = ConnectionState::retrying;
+      set_state(ConnectionState::retrying);
       pending.deadline.reset();
       queue_.push_front(std::move(pending));
     } else {
@@ -238,21 +259,31 @@ void ClientCore::resubscribe() {
 
 void ClientCore::on_connected(rt::TimePoint now) {
   if (counters_.frames_received > 0 || counters_.frames_sent > 0) ++counters_.reconnects;
-  state_ = ConnectionState::connected;
   parser_.reset();
   last_rx_ = now;
   wants_reconnect_ = false;
   backoff_ = config_.backoff_initial;
   resubscribe();
-  for (auto& [type, setpoint] : setpoints_) setpoint.fresh = true;
+  // No setpoint survives a disconnection (mark_down): a reconnect re-arms nothing.
+  set_state(ConnectionState::connected);
 }
 
 void ClientCore::mark_down(rt::TimePoint now) {
-  state_ = ConnectionState::down;
   fail_all(CommandError::link_down);
+  // Safety: a reconnect never re-arms an old setpoint; the application sets a
+  // new one when it wants motion again.
+  counters_.setpoints_dropped += setpoints_.size();
+  setpoints_.clear();
   wants_reconnect_ = true;
   reconnect_at_ = now + backoff_;
   backoff_ = std::min(backoff_ * 2, config_.backoff_max);
+  set_state(ConnectionState::down);
+}
+
+void ClientCore::set_state(ConnectionState state) {
+  if (state == state_) return;
+  state_ = state;
+  if (on_state_) on_state_(state);
 }
 
 void ClientCore::on_disconnected(rt::TimePoint now) {
@@ -261,8 +292,8 @@ void ClientCore::on_disconnected(rt::TimePoint now) {
 }
 
 void ClientCore::reconnect_started(rt::TimePoint) {
-  state_ = ConnectionState::connecting;
   wants_reconnect_ = false;
+  set_state(ConnectionState::connecting);
 }
 
 void ClientCore::open_failed(rt::TimePoint now) { mark_down(now); }

@@ -86,7 +86,12 @@ void ClearpathLink::subscribe(AnyMessage request, ClientCore::CommandCallback do
 }
 
 void ClearpathLink::set_setpoint(AnyMessage command) {
-  core_.set_setpoint(std::move(command));
+  core_.set_setpoint(std::move(command), clock_.now());
+  pump();
+}
+
+void ClearpathLink::stop_setpoint(AnyMessage stop) {
+  core_.stop_setpoint(std::move(stop), clock_.now());
   pump();
 }
 

@@ -26,6 +26,19 @@ class VirtualLink {
   }
 
   void run_for(rt::Duration d) { time_.advance(d); }
+  // What an application does to keep a setpoint alive: set it again.
+  void set_setpoint(cp::AnyMessage m) { client.set_setpoint(std::move(m), time_.now()); }
+  void stop_setpoint(cp::AnyMessage m) { client.stop_setpoint(std::move(m), time_.now()); }
+  // Every setpoint of `type` written so far, decoded.
+  std::vector<cp::AnyMessage> written_of(std::uint16_t type) const {
+    std::vector<cp::AnyMessage> out;
+    for (const auto& frame : written) {
+      const auto f = cp::decode_frame(frame);
+      if (!f || f->header.type != type) continue;
+      if (auto m = cp::decode(*f, cp::Direction::to_platform)) out.push_back(m->message);
+    }
+    return out;
+  }
   std::size_t data_of(std::uint16_t type) const {
     std::size_t n = 0;
     for (const auto& e : data) n += e.header.type == type;
@@ -177,8 +190,10 @@ TEST(ClearpathClientSim, RetriesUnderInjectedCorruption) {
 
 TEST(ClearpathClientSim, PlatformStopsWhenCommandsCease) {
   VirtualLink link;
-  link.client.set_setpoint(velocity(0.8, 0));
-  link.run_for(2s);
+  for (int i = 0; i < 20; ++i) {  // renewed at 10 Hz for 2 s, as a driver under an OCU's stream would
+    link.set_setpoint(velocity(0.8, 0));
+    link.run_for(100ms);
+  }
   EXPECT_NEAR(link.platform().vehicle().linear_speed(), 0.8, 1e-6);
   EXPECT_FALSE(link.platform().vehicle().watchdog_expired());
   link.client.clear_setpoint(cp::SetVelocity::kType);
@@ -189,22 +204,81 @@ TEST(ClearpathClientSim, PlatformStopsWhenCommandsCease) {
 
 TEST(ClearpathClientSim, SetpointsAreLatestWinsAndResentToFeedTheWatchdog) {
   VirtualLink link;
-  link.client.set_setpoint(velocity(0.1, 0));
-  link.client.set_setpoint(velocity(0.2, 0));  // replaces the unsent 0.1
-  link.run_for(1s);
+  link.set_setpoint(velocity(0.1, 0));
+  link.set_setpoint(velocity(0.2, 0));  // replaces the unsent 0.1
+  link.run_for(480ms);
   EXPECT_EQ(link.client.counters().setpoints_replaced, 1u);
-  std::size_t sent = 0;
-  for (const auto& frame : link.written) {
-    const auto f = cp::decode_frame(frame);
-    if (!f || f->header.type != cp::SetVelocity::kType) continue;
-    const auto m = cp::decode(*f, cp::Direction::to_platform);
-    ASSERT_TRUE(m);
-    EXPECT_DOUBLE_EQ(std::get<cp::SetVelocity>(m->message).translational, 0.2);
-    ++sent;
+  const auto sent = link.written_of(cp::SetVelocity::kType);
+  for (const auto& m : sent) EXPECT_DOUBLE_EQ(std::get<cp::SetVelocity>(m).translational, 0.2);
+  // Resent every 50 ms (never less often than the 100 ms the notes require): 0, 50, ... 450 ms.
+  EXPECT_EQ(sent.size(), 10u);
+}
+
+// Safety: a setpoint nobody renews is not resent past its maximum age (0.5 s
+// by default), so the platform's watchdog stops the platform.
+TEST(ClearpathClientSim, AStreamNobodyRenewsEndsAtItsMaximumAge) {
+  VirtualLink link;
+  link.set_setpoint(velocity(0.8, 0));
+  link.run_for(500ms);
+  EXPECT_GT(link.platform().vehicle().linear_speed(), 0.3);
+  const auto sent_by_max_age = link.written_of(cp::SetVelocity::kType).size();
+  link.run_for(2s);
+  EXPECT_EQ(link.written_of(cp::SetVelocity::kType).size(), sent_by_max_age);
+  EXPECT_EQ(link.client.counters().setpoints_expired, 1u);
+  EXPECT_EQ(link.platform().vehicle().linear_speed(), 0.0);
+  EXPECT_TRUE(link.platform().vehicle().safety_flags() & sim::kSafetyTimeout);
+}
+
+// Safety: a stop is one zero setpoint, written at once, and then silence.
+TEST(ClearpathClientSim, AStopIsWrittenOnceAndEndsTheStream) {
+  VirtualLink link;
+  for (int i = 0; i < 5; ++i) {
+    link.set_setpoint(velocity(0.8, 0.5));
+    link.run_for(100ms);
   }
-  // Resent every 50 ms: about 20 in a second, never fewer than the 100 ms the notes require.
-  EXPECT_GE(sent, 19u);
-  EXPECT_LE(sent, 22u);
+  const auto before = link.written_of(cp::SetVelocity::kType).size();
+  link.stop_setpoint(velocity(0, 0));
+  link.run_for(2ms);
+  auto sent = link.written_of(cp::SetVelocity::kType);
+  ASSERT_EQ(sent.size(), before + 1);
+  EXPECT_EQ(std::get<cp::SetVelocity>(sent.back()).translational, 0.0);
+  EXPECT_EQ(std::get<cp::SetVelocity>(sent.back()).rotational, 0.0);
+  link.run_for(1s);
+  EXPECT_EQ(link.written_of(cp::SetVelocity::kType).size(), before + 1);
+  EXPECT_EQ(link.platform().vehicle().linear_speed(), 0.0);
+  // A new command starts a new stream.
+  link.set_setpoint(velocity(0.3, 0));
+  link.run_for(100ms);
+  EXPECT_GT(link.written_of(cp::SetVelocity::kType).size(), before + 1);
+}
+
+// Safety: the link going down drops every setpoint; coming back re-arms none.
+TEST(ClearpathClientSim, AReconnectNeverRearmsAnOldSetpoint) {
+  VirtualLink link;
+  std::vector<cp::ConnectionState> states;
+  link.client.on_state([&](cp::ConnectionState s) { states.push_back(s); });
+  cp::RequestSafetyStatus safety;
+  safety.subscription = 20;
+  link.client.subscribe(safety);
+  link.set_setpoint(velocity(0.8, 0));
+  link.run_for(100ms);
+  link.set_plugged(false);
+  for (int i = 0; i < 30 && link.client.state() != cp::ConnectionState::down; ++i) {
+    link.set_setpoint(velocity(0.8, 0));  // renewed while the cable is out, until the link is declared down
+    link.run_for(100ms);
+  }
+  ASSERT_EQ(link.client.state(), cp::ConnectionState::down);
+  EXPECT_EQ(link.client.counters().setpoints_dropped, 1u);
+  const auto before = link.written_of(cp::SetVelocity::kType).size();
+  link.set_plugged(true);
+  link.run_for(3s);
+  ASSERT_EQ(link.client.state(), cp::ConnectionState::connected);
+  EXPECT_EQ(link.written_of(cp::SetVelocity::kType).size(), before);
+  EXPECT_EQ(link.platform().vehicle().linear_speed(), 0.0);
+  // Each change was reported, in order: down, then connecting, then connected.
+  ASSERT_GE(states.size(), 3u);
+  EXPECT_EQ(states.front(), cp::ConnectionState::down);
+  EXPECT_EQ(states.back(), cp::ConnectionState::connected);
 }
 
 TEST(ClearpathClientSim, SilenceMeansDownThenSubscriptionsComeBack) {

@@ -19,11 +19,17 @@ class Client {
   virtual void send(AnyMessage message, ClientCore::CommandCallback done = {}) = 0;
   // A subscription kept alive across reconnects.
   virtual void subscribe(AnyMessage request, ClientCore::CommandCallback done = {}) = 0;
-  // Latest-wins stream resent to feed the platform's watchdog, until cleared.
+  // Latest-wins stream resent to feed the platform's watchdog, for at most
+  // ClientConfig::setpoint_max_age from now unless set again (see ClientCore).
   virtual void set_setpoint(AnyMessage command) = 0;
   virtual void clear_setpoint(std::uint16_t type) = 0;
+  // Safety: `stop` (a zero setpoint) written once, first, and the stream of
+  // its type ends there.
+  virtual void stop_setpoint(AnyMessage stop) = 0;
   // Every data message from the platform.
   virtual void on_data(ClientCore::DataCallback callback) = 0;
+  // Every change of the connection's state.
+  virtual void on_state(ClientCore::StateCallback callback) = 0;
 
   virtual ConnectionState state() const = 0;
   virtual const ClientCounters& counters() const = 0;

@@ -22,8 +22,12 @@ namespace jaus::clearpath {
 struct ClientConfig {
   std::chrono::milliseconds ack_timeout{250};
   int max_attempts = 4;  // first send + retries
-  // Current setpoints are resent this often to feed the platform's watchdog.
+  // Current setpoints are resent this often to feed the platform's watchdog...
   std::chrono::milliseconds setpoint_period{50};
+  // ...but only while they are younger than this (since set_setpoint): the
+  // link never keeps a platform moving on a command its application stopped
+  // renewing. 0 keeps a setpoint until it is replaced or cleared.
+  std::chrono::milliseconds setpoint_max_age{500};
   // No frame from the platform for this long: the link is down.
   std::chrono::milliseconds data_silence{1000};
   std::chrono::milliseconds backoff_initial{100};
@@ -55,12 +59,15 @@ struct ClientCounters {
   std::uint64_t retries = 0, timeouts = 0, bad_checksum_acks = 0;
   std::uint64_t decode_errors = 0, data_received = 0;
   std::uint64_t reconnects = 0, setpoints_sent = 0, setpoints_replaced = 0;
+  std::uint64_t setpoints_expired = 0;  // older than setpoint_max_age: no longer sent
+  std::uint64_t setpoints_dropped = 0;  // the link went down: a reconnect never re-arms them
 };
 
 class ClientCore {
  public:
   using CommandCallback = std::function<void(const CommandOutcome&)>;
   using DataCallback = std::function<void(const Envelope&)>;
+  using StateCallback = std::function<void(ConnectionState)>;
 
   explicit ClientCore(ClientConfig config = {});
 
@@ -87,10 +94,20 @@ class ClientCore {
   // Keep a subscription (request with subscription N Hz) alive across reconnects.
   void subscribe(AnyMessage request, CommandCallback done = {});
   void unsubscribe(std::uint16_t request_type, std::uint8_t selector = 0);
-  // Latest-wins stream, one slot per message type (velocity, outputs...).
-  void set_setpoint(AnyMessage command);
+  // Latest-wins stream, one slot per message type (velocity, outputs...),
+  // resent every setpoint_period while younger than setpoint_max_age (from
+  // `now`, when it was set). The application renews it as long as it wants
+  // motion; when it stops renewing, the stream ends and the platform's own
+  // watchdog stops the platform.
+  void set_setpoint(AnyMessage command, rt::TimePoint now);
   void clear_setpoint(std::uint16_t type);
+  // Safety: replaces the stream of this type with `stop` (a zero setpoint),
+  // written once, first, at the next frame, and then the stream ends: nothing
+  // of that type is re-sent until set_setpoint() is called again.
+  void stop_setpoint(AnyMessage stop, rt::TimePoint now);
   void on_data(DataCallback callback) { on_data_ = std::move(callback); }
+  // Every change of state() (down, connecting, connected, retrying).
+  void on_state(StateCallback callback) { on_state_ = std::move(callback); }
 
   ConnectionState state() const { return state_; }
   const ClientCounters& counters() const { return counters_; }
@@ -112,7 +129,9 @@ class ClientCore {
   };
   struct Setpoint {
     AnyMessage message;
-    bool fresh = true;  // not yet written since it was set
+    rt::TimePoint set_at{};
+    bool fresh = true;       // not yet written since it was set
+    bool stop_once = false;  // a stop: written once, then the stream ends
     rt::TimePoint last_sent{};
   };
 
@@ -123,6 +142,7 @@ class ClientCore {
   void resubscribe();
   void handle_frame(const Frame& frame, rt::TimePoint now);
   void mark_down(rt::TimePoint now);
+  void set_state(ConnectionState state);
 
   ClientConfig config_;
   rt::TimePoint epoch_;
@@ -140,6 +160,7 @@ class ClientCore {
   rt::TimePoint reconnect_at_{};
   std::chrono::milliseconds backoff_;
   DataCallback on_data_;
+  StateCallback on_state_;
   ClientCounters counters_;
 };
 

@@ -52,7 +52,9 @@ class ClearpathLink final : public Client {
   void subscribe(AnyMessage request, ClientCore::CommandCallback done = {}) override;
   void set_setpoint(AnyMessage command) override;
   void clear_setpoint(std::uint16_t type) override;
+  void stop_setpoint(AnyMessage stop) override;
   void on_data(ClientCore::DataCallback callback) override { core_.on_data(std::move(callback)); }
+  void on_state(ClientCore::StateCallback callback) override { core_.on_state(std::move(callback)); }
   ConnectionState state() const override { return core_.state(); }
   const ClientCounters& counters() const override { return core_.counters(); }
 

@@ -37,9 +37,11 @@ class LoopbackClient final : public Client {
   void subscribe(AnyMessage request, ClientCore::CommandCallback done = {}) override {
     core_.subscribe(std::move(request), std::move(done));
   }
-  void set_setpoint(AnyMessage command) override { core_.set_setpoint(std::move(command)); }
+  void set_setpoint(AnyMessage command) override { core_.set_setpoint(std::move(command), clock_.now()); }
   void clear_setpoint(std::uint16_t type) override { core_.clear_setpoint(type); }
+  void stop_setpoint(AnyMessage stop) override { core_.stop_setpoint(std::move(stop), clock_.now()); }
   void on_data(ClientCore::DataCallback callback) override { core_.on_data(std::move(callback)); }
+  void on_state(ClientCore::StateCallback callback) override { core_.on_state(std::move(callback)); }
   ConnectionState state() const override { return core_.state(); }
   const ClientCounters& counters() const override { return core_.counters(); }
 
