@@ -1,6 +1,7 @@
 #include "jaus/components/simulated_vehicle.hpp"
 
-#include <GeographicLib/LocalCartesian.hpp>
+#include "jaus/components/local_frame.hpp"
+
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,7 @@ struct SimulatedVehicle::State {
   State(SimulatedVehicleConfig c, const rt::Clock& clk)
       : config(std::move(c)),
         clock(clk),
-        geodesy(config.start.latitude_deg, config.start.longitude_deg, config.start.altitude_m) {
+        geodesy(config.start) {
     if (!(config.update_rate_hz >= kMinUpdateRateHz)) config.update_rate_hz = kMinUpdateRateHz;  // NaN too
     config.update_rate_hz = std::min(config.update_rate_hz, kMaxUpdateRateHz);
     step = rt::Duration{std::max<std::int64_t>(1, std::llround(1e9 / config.update_rate_hz))};
@@ -48,7 +49,7 @@ struct SimulatedVehicle::State {
 
   SimulatedVehicleConfig config;
   const rt::Clock& clock;
-  GeographicLib::LocalCartesian geodesy;
+  LocalFrame geodesy;
   rt::Duration step{};
   double step_s = 0;
 
@@ -148,14 +149,9 @@ struct SimulatedVehicle::State {
     s.taken_at = last_step_at;
     s.taken_utc = clock.utc_now() - (clock.now() - last_step_at);
 
-    const Vector3 enu{east, north, 0};
-    GeoPosition position;
-    geodesy.Reverse(enu.x, enu.y, enu.z, position.latitude_deg, position.longitude_deg, position.altitude_m);
-    s.position = position;
-    if (config.local_frame) {
-      const Vector3 ned = enu_to_ned(enu);
-      s.local_position = LocalPosition{ned.x, ned.y, ned.z};
-    }
+    const LocalPosition local{north, east, 0};
+    s.position = geodesy.to_geo(local);
+    if (config.local_frame) s.local_position = local;
     s.position_rms_m = config.position_rms_m + config.position_rms_per_m * distance;
     s.attitude = EulerAngles{0, 0, heading};
     s.attitude_rms_rad = config.attitude_rms_rad;
