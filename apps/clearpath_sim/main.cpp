@@ -1,6 +1,7 @@
 // clearpath-sim: a simulated Clearpath platform on UDP, a serial device or a
 // PTY it opens itself (`pty: /dev/pts/N` is then its first line of output).
 #include <csignal>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -18,7 +19,7 @@ int main(int argc, char** argv) {
   std::string udp, serial, drive = "differential", log_level = "info";
   bool pty = false;
   sim::FaultConfig faults;
-  double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5;
+  double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5, status_every_s = 0;
   auto* udp_opt = app.add_option("--udp", udp, "Serve UDP on HOST:PORT");
   auto* serial_opt = app.add_option("--serial", serial, "Serve on a serial device (115200 8N1)");
   auto* pty_opt = app.add_flag("--pty", pty, "Open a PTY and serve on it; prints `pty: PATH` first");
@@ -31,6 +32,9 @@ int main(int argc, char** argv) {
   app.add_option("--disconnect-every", disconnect_every_s, "Go silent every N seconds (0 = never)")->check(CLI::NonNegativeNumber);
   app.add_option("--disconnect-for", disconnect_for_s, "Seconds each silence lasts")->check(CLI::NonNegativeNumber);
   app.add_option("--seed", faults.seed, "Seed of the fault injector");
+  app.add_option("--status-every", status_every_s,
+                 "Print the vehicle's true state as a JSON line every N seconds (0 = never)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   try {
@@ -83,6 +87,21 @@ int main(int argc, char** argv) {
   if (endpoint.kind == sim::ServerEndpoint::Kind::pty) std::cout << "pty: " << server.pty_path() << std::endl;
   spdlog::info("clearpath-sim: {} drive, serving on {}", drive,
                endpoint.kind == sim::ServerEndpoint::Kind::udp ? udp : (pty ? server.pty_path() : serial));
+  // The platform's true state, for an operator or a test watching what the
+  // wheels really do (what its client is told is another matter).
+  std::function<void()> print_status = [&] {
+    const auto& v = server.platform().vehicle();
+    const auto& c = server.platform().counters();
+    std::cout << fmt::format(
+                     "{{\"status\":{{\"left_mps\":{:.3f},\"right_mps\":{:.3f},\"speed_mps\":{:.3f},"
+                     "\"yaw_rate_rps\":{:.3f},\"yaw_rad\":{:.3f},\"x_m\":{:.3f},\"y_m\":{:.3f},"
+                     "\"watchdog_expired\":{},\"safety_flags\":{},\"commands_applied\":{},\"frames_rejected\":{}}}}}",
+                     v.left().speed, v.right().speed, v.linear_speed(), v.yaw_rate(), v.yaw(), v.x(), v.y(),
+                     v.watchdog_expired(), v.safety_flags(), c.commands_applied, server.platform().parser_counters().errors())
+              << std::endl;
+    runtime.call_at(runtime.now() + std::chrono::milliseconds(static_cast<long>(status_every_s * 1000)), print_status);
+  };
+  if (status_every_s > 0) print_status();
   boost::asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](const boost::system::error_code&, int) {
     server.stop();

@@ -12,6 +12,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <map>
@@ -58,10 +59,10 @@ inline std::string_view without_plus(std::string_view text) {
   return text;
 }
 
-inline std::optional<long long> to_integer(std::string_view text) {
+inline std::optional<long long> to_integer(std::string_view text, int base = 10) {
   text = without_plus(text);
   long long v = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v, base);
   if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size()) return std::nullopt;
   return v;
 }
@@ -169,6 +170,19 @@ T integer(const Entry& e, long long min, long long max) {
   const auto v = to_integer(e.scalar(what));
   if (!v || *v < min || *v > max) e.must_be(what);
   return static_cast<T>(*v);
+}
+
+// Bits (flags, pins): decimal or hexadecimal with 0x, 0..max.
+inline std::uint32_t bits(const Entry& e, std::uint32_t min, std::uint32_t max) {
+  const std::string what = "bits " + std::to_string(min) + ".." + std::to_string(max) + " (decimal or 0x hexadecimal)";
+  std::string_view text = e.scalar(what);
+  const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+  if (hex) text.remove_prefix(2);
+  const auto v = hex && !text.empty() && text.front() != '-' && text.front() != '+' ? to_integer(text, 16)
+                 : hex                                                             ? std::nullopt
+                                                                                   : to_integer(text);
+  if (!v || *v < min || *v > max) e.must_be(what);
+  return static_cast<std::uint32_t>(*v);
 }
 
 inline double number(const Entry& e, const NumberRange& range) {

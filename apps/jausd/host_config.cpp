@@ -4,6 +4,60 @@ namespace jausd {
 
 namespace {
 
+// The platform and the bridge's mapping: the vehicle's figures from `vehicle:`,
+// the protocol's options from `clearpath:`.
+jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
+  namespace cp = jaus::clearpath;
+  const auto& v = config.vehicle;
+  const auto& o = config.clearpath;
+  jaus::host::PlatformSettings p;
+  p.kind = config.platform.kind;
+  p.endpoint = config.platform.endpoint;
+  const auto max_age = std::chrono::milliseconds(static_cast<long long>(o.setpoint_max_age_s * 1000));
+  p.client.setpoint_max_age = max_age;
+
+  // The simulated platform drives like the configured vehicle.
+  p.sim.vehicle.drive = v.steering == jaus::components::Steering::ackermann ? cp::sim::Drive::ackermann
+                                                                            : cp::sim::Drive::differential;
+  p.sim.vehicle.track_width = v.specifications.track_width_m.value_or(0.55);
+  p.sim.vehicle.wheelbase = v.wheel_base_m;
+  p.sim.vehicle.max_steering_angle = v.max_steering_rad;
+  p.sim.name = v.specifications.name;
+
+  auto& b = p.vehicle;
+  b.drive = drive_mode(o, v.steering);
+  b.brake = o.brake;
+  b.gear = o.gear;
+  b.main_power = o.main_power;
+  b.parking_brake = o.parking_brake;
+  b.horn = o.horn;
+  b.heading_from_orientation = o.heading_from_orientation;
+  b.data_rate_hz = o.data_rate_hz;
+  b.setpoint_max_age = max_age;
+  b.nominal_battery_v = o.nominal_battery_v;
+  b.max_encoder_step_m = o.max_encoder_step_m;
+  b.emergency_flags = o.emergency_flags;
+  b.platform_stop_flags = o.platform_stop_flags;
+  b.max_speed_mps = v.max_speed_mps;
+  b.max_yaw_rate_rps = v.max_yaw_rate_rps;
+  b.max_acceleration_mps2 = v.max_acceleration_mps2;
+  b.track_width_m = v.specifications.track_width_m.value_or(0.55);
+  b.specifications = v.specifications;
+  b.datum = v.start;
+  b.datum_heading_rad = v.start_heading_rad;
+  b.local_frame = v.local_frame;
+  b.position_rms_m = v.position_rms_m;
+  b.position_rms_per_m = v.position_rms_per_m;
+  b.attitude_rms_rad = v.attitude_rms_rad;
+  b.velocity_rms_mps = v.velocity_rms_mps;
+  b.rate_rms_rps = v.rate_rms_rps;
+  return p;
+}
+
+}  // namespace
+
+namespace {
+
 using namespace jaus;
 
 rt::Duration seconds(double s) {
@@ -48,6 +102,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.vehicle = config.vehicle;
   h.cameras = config.cameras;
   h.arm = config.manipulator;
+  h.platform = platform_settings(config);
   return h;
 }
 

@@ -117,6 +117,8 @@ struct SourceLines {
   int components = 0;       // the 'components' key
   int cameras = 0;          // the 'cameras' key
   int manipulator = 0;      // the 'manipulator' key
+  int platform = 0;         // the 'platform' key
+  int clearpath = 0;        // the 'clearpath' key
   std::vector<int> peers;   // one per transport.peers entry
 };
 
@@ -254,6 +256,16 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (auto issue = check_transport(c.transport, lines)) return issue;
   if (auto problem = check_cameras(c.cameras)) return Issue{lines.cameras, *problem};
   if (auto problem = check_arm(c.manipulator)) return Issue{lines.manipulator, *problem};
+  // The simulated Clearpath platform steers as the vehicle is configured, and
+  // refuses the other kind's commands: the two must agree.
+  const bool ackermann_drive = drive_mode(c.clearpath, c.vehicle.steering) == jaus::bridge::DriveMode::ackermann;
+  const bool ackermann_vehicle = c.vehicle.steering == jaus::components::Steering::ackermann;
+  if (c.platform.kind == jaus::host::PlatformSettings::Kind::clearpath_sim && ackermann_drive != ackermann_vehicle)
+    return Issue{lines.clearpath ? lines.clearpath : lines.platform,
+                 std::string("'clearpath.drive' ") + (ackermann_drive ? "ackermann needs" : "of a differential platform needs") +
+                     " vehicle.steering " + (ackermann_drive ? "ackermann" : "differential") + " on the simulated platform"};
+  if (c.clearpath.setpoint_max_age_s < 0.05 || c.clearpath.setpoint_max_age_s > 10)
+    return Issue{lines.clearpath, "'setpoint_max_age_s' must be a number of seconds 0.05..10"};
   return check_components(c, lines);
 }
 
@@ -498,6 +510,16 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
           }
         }},
        {"vehicle", [&](const Entry& s) { read_vehicle(s, c.vehicle); }},
+       {"platform",
+        [&](const Entry& s) {
+          lines.platform = s.key_line;
+          read_platform(s, c.platform);
+        }},
+       {"clearpath",
+        [&](const Entry& s) {
+          lines.clearpath = s.key_line;
+          read_clearpath(s, c.clearpath);
+        }},
        {"cameras",
         [&](const Entry& s) {
           lines.cameras = s.key_line;

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "platform_config.hpp"
 #include "jaus/base/expected.hpp"
 #include "jaus/components/arm_config.hpp"
 #include "jaus/components/camera_config.hpp"
@@ -69,6 +70,8 @@ struct JausdConfig {
   std::string dialect = "ra";          // "ra" or "openjaus": how payloads from peers are read
   TransportConfig transport;
   jaus::components::SimulatedVehicleConfig vehicle;  // what the mobility components drive and read
+  PlatformChoice platform;      // what carries it: a simulated Clearpath platform by default
+  ClearpathOptions clearpath;   // the bridge's mapping, for a Clearpath platform (platform_config.hpp)
   jaus::components::VisualSensorConfig cameras = default_cameras();  // the visual sensor's (hardware_config.hpp)
   jaus::components::ArmConfig manipulator = default_arm();           // the primitive manipulator's arm
   std::vector<ComponentSpec> components = default_components();

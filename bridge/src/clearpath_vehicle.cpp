@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "jaus/bridge/frame_conventions.hpp"
@@ -62,7 +63,10 @@ struct ClearpathVehicle::State {
 
   // Devices as commanded (Clearpath reports neither of them back, except the gear).
   DiscreteDevices devices;
-  std::uint32_t safety_flags = 0;   // the word 0x0010 carries
+  std::uint32_t safety_flags = 0;   // the word 0x0010 carries (devices and emergency)
+  bool emergency_commanded = false;
+  EmergencyListener emergency_listener;
+  std::optional<std::string> platform_emergency;  // the platform's own e-stop, while on
   std::uint32_t gpio_outputs = 0;   // the pins 0x0302 drives
   bool gpio_configured = false;
   std::optional<std::int8_t> reported_gear;
@@ -171,13 +175,42 @@ struct ClearpathVehicle::State {
     return {cp::SetDifferentialOutput{}, told};
   }
 
-  void write_devices() {
-    if (config.main_power.kind == DeviceOutput::Kind::safety_flag || config.parking_brake.kind == DeviceOutput::Kind::safety_flag ||
-        config.horn.kind == DeviceOutput::Kind::safety_flag) {
-      cp::SetSafetySystem m;
-      m.flags = static_cast<std::uint16_t>(safety_flags);
-      send(m, "safety flags (discrete devices)");
+  bool uses_safety_flags() const {
+    return config.main_power.kind == DeviceOutput::Kind::safety_flag ||
+           config.parking_brake.kind == DeviceOutput::Kind::safety_flag ||
+           config.horn.kind == DeviceOutput::Kind::safety_flag || config.emergency_flags != 0;
+  }
+
+  std::uint16_t safety_word() const {
+    std::uint32_t word = safety_flags;
+    if (emergency_commanded) word |= config.emergency_flags;
+    return static_cast<std::uint16_t>(word);
+  }
+
+  void write_safety_flags(const char* why) {
+    cp::SetSafetySystem m;
+    m.flags = safety_word();
+    send(m, why);
+  }
+
+  // 0x8010: the platform's own stop bits, not counting the ones we set.
+  void on_safety(const cp::SafetyStatus& status) {
+    const std::uint16_t own = status.flags & config.platform_stop_flags & static_cast<std::uint16_t>(~safety_word());
+    std::optional<std::string> now_on;
+    if (own != 0) {
+      char text[64];
+      std::snprintf(text, sizeof text, "Clearpath platform e-stop or pause (safety flags 0x%04X)", own);
+      now_on = text;
     }
+    if (now_on.has_value() == platform_emergency.has_value()) return;
+    platform_emergency = now_on;
+    platform.log(now_on ? rt::LogLevel::warn : rt::LogLevel::info,
+                 now_on ? *now_on : std::string("Clearpath platform e-stop cleared"));
+    if (emergency_listener) emergency_listener(now_on);
+  }
+
+  void write_devices() {
+    if (uses_safety_flags()) write_safety_flags("safety flags (discrete devices)");
     std::uint32_t gpio_mask = 0;
     for (const auto* out : {&config.main_power, &config.parking_brake, &config.horn})
       if (out->kind == DeviceOutput::Kind::gpio) gpio_mask |= out->bits;
@@ -281,6 +314,7 @@ struct ClearpathVehicle::State {
     client.subscribe(request_at<cp::RequestPowerStatus>(1));
     client.subscribe(request_at<cp::RequestMaxSpeed>(1));
     if (config.gear) client.subscribe(request_at<cp::RequestGear>(2));
+    if (config.platform_stop_flags != 0) client.subscribe(request_at<cp::RequestSafetyStatus>(5));
   }
 
   void listen() {
@@ -317,6 +351,9 @@ struct ClearpathVehicle::State {
     });
     platform.on_data(cp::GearData::kType, [this](const cp::Envelope& e) {
       if (const auto* m = std::get_if<cp::GearData>(&e.message)) reported_gear = m->gear;
+    });
+    platform.on_data(cp::SafetyStatus::kType, [this](const cp::Envelope& e) {
+      if (const auto* m = std::get_if<cp::SafetyStatus>(&e.message)) on_safety(*m);
     });
     platform.on_alive([this](bool alive) {
       if (alive) {
@@ -472,6 +509,18 @@ OperationalData ClearpathVehicle::operational_data() {
 std::optional<PoseSample> ClearpathVehicle::sample() { return state_->latest; }
 
 double ClearpathVehicle::update_rate_hz() const { return std::max<std::uint16_t>(state_->config.data_rate_hz, 1); }
+
+void ClearpathVehicle::on_platform_emergency(EmergencyListener listener) {
+  state_->emergency_listener = std::move(listener);
+  if (state_->emergency_listener && state_->platform_emergency) state_->emergency_listener(state_->platform_emergency);
+}
+
+void ClearpathVehicle::command_emergency(bool active) {
+  auto& s = *state_;
+  if (s.config.emergency_flags == 0 || s.emergency_commanded == active) return;
+  s.emergency_commanded = active;
+  s.write_safety_flags(active ? "emergency stop flag" : "emergency stop flag cleared");
+}
 
 const ClearpathVehicleConfig& ClearpathVehicle::config() const { return state_->config; }
 const ClearpathVehicleCounters& ClearpathVehicle::counters() const { return state_->counters; }

@@ -201,6 +201,19 @@ void ClearpathLink::pump() {
   }
 }
 
+void ClearpathLink::flush() {
+  if (!open_) return;
+  error_code ignored;
+  for (auto frame = core_.take_frame(clock_.now()); !frame.empty(); frame = core_.take_frame(clock_.now())) {
+    switch (endpoint_.kind) {
+      case PlatformEndpoint::Kind::serial: asio::write(serial_, asio::buffer(frame), ignored); break;
+      case PlatformEndpoint::Kind::udp: udp_.send(asio::buffer(frame), 0, ignored); break;
+      case PlatformEndpoint::Kind::tcp: asio::write(tcp_, asio::buffer(frame), ignored); break;
+    }
+    if (ignored) return;
+  }
+}
+
 void ClearpathLink::on_tick() {
   if (!running_) return;
   const auto now = clock_.now();

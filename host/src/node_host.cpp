@@ -1,5 +1,8 @@
 #include "jaus/host/node_host.hpp"
 
+#include "jaus/clearpath/link.hpp"
+#include "jaus/clearpath/sim/loopback_client.hpp"
+
 namespace jaus::host {
 
 NodeHost::NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log)
@@ -18,14 +21,21 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     if (host->watcher_) host->watcher_(packet);
     host->node_->receive(packet);
   });
-  // The simulated hardware the configured components need, each made once.
+  // The hardware the configured components need, each made once.
   VehicleBackends backends;
   for (const auto& spec : h->config_.components) {
     const Hardware hardware = hardware_of(spec.kind);
-    if (hardware == Hardware::vehicle && !h->vehicle_) {
-      h->vehicle_ = std::make_unique<components::SimulatedVehicle>(h->config_.vehicle, h->runtime_);
-      backends.drive = h->vehicle_.get();
-      backends.pose = h->vehicle_.get();
+    if (hardware == Hardware::vehicle && !h->vehicle_ && !h->clearpath_vehicle_) {
+      if (h->config_.platform.kind == PlatformSettings::Kind::model) {
+        h->vehicle_ = std::make_unique<components::SimulatedVehicle>(h->config_.vehicle, h->runtime_);
+        backends.drive = h->vehicle_.get();
+        backends.pose = h->vehicle_.get();
+      } else {
+        h->open_platform(io);
+        h->clearpath_vehicle_ = std::make_unique<bridge::ClearpathVehicle>(*h->platform_, h->config_.platform.vehicle);
+        backends.drive = h->clearpath_vehicle_.get();
+        backends.pose = h->clearpath_vehicle_.get();
+      }
     } else if (hardware == Hardware::cameras && !h->cameras_) {
       h->cameras_ = std::make_unique<components::SimulatedCameras>(h->config_.cameras, h->runtime_);
       backends.cameras = h->cameras_.get();
@@ -34,13 +44,60 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
       backends.arm = h->arm_.get();
     }
   }
+  std::vector<std::pair<const ComponentSpec*, rt::Component*>> on_vehicle;
   for (const auto& spec : h->config_.components) {
     auto component = make_component(spec, h->config_.settings, *h->node_, backends);
     if (!component) return unexpected(component.error());
-    h->node_->add(std::move(*component));
+    rt::Component& added = h->node_->add(std::move(*component));
+    if (hardware_of(spec.kind) == Hardware::vehicle) on_vehicle.emplace_back(&spec, &added);
   }
+  if (h->clearpath_vehicle_) h->mirror_emergencies(on_vehicle);
   h->link_->start();
   return h;
+}
+
+// The Clearpath platform's client: a link that reopens with backoff and never
+// fails the node (a missing port is a link down, which the components report
+// as Failure), or the simulated platform in this process.
+void NodeHost::open_platform(boost::asio::io_context& io) {
+  if (platform_) return;
+  const auto& p = config_.platform;
+  if (p.kind == PlatformSettings::Kind::clearpath_sim) {
+    clearpath::sim::LoopbackConfig loopback;
+    loopback.platform = p.sim;
+    loopback.client = p.client;
+    loopback.period = std::chrono::milliseconds(5);
+    platform_client_ = std::make_unique<clearpath::sim::LoopbackClient>(runtime_, runtime_, loopback);
+    log_(rt::LogLevel::info, "Clearpath platform: simulated in process");
+  } else {
+    auto link = std::make_unique<clearpath::ClearpathLink>(io, runtime_, runtime_, p.endpoint, p.client);
+    link->start();
+    platform_link_ = link.get();
+    platform_client_ = std::move(link);
+  }
+  platform_ = std::make_unique<bridge::PlatformConnection>(*platform_client_, runtime_, log_);
+}
+
+// Safety, both ways between JAUS and the platform's own e-stop: the
+// platform's e-stop or pause puts every component on the vehicle in Emergency
+// until it clears; the primitive driver's Emergency sets the platform's
+// emergency flag when `emergency_flags` is configured.
+void NodeHost::mirror_emergencies(const std::vector<std::pair<const ComponentSpec*, rt::Component*>>& on_vehicle) {
+  std::vector<rt::Component*> components;
+  for (const auto& [spec, component] : on_vehicle) components.push_back(component);
+  clearpath_vehicle_->on_platform_emergency([components](const std::optional<std::string>& why) {
+    for (auto* c : components) {
+      if (why) c->hold_hardware_emergency(*why);
+      else c->release_hardware_emergency("the platform's e-stop cleared");
+    }
+  });
+  for (const auto& [spec, component] : on_vehicle) {
+    if (spec->kind != "primitive_driver") continue;
+    component->on_state_change([vehicle = clearpath_vehicle_.get()](rt::PrimaryStatus before, rt::PrimaryStatus after) {
+      if (after == rt::PrimaryStatus::emergency) vehicle->command_emergency(true);
+      else if (before == rt::PrimaryStatus::emergency) vehicle->command_emergency(false);
+    });
+  }
 }
 
 NodeHost::~NodeHost() { stop("host destroyed"); }
@@ -58,6 +115,9 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
+  // ...and the stop's zero setpoint goes out now, before a process exits
+  // without running its io_context again.
+  if (platform_link_ != nullptr) platform_link_->flush();
   const auto& n = node_->counters();
   const auto& l = link_->counters();
   log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +

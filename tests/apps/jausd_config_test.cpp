@@ -1,6 +1,7 @@
 // jausd configuration: defaults, every key read, and one "file:line: what"
 // error for every kind of mistake.
 #include "jausd_config.hpp"
+#include "host_config.hpp"
 #include "jaus/host/component_options.hpp"
 
 #include <gtest/gtest.h>
@@ -198,7 +199,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().to_string();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 124);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 145);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -407,7 +408,8 @@ TEST(JausdConfigErrors, TheFileMustBeAMap) {
 TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
   expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
-               "service_connections, liveness, transport, vehicle, cameras, manipulator, components, logging)");
+               "service_connections, liveness, transport, vehicle, platform, clearpath, cameras, manipulator, "
+               "components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
                "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
                "node, node_name, node_type)");
@@ -663,6 +665,84 @@ TEST(JausdConfigErrors, VehicleValues) {
                "unknown key 'rms' in vehicle.accuracy (known: position_rms_m, position_rms_per_m, attitude_rms_rad, "
                "velocity_rms_mps, rate_rms_rps)");
   expect_error("vehicle: [1]\n", 1, "'vehicle' must be a map of keys, got a list");
+}
+
+TEST(JausdConfig, PlatformAndClearpathMappingAreRead) {
+  using Kind = jaus::host::PlatformSettings::Kind;
+  EXPECT_EQ(expect_ok("").platform.kind, Kind::clearpath_sim);  // the default: a simulated Clearpath platform
+  EXPECT_EQ(expect_ok("platform: model\n").platform.kind, Kind::model);
+  const auto serial = expect_ok("platform: {serial: /dev/ttyS3, baud: 57600}\n");
+  EXPECT_EQ(serial.platform.kind, Kind::clearpath);
+  EXPECT_EQ(serial.platform.endpoint.kind, jaus::clearpath::PlatformEndpoint::Kind::serial);
+  EXPECT_EQ(serial.platform.endpoint.device, "/dev/ttyS3");
+  EXPECT_EQ(serial.platform.endpoint.baud, 57600u);
+  const auto udp = expect_ok("platform: {udp: 10.0.0.5:7000}\n");
+  EXPECT_EQ(udp.platform.endpoint.kind, jaus::clearpath::PlatformEndpoint::Kind::udp);
+  EXPECT_EQ(udp.platform.endpoint.host, "10.0.0.5");
+  EXPECT_EQ(udp.platform.endpoint.port, 7000);
+
+  const auto c = expect_ok(R"(
+platform: {tcp: robot:2000}
+clearpath:
+  drive: velocity
+  brake: ignore
+  gear: true
+  main_power: {safety_flag: 0x02, active_high: false}
+  parking_brake: {gpio: 0x01}
+  horn: none
+  heading: encoders
+  data_rate_hz: 10
+  setpoint_max_age_s: 0.3
+  nominal_battery_v: 12
+  max_encoder_step_m: 1
+  emergency_flags: 0x08
+  platform_stop_flags: 0
+)");
+  const auto& o = c.clearpath;
+  EXPECT_EQ(o.drive, jaus::bridge::DriveMode::velocity);
+  EXPECT_EQ(o.brake, jaus::bridge::BrakeMode::ignore);
+  EXPECT_TRUE(o.gear);
+  EXPECT_EQ(o.main_power.kind, jaus::bridge::DeviceOutput::Kind::safety_flag);
+  EXPECT_EQ(o.main_power.bits, 0x02u);
+  EXPECT_FALSE(o.main_power.active_high);
+  EXPECT_EQ(o.parking_brake.kind, jaus::bridge::DeviceOutput::Kind::gpio);
+  EXPECT_EQ(o.horn.kind, jaus::bridge::DeviceOutput::Kind::none);
+  EXPECT_FALSE(o.heading_from_orientation);
+  EXPECT_EQ(o.data_rate_hz, 10);
+  EXPECT_EQ(o.setpoint_max_age_s, 0.3);
+  EXPECT_EQ(o.emergency_flags, 0x08);
+  EXPECT_EQ(o.platform_stop_flags, 0);
+
+  // What the host gets: the vehicle's figures and the mapping together.
+  const auto host = jausd::host_config(c);
+  EXPECT_EQ(host.platform.kind, Kind::clearpath);
+  EXPECT_EQ(host.platform.client.setpoint_max_age, std::chrono::milliseconds(300));
+  EXPECT_EQ(host.platform.vehicle.setpoint_max_age, std::chrono::milliseconds(300));
+  EXPECT_EQ(host.platform.vehicle.drive, jaus::bridge::DriveMode::velocity);
+  EXPECT_EQ(host.platform.vehicle.max_speed_mps, c.vehicle.max_speed_mps);
+  EXPECT_EQ(host.platform.vehicle.datum, c.vehicle.start);
+  // An Ackermann vehicle drives with Ackermann commands unless told otherwise.
+  const auto ackermann = jausd::host_config(expect_ok("vehicle: {steering: ackermann}\n"));
+  EXPECT_EQ(ackermann.platform.vehicle.drive, jaus::bridge::DriveMode::ackermann);
+  EXPECT_EQ(ackermann.platform.sim.vehicle.drive, jaus::clearpath::sim::Drive::ackermann);
+}
+
+TEST(JausdConfigErrors, PlatformAndClearpathValues) {
+  expect_error("platform: hardware\n", 1, "'platform' must be one of sim, model, got 'hardware'");
+  expect_error("platform: {serial: /dev/ttyS0, udp: 1.2.3.4:5}\n", 1,
+               "'platform' needs exactly one of serial, udp or tcp");
+  expect_error("platform: {udp: 1.2.3.4:5, baud: 9600}\n", 1, "'platform': baud applies to a serial port only");
+  expect_error("platform:\n  udp: nowhere\n", 2, "'udp' must be HOST:PORT, got 'nowhere'");
+  expect_error("clearpath:\n  drive: tank\n", 2,
+               "'drive' must be one of differential_output, differential_speeds, velocity, ackermann, got 'tank'");
+  expect_error("clearpath:\n  horn: {gpio: 0}\n", 2,
+               "'gpio' must be bits 1..4294967295 (decimal or 0x hexadecimal), got '0'");
+  expect_error("clearpath:\n  emergency_flags: 0x1G\n", 2,
+               "'emergency_flags' must be bits 0..65535 (decimal or 0x hexadecimal), got '0x1G'");
+  expect_error("clearpath:\n  setpoint_max_age_s: 60\n", 2,
+               "'setpoint_max_age_s' must be a number of seconds 0.05..10, got '60'");
+  expect_error("clearpath:\n  drive: ackermann\n", 1,
+               "'clearpath.drive' ackermann needs vehicle.steering ackermann on the simulated platform");
 }
 
 TEST(JausdConfig, CamerasAndManipulatorAreRead) {

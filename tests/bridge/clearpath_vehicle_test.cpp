@@ -287,3 +287,33 @@ TEST(ClearpathVehicle, OperationalDataAndSpecificationsComeFromThePlatform) {
   EXPECT_GT(*d.fuel_level_percent, 50);
   EXPECT_EQ(rig.vehicle.specifications().name, "Clearpath1");  // 0x8002
 }
+
+// The platform's own e-stop or pause (0x8010) is reported, and so is its end;
+// the emergency flag the bridge sets itself for JAUS is not taken for one.
+TEST(ClearpathVehicle, ThePlatformsEstopIsHeardAndOurOwnFlagIsNot) {
+  bridge::ClearpathVehicleConfig config;
+  config.emergency_flags = 0x08;
+  Rig rig(config);
+  std::vector<std::optional<std::string>> heard;
+  rig.vehicle.on_platform_emergency([&](const std::optional<std::string>& why) { heard.push_back(why); });
+
+  rig.vehicle.command_emergency(true);
+  rig.time.advance(500ms);
+  EXPECT_TRUE(rig.model().safety_flags() & sim::kSafetyEmergencyStop);
+  EXPECT_TRUE(heard.empty());
+  rig.vehicle.command_emergency(false);
+  rig.time.advance(500ms);
+  EXPECT_FALSE(rig.model().safety_flags() & sim::kSafetyEmergencyStop);
+
+  cp::SetSafetySystem pause;
+  pause.flags = sim::kSafetyPause;  // pressed on the platform, not by the bridge
+  rig.loopback.send(pause);
+  rig.time.advance(500ms);
+  ASSERT_EQ(heard.size(), 1u);
+  ASSERT_TRUE(heard[0]);
+  EXPECT_EQ(*heard[0], "Clearpath platform e-stop or pause (safety flags 0x0010)");
+  rig.loopback.send(cp::SetSafetySystem{});
+  rig.time.advance(500ms);
+  ASSERT_EQ(heard.size(), 2u);
+  EXPECT_FALSE(heard[1]);
+}

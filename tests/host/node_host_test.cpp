@@ -9,6 +9,8 @@
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
 
+#include <functional>
+
 namespace jaus::host {
 namespace {
 
@@ -145,6 +147,46 @@ TEST(NodeHost, AnUnknownKindInTheConfigurationIsAnError) {
   auto host = NodeHost::open(config, io);
   ASSERT_FALSE(host);
   EXPECT_EQ(host.error().message(), "component kind 'warp_drive' cannot be hosted by this build");
+}
+
+// A Clearpath platform (simulated in process): the mobility components run on
+// the bridge; the platform's own e-stop holds them all in Emergency until it
+// clears, and the driver's JAUS Emergency sets the platform's emergency flag.
+TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
+  boost::asio::io_context io;
+  HostConfig config = loopback_config();
+  config.platform.kind = PlatformSettings::Kind::clearpath_sim;
+  config.platform.vehicle.emergency_flags = 0x08;
+  auto host = NodeHost::open(config, io);
+  ASSERT_TRUE(host) << host.error().message();
+  NodeHost& h = **host;
+  ASSERT_NE(h.clearpath_vehicle(), nullptr);
+  EXPECT_EQ(h.vehicle(), nullptr);  // no direct simulation
+  auto* driver = h.node().find(Address{1, 1, 33, 1});
+  auto* pose = h.node().find(Address{1, 1, 38, 1});
+  ASSERT_TRUE(driver && pose);
+  const auto run_until = [&](const std::function<bool()>& done) {
+    for (int i = 0; i < 300 && !done(); ++i) io.run_for(std::chrono::milliseconds(10));
+    return done();
+  };
+  ASSERT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready && pose->state() == rt::PrimaryStatus::ready; }));
+
+  // Someone presses the platform's e-stop (a safety flag the bridge did not set).
+  clearpath::SetSafetySystem pressed;
+  pressed.flags = 0x08;
+  h.platform_client()->send(pressed);
+  EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::emergency && pose->state() == rt::PrimaryStatus::emergency; }));
+  clearpath::SetSafetySystem released;
+  h.platform_client()->send(released);
+  EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready && pose->state() == rt::PrimaryStatus::ready; }));
+
+  // JAUS Emergency on the driver: the platform's flag is set, and is not taken for its own e-stop.
+  driver->hold_hardware_emergency("test");  // any way into Emergency mirrors it
+  io.run_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(pose->state(), rt::PrimaryStatus::ready);
+  driver->release_hardware_emergency("test");
+  EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready; }));
+  h.stop("test");
 }
 
 }  // namespace

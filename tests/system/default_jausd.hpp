@@ -19,14 +19,16 @@ namespace jaus::test {
 
 class DefaultJausd {
  public:
-  // `name` names the directory; the node is `subsystem`.1 at `address`:3794.
-  DefaultJausd(const std::string& name, int subsystem, std::string address)
+  // `name` names the directory; the node is `subsystem`.1 at `address`:3794;
+  // `more_config` is appended to its configuration (e.g. a `platform:`).
+  DefaultJausd(const std::string& name, int subsystem, std::string address, const std::string& more_config = "")
       : dir_(std::filesystem::temp_directory_path() / ("jaus-" + name + "-" + std::to_string(::getpid()))),
         address_(std::move(address)) {
     std::filesystem::create_directories(dir_);
     const auto config = dir_ / "jausd.yaml";
     std::ofstream(config) << "identification: {subsystem: " << subsystem << ", node: 1}\n"
-                          << "transport: {bind: " << address_ << ":3794}\n";
+                          << "transport: {bind: " << address_ << ":3794}\n"
+                          << more_config;
     process_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
         (dir_ / "jausd.log").string());
@@ -40,6 +42,7 @@ class DefaultJausd {
   DefaultJausd& operator=(const DefaultJausd&) = delete;
 
   bool started() const { return process_->started(); }
+  ChildProcess& process() { return *process_; }
   std::string output() const { return process_->output(); }
   bool output_contains(const std::string& text) const { return process_->output_contains(text); }
   const std::filesystem::path& dir() const { return dir_; }

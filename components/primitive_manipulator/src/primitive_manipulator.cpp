@@ -106,6 +106,18 @@ bool PrimitiveManipulator::initialize() {
   return true;
 }
 
+void PrimitiveManipulator::state_changed(PrimaryStatus before, PrimaryStatus after) {
+  // Only a Reset enters Initialize from another state; the base has already
+  // stopped the arm (command_stop). Homing moves it: never under an emergency.
+  if (after != PrimaryStatus::initialize || before == PrimaryStatus::initialize) return;
+  if (emergency().active()) {
+    log(LogLevel::info, "reset: arm not homed (emergency latched)");
+    return;
+  }
+  arm_.home();
+  log(LogLevel::info, "reset: arm homing");
+}
+
 // ---- Reports ----------------------------------------------------------------
 
 std::optional<kinematics::Pose> PrimitiveManipulator::end_effector_pose() const {

@@ -76,6 +76,26 @@ void Component::transition(LifecycleEvent event, const Address& by) {
     subscriptions_.unsubscribe_all();
   }
   state_changed(before, after);
+  if (state_listener_) state_listener_(before, after);
+}
+
+void Component::hold_hardware_emergency(std::string_view why) {
+  if (!emergency_.set(config_.address) && lifecycle_.state() == PrimaryStatus::emergency) return;  // already held
+  log(LogLevel::warn, "emergency Stop from the hardware: " + std::string(why));
+  if (lifecycle_.state() != PrimaryStatus::emergency) transition(LifecycleEvent::emergency_set, config_.address);
+}
+
+void Component::release_hardware_emergency(std::string_view why) {
+  switch (emergency_.clear(config_.address)) {
+    case EmergencyLatch::ClearResult::not_a_holder: return;
+    case EmergencyLatch::ClearResult::still_held:
+      log(LogLevel::info, "hardware emergency cleared (" + std::string(why) + "); still held by a JAUS Set Emergency");
+      return;
+    case EmergencyLatch::ClearResult::released_last:
+      log(LogLevel::info, "hardware emergency cleared: " + std::string(why));
+      transition(LifecycleEvent::emergency_cleared, config_.address);
+      return;
+  }
 }
 
 void Component::shutdown(std::string_view why) {

@@ -1,6 +1,7 @@
 // The primitive manipulator on a simulated arm, under virtual time: every
 // command moves the arm, every query is answered with what the arm does,
 // bad commands are refused whole, and every stop path holds the arm.
+#include <algorithm>
 #include <set>
 
 #include "arms.hpp"
@@ -489,6 +490,56 @@ TEST_F(StopPaths, AStopCancelsATimedMotionForGood) {
   EXPECT_EQ(arm->positions(), held);
   EXPECT_EQ(manipulator->motion(), Motion::holding);
   EXPECT_EQ(counters().motions_completed, 0u);
+}
+
+// ---- Reset: an arm that has homing homes --------------------------------------
+
+// A simulated arm with homing, recording what the component asks of it.
+class HomingArm final : public components::ManipulatorArm {
+ public:
+  HomingArm(components::ArmConfig config, const rt::Clock& clock) : arm_(std::move(config), clock) {}
+  const components::ArmConfig& geometry() const override { return arm_.geometry(); }
+  Expected<bool> move_to_positions(const std::vector<double>& p) override { return arm_.move_to_positions(p); }
+  Expected<bool> move_at_velocities(const std::vector<double>& v) override { return arm_.move_at_velocities(v); }
+  Expected<bool> apply_efforts(const std::vector<double>& e) override { return arm_.apply_efforts(e); }
+  void hold() override {
+    calls.push_back("hold");
+    arm_.hold();
+  }
+  std::optional<components::JointSample> sample() const override { return arm_.sample(); }
+  void home() override { calls.push_back("home"); }
+
+  std::vector<std::string> calls;
+
+ private:
+  SimulatedArm arm_;
+};
+
+TEST_F(PrimitiveManipulatorTest, ResetHomesAnArmThatHasHomingButNotUnderAnEmergency) {
+  HomingArm homing(scara_arm(), time);
+  rt::ComponentConfig c;
+  c.name = "primitive manipulator";
+  c.address = kManipulator;
+  c.authority = 5;
+  c.controller_timeout = controller_timeout;
+  PrimitiveManipulator m(c, rt::Environment{time, time, outbox, [this](rt::LogLevel, const std::string& l) { logs.push_back(l); }},
+                         homing);
+  m.start();
+  EXPECT_EQ(std::count(homing.calls.begin(), homing.calls.end(), "home"), 0);  // starting is no Reset
+
+  deliver_to(m, time, kOcuA, msg::RequestComponentControl{{5}});
+  homing.calls.clear();
+  deliver_to(m, time, kOcuA, msg::Reset{});
+  EXPECT_EQ(homing.calls, (std::vector<std::string>{"hold", "home"}));  // held first, then homed
+  EXPECT_EQ(m.state(), msg::PrimaryStatus::ready);
+
+  deliver_to(m, time, kOcuB, msg::SetEmergency{{1}});
+  deliver_to(m, time, kOcuA, msg::RequestComponentControl{{5}});
+  homing.calls.clear();
+  deliver_to(m, time, kOcuA, msg::Reset{});
+  EXPECT_EQ(std::count(homing.calls.begin(), homing.calls.end(), "home"), 0);
+  EXPECT_EQ(m.state(), msg::PrimaryStatus::emergency);
+  EXPECT_TRUE(logged("arm not homed (emergency latched)"));
 }
 
 // ---- Service connections, services, configuration -----------------------------

@@ -38,6 +38,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -85,6 +86,13 @@ struct ClearpathVehicleConfig {
   std::uint16_t data_rate_hz = 20;   // encoders, orientation and rates subscriptions
   double max_encoder_step_m = 2.0;   // a larger jump between readings is a reset: start again from it
   double nominal_battery_v = 24.0;   // Platform Operational Data's battery voltage percent
+
+  // Hardware e-stop, both ways (Husky flags: 0x08 emergency stop, 0x10 pause).
+  // JAUS Emergency also sets these bits of the safety flags (0x0010); 0: it does not.
+  std::uint16_t emergency_flags = 0;
+  // These bits seen in the platform's safety status (0x8010), other than the
+  // ones we set ourselves, mean its own e-stop or pause is on; 0: not watched.
+  std::uint16_t platform_stop_flags = 0x08 | 0x10;
 };
 
 struct ClearpathVehicleCounters {
@@ -115,6 +123,14 @@ class ClearpathVehicle final : public components::Drive, public components::Pose
   // PoseSource.
   std::optional<components::PoseSample> sample() override;
   double update_rate_hz() const override;
+
+  // The platform's own e-stop or pause (platform_stop_flags): `why` when it
+  // appears, nullopt when it clears. The host puts the components in Emergency.
+  using EmergencyListener = std::function<void(const std::optional<std::string>& why)>;
+  void on_platform_emergency(EmergencyListener listener);
+  // JAUS Emergency entered (true) or left: sets or clears emergency_flags on
+  // the platform. Does nothing when emergency_flags is 0.
+  void command_emergency(bool active);
 
   const ClearpathVehicleConfig& config() const;
   const ClearpathVehicleCounters& counters() const;

@@ -46,6 +46,11 @@ class ClearpathLink final : public Client {
 
   void start();
   void stop();
+  // Safety: writes at once, synchronously, every frame the client has to send
+  // now (a stop's zero setpoint first), for a process that is about to exit
+  // and will not run the io_context again. Errors are ignored: the platform's
+  // watchdog is the last line.
+  void flush();
 
   // Client: on the io_context's thread, like every runtime callback.
   void send(AnyMessage message, ClientCore::CommandCallback done = {}) override;

@@ -12,10 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "jaus/bridge/clearpath_vehicle.hpp"
+#include "jaus/bridge/platform_connection.hpp"
+#include "jaus/clearpath/client.hpp"
+#include "jaus/clearpath/link.hpp"
 #include "jaus/components/simulated_arm.hpp"
 #include "jaus/components/simulated_cameras.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/platform.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
@@ -34,6 +39,9 @@ struct HostConfig {
   // host's clock when those components are configured.
   components::VisualSensorConfig cameras;
   components::ArmConfig arm;
+  // What carries the vehicle: the simulated vehicle above (model), or a
+  // Clearpath platform through the bridge.
+  PlatformSettings platform;
 };
 
 class NodeHost {
@@ -78,9 +86,17 @@ class NodeHost {
   components::SimulatedVehicle* vehicle() { return vehicle_.get(); }
   components::SimulatedCameras* cameras() { return cameras_.get(); }
   components::SimulatedArm* arm() { return arm_.get(); }
+  // The Clearpath platform, when the configuration names one: its client
+  // (ClearpathLink or, for clearpath_sim, sim::LoopbackClient) and the
+  // bridge's backend of the mobility components.
+  clearpath::Client* platform_client() { return platform_client_.get(); }
+  bridge::PlatformConnection* platform() { return platform_.get(); }
+  bridge::ClearpathVehicle* clearpath_vehicle() { return clearpath_vehicle_.get(); }
 
  private:
   NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
+  void open_platform(boost::asio::io_context& io);
+  void mirror_emergencies(const std::vector<std::pair<const ComponentSpec*, rt::Component*>>& on_vehicle);
 
   HostConfig config_;
   transport::AsioRuntime runtime_;
@@ -90,6 +106,10 @@ class NodeHost {
   std::unique_ptr<components::SimulatedVehicle> vehicle_;
   std::unique_ptr<components::SimulatedCameras> cameras_;
   std::unique_ptr<components::SimulatedArm> arm_;
+  std::unique_ptr<clearpath::Client> platform_client_;
+  clearpath::ClearpathLink* platform_link_ = nullptr;  // platform_client_, when it is a real link
+  std::unique_ptr<bridge::PlatformConnection> platform_;
+  std::unique_ptr<bridge::ClearpathVehicle> clearpath_vehicle_;
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;

@@ -120,6 +120,17 @@ class Component {
   // What this component accepts and provides, as Report Services lists it.
   msg::ServiceEntry service_entry() const;
 
+  // Emergency from the hardware itself (a platform's e-stop button or pause):
+  // held under the component's own address, so it is in Emergency until the
+  // hardware clears it, whatever JAUS Clear Emergency says; JAUS holders
+  // still hold their own. Idempotent.
+  void hold_hardware_emergency(std::string_view why);
+  void release_hardware_emergency(std::string_view why);
+  // Hears every lifecycle transition, after the component has acted on it
+  // (a host mirrors Emergency onto a platform's e-stop this way).
+  using StateListener = std::function<void(PrimaryStatus before, PrimaryStatus after)>;
+  void on_state_change(StateListener listener) { state_listener_ = std::move(listener); }
+
   // The node's liveness table says `peer` is gone (a node or subsystem, with
   // 0 below its level: every component under it is gone too): their service
   // connections end, and if the controller was among them, control is dropped
@@ -281,6 +292,7 @@ class Component {
   Lifecycle lifecycle_;
   ControlArbiter control_;
   EmergencyLatch emergency_;
+  StateListener state_listener_;
   ComponentCounters counters_;
   std::unordered_map<std::uint16_t, Handler> handlers_;
   ServiceConnectionProvider services_;

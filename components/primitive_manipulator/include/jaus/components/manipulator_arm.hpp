@@ -55,6 +55,12 @@ class ManipulatorArm {
   // a stop: it would fall). Called on every stop of the component (Standby,
   // Emergency, control loss, command timeout, Reset, Shutdown); never fails.
   virtual void hold() = 0;
+  // On Reset, where the arm has homing (the Clearpath arm: Home Joint for
+  // every joint): run the arm's homing sequence. The component calls it when
+  // a Reset brings it back to Initialize and no emergency is latched, after
+  // the arm has been told to hold. The default (an arm without homing, the
+  // simulated one) does nothing.
+  virtual void home() {}
 
   // The latest sample; none before the arm has reported once.
   virtual std::optional<JointSample> sample() const = 0;

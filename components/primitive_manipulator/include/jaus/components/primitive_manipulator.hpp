@@ -96,6 +96,9 @@ class PrimitiveManipulator final : public rt::Component {
  protected:
   bool initialize() override;
   void command_stop(std::string_view why) override;
+  // A Reset (any state -> Initialize): the arm is already holding; where it
+  // has homing, it homes (ManipulatorArm::home), unless an emergency is latched.
+  void state_changed(rt::PrimaryStatus before, rt::PrimaryStatus after) override;
 
  private:
   enum class Refusal { joint_count, out_of_limits, unreachable, arm };

@@ -1,0 +1,46 @@
+// The `platform:` and `clearpath:` sections of jausd.yaml: what carries the
+// vehicle (the components' own simulation, a simulated Clearpath platform in
+// process, or a real one on a serial port, UDP or TCP) and how the bridge maps
+// JAUS onto the Clearpath protocol. The vehicle's own figures (speeds, track,
+// start pose, accuracy) stay in `vehicle:`; to_host_config() hands both to the
+// host. docs/configuration.md and docs/bridge.md are the reference.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "config_reader.hpp"
+#include "jaus/components/simulated_vehicle.hpp"
+#include "jaus/host/platform.hpp"
+
+namespace jausd {
+
+// platform: sim | model | {serial: DEVICE, baud: N} | {udp: HOST:PORT} | {tcp: HOST:PORT}
+struct PlatformChoice {
+  jaus::host::PlatformSettings::Kind kind = jaus::host::PlatformSettings::Kind::clearpath_sim;
+  jaus::clearpath::PlatformEndpoint endpoint;
+};
+
+// clearpath: the mapping options (the rest of ClearpathVehicleConfig comes from `vehicle:`).
+struct ClearpathOptions {
+  // Unset: ackermann for an Ackermann vehicle (vehicle.steering), else differential_output.
+  std::optional<jaus::bridge::DriveMode> drive;
+  jaus::bridge::BrakeMode brake = jaus::bridge::BrakeMode::scale;
+  bool gear = false;
+  jaus::bridge::DeviceOutput main_power, parking_brake, horn;
+  bool heading_from_orientation = true;
+  std::uint16_t data_rate_hz = 20;
+  double setpoint_max_age_s = 0.5;
+  double nominal_battery_v = 24.0;
+  double max_encoder_step_m = 2.0;
+  std::uint16_t emergency_flags = 0;             // JAUS Emergency also sets these safety flags
+  std::uint16_t platform_stop_flags = 0x08 | 0x10;  // the platform's own e-stop / pause bits
+};
+
+// The drive mode in use: the configured one, or the vehicle's steering's.
+jaus::bridge::DriveMode drive_mode(const ClearpathOptions& options, jaus::components::Steering steering);
+
+void read_platform(const yaml_reader::Entry& entry, PlatformChoice& platform);
+void read_clearpath(const yaml_reader::Entry& section, ClearpathOptions& options);
+
+}  // namespace jausd

@@ -1,0 +1,26 @@
+// What the vehicle components drive and read: the components' own simulated
+// hardware (no protocol), or a Clearpath platform through the bridge, either
+// simulated in this process (the bytes still cross the Clearpath protocol) or
+// real, on a serial port, UDP or TCP.
+#pragma once
+
+#include "jaus/bridge/clearpath_vehicle.hpp"
+#include "jaus/clearpath/client_core.hpp"
+#include "jaus/clearpath/link.hpp"
+#include "jaus/clearpath/sim/sim_platform.hpp"
+
+namespace jaus::host {
+
+struct PlatformSettings {
+  enum class Kind {
+    model,          // the components' simulated vehicle, cameras and arm, called directly
+    clearpath_sim,  // a simulated Clearpath platform in this process, through the bridge
+    clearpath,      // a Clearpath platform at `endpoint`, through the bridge
+  } kind = Kind::model;
+  clearpath::PlatformEndpoint endpoint;  // clearpath
+  clearpath::sim::PlatformConfig sim;    // clearpath_sim
+  clearpath::ClientConfig client;        // retries, silence, setpoint period and maximum age
+  bridge::ClearpathVehicleConfig vehicle;  // the mobility components' mapping
+};
+
+}  // namespace jaus::host

@@ -1,0 +1,273 @@
+// The bridge end to end, with real processes: jausd's platform is a separate
+// clearpath-sim, over UDP or a PTY (a serial line), and jausctl is the OCU.
+// The simulator prints its true state (--status-every), so the checks read
+// what the wheels really do, not what jausd believes. Only outcomes are
+// asserted, with generous deadlines (a loaded machine, sanitizers).
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "default_jausd.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+using Json = nlohmann::json;
+
+constexpr const char* kNode = "127.0.0.32";
+constexpr const char* kSimAddress = "127.0.0.33";
+constexpr const char* kDriver = "7.1.33.1";
+constexpr const char* kPoseSensor = "7.1.38.1";
+constexpr const char* kVelocitySensor = "7.1.42.1";
+// 60 % forward, 20 % to the left (JAUS: negative rotational effort).
+constexpr const char* kForwardAndLeft =
+    R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":60,"propulsive_rotational_effort_z_percent":-20}})";
+
+// clearpath-sim on UDP (a fixed loopback port) or a PTY, printing its state every 0.1 s.
+class Simulator {
+ public:
+  enum class Line { udp, pty };
+  Simulator(Line line, const std::filesystem::path& dir, const std::string& name, std::vector<std::string> more = {})
+      : line_(line) {
+    std::vector<std::string> args{CLEARPATH_SIM_PATH, "--status-every", "0.1", "--log-level", "warn"};
+    if (line == Line::udp) args.insert(args.end(), {"--udp", std::string(kSimAddress) + ":7300"});
+    else args.push_back("--pty");
+    args.insert(args.end(), more.begin(), more.end());
+    process_ = std::make_unique<ChildProcess>(args, (dir / (name + ".log")).string());
+  }
+  bool started() const { return process_->started(); }
+  ChildProcess& process() { return *process_; }
+
+  // What jausd's `platform:` says to reach it (the PTY's path once it printed it).
+  std::optional<std::string> platform_config() const {
+    if (line_ == Line::udp) return std::string("platform: {udp: ") + kSimAddress + ":7300}\n";
+    const auto until = std::chrono::steady_clock::now() + 10s;
+    while (std::chrono::steady_clock::now() < until) {
+      std::istringstream lines(process_->output());
+      for (std::string l; std::getline(lines, l);)
+        if (l.rfind("pty: ", 0) == 0) return "platform: {serial: " + l.substr(5) + "}\n";
+      std::this_thread::sleep_for(50ms);
+    }
+    return std::nullopt;
+  }
+
+  // Every state line printed so far, oldest first.
+  std::vector<Json> states() const {
+    std::vector<Json> out;
+    std::istringstream lines(process_->output());
+    for (std::string l; std::getline(lines, l);) {
+      if (l.rfind("{\"status\"", 0) != 0) continue;
+      const Json j = Json::parse(l, nullptr, false);
+      if (!j.is_discarded()) out.push_back(j["status"]);
+    }
+    return out;
+  }
+  std::optional<Json> state() const {
+    auto all = states();
+    if (all.empty()) return std::nullopt;
+    return all.back();
+  }
+  // Waits until the newest state satisfies `good`.
+  bool wait_for(const std::function<bool(const Json&)>& good, std::chrono::milliseconds deadline) const {
+    const auto until = std::chrono::steady_clock::now() + deadline;
+    while (std::chrono::steady_clock::now() < until) {
+      if (const auto s = state(); s && good(*s)) return true;
+      std::this_thread::sleep_for(50ms);
+    }
+    return false;
+  }
+
+ private:
+  Line line_;
+  std::unique_ptr<ChildProcess> process_;
+};
+
+bool moving(const Json& s) { return s["speed_mps"].get<double>() > 0.3; }
+bool stopped(const Json& s) { return s["left_mps"].get<double>() == 0.0 && s["right_mps"].get<double>() == 0.0; }
+
+class ClearpathPlatform : public ::testing::TestWithParam<Simulator::Line> {
+ protected:
+  void start(Simulator::Line line, std::vector<std::string> sim_options = {}) {
+    dir = std::filesystem::temp_directory_path() / ("jaus-clearpath-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    sim = std::make_unique<Simulator>(line, dir, "sim", std::move(sim_options));
+    ASSERT_TRUE(sim->started());
+    const auto platform = sim->platform_config();
+    ASSERT_TRUE(platform) << sim->process().output();
+    jausd = std::make_unique<DefaultJausd>("clearpath", 7, kNode, *platform);
+    ASSERT_TRUE(jausd->started());
+    // Up, and the driver Ready: the platform answers (longer under sanitizers).
+    ASSERT_TRUE(poll_status(kDriver, "Ready", 30s)) << jausd->output();
+  }
+  void TearDown() override {
+    jausd.reset();
+    sim.reset();
+    std::error_code ignored;
+    std::filesystem::remove_all(dir, ignored);
+  }
+
+  // Each bind address its own OCU ID (127.0.0.34 -> 254.34.40.1), so a query never takes a controller's replies.
+  std::unique_ptr<ChildProcess> jausctl(const std::string& name, std::vector<std::string> args,
+                                        const std::string& bind) {
+    const std::string octet = bind.substr(bind.rfind('.') + 1, bind.find(':') - bind.rfind('.') - 1);
+    auto child = jausd->jausctl(name, std::move(args), bind, "254." + octet + ".40.1");
+    EXPECT_TRUE(child->started());
+    return child;
+  }
+  std::unique_ptr<ChildProcess> drive(std::chrono::seconds for_how_long) {
+    return jausctl("controller",
+                   {"control", kDriver, "--authority", "10", "--rate", "10", "--for",
+                    std::to_string(for_how_long.count()), "--send", kForwardAndLeft},
+                   "127.0.0.34:0");
+  }
+  // The first JSON line of a jausctl's output.
+  std::optional<Json> json_of(ChildProcess& child) {
+    if (child.wait(20s) != 0) return std::nullopt;
+    std::istringstream lines(child.output());
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line.front() == '{') {
+        const Json j = Json::parse(line, nullptr, false);
+        if (!j.is_discarded()) return j;
+      }
+    return std::nullopt;
+  }
+  std::optional<Json> query(const std::string& address, const std::string& code, const std::string& pv) {
+    auto child = jausctl("query", {"query", address, code, "--pv", pv, "--timeout", "2"}, "127.0.0.35:0");
+    auto j = json_of(*child);
+    if (!j || !j->contains("fields")) return std::nullopt;
+    return (*j)["fields"];
+  }
+  bool poll_status(const std::string& address, const std::string& status, std::chrono::seconds deadline) {
+    const auto until = std::chrono::steady_clock::now() + deadline;
+    while (std::chrono::steady_clock::now() < until) {
+      auto child = jausctl("status", {"status", address, "--timeout", "1"}, "127.0.0.36:0");
+      if (auto j = json_of(*child); j && j->value("primary_status", "") == status) return true;
+      std::this_thread::sleep_for(200ms);
+    }
+    return false;
+  }
+
+  std::filesystem::path dir;
+  std::unique_ptr<Simulator> sim;
+  std::unique_ptr<DefaultJausd> jausd;
+};
+
+TEST_P(ClearpathPlatform, DrivesForwardAndTurnsLeftAndThePoseSaysSo) {
+  start(GetParam());
+  auto controller = drive(4s);
+  ASSERT_TRUE(sim->wait_for(moving, 15s)) << controller->output() << jausd->output();
+  // The platform turns left (its yaw rate is right-handed: positive = left)...
+  ASSERT_TRUE(sim->wait_for([](const Json& s) { return s["yaw_rate_rps"].get<double>() > 0.2; }, 5s));
+  // ...and so do the JAUS reports: yaw rate negative (left) once it turns at full rate.
+  std::optional<Json> velocity;
+  for (int i = 0; i < 10; ++i) {
+    velocity = query(kVelocitySensor, "0x2404", "0x1FF");
+    if (velocity && (*velocity)["yaw_rate_rps"].get<double>() < -0.5) break;
+    std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_TRUE(velocity);
+  EXPECT_GT((*velocity)["velocity_x_mps"].get<double>(), 0.3) << velocity->dump();
+  EXPECT_LT((*velocity)["yaw_rate_rps"].get<double>(), -0.5) << velocity->dump();  // (0.4 - 0.8 m/s) / 0.55 m
+  EXPECT_EQ(controller->wait(20s), 0) << controller->output();
+  // Control released: the wheels stop, and the heading is left of north (start heading 0).
+  EXPECT_TRUE(sim->wait_for(stopped, 5s));
+  const auto pose = query(kPoseSensor, "0x2402", "0x1FF");
+  ASSERT_TRUE(pose);
+  EXPECT_LT((*pose)["yaw_rad"].get<double>(), -0.3) << pose->dump();
+  EXPECT_LT((*pose)["longitude_deg"].get<double>(), -73.0) << pose->dump();  // drifted west
+}
+
+INSTANTIATE_TEST_SUITE_P(OverUdpAndASerialLine, ClearpathPlatform,
+                         ::testing::Values(Simulator::Line::udp, Simulator::Line::pty),
+                         [](const ::testing::TestParamInfo<Simulator::Line>& line) { return line.param == Simulator::Line::udp ? "udp" : "pty"; });
+
+class ClearpathPlatformUdp : public ClearpathPlatform {};
+
+TEST_F(ClearpathPlatformUdp, SetEmergencyStopsTheWheels) {
+  start(Simulator::Line::udp);
+  auto controller = drive(20s);
+  ASSERT_TRUE(sim->wait_for(moving, 15s)) << controller->output();
+  auto emergency = jausctl("emergency", {"emergency", kDriver, "set"}, "127.0.0.37:0");
+  EXPECT_EQ(emergency->wait(20s), 0) << emergency->output();
+  // Although the controller keeps sending efforts.
+  EXPECT_TRUE(sim->wait_for(stopped, 3s)) << sim->state()->dump();
+  std::this_thread::sleep_for(1s);
+  EXPECT_TRUE(stopped(*sim->state()));
+  EXPECT_TRUE(controller->running());
+}
+
+TEST_F(ClearpathPlatformUdp, AKilledJausdLetsThePlatformsWatchdogStopTheWheels) {
+  start(Simulator::Line::udp);
+  auto controller = drive(20s);
+  ASSERT_TRUE(sim->wait_for(moving, 15s));
+  jausd->process().signal(SIGKILL);
+  // The watchdog (0.5 s without a command) and the deceleration.
+  EXPECT_TRUE(sim->wait_for([](const Json& s) { return stopped(s) && s["watchdog_expired"].get<bool>(); }, 3s))
+      << sim->state()->dump();
+}
+
+TEST_F(ClearpathPlatformUdp, AnUnpluggedPlatformIsFailureThenReadyAndNothingMoves) {
+  start(Simulator::Line::udp);
+  {
+    auto controller = drive(2s);
+    ASSERT_TRUE(sim->wait_for(moving, 15s));
+    EXPECT_EQ(controller->wait(20s), 0);
+  }
+  sim->process().signal(SIGKILL);
+  sim->process().wait(5s);
+  EXPECT_TRUE(poll_status(kDriver, "Failure", 15s)) << jausd->output();
+  // Plugged back: a fresh simulator on the same port, at rest.
+  sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, "sim-again");
+  ASSERT_TRUE(sim->started());
+  EXPECT_TRUE(poll_status(kDriver, "Ready", 20s)) << jausd->output();
+  std::this_thread::sleep_for(1s);
+  for (const auto& s : sim->states()) EXPECT_TRUE(stopped(s)) << s.dump();
+  // And it moves again when commanded.
+  auto controller = drive(3s);
+  EXPECT_TRUE(sim->wait_for(moving, 15s)) << controller->output();
+}
+
+// 15 % of frames each way get a flipped bit (about 1 % of bytes) for 30 s:
+// the simulator rejects every corrupted command (its wheels never go faster
+// than commanded), jausd rejects every corrupted report (its dead-reckoned
+// distance matches the simulator's), and commands still get through.
+TEST_F(ClearpathPlatformUdp, CorruptedFramesAreNeverActedOn) {
+  start(Simulator::Line::udp, {"--corrupt-rate", "0.15", "--seed", "7"});
+  const auto x0 = query(kPoseSensor, "0x2403", "0x7F");  // Report Local Pose
+  auto controller = jausctl("controller",
+                            {"control", kDriver, "--authority", "10", "--rate", "10", "--for", "30", "--send",
+                             R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":50}})"},
+                            "127.0.0.34:0");
+  EXPECT_EQ(controller->wait(60s), 0) << controller->output();
+  ASSERT_TRUE(sim->wait_for(stopped, 5s));
+  const auto states = sim->states();
+  ASSERT_FALSE(states.empty());
+  double fastest = 0;
+  bool reached = false;
+  for (const auto& s : states) {
+    fastest = std::max({fastest, std::abs(s["left_mps"].get<double>()), std::abs(s["right_mps"].get<double>())});
+    reached = reached || s["speed_mps"].get<double>() > 0.45;
+  }
+  EXPECT_LE(fastest, 0.5 + 1e-6);  // 50 % output of a 1 m/s platform, never more
+  EXPECT_TRUE(reached);            // and the commands got through
+  EXPECT_GT(states.back()["frames_rejected"].get<int>(), 0);
+  // The platform went straight ahead from its start: its x is the distance.
+  const double travelled = states.back()["x_m"].get<double>();
+  EXPECT_GT(travelled, 5.0);
+  const auto local = query(kPoseSensor, "0x2403", "0x7F");
+  ASSERT_TRUE(local) << jausd->output();
+  EXPECT_NEAR((*local)["x_m"].get<double>(), travelled, 0.1 * travelled) << local->dump();
+  (void)x0;
+}
+
+}  // namespace
+}  // namespace jaus::test
