@@ -264,6 +264,16 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
     return Issue{lines.clearpath ? lines.clearpath : lines.platform,
                  std::string("'clearpath.drive' ") + (ackermann_drive ? "ackermann needs" : "of a differential platform needs") +
                      " vehicle.steering " + (ackermann_drive ? "ackermann" : "differential") + " on the simulated platform"};
+  if (c.platform.kind != jaus::host::PlatformSettings::Kind::model) {
+    jaus::bridge::ClearpathCamerasConfig mounts;
+    mounts.mounts = camera_mounts(c.clearpath, c.cameras);
+    if (auto ok = jaus::bridge::check_clearpath_cameras_config(c.cameras.cameras, mounts); !mounts.mounts.empty() && !ok)
+      return Issue{lines.clearpath ? lines.clearpath : lines.cameras, ok.error().message()};
+    jaus::bridge::ClearpathArmConfig joints;
+    joints.joints = arm_joints(c.clearpath, c.manipulator);
+    if (auto ok = jaus::bridge::check_clearpath_arm_config(c.manipulator, joints); !joints.joints.empty() && !ok)
+      return Issue{lines.clearpath ? lines.clearpath : lines.manipulator, ok.error().message()};
+  }
   if (c.clearpath.setpoint_max_age_s < 0.05 || c.clearpath.setpoint_max_age_s > 10)
     return Issue{lines.clearpath, "'setpoint_max_age_s' must be a number of seconds 0.05..10"};
   return check_components(c, lines);

@@ -1,6 +1,7 @@
 #include "platform_config.hpp"
 
 #include <array>
+#include <numbers>
 #include <string_view>
 
 namespace jausd {
@@ -50,12 +51,78 @@ DeviceOutput device(const Entry& e) {
   return out;
 }
 
+const NumberRange kSignRange{-1, true, 1, "1 or -1"};
+const NumberRange kOffsetDegRange{-180, true, 180, "a number of degrees -180..180"};
+const NumberRange kZoomFactorRange{0, true, 320, "a zoom factor 0..320"};
+
+double sign(const Entry& e) {
+  const double v = number(e, kSignRange);
+  if (v != 1 && v != -1) e.must_be("1 or -1");
+  return v;
+}
+
+// {camera_id: N, mount: N, pan_sign: +-1, tilt_sign: +-1, pan_offset_deg, tilt_offset_deg, zoom_min_factor, zoom_max_factor}
+jaus::bridge::ClearpathMountConfig mount(const Entry& item) {
+  jaus::bridge::ClearpathMountConfig m;
+  bool camera = false, mount_given = false;
+  read_map(item.value, "clearpath.mounts entry", item.key_line,
+           {{"camera_id", [&](const Entry& e) { camera = true; m.camera_id = integer<std::uint8_t>(e, 1, 255); }},
+            {"mount", [&](const Entry& e) { mount_given = true; m.mount = integer<std::uint8_t>(e, 0, 255); }},
+            {"pan_sign", [&](const Entry& e) { m.pan_sign = sign(e); }},
+            {"tilt_sign", [&](const Entry& e) { m.tilt_sign = sign(e); }},
+            {"pan_offset_deg", [&](const Entry& e) { m.pan_offset_deg = number(e, kOffsetDegRange); }},
+            {"tilt_offset_deg", [&](const Entry& e) { m.tilt_offset_deg = number(e, kOffsetDegRange); }},
+            {"zoom_min_factor", [&](const Entry& e) { m.zoom_min_factor = number(e, kZoomFactorRange); }},
+            {"zoom_max_factor", [&](const Entry& e) { m.zoom_max_factor = number(e, kZoomFactorRange); }}});
+  if (!camera || !mount_given) fail(item.key_line, "a clearpath.mounts entry needs camera_id and mount");
+  return m;
+}
+
+// {clearpath_joint: N, sign: +-1, offset_deg: D}
+jaus::bridge::ClearpathJointMapping arm_joint(const Entry& item) {
+  jaus::bridge::ClearpathJointMapping j;
+  bool id = false;
+  read_map(item.value, "clearpath.arm_joints entry", item.key_line,
+           {{"clearpath_joint", [&](const Entry& e) { id = true; j.clearpath_joint = integer<std::uint8_t>(e, 0, 255); }},
+            {"sign", [&](const Entry& e) { j.sign = sign(e); }},
+            {"offset_deg", [&](const Entry& e) { j.offset_rad = number(e, kOffsetDegRange) * std::numbers::pi / 180; }}});
+  if (!id) fail(item.key_line, "a clearpath.arm_joints entry needs clearpath_joint");
+  return j;
+}
+
 }  // namespace
 
 jaus::bridge::DriveMode drive_mode(const ClearpathOptions& options, jaus::components::Steering steering) {
   if (options.drive) return *options.drive;
   return steering == jaus::components::Steering::ackermann ? jaus::bridge::DriveMode::ackermann
                                                            : jaus::bridge::DriveMode::differential_output;
+}
+
+std::vector<jaus::bridge::ClearpathMountConfig> camera_mounts(const ClearpathOptions& options,
+                                                              const jaus::components::VisualSensorConfig& cameras) {
+  if (options.mounts) return *options.mounts;
+  std::vector<jaus::bridge::ClearpathMountConfig> mounts;
+  for (const auto& camera : cameras.cameras) {
+    if (!camera.pan.movable() && !camera.tilt.movable()) continue;
+    jaus::bridge::ClearpathMountConfig m;
+    m.camera_id = camera.id;
+    m.mount = static_cast<std::uint8_t>(mounts.size());
+    if (camera.zoom.movable()) m.zoom_max_factor = 10;  // 1x widest .. 10x narrowest
+    mounts.push_back(m);
+  }
+  return mounts;
+}
+
+std::vector<jaus::bridge::ClearpathJointMapping> arm_joints(const ClearpathOptions& options,
+                                                            const jaus::components::ArmConfig& arm) {
+  if (options.arm_joints) return *options.arm_joints;
+  std::vector<jaus::bridge::ClearpathJointMapping> joints;
+  // Clearpath joints are angles: an arm with a slide stays simulated unless mapped explicitly.
+  for (const auto& joint : arm.joints)
+    if (joint.prismatic) return joints;
+  for (std::size_t i = 0; i < arm.joints.size(); ++i)
+    joints.push_back({static_cast<std::uint8_t>(i), 1, 0});
+  return joints;
 }
 
 void read_platform(const Entry& e, PlatformChoice& platform) {
@@ -125,7 +192,17 @@ void read_clearpath(const Entry& section, ClearpathOptions& o) {
             {"max_encoder_step_m", [&](const Entry& e) { o.max_encoder_step_m = number(e, kEncoderStepRange); }},
             {"emergency_flags", [&](const Entry& e) { o.emergency_flags = static_cast<std::uint16_t>(bits(e, 0, 0xFFFF)); }},
             {"platform_stop_flags",
-             [&](const Entry& e) { o.platform_stop_flags = static_cast<std::uint16_t>(bits(e, 0, 0xFFFF)); }}});
+             [&](const Entry& e) { o.platform_stop_flags = static_cast<std::uint16_t>(bits(e, 0, 0xFFFF)); }},
+            {"mounts",
+             [&](const Entry& e) {
+               o.mounts.emplace();
+               for (const auto& item : read_list(e)) o.mounts->push_back(mount(Entry{"mounts", line_of(item), item}));
+             }},
+            {"arm_joints", [&](const Entry& e) {
+               o.arm_joints.emplace();
+               for (const auto& item : read_list(e))
+                 o.arm_joints->push_back(arm_joint(Entry{"arm_joints", line_of(item), item}));
+             }}});
 }
 
 }  // namespace jausd

@@ -8,8 +8,11 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "config_reader.hpp"
+#include "jaus/components/arm_config.hpp"
+#include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/platform.hpp"
 
@@ -35,10 +38,21 @@ struct ClearpathOptions {
   double max_encoder_step_m = 2.0;
   std::uint16_t emergency_flags = 0;             // JAUS Emergency also sets these safety flags
   std::uint16_t platform_stop_flags = 0x08 | 0x10;  // the platform's own e-stop / pause bits
+  // Unset: every camera with a movable pan or tilt on the next mount (0, 1, ...).
+  std::optional<std::vector<jaus::bridge::ClearpathMountConfig>> mounts;
+  // Unset: manipulator joint n on Clearpath joint n - 1, same sign, no offset
+  // (an arm with a prismatic joint: none, it stays simulated).
+  std::optional<std::vector<jaus::bridge::ClearpathJointMapping>> arm_joints;
 };
 
 // The drive mode in use: the configured one, or the vehicle's steering's.
 jaus::bridge::DriveMode drive_mode(const ClearpathOptions& options, jaus::components::Steering steering);
+
+// The mounts and arm joints in use: the configured ones, or the defaults above.
+std::vector<jaus::bridge::ClearpathMountConfig> camera_mounts(const ClearpathOptions& options,
+                                                              const jaus::components::VisualSensorConfig& cameras);
+std::vector<jaus::bridge::ClearpathJointMapping> arm_joints(const ClearpathOptions& options,
+                                                            const jaus::components::ArmConfig& arm);
 
 void read_platform(const yaml_reader::Entry& entry, PlatformChoice& platform);
 void read_clearpath(const yaml_reader::Entry& section, ClearpathOptions& options);

@@ -1,5 +1,7 @@
 #include "jaus/bridge/clearpath_vehicle.hpp"
 
+#include "command_stream.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -96,12 +98,8 @@ struct ClearpathVehicle::State {
     platform.client().send(std::move(message), [this, what](const cp::CommandOutcome& outcome) {
       if (outcome.ok()) return;
       ++counters.command_failures;
-      platform.log(rt::LogLevel::warn, std::string("Clearpath platform: ") + what + " not applied (" +
-                                           (outcome.error == cp::CommandError::refused
-                                                ? "refused, result 0x" + std::to_string(outcome.result)
-                                                : outcome.error == cp::CommandError::link_down ? "link down"
-                                                                                               : "no answer") +
-                                           ")");
+      platform.log(rt::LogLevel::warn,
+                   std::string("Clearpath platform: ") + what + " not applied (" + detail::outcome_text(outcome) + ")");
     });
   }
 

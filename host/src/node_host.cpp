@@ -37,11 +37,28 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
         backends.pose = h->clearpath_vehicle_.get();
       }
     } else if (hardware == Hardware::cameras && !h->cameras_) {
+      // The images are always the simulated cameras'; their mounts may be the platform's.
       h->cameras_ = std::make_unique<components::SimulatedCameras>(h->config_.cameras, h->runtime_);
       backends.cameras = h->cameras_.get();
-    } else if (hardware == Hardware::arm && !h->arm_) {
-      h->arm_ = std::make_unique<components::SimulatedArm>(h->config_.arm, h->runtime_);
-      backends.arm = h->arm_.get();
+      const auto& mounts = h->config_.platform.cameras;
+      if (h->config_.platform.kind != PlatformSettings::Kind::model && !mounts.mounts.empty()) {
+        if (auto ok = bridge::check_clearpath_cameras_config(h->config_.cameras.cameras, mounts); !ok)
+          return unexpected(ok.error());
+        h->open_platform(io);
+        h->clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*h->platform_, h->runtime_, *h->cameras_, mounts);
+        backends.cameras = h->clearpath_cameras_.get();
+      }
+    } else if (hardware == Hardware::arm && !h->arm_ && !h->clearpath_arm_) {
+      const auto& joints = h->config_.platform.arm;
+      if (h->config_.platform.kind != PlatformSettings::Kind::model && !joints.joints.empty()) {
+        if (auto ok = bridge::check_clearpath_arm_config(h->config_.arm, joints); !ok) return unexpected(ok.error());
+        h->open_platform(io);
+        h->clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*h->platform_, h->runtime_, h->config_.arm, joints);
+        backends.arm = h->clearpath_arm_.get();
+      } else {
+        h->arm_ = std::make_unique<components::SimulatedArm>(h->config_.arm, h->runtime_);
+        backends.arm = h->arm_.get();
+      }
     }
   }
   std::vector<std::pair<const ComponentSpec*, rt::Component*>> on_vehicle;
@@ -49,7 +66,11 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     auto component = make_component(spec, h->config_.settings, *h->node_, backends);
     if (!component) return unexpected(component.error());
     rt::Component& added = h->node_->add(std::move(*component));
-    if (hardware_of(spec.kind) == Hardware::vehicle) on_vehicle.emplace_back(&spec, &added);
+    const Hardware hardware = hardware_of(spec.kind);
+    // Every component on the Clearpath platform shares its e-stop.
+    if (hardware == Hardware::vehicle || (hardware == Hardware::cameras && h->clearpath_cameras_) ||
+        (hardware == Hardware::arm && h->clearpath_arm_))
+      on_vehicle.emplace_back(&spec, &added);
   }
   if (h->clearpath_vehicle_) h->mirror_emergencies(on_vehicle);
   h->link_->start();

@@ -721,6 +721,25 @@ clearpath:
   EXPECT_EQ(host.platform.vehicle.drive, jaus::bridge::DriveMode::velocity);
   EXPECT_EQ(host.platform.vehicle.max_speed_mps, c.vehicle.max_speed_mps);
   EXPECT_EQ(host.platform.vehicle.datum, c.vehicle.start);
+  // By default the pan-tilt camera is on mount 0 and the six joints on Clearpath joints 0..5.
+  const auto defaults = jausd::host_config(expect_ok(""));
+  ASSERT_EQ(defaults.platform.cameras.mounts.size(), 1u);
+  EXPECT_EQ(defaults.platform.cameras.mounts[0].camera_id, 1);
+  EXPECT_EQ(defaults.platform.cameras.mounts[0].mount, 0);
+  ASSERT_EQ(defaults.platform.arm.joints.size(), 6u);
+  EXPECT_EQ(defaults.platform.arm.joints[5].clearpath_joint, 5);
+  const auto mapped = jausd::host_config(expect_ok(R"(
+clearpath:
+  mounts: [{camera_id: 1, mount: 1, pan_sign: -1, pan_offset_deg: 10, zoom_min_factor: 1, zoom_max_factor: 4}]
+  arm_joints: [{clearpath_joint: 5, sign: -1, offset_deg: 90}, {clearpath_joint: 4}, {clearpath_joint: 3},
+               {clearpath_joint: 2}, {clearpath_joint: 1}, {clearpath_joint: 0}]
+)"));
+  EXPECT_EQ(mapped.platform.cameras.mounts[0].mount, 1);
+  EXPECT_EQ(mapped.platform.cameras.mounts[0].pan_sign, -1);
+  EXPECT_EQ(mapped.platform.cameras.mounts[0].zoom_max_factor, 4);
+  EXPECT_EQ(mapped.platform.arm.joints[0].clearpath_joint, 5);
+  EXPECT_NEAR(mapped.platform.arm.joints[0].offset_rad, std::numbers::pi / 2, 1e-12);
+  EXPECT_EQ(mapped.platform.sim.vehicle.mounts, 2u);
   // An Ackermann vehicle drives with Ackermann commands unless told otherwise.
   const auto ackermann = jausd::host_config(expect_ok("vehicle: {steering: ackermann}\n"));
   EXPECT_EQ(ackermann.platform.vehicle.drive, jaus::bridge::DriveMode::ackermann);
@@ -741,6 +760,9 @@ TEST(JausdConfigErrors, PlatformAndClearpathValues) {
                "'emergency_flags' must be bits 0..65535 (decimal or 0x hexadecimal), got '0x1G'");
   expect_error("clearpath:\n  setpoint_max_age_s: 60\n", 2,
                "'setpoint_max_age_s' must be a number of seconds 0.05..10, got '60'");
+  expect_error("clearpath:\n  arm_joints: [{clearpath_joint: 0}]\n", 1,
+               "Clearpath arm: 1 joint mappings for an arm of 6 joints");
+  expect_error("clearpath:\n  mounts: [{mount: 0}]\n", 2, "a clearpath.mounts entry needs camera_id and mount");
   expect_error("clearpath:\n  drive: ackermann\n", 1,
                "'clearpath.drive' ackermann needs vehicle.steering ackermann on the simulated platform");
 }

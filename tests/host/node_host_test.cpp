@@ -157,11 +157,16 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   HostConfig config = loopback_config();
   config.platform.kind = PlatformSettings::Kind::clearpath_sim;
   config.platform.vehicle.emergency_flags = 0x08;
+  config.arm.joints = {components::JointConfig{}};
+  config.platform.arm.joints = {{0, 1, 0}};  // the one joint on Clearpath joint 0
   auto host = NodeHost::open(config, io);
   ASSERT_TRUE(host) << host.error().message();
   NodeHost& h = **host;
   ASSERT_NE(h.clearpath_vehicle(), nullptr);
   EXPECT_EQ(h.vehicle(), nullptr);  // no direct simulation
+  EXPECT_NE(h.clearpath_arm(), nullptr);
+  EXPECT_EQ(h.arm(), nullptr);
+  EXPECT_EQ(h.clearpath_cameras(), nullptr);  // no mount mapped: the cameras stay simulated
   auto* driver = h.node().find(Address{1, 1, 33, 1});
   auto* pose = h.node().find(Address{1, 1, 38, 1});
   ASSERT_TRUE(driver && pose);

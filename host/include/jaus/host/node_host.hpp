@@ -92,6 +92,8 @@ class NodeHost {
   clearpath::Client* platform_client() { return platform_client_.get(); }
   bridge::PlatformConnection* platform() { return platform_.get(); }
   bridge::ClearpathVehicle* clearpath_vehicle() { return clearpath_vehicle_.get(); }
+  bridge::ClearpathCameras* clearpath_cameras() { return clearpath_cameras_.get(); }
+  bridge::ClearpathArm* clearpath_arm() { return clearpath_arm_.get(); }
 
  private:
   NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
@@ -110,6 +112,8 @@ class NodeHost {
   clearpath::ClearpathLink* platform_link_ = nullptr;  // platform_client_, when it is a real link
   std::unique_ptr<bridge::PlatformConnection> platform_;
   std::unique_ptr<bridge::ClearpathVehicle> clearpath_vehicle_;
+  std::unique_ptr<bridge::ClearpathCameras> clearpath_cameras_;
+  std::unique_ptr<bridge::ClearpathArm> clearpath_arm_;
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;

@@ -4,6 +4,8 @@
 // real, on a serial port, UDP or TCP.
 #pragma once
 
+#include "jaus/bridge/clearpath_arm.hpp"
+#include "jaus/bridge/clearpath_cameras.hpp"
 #include "jaus/bridge/clearpath_vehicle.hpp"
 #include "jaus/clearpath/client_core.hpp"
 #include "jaus/clearpath/link.hpp"
@@ -21,6 +23,11 @@ struct PlatformSettings {
   clearpath::sim::PlatformConfig sim;    // clearpath_sim
   clearpath::ClientConfig client;        // retries, silence, setpoint period and maximum age
   bridge::ClearpathVehicleConfig vehicle;  // the mobility components' mapping
+  // The visual sensor's camera mounts on the platform (images still come from
+  // the simulated cameras); cameras not listed keep their simulated mount.
+  bridge::ClearpathCamerasConfig cameras;
+  // The manipulator's joints on the platform; none: the arm stays simulated.
+  bridge::ClearpathArmConfig arm;
 };
 
 }  // namespace jaus::host
