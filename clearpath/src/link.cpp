@@ -191,7 +191,7 @@ void ClearpathLink::pump() {
     if (!*alive || generation != generation_) return;
     writing_ = false;
     if (ec) return fail(ec);
-    if (on_written_) on_written_(n);
+    if (on_written_) on_written_(std::span<const std::uint8_t>(tx_).first(n));
     pump();
   };
   switch (endpoint_.kind) {

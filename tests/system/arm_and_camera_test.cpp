@@ -44,12 +44,9 @@ class ArmAndCamera : public ::testing::Test {
   }
   void TearDown() override { jausd.reset(); }
 
-  // Each bind address its own OCU node ID (127.0.0.30 -> 254.30.40.1): the node answers an ID at the
-  // endpoint it last heard it from, so a query beside a controller must not share the controller's ID.
   std::unique_ptr<ChildProcess> jausctl(const std::string& name, std::vector<std::string> args,
                                         const std::string& bind) {
-    const std::string octet = bind.substr(bind.rfind('.') + 1, bind.find(':') - bind.rfind('.') - 1);
-    auto child = jausd->jausctl(name, std::move(args), bind, "254." + octet + ".40.1");
+    auto child = jausd->jausctl_own_id(name, std::move(args), bind);
     EXPECT_TRUE(child->started());
     return child;
   }

@@ -115,11 +115,9 @@ class ClearpathPlatform : public ::testing::TestWithParam<Simulator::Line> {
     std::filesystem::remove_all(dir, ignored);
   }
 
-  // Each bind address its own OCU ID (127.0.0.34 -> 254.34.40.1), so a query never takes a controller's replies.
   std::unique_ptr<ChildProcess> jausctl(const std::string& name, std::vector<std::string> args,
                                         const std::string& bind) {
-    const std::string octet = bind.substr(bind.rfind('.') + 1, bind.find(':') - bind.rfind('.') - 1);
-    auto child = jausd->jausctl(name, std::move(args), bind, "254." + octet + ".40.1");
+    auto child = jausd->jausctl_own_id(name, std::move(args), bind);
     EXPECT_TRUE(child->started());
     return child;
   }

@@ -48,6 +48,15 @@ class DefaultJausd {
   const std::filesystem::path& dir() const { return dir_; }
   const std::string& address() const { return address_; }
 
+  // The same with an OCU ID of the bind address's own (127.0.0.30 -> --as
+  // 254.30.40.1): the node answers an ID at the endpoint it last heard it
+  // from, so a query beside a controller must not share the controller's ID.
+  std::unique_ptr<ChildProcess> jausctl_own_id(const std::string& log_name, std::vector<std::string> args,
+                                               const std::string& bind) const {
+    const std::string octet = bind.substr(bind.rfind('.') + 1, bind.find(':') - bind.rfind('.') - 1);
+    return jausctl(log_name, std::move(args), bind, "254." + octet + ".40.1");
+  }
+
   // `jausctl ARGS --to <the node> --bind BIND [--as AS]`, its output in <dir>/<log_name>.log.
   std::unique_ptr<ChildProcess> jausctl(const std::string& log_name, std::vector<std::string> args,
                                         const std::string& bind, const std::optional<std::string>& as = {}) const {

@@ -70,7 +70,7 @@ void BM_SetpointToWrite(benchmark::State& state) {
   config.setpoint_period = std::chrono::hours(1);  // only fresh setpoints go out
   cp::ClearpathLink link(io, runtime, runtime, target, config);
   std::size_t written = 0;
-  link.on_written([&](std::size_t) { ++written; });
+  link.on_written([&](std::span<const std::uint8_t>) { ++written; });
   link.start();
   // Let the connect-time cancels drain.
   for (int i = 0; i < 100; ++i) io.run_for(std::chrono::milliseconds(2));

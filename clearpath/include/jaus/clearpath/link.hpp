@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp uses std::exchange without it
@@ -63,8 +64,8 @@ class ClearpathLink final : public Client {
   ConnectionState state() const override { return core_.state(); }
   const ClientCounters& counters() const override { return core_.counters(); }
 
-  // Called after each frame has been written.
-  void on_written(std::function<void(std::size_t bytes)> callback) { on_written_ = std::move(callback); }
+  // Called after each frame has been written, with the frame.
+  void on_written(std::function<void(std::span<const std::uint8_t> frame)> callback) { on_written_ = std::move(callback); }
   const ClientCore& core() const { return core_; }
 
  private:
@@ -89,7 +90,7 @@ class ClearpathLink final : public Client {
   bool open_ = false;
   bool running_ = false;
   std::uint64_t generation_ = 0;  // handlers of a closed connection are ignored
-  std::function<void(std::size_t)> on_written_;
+  std::function<void(std::span<const std::uint8_t>)> on_written_;
   // Aborted handlers may run after destruction: they check this first.
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };

@@ -90,6 +90,7 @@ class NodeHost {
   // (ClearpathLink or, for clearpath_sim, sim::LoopbackClient) and the
   // bridge's backend of the mobility components.
   clearpath::Client* platform_client() { return platform_client_.get(); }
+  clearpath::ClearpathLink* platform_link() { return platform_link_; }  // a real link (not clearpath_sim)
   bridge::PlatformConnection* platform() { return platform_.get(); }
   bridge::ClearpathVehicle* clearpath_vehicle() { return clearpath_vehicle_.get(); }
   bridge::ClearpathCameras* clearpath_cameras() { return clearpath_cameras_.get(); }
