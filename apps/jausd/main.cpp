@@ -3,12 +3,14 @@
 // SIGTERM, when it shuts every component down (platform stopped) and exits.
 //
 // Exit codes: 0 after an orderly stop or a good --check-config, 2 for a bad
-// configuration or command line, or a transport that cannot open (busy port).
+// configuration or command line, or a transport that cannot open (busy port),
+// 1 when an exception escaped the event loop (after stopping the platform).
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <CLI/CLI.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <csignal>
+#include <exception>
 #include <iostream>
 
 #include "host_config.hpp"
@@ -18,6 +20,7 @@ namespace {
 
 constexpr int kExitOk = 0;
 constexpr int kExitBadInput = 2;
+constexpr int kExitFailure = 1;
 
 struct CommandLine {
   std::string config_path;
@@ -103,6 +106,15 @@ int main(int argc, char** argv) {
     (*host)->stop(signal == SIGINT ? "SIGINT" : "SIGTERM");
     io.stop();
   });
-  io.run();
+  try {
+    io.run();
+  } catch (const std::exception& e) {
+    // Safety: nothing in the libraries throws, but should anything escape the
+    // event loop (memory exhausted), every component still stops its
+    // platform (and the stop's zero setpoint is flushed) before the exit.
+    logger->critical("event loop failed: {}; stopping", e.what());
+    (*host)->stop(std::string("exception: ") + e.what());
+    return kExitFailure;
+  }
   return kExitOk;
 }

@@ -136,6 +136,8 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
+  // The components are gone: the platform's e-stop has nobody left to hold.
+  if (clearpath_vehicle_) clearpath_vehicle_->on_platform_emergency({});
   // ...and the stop's zero setpoint goes out now, before a process exits
   // without running its io_context again.
   if (platform_link_ != nullptr) platform_link_->flush();
