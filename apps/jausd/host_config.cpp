@@ -38,11 +38,6 @@ jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
   b.setpoint_max_age = max_age;
   b.nominal_battery_v = o.nominal_battery_v;
   b.max_encoder_step_m = o.max_encoder_step_m;
-  p.cameras.mounts = camera_mounts(o, config.cameras);
-  p.arm.joints = arm_joints(o, config.manipulator);
-  // The simulated platform has what they are mapped onto.
-  for (const auto& m : p.cameras.mounts) p.sim.vehicle.mounts = std::max<std::size_t>(p.sim.vehicle.mounts, m.mount + 1u);
-  for (const auto& j : p.arm.joints) p.sim.vehicle.joints = std::max<std::size_t>(p.sim.vehicle.joints, j.clearpath_joint + 1u);
   b.emergency_flags = o.emergency_flags;
   b.platform_stop_flags = o.platform_stop_flags;
   b.max_speed_mps = v.max_speed_mps;
@@ -58,12 +53,16 @@ jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
   b.attitude_rms_rad = v.attitude_rms_rad;
   b.velocity_rms_mps = v.velocity_rms_mps;
   b.rate_rms_rps = v.rate_rms_rps;
+
+  p.cameras.mounts = camera_mounts(o, config.cameras);
+  p.arm.joints = arm_joints(o, config.manipulator);
+  // The simulated platform has what they are mapped onto.
+  for (const auto& m : p.cameras.mounts)
+    p.sim.vehicle.mounts = std::max<std::size_t>(p.sim.vehicle.mounts, m.mount + 1u);
+  for (const auto& j : p.arm.joints)
+    p.sim.vehicle.joints = std::max<std::size_t>(p.sim.vehicle.joints, j.clearpath_joint + 1u);
   return p;
 }
-
-}  // namespace
-
-namespace {
 
 using namespace jaus;
 

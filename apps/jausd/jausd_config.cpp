@@ -262,8 +262,9 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   const bool ackermann_vehicle = c.vehicle.steering == jaus::components::Steering::ackermann;
   if (c.platform.kind == jaus::host::PlatformSettings::Kind::clearpath_sim && ackermann_drive != ackermann_vehicle)
     return Issue{lines.clearpath ? lines.clearpath : lines.platform,
-                 std::string("'clearpath.drive' ") + (ackermann_drive ? "ackermann needs" : "of a differential platform needs") +
-                     " vehicle.steering " + (ackermann_drive ? "ackermann" : "differential") + " on the simulated platform"};
+                 ackermann_drive ? "'clearpath.drive' ackermann needs vehicle.steering ackermann on the simulated platform"
+                                 : "'clearpath.drive' commands a differential platform: vehicle.steering must be "
+                                   "differential on the simulated platform"};
   if (c.platform.kind != jaus::host::PlatformSettings::Kind::model) {
     jaus::bridge::ClearpathCamerasConfig mounts;
     mounts.mounts = camera_mounts(c.clearpath, c.cameras);

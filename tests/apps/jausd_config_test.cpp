@@ -765,6 +765,9 @@ TEST(JausdConfigErrors, PlatformAndClearpathValues) {
   expect_error("clearpath:\n  mounts: [{mount: 0}]\n", 2, "a clearpath.mounts entry needs camera_id and mount");
   expect_error("clearpath:\n  drive: ackermann\n", 1,
                "'clearpath.drive' ackermann needs vehicle.steering ackermann on the simulated platform");
+  expect_error("vehicle: {steering: ackermann}\nclearpath:\n  drive: velocity\n", 2,
+               "'clearpath.drive' commands a differential platform: vehicle.steering must be differential on the "
+               "simulated platform");
 }
 
 TEST(JausdConfig, CamerasAndManipulatorAreRead) {
