@@ -27,6 +27,8 @@
 #include "jaus/messages/all.hpp"
 #include "jaus/transport/framing.hpp"
 
+#include "bench_support.hpp"
+
 namespace {
 
 namespace asio = boost::asio;
@@ -40,38 +42,8 @@ const Address kNode{1, 1, 0, 0};
 const Address kDriver{1, 1, 33, 1}, kPoseSensor{1, 1, 38, 1};
 const Address kOcu{254, 1, 40, 1}, kFlooder{254, 2, 40, 1};
 
-template <class M>
-std::vector<std::uint8_t> datagram(const Address& from, const Address& to, const M& message, std::uint8_t priority = 6) {
-  std::vector<std::uint8_t> payload(kMaxPayloadSize);
-  const auto size = wire::encode_payload(message, payload);
-  Header h;
-  h.priority = priority;
-  h.command_code = M::code;
-  h.source = from;
-  h.destination = to;
-  h.data_size = static_cast<std::uint16_t>(*size);
-  std::vector<std::uint8_t> out(transport::kOpcPrefix.begin(), transport::kOpcPrefix.end());
-  out.resize(out.size() + kHeaderSize);
-  encode_header_unchecked(h, std::span<std::uint8_t, kHeaderSize>(out.data() + out.size() - kHeaderSize, kHeaderSize));
-  out.insert(out.end(), payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(*size));
-  return out;
-}
-
-struct Figures {
-  double p50 = 0, p99 = 0, max = 0;
-  std::size_t count = 0;
-};
-Figures figures(std::vector<double> values) {
-  Figures f;
-  f.count = values.size();
-  if (values.empty()) return f;
-  std::sort(values.begin(), values.end());
-  const auto at = [&](double p) { return values[std::min(values.size() - 1, static_cast<std::size_t>(p * values.size()))]; };
-  f.p50 = at(0.50);
-  f.p99 = at(0.99);
-  f.max = values.back();
-  return f;
-}
+using bench::datagram;
+using bench::figures;
 
 // The differential output frames the link writes: when the last one with
 // these outputs went out (written on the node's thread, read here).
