@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  clang                 # optional: libFuzzer targets
+  clang lld             # the sanitizer build and libFuzzer targets; lld links fast
   libboost-dev          # Asio, MSM, CRC (header-only parts)
   libyaml-cpp-dev       # configuration files
   libgeographiclib-dev  # WGS 84 <-> local frame of the simulated vehicle

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Installs what the project needs, builds it and runs every test:
-#   1. Release build (-O3, -Wall -Wextra -Werror): libraries, apps, benchmarks, and the suites on
-#      real sockets, processes and clocks (system, transport, host, OCU, conformance, Clearpath link);
-#   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (-Werror): every suite, the
-#      deterministic unit suites included (they run once, where the sanitizers watch them; line
-#      tables only (-g1): all a sanitizer report needs, and a third less to compile);
-#   3. libFuzzer targets (clang, -O1), each run briefly on its seed corpus.
-# Usage: ./scripts/test.sh        (from anywhere; builds go to build/)
+#   1. Release build (GCC, -O3, -Wall -Wextra -Werror): libraries, apps, benchmarks, and the system
+#      suite, which runs the shipped programs end to end;
+#   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (clang, -Werror): every suite,
+#      and the libFuzzer targets (libraries instrumented for coverage), each run briefly on its seed
+#      corpus; line tables only (-g1), all a sanitizer report needs. Without clang the sanitizer
+#      build uses GCC and the fuzz targets are skipped.
+# Two compilers, two sets of warnings. Usage: ./scripts/test.sh (from anywhere; builds go to build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -24,20 +24,24 @@ run_suite() {  # $1 build dir, remaining args: cmake options
   echo "== $dir: built in $((built - start)) s, tested in $((SECONDS - built)) s"
 }
 
-echo "== release build and tests"
-run_suite build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_BUILD_UNIT_TESTS=OFF
+echo "== release build and the system suite"
+run_suite build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_TEST_SUITES=system
 
-echo "== debug build with address + undefined-behaviour sanitizers, tests"
-run_suite build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF
-
+sanitizer_options=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF)
 if command -v clang++ >/dev/null; then
+  echo "== debug build with address + undefined-behaviour sanitizers (clang), every suite, fuzz targets"
+  export CXX=clang++
+  run_suite build/asan "${sanitizer_options[@]}" -DJAUS_BUILD_FUZZERS=ON
+else
+  echo "== debug build with address + undefined-behaviour sanitizers (gcc), every suite"
+  run_suite build/asan "${sanitizer_options[@]}"
+fi
+
+fuzz_dir=build/asan/fuzz
+if [ -d "$fuzz_dir" ]; then
   echo "== fuzz targets (libFuzzer, short smoke run)"
-  CXX=clang++ cmake -S "$root" -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-    -DJAUS_BUILD_FUZZERS=ON -DJAUS_BUILD_TESTS=OFF -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
-  cmake --build build/fuzz -j "$jobs" --target fuzz_targets
   # Each target runs 20 s on its seed corpus, as many at once as there are cores.
-  fuzz_one() {  # $1 target; its output goes to build/fuzz/<name>.log
+  fuzz_one() {  # $1 target; its output goes to $fuzz_dir/<name>.log
     local target=$1 name corpus status=0
     name=$(basename "$target")
     corpus=$(mktemp -d)
@@ -47,13 +51,13 @@ if command -v clang++ >/dev/null; then
       grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
         while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done
     fi
-    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/build/fuzz/" \
-      > "$root/build/fuzz/$name.log" 2>&1 || status=$?
+    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/$fuzz_dir/" \
+      > "$root/$fuzz_dir/$name.log" 2>&1 || status=$?
     rm -rf "$corpus"
     return $status
   }
   targets=()
-  for target in build/fuzz/fuzz/fuzz_*; do if [ -x "$target" ]; then targets+=("$target"); fi; done
+  for target in "$fuzz_dir"/fuzz_*; do if [ -x "$target" ]; then targets+=("$target"); fi; done
   for ((i = 0; i < ${#targets[@]}; i += jobs)); do
     pids=()
     batch=("${targets[@]:i:jobs}")
@@ -61,9 +65,9 @@ if command -v clang++ >/dev/null; then
     for k in "${!batch[@]}"; do
       name=$(basename "${batch[$k]}")
       if ! wait "${pids[$k]}"; then
-        echo "== $name failed:"; tail -n 40 "build/fuzz/$name.log"; exit 1
+        echo "== $name failed:"; tail -n 40 "$fuzz_dir/$name.log"; exit 1
       fi
-      echo "$name: $(grep -E '^Done [0-9]+ runs' "build/fuzz/$name.log" | tail -n 1)"
+      echo "$name: $(grep -E '^Done [0-9]+ runs' "$fuzz_dir/$name.log" | tail -n 1)"
     done
   done
 else
