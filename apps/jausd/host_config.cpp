@@ -96,6 +96,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   c.service_connections.max_connections = config.service_connections.max_connections;
   c.service_connections.deadman_periods = config.service_connections.deadman_periods;
   c.service_connections.deadman_minimum = seconds(config.service_connections.deadman_minimum_s);
+  c.service_connections.deadman_maximum = seconds(config.service_connections.deadman_maximum_s);
 
   components::NodeManagerConfig& identity = h.settings.identity;
   identity.heartbeat_period = seconds(1.0 / config.heartbeat_hz);

@@ -114,6 +114,8 @@ struct Issue {
 
 // Lines of what the file declared, for cross-field errors (0 = unknown).
 struct SourceLines {
+  int control = 0;          // the 'control' key
+  int service_connections = 0;  // the 'service_connections' key
   int components = 0;       // the 'components' key
   int cameras = 0;          // the 'cameras' key
   int manipulator = 0;      // the 'manipulator' key
@@ -224,6 +226,7 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
       {"max_rate_hz", sc.max_rate_hz, &kRateRange},
       {"deadman_periods", sc.deadman_periods, &kDeadmanPeriodsRange},
       {"deadman_minimum_s", sc.deadman_minimum_s, &kTimeoutRange},
+      {"deadman_maximum_s", sc.deadman_maximum_s, &kPositiveTimeoutRange},
       {"component_timeout_s", c.liveness.component_timeout_s, &kPositiveTimeoutRange},
       {"node_timeout_s", c.liveness.node_timeout_s, &kPositiveTimeoutRange},
       {"subsystem_timeout_s", c.liveness.subsystem_timeout_s, &kPositiveTimeoutRange},
@@ -247,6 +250,14 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   };
   for (const auto& n : numbers)
     if (auto issue = check_number(n.key, n.value, *n.range)) return issue;
+  if (sc.deadman_minimum_s > sc.deadman_maximum_s)
+    return Issue{lines.service_connections, "'deadman_minimum_s' (" + number_text(sc.deadman_minimum_s) +
+                        ") must not exceed 'deadman_maximum_s' (" + number_text(sc.deadman_maximum_s) + ")"};
+  // Safety: without the controller-silence timeout an OCU that vanishes keeps
+  // control, and the vehicle its last command, until someone else steps in.
+  if (c.controller_timeout_s == 0 && !c.unsafe_no_controller_timeout)
+    return Issue{lines.control, "'controller_timeout_s: 0' keeps a silent controller in control for ever; "
+                    "set 'unsafe_no_controller_timeout: true' in control if that is meant"};
   if (sc.max_connections < 1 || sc.max_connections > kMaxConnectionsLimit)
     return Issue{0, "'max_connections' must be an integer 1..255, got " + std::to_string(sc.max_connections)};
   if (!one_of(c.dialect, kDialects))
@@ -457,20 +468,26 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
        {"heartbeat_hz", [&](const Entry& e) { c.heartbeat_hz = number(e, kHeartbeatRange); }},
        {"control",
         [&](const Entry& s) {
+          lines.control = s.key_line;
           read_map(s.value, "control", s.key_line,
                    {{"controller_timeout_s",
                      [&](const Entry& e) { c.controller_timeout_s = number(e, kTimeoutRange); }},
-                    {"reject_refused", [&](const Entry& e) { c.reject_refused_control = boolean(e); }}});
+                    {"reject_refused", [&](const Entry& e) { c.reject_refused_control = boolean(e); }},
+                    {"unsafe_no_controller_timeout",
+                     [&](const Entry& e) { c.unsafe_no_controller_timeout = boolean(e); }}});
         }},
        {"service_connections",
         [&](const Entry& s) {
+          lines.service_connections = s.key_line;
           auto& sc = c.service_connections;
           read_map(s.value, "service_connections", s.key_line,
                    {{"max_rate_hz", [&](const Entry& e) { sc.max_rate_hz = number(e, kRateRange); }},
                     {"max_connections",
                      [&](const Entry& e) { sc.max_connections = integer<std::size_t>(e, 1, kMaxConnectionsLimit); }},
                     {"deadman_periods", [&](const Entry& e) { sc.deadman_periods = number(e, kDeadmanPeriodsRange); }},
-                    {"deadman_minimum_s", [&](const Entry& e) { sc.deadman_minimum_s = number(e, kTimeoutRange); }}});
+                    {"deadman_minimum_s", [&](const Entry& e) { sc.deadman_minimum_s = number(e, kTimeoutRange); }},
+                    {"deadman_maximum_s",
+                     [&](const Entry& e) { sc.deadman_maximum_s = number(e, kPositiveTimeoutRange); }}});
         }},
        {"liveness",
         [&](const Entry& s) {

@@ -44,7 +44,8 @@ struct ServiceConnectionSettings {  // per component, see jaus::rt::ServiceConne
   double max_rate_hz = 1092;        // confirmed rates are capped at this
   std::size_t max_connections = 64;
   double deadman_periods = 3;       // a command SC is lost after this many silent periods...
-  double deadman_minimum_s = 0.2;   // ...and never sooner than this
+  double deadman_minimum_s = 0.2;   // ...never sooner than this...
+  double deadman_maximum_s = 1.0;   // ...and never later than this
 };
 
 struct LivenessSettings {  // peers unheard this long are forgotten
@@ -63,7 +64,8 @@ struct JausdConfig {
   std::uint16_t node_type = 40001;
 
   double heartbeat_hz = 1.0;           // node manager's Report Heartbeat Pulse
-  double controller_timeout_s = 3.0;   // controller silence that drops control; 0 disables
+  double controller_timeout_s = 3.0;   // controller silence that drops control; 0 disables...
+  bool unsafe_no_controller_timeout = false;  // ...and is refused unless this says it is meant
   bool reject_refused_control = false; // refused control requests get Reject, not Confirm 2
   ServiceConnectionSettings service_connections;
   LivenessSettings liveness;

@@ -1,11 +1,18 @@
 #include "logging.hpp"
 
+#include <spdlog/async.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace jausd {
 
 std::shared_ptr<spdlog::logger> make_logger(std::string_view level) {
-  auto logger = spdlog::stderr_color_mt("jausd");
+  // The event loop never waits on stderr: lines go through a queue to a
+  // logging thread, and when the output stalls (a full pipe, a stopped
+  // terminal) and the queue is full, the oldest queued lines are dropped,
+  // never the controller timeout or a deadman.
+  constexpr std::size_t kQueuedLines = 8192;
+  spdlog::init_thread_pool(kQueuedLines, 1);
+  auto logger = spdlog::create_async_nb<spdlog::sinks::stderr_color_sink_mt>("jausd");
   // 2026-11-21 11:42:07.123 info    node 1.1: hosts communicator 1.1.35.1
   logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %-7l %v");
   logger->set_level(spdlog::level::from_str(std::string(level == "warn" ? "warning" : level)));
@@ -22,6 +29,11 @@ jaus::rt::LogFn log_function(std::shared_ptr<spdlog::logger> logger) {
       case jaus::rt::LogLevel::error: logger->error(text); break;
     }
   };
+}
+
+LogDrain::~LogDrain() {
+  // The queued lines (the last ones say how the node stopped) are written out.
+  spdlog::shutdown();
 }
 
 }  // namespace jausd

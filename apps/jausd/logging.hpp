@@ -15,4 +15,13 @@ namespace jausd {
 std::shared_ptr<spdlog::logger> make_logger(std::string_view level);
 jaus::rt::LogFn log_function(std::shared_ptr<spdlog::logger> logger);
 
+// Held by main from make_logger on: when main returns, what is still queued
+// is written out before the process exits.
+struct LogDrain {
+  LogDrain() = default;
+  LogDrain(const LogDrain&) = delete;
+  LogDrain& operator=(const LogDrain&) = delete;
+  ~LogDrain();
+};
+
 }  // namespace jausd

@@ -1,6 +1,7 @@
 // jausd: the JAUS node daemon. Reads its YAML configuration, hosts the
-// configured components behind the UDP transport, and runs until SIGINT or
-// SIGTERM, when it shuts every component down (platform stopped) and exits.
+// configured components behind the UDP transport, and runs until SIGINT,
+// SIGTERM, SIGHUP or SIGQUIT, when it shuts every component down (platform
+// stopped) and exits.
 //
 // Exit codes: 0 after an orderly stop or a good --check-config, 2 for a bad
 // configuration or command line, or a transport that cannot open (busy port),
@@ -8,9 +9,6 @@
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <CLI/CLI.hpp>
-#include <boost/asio/signal_set.hpp>
-#include <csignal>
-#include <exception>
 #include <iostream>
 
 #include "host_config.hpp"
@@ -87,6 +85,7 @@ int main(int argc, char** argv) {
   }
 
   auto logger = jausd::make_logger(config.log_level);
+  const jausd::LogDrain drain_logs_at_exit;
   const jaus::rt::LogFn log = jausd::log_function(logger);
   boost::asio::io_context io;
   auto host = jaus::host::NodeHost::open(jausd::host_config(config), io, log);
@@ -98,23 +97,8 @@ int main(int argc, char** argv) {
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
                jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
   logger->info("configuration {}", source);
-  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
-  signals.async_wait([&](const boost::system::error_code& ec, int signal) {
-    if (ec) return;
-    // Safety: NodeHost::stop shuts every component down (platform commanded
-    // to stop) before the link closes.
-    (*host)->stop(signal == SIGINT ? "SIGINT" : "SIGTERM");
-    io.stop();
-  });
-  try {
-    io.run();
-  } catch (const std::exception& e) {
-    // Safety: nothing in the libraries throws, but should anything escape the
-    // event loop (memory exhausted), every component still stops its
-    // platform (and the stop's zero setpoint is flushed) before the exit.
-    logger->critical("event loop failed: {}; stopping", e.what());
-    (*host)->stop(std::string("exception: ") + e.what());
-    return kExitFailure;
-  }
-  return kExitOk;
+  // Safety: NodeHost::run ends with every component's stop path run
+  // (platform commanded to stop, the zero setpoint flushed), whether a stop
+  // signal or an exception ended the loop.
+  return (*host)->run(io) ? kExitFailure : kExitOk;
 }

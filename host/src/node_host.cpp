@@ -1,5 +1,8 @@
 #include "jaus/host/node_host.hpp"
 
+#include <boost/asio/signal_set.hpp>
+#include <csignal>
+
 #include "jaus/clearpath/link.hpp"
 #include "jaus/clearpath/sim/loopback_client.hpp"
 
@@ -123,6 +126,44 @@ void NodeHost::mirror_emergencies(const std::vector<std::pair<const ComponentSpe
 
 NodeHost::~NodeHost() { stop("host destroyed"); }
 
+namespace {
+std::string signal_name(int signal) {
+  switch (signal) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    case SIGQUIT: return "SIGQUIT";
+    default: return "signal " + std::to_string(signal);
+  }
+}
+}  // namespace
+
+std::optional<std::string> NodeHost::run(boost::asio::io_context& io) {
+  // Every signal that asks a process to end (systemctl stop, Ctrl-C, Ctrl-\,
+  // a closed terminal) ends it the same orderly way.
+  boost::asio::signal_set signals(io, SIGINT, SIGTERM, SIGHUP);
+  signals.add(SIGQUIT);
+  signals.async_wait([&](const boost::system::error_code& ec, int signal) {
+    if (ec) return;
+    stop(signal_name(signal));
+    io.stop();
+  });
+  std::optional<std::string> failure;
+  try {
+    io.run();
+  } catch (const std::exception& e) {
+    // Nothing in the libraries throws, but should anything escape the loop
+    // (memory exhausted, a bug), the platform still stops before the exit.
+    failure = e.what();
+    log_(rt::LogLevel::error, "event loop failed: " + *failure + "; stopping");
+  } catch (...) {
+    failure = "unknown exception";
+    log_(rt::LogLevel::error, "event loop failed: unknown exception; stopping");
+  }
+  stop(failure ? "exception: " + *failure : std::string("event loop ended"));
+  return failure;
+}
+
 rt::ComponentConfig NodeHost::component_config(std::string name, std::uint8_t component, std::uint8_t instance) const {
   rt::ComponentConfig c = config_.settings.defaults;
   c.name = std::move(name);
@@ -143,9 +184,16 @@ void NodeHost::stop(const std::string& why) {
   if (platform_link_ != nullptr) platform_link_->flush();
   const auto& n = node_->counters();
   const auto& l = link_->counters();
+  std::string reasons;
+  for (std::size_t r = 0; r < l.dropped.size(); ++r)
+    if (l.dropped[r] > 0)
+      reasons += std::string(reasons.empty() ? " (" : ", ") + std::to_string(l.dropped[r]) + " " +
+                 std::string(transport::to_string(static_cast<transport::DropReason>(r)));
+  if (!reasons.empty()) reasons += ")";
   log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +
-                               std::to_string(l.dropped_total()) + " dropped, " + std::to_string(n.delivered) +
-                               " messages delivered, " + std::to_string(l.datagrams_sent) + " datagrams out");
+                               std::to_string(l.dropped_total()) + " dropped" + reasons + ", " +
+                               std::to_string(n.delivered) + " messages delivered, " +
+                               std::to_string(l.datagrams_sent) + " datagrams out");
   link_->close();
 }
 

@@ -199,7 +199,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().to_string();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 145);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 147);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -237,12 +237,14 @@ dialect: openjaus
 heartbeat_hz: 100
 control:
   controller_timeout_s: 0
+  unsafe_no_controller_timeout: true
   reject_refused: true
 service_connections:
   max_rate_hz: 50.5
   max_connections: 255
   deadman_periods: 1.5
   deadman_minimum_s: 0
+  deadman_maximum_s: 2.5
 liveness:
   component_timeout_s: 0.5
   node_timeout_s: 10
@@ -282,11 +284,13 @@ logging:
   EXPECT_EQ(c.dialect, "openjaus");
   EXPECT_EQ(c.heartbeat_hz, 100);
   EXPECT_EQ(c.controller_timeout_s, 0);
+  EXPECT_TRUE(c.unsafe_no_controller_timeout);
   EXPECT_TRUE(c.reject_refused_control);
   EXPECT_EQ(c.service_connections.max_rate_hz, 50.5);
   EXPECT_EQ(c.service_connections.max_connections, 255u);
   EXPECT_EQ(c.service_connections.deadman_periods, 1.5);
   EXPECT_EQ(c.service_connections.deadman_minimum_s, 0);
+  EXPECT_EQ(c.service_connections.deadman_maximum_s, 2.5);
   EXPECT_EQ(c.liveness.component_timeout_s, 0.5);
   EXPECT_EQ(c.liveness.node_timeout_s, 10);
   EXPECT_EQ(c.liveness.subsystem_timeout_s, 86400);
@@ -306,16 +310,16 @@ logging:
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 36);
+  EXPECT_EQ(c.components[0].line, 38);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 39);
+  EXPECT_EQ(c.components[1].line, 41);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 45);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 47);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -344,11 +348,26 @@ TEST(JausdConfig, ScalarSpellings) {
   EXPECT_EQ(c.node_name, "12345");
 }
 
+// Safety: a node whose controller may go silent for ever must be asked for in so many words.
+TEST(JausdConfig, NoControllerTimeoutNeedsTheUnsafeOption) {
+  expect_error("heartbeat_hz: 1\ncontrol:\n  controller_timeout_s: 0\n", 2,
+               "'controller_timeout_s: 0' keeps a silent controller in control for ever; "
+               "set 'unsafe_no_controller_timeout: true' in control if that is meant");
+  expect_error("control: {controller_timeout_s: 0, unsafe_no_controller_timeout: false}\n", 1,
+               "'controller_timeout_s: 0' keeps a silent controller in control for ever; "
+               "set 'unsafe_no_controller_timeout: true' in control if that is meant");
+  const auto c = expect_ok("control: {controller_timeout_s: 0, unsafe_no_controller_timeout: true}\n");
+  EXPECT_EQ(c.controller_timeout_s, 0);
+  expect_error("\nservice_connections: {deadman_minimum_s: 2}\n", 2,
+               "'deadman_minimum_s' (2) must not exceed 'deadman_maximum_s' (1)");
+}
+
 TEST(JausdConfig, BoundariesThatAreAllowed) {
   EXPECT_TRUE(load("identification: {subsystem: 254, node: 1}\n"));
   EXPECT_TRUE(load("heartbeat_hz: 0.001\n"));
   EXPECT_TRUE(load("heartbeat_hz: 100\n"));
-  EXPECT_TRUE(load("control: {controller_timeout_s: 0}\n"));
+  EXPECT_TRUE(load("control: {controller_timeout_s: 0, unsafe_no_controller_timeout: true}\n"));
+  EXPECT_TRUE(load("service_connections: {deadman_minimum_s: 0.5, deadman_maximum_s: 0.5}\n"));
   EXPECT_TRUE(load("identification: {subsystem_type: 0, node_type: 65535}\n"));
   EXPECT_TRUE(load("transport: {bind: 127.0.0.1:1}\n"));
   EXPECT_TRUE(load("transport: {bind: 127.0.0.1:65535}\n"));
@@ -414,10 +433,11 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
                "node, node_name, node_type)");
   expect_error("control:\n  timeout_s: 2\n", 2,
-               "unknown key 'timeout_s' in control (known: controller_timeout_s, reject_refused)");
+               "unknown key 'timeout_s' in control (known: controller_timeout_s, reject_refused, "
+               "unsafe_no_controller_timeout)");
   expect_error("service_connections: {max_rate: 10}\n", 1,
                "unknown key 'max_rate' in service_connections (known: max_rate_hz, max_connections, "
-               "deadman_periods, deadman_minimum_s)");
+               "deadman_periods, deadman_minimum_s, deadman_maximum_s)");
   expect_error("liveness:\n\n  peer_timeout_s: 1\n", 3,
                "unknown key 'peer_timeout_s' in liveness (known: component_timeout_s, node_timeout_s, "
                "subsystem_timeout_s)");
@@ -1003,6 +1023,11 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
             "'heartbeat_hz' must be a number > 0 and <= 100, got 0");
   EXPECT_EQ(broken([](JausdConfig& c) { c.controller_timeout_s = -1; }),
             "'controller_timeout_s' must be a number of seconds 0..86400, got -1");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.controller_timeout_s = 0; }),
+            "'controller_timeout_s: 0' keeps a silent controller in control for ever; "
+            "set 'unsafe_no_controller_timeout: true' in control if that is meant");
+  EXPECT_EQ(broken([](JausdConfig& c) { c.service_connections.deadman_maximum_s = 0.1; }),
+            "'deadman_minimum_s' (0.2) must not exceed 'deadman_maximum_s' (0.1)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.liveness.node_timeout_s = 0; }),
             "'node_timeout_s' must be a number of seconds > 0 and <= 86400, got 0");
   EXPECT_EQ(broken([](JausdConfig& c) { c.service_connections.max_connections = 0; }),

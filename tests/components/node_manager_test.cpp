@@ -151,6 +151,39 @@ TEST_F(NodeManagerTest, PeriodicConfigurationEventsAndRefusals) {
             components::event_response::kMessageNotSupported);
 }
 
+// Events are bounded like service connections: a capped rate, a few per
+// requester, and none left for a requester that is gone.
+TEST_F(NodeManagerTest, EventsAreCappedPerRequesterAndEndWithTheirRequester) {
+  msg::CreateEvent periodic;
+  periodic.report_code = msg::ReportConfiguration::code;
+  periodic.event_type = 0;
+  periodic.requested_rate_hz = 1092;
+  for (std::uint8_t i = 0; i < 6; ++i) {
+    periodic.request_id = i;
+    deliver(kOcuA, periodic);
+  }
+  const auto confirms = outbox.to<msg::ConfirmEventRequest>(kOcuA);
+  ASSERT_EQ(confirms.size(), 6u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(confirms[i].response_code, components::event_response::kSuccessful);
+    ASSERT_TRUE(confirms[i].confirmed_rate_hz);
+    EXPECT_NEAR(*confirms[i].confirmed_rate_hz, 10, 0.01);  // NodeManagerConfig::max_event_rate_hz
+  }
+  EXPECT_EQ(confirms[4].response_code, components::event_response::kRefused);
+  EXPECT_EQ(confirms[5].response_code, components::event_response::kRefused);
+  periodic.request_id = 7;
+  deliver(kOcuB, periodic);  // another requester still gets one
+  EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code, components::event_response::kSuccessful);
+  EXPECT_EQ(manager->event_subscriptions(), 5u);
+
+  manager->peer_lost(kOcuA);
+  EXPECT_EQ(manager->event_subscriptions(), 1u);
+  outbox.clear();
+  time.advance(1s);
+  EXPECT_TRUE(outbox.to<msg::Event>(kOcuA).empty());
+  EXPECT_EQ(outbox.to<msg::Event>(kOcuB).size(), 10u);  // 10 Hz
+}
+
 TEST(Communicator, ReportsAndSetsDataLinks) {
   rt::VirtualTime time;
   RecordingOutbox outbox;

@@ -4,12 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/post.hpp>
+#include <csignal>
+#include <cstring>  // sigabbrev_np
 
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
 
+#include <algorithm>
 #include <functional>
+#include <stdexcept>
 
 namespace jaus::host {
 namespace {
@@ -127,6 +132,45 @@ TEST(NodeHost, HostsConfiguredAndAddedComponentsAndStopsThemFirst) {
   EXPECT_TRUE(h.node().local_components().empty());  // every component shut down and left
   h.stop("again");  // idempotent
 }
+
+// Safety: whatever ends the event loop, every component's stop path runs
+// before run() returns (the platform is commanded to stop).
+TEST(NodeHost, AnExceptionEscapingTheLoopStillStopsEveryComponent) {
+  boost::asio::io_context io;
+  std::vector<std::string> lines;
+  auto host = NodeHost::open(loopback_config(), io, [&](rt::LogLevel, const std::string& l) { lines.push_back(l); });
+  ASSERT_TRUE(host) << host.error().message();
+  boost::asio::post(io, [] { throw std::runtime_error("out of memory"); });
+  EXPECT_EQ((*host)->run(io), std::optional<std::string>("out of memory"));
+  EXPECT_TRUE((*host)->stopped());
+  EXPECT_TRUE((*host)->node().local_components().empty());
+  const auto logged = [&](const std::string& text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const auto& l) { return l.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(logged("event loop failed: out of memory; stopping"));
+  EXPECT_TRUE(logged("stopped (exception: out of memory)"));
+}
+
+class NodeHostStopSignal : public ::testing::TestWithParam<int> {};
+
+TEST_P(NodeHostStopSignal, EndsTheLoopWithAnOrderlyStop) {
+  boost::asio::io_context io;
+  std::vector<std::string> lines;
+  auto host = NodeHost::open(loopback_config(), io, [&](rt::LogLevel, const std::string& l) { lines.push_back(l); });
+  ASSERT_TRUE(host) << host.error().message();
+  const int signal = GetParam();
+  // Raised from inside the loop, where run() has its handler installed.
+  boost::asio::post(io, [signal] { ::raise(signal); });
+  EXPECT_EQ((*host)->run(io), std::nullopt);
+  EXPECT_TRUE((*host)->stopped());
+  EXPECT_TRUE((*host)->node().local_components().empty());
+  const std::string expected = "stopped (SIG" + std::string(sigabbrev_np(signal)) + ")";
+  EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [&](const auto& l) { return l.find(expected) != std::string::npos; }))
+      << expected;
+}
+
+INSTANTIATE_TEST_SUITE_P(EverySignal, NodeHostStopSignal, ::testing::Values(SIGINT, SIGTERM, SIGHUP, SIGQUIT),
+                         [](const ::testing::TestParamInfo<int>& info) { return std::string(sigabbrev_np(info.param)); });
 
 TEST(NodeHost, ABusyAddressIsOneIoError) {
   boost::asio::io_context io;

@@ -61,6 +61,28 @@ TEST_F(ComponentTest, EmergencyNeedsEveryHolderToClear) {
   EXPECT_EQ(driver->counters().refused_clears, 2u);
 }
 
+// Forged senders cannot grow the latch without bound, nor release a hold they
+// did not set: the component stays in Emergency, and the hardware's own hold
+// is always kept.
+TEST_F(ComponentTest, AFloodOfEmergencyHoldersIsBoundedAndNeverReleasesTheHardwareHold) {
+  driver->hold_hardware_emergency("e-stop pressed");
+  for (int i = 0; i < 1000; ++i)
+    deliver(Address{static_cast<std::uint8_t>(10 + i % 200), static_cast<std::uint8_t>(1 + i / 200), 40, 1},
+            msg::SetEmergency{});
+  EXPECT_EQ(driver->emergency().holders().size(), rt::EmergencyLatch::kMaxHolders);  // the hardware and 15 more
+  EXPECT_EQ(driver->emergency().unrecorded(), 1000u - (rt::EmergencyLatch::kMaxHolders - 1));
+  for (int i = 0; i < 1000; ++i)
+    deliver(Address{static_cast<std::uint8_t>(10 + i % 200), static_cast<std::uint8_t>(1 + i / 200), 40, 1},
+            msg::ClearEmergency{});
+  EXPECT_EQ(driver->state(), S::emergency);  // the hardware still holds it
+  EXPECT_EQ(driver->emergency().holders().size(), 1u);
+  std::size_t lines = 0;
+  for (const auto& l : logs) lines += l.find("emergency") != std::string::npos || l.find("Emergency") != std::string::npos;
+  EXPECT_LT(lines, 10u);  // one line a second per reason, not 2000
+  driver->release_hardware_emergency("e-stop released");
+  EXPECT_EQ(driver->state(), S::ready);
+}
+
 TEST_F(ComponentTest, EmergencyReturnsToStandbyWhenItInterruptedStandby) {
   deliver(kOcuA, msg::Standby{});
   deliver(kOcuA, msg::SetEmergency{});

@@ -109,10 +109,30 @@ TEST_F(ComponentTest, NoCommandFromANonControllerEverExecutes) {
   EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
   EXPECT_EQ(driver->control().own_authority(), 5);
   EXPECT_EQ(driver->counters().refused_not_controller, 4u * 6u + 1u);
-  // Logs are rate limited: one line per sender per second, not one per command.
+  // Logs are rate limited: one line per reason per second, not one per command.
   std::size_t refusal_lines = 0;
   for (const auto& l : logs) refusal_lines += l.find("not executed") != std::string::npos;
-  EXPECT_LE(refusal_lines, 5u + 1u);
+  EXPECT_LE(refusal_lines, 2u);
+}
+
+// A flood of forged senders is one reason: a line a second, each saying how
+// many were left out; the component keeps no table of senders to grow.
+TEST_F(ComponentTest, RefusalsFromAFloodOfSendersAreOneLineASecondWithACount) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  logs.clear();
+  for (int second = 0; second < 3; ++second) {
+    for (int i = 0; i < 1000; ++i)
+      drive(Address{static_cast<std::uint8_t>(10 + i % 200), static_cast<std::uint8_t>(1 + i / 200), 40, 1}, 10);
+    time.advance(std::chrono::seconds(1));
+  }
+  EXPECT_EQ(driver->counters().refused_not_controller, 3000u);
+  std::vector<std::string> lines;
+  for (const auto& l : logs)
+    if (l.find("not executed") != std::string::npos) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].find("more like this"), std::string::npos);
+  EXPECT_NE(lines[1].find("[999 more like this in the last 1 s]"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find("[999 more like this in the last 1 s]"), std::string::npos) << lines[2];
 }
 
 TEST_F(ComponentTest, SilentControllerLosesControlAndThePlatformStops) {

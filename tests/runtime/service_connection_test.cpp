@@ -176,6 +176,74 @@ TEST_F(ServiceConnectionTest, CommandServiceConnectionIsADeadman) {
   EXPECT_EQ(driver->service_connections().counters().commands_lost, 1u);
 }
 
+TEST_F(ServiceConnectionTest, DeadmanWaitsAtMostTheMaximumWhateverTheRate) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  // One command a minute: three periods would be three minutes on the last command.
+  ASSERT_EQ(create(kOcuA, msg::SetWrenchEffort::code, 0.0167, 0).response_code, msg::sc_response::kCreated);
+  drive(kOcuA, 40);
+  ASSERT_TRUE(driver->moving);
+  time.advance(900ms);
+  EXPECT_TRUE(driver->moving);
+  time.advance(200ms);  // past the 1 s maximum
+  EXPECT_FALSE(driver->moving);
+  EXPECT_EQ(driver->service_connections().counters().commands_lost, 1u);
+}
+
+TEST_F(ServiceConnectionTest, DeadmanWatchesAgainOnceCommandsResume) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  ASSERT_EQ(create(kOcuA, msg::SetWrenchEffort::code, 10, 0).response_code, msg::sc_response::kCreated);
+  drive(kOcuA, 40);
+  time.advance(400ms);
+  ASSERT_FALSE(driver->moving);
+  drive(kOcuA, 30);  // resumed: moves again, and is watched again
+  EXPECT_TRUE(driver->moving);
+  EXPECT_TRUE(logged("resumed"));
+  time.advance(400ms);
+  EXPECT_FALSE(driver->moving);
+  EXPECT_EQ(driver->service_connections().counters().commands_lost, 2u);
+}
+
+TEST_F(ServiceConnectionTest, OnlyCommandsThatDecodeFeedTheDeadman) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  ASSERT_EQ(create(kOcuA, msg::SetWrenchEffort::code, 10, 0).response_code, msg::sc_response::kCreated);
+  drive(kOcuA, 40);
+  ASSERT_TRUE(driver->moving);
+  // A Set Wrench Effort whose presence vector announces every field and carries none.
+  const std::vector<std::uint8_t> truncated{0xFF, 0xFF};
+  Header h;
+  h.command_code = msg::SetWrenchEffort::code;
+  h.source = kOcuA;
+  h.destination = kDriver;
+  h.data_size = static_cast<std::uint16_t>(truncated.size());
+  for (int i = 0; i < 5; ++i) {
+    time.advance(100ms);
+    driver->receive(h, truncated);
+  }
+  EXPECT_EQ(driver->counters().decode_errors, 5u);
+  EXPECT_FALSE(driver->moving);  // 500 ms without a command that decoded
+  EXPECT_EQ(driver->service_connections().counters().commands_lost, 1u);
+}
+
+TEST_F(ServiceConnectionTest, CommandConnectionEndsWhenControlChangesHands) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  ASSERT_EQ(create(kOcuA, msg::SetWrenchEffort::code, 10, 0).response_code, msg::sc_response::kCreated);
+  create(kOcuC, msg::ReportGlobalPose::code, 1, 0x1FF);  // an inform SC is nobody's deadman
+  drive(kOcuA, 40);
+  ASSERT_EQ(driver->service_connections().active(), 2u);
+  ASSERT_EQ(request_control(kOcuB, 20), 0);  // B takes control with a higher authority
+  EXPECT_FALSE(driver->moving);
+  EXPECT_EQ(driver->service_connections().active(), 1u);
+  EXPECT_TRUE(logged("control changed hands"));
+  // B announces its own command SC; releasing control ends it.
+  ASSERT_EQ(create(kOcuB, msg::SetWrenchEffort::code, 10, 0).response_code, msg::sc_response::kCreated);
+  EXPECT_EQ(driver->service_connections().active(), 2u);
+  deliver(kOcuB, msg::ReleaseComponentControl{});
+  EXPECT_EQ(driver->service_connections().active(), 1u);
+  // Nothing of A's or B's is watched any more: no loss of command to report.
+  time.advance(2s);
+  EXPECT_EQ(driver->service_connections().counters().commands_lost, 0u);
+}
+
 }  // namespace
 }  // namespace jaus::test
 

@@ -27,6 +27,46 @@ TEST(AsioRuntime, RunsCallbacksInTimeOrderAndHonoursCancel) {
   EXPECT_EQ(runtime.pending(), 0u);
 }
 
+// Two timers already due when the loop runs complete in one batch; the first
+// removes the owner of the second (as removing a component does), which
+// cancels it. The second must not run: its owner is gone.
+TEST(AsioRuntime, ATimerCancelledInTheBatchItIsDueInNeverRuns) {
+  boost::asio::io_context io;
+  AsioRuntime runtime(io);
+  struct Owner {  // stands in for a component: cancels its timer when destroyed
+    AsioRuntime& runtime;
+    rt::TimerId timer = rt::kNoTimer;
+    std::vector<int> seen;
+    ~Owner() { runtime.cancel(timer); }
+  };
+  std::unique_ptr<Owner> owner(new Owner{runtime, rt::kNoTimer, {}});
+  int owner_callbacks = 0;
+  const auto start = runtime.now();
+  runtime.call_at(start - 2s, [&] { owner.reset(); });
+  owner->timer = runtime.call_at(start - 1s, [&, o = owner.get()] {
+    ++owner_callbacks;
+    o->seen.push_back(1);  // a use after free under ASan, had it run
+  });
+  io.run();
+  EXPECT_EQ(owner, nullptr);
+  EXPECT_EQ(owner_callbacks, 0);
+  EXPECT_EQ(runtime.pending(), 0u);
+}
+
+TEST(AsioRuntime, PostRunsSoonWithoutArmingATimer) {
+  boost::asio::io_context io;
+  AsioRuntime runtime(io);
+  std::vector<int> order;
+  runtime.call_at(runtime.now() - 1s, [&] {
+    runtime.post([&] { order.push_back(2); });
+    order.push_back(1);  // a posted call runs after the current handler
+  });
+  runtime.post([&] { order.push_back(0); });
+  EXPECT_EQ(runtime.pending(), 1u);  // the timer only
+  io.run();
+  EXPECT_EQ(order, (std::vector<int>{0, 1, 2}));
+}
+
 TEST(AsioRuntime, PastTimesRunAtOnceAndCallbacksMayReschedule) {
   boost::asio::io_context io;
   AsioRuntime runtime(io);

@@ -24,11 +24,38 @@ TEST(RouteTable, LearnsWhereANodeLivesAndHowItSpeaks) {
   EXPECT_EQ(route->framing, Framing::judp);
   table.learn(2, 1, kPeerA, Framing::opc, time.now());  // the peer switched framing: follow it
   EXPECT_EQ(table.route(2, 1)->framing, Framing::opc);
-  table.learn(2, 1, kPeerB, Framing::opc, time.now());  // the node restarted elsewhere
-  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerB);
+  const Ipv4Endpoint restarted{kPeerA.address, 40001};
+  EXPECT_EQ(table.learn(2, 1, restarted, Framing::opc, time.now()), Learnt::moved);  // same host, new port
+  EXPECT_EQ(table.route(2, 1)->endpoint, restarted);
   EXPECT_EQ(table.counters().learnt, 1u);
   EXPECT_EQ(table.counters().moved, 1u);
   EXPECT_EQ(table.peers().size(), 2u);
+}
+
+// Nobody steers a node's replies away by claiming its ID from another host
+// while the node is alive; a restart, a silent node or a configured peer may.
+TEST(RouteTable, AnotherHostClaimingALiveNodesIdIsRefused) {
+  rt::VirtualTime time;
+  RouteTable table;  // moves from another host after 3 s of silence
+  const Ipv4Endpoint kConfigured{0x7F000004, 3794};
+  table.add_static_peer(kConfigured, Framing::judp);
+  table.learn(2, 1, kPeerA, Framing::judp, time.now());
+  time.advance(2s);
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::judp, time.now()), Learnt::claim_refused);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerA);
+  EXPECT_EQ(table.counters().claims_refused, 1u);
+  EXPECT_EQ(table.peers().size(), 2u);  // the claimant is not even remembered
+  // A refused claim does not keep the old route alive: 3 s after A was last heard, B may take it.
+  time.advance(900ms);
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::judp, time.now()), Learnt::claim_refused);
+  time.advance(100ms);
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::judp, time.now()), Learnt::moved);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerB);
+  // A configured peer is believed at once.
+  EXPECT_EQ(table.learn(2, 1, kConfigured, Framing::judp, time.now()), Learnt::moved);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kConfigured);
+  EXPECT_EQ(table.counters().moved, 2u);
+  EXPECT_EQ(table.counters().claims_refused, 2u);
 }
 
 TEST(RouteTable, SilentLearntRoutesExpireStaticPeersStay) {

@@ -5,6 +5,8 @@
 // running jausd; only order and presence are asserted, never durations.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <boost/asio/ip/udp.hpp>
 #include <atomic>
 #include <random>
@@ -231,6 +233,57 @@ TEST_F(UdpNodeTest, APeerUsingOurIdIsDroppedAndReported) {
   bool reported = false;
   for (const auto& line : logs) reported |= line.find("another node uses this node's ID 1.1.40.1") != std::string::npos;
   EXPECT_TRUE(reported);
+}
+
+TEST_F(UdpNodeTest, InvalidSourcesAndForeignClaimsOfAKnownIdAreDroppedAndCounted) {
+  send(framed(Framing::opc, packet_of(Address{2, 1, 0, 1}, kManager, msg::QueryIdentification{})));    // octet 0
+  send(framed(Framing::opc, packet_of(Address{2, 255, 40, 1}, kManager, msg::QueryIdentification{})));  // 255
+  send(framed(Framing::opc, packet_of(kOcu, kManager, msg::QueryIdentification{})));
+  ASSERT_TRUE(run_until([&] { return replies(msg::ReportIdentification::code, Framing::opc) == 1; }));
+  EXPECT_EQ(link->counters().dropped_for(DropReason::invalid_source), 2u);
+  EXPECT_EQ(node->counters().packets_received, 1u);
+
+  // Another host claims the OCU's ID while the OCU is alive: dropped, the route stays.
+  udp::socket stranger(io, udp::endpoint(asio::ip::make_address_v4("127.0.0.5"), 0));
+  const auto claim = framed(Framing::opc, packet_of(kOcu, kManager, msg::QueryIdentification{}));
+  stranger.send_to(asio::buffer(claim), node_endpoint());
+  ASSERT_TRUE(run_until([&] { return link->counters().dropped_for(DropReason::route_claim) == 1; }));
+  EXPECT_EQ(link->routes().route(2, 1)->endpoint.port, peer.local_endpoint().port());
+  EXPECT_EQ(node->counters().packets_received, 1u);
+
+  // The OCU restarted on the same host (a new port): followed, without a warning.
+  udp::socket restarted(io, udp::endpoint(asio::ip::make_address_v4("127.0.0.1"), 0));
+  restarted.send_to(asio::buffer(claim), node_endpoint());
+  ASSERT_TRUE(run_until([&] { return link->routes().route(2, 1)->endpoint.port == restarted.local_endpoint().port(); }));
+  const std::string moved = "node 2.1 moved to 127.0.0.1:" + std::to_string(restarted.local_endpoint().port());
+  std::size_t move_lines = 0, claim_warnings = 0;
+  for (const auto& line : logs) {
+    move_lines += line.find(moved) != std::string::npos;
+    claim_warnings += line.find("two peers with one ID") != std::string::npos;
+  }
+  EXPECT_EQ(move_lines, 1u);
+  EXPECT_EQ(claim_warnings, 1u);  // the stranger's claim only
+  EXPECT_EQ(link->routes().counters().moved, 1u);
+}
+
+TEST_F(UdpNodeTest, ANodeOpenToTheNetworkWithoutAnAllowListSaysSoAtStart) {
+  const auto warned = [](const std::vector<std::string>& lines) {
+    return std::any_of(lines.begin(), lines.end(),
+                       [](const auto& l) { return l.find("with an empty allow-list") != std::string::npos; });
+  };
+  EXPECT_FALSE(warned(logs));  // loopback only
+  std::vector<std::string> lines;
+  const auto collect = [&](rt::LogLevel, const std::string& line) { lines.push_back(line); };
+  UdpLinkOptions options;
+  options.bind = Ipv4Endpoint{0, 0};  // every interface
+  auto open = UdpLink::open(io, runtime, runtime, options, collect);
+  ASSERT_TRUE(open) << open.error().message();
+  EXPECT_TRUE(warned(lines));
+  lines.clear();
+  options.allow = {*parse_cidr("10.0.0.0/8")};
+  auto guarded = UdpLink::open(io, runtime, runtime, options, collect);
+  ASSERT_TRUE(guarded) << guarded.error().message();
+  EXPECT_FALSE(warned(lines));
 }
 
 TEST_F(UdpNodeTest, TheAllowListKeepsStrangersOut) {

@@ -20,6 +20,8 @@ std::string_view to_string(DropReason reason) {
     case DropReason::oversized: return "oversized";
     case DropReason::not_allowed: return "source not allowed";
     case DropReason::from_self: return "own datagram";
+    case DropReason::invalid_source: return "invalid source ID";
+    case DropReason::route_claim: return "node ID claimed from a second endpoint";
     case DropReason::count_: break;
   }
   return "unknown";

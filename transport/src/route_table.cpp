@@ -19,7 +19,17 @@ void RouteTable::erase_route(std::map<std::uint16_t, Route>::iterator route) {
 
 Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
                          rt::TimePoint now) {
+  const std::uint16_t k = key(subsystem, node);
   auto peer = peers_.find(from);
+  if (auto route = routes_.find(k); route != routes_.end() && route->second.endpoint != from) {
+    const bool same_host = route->second.endpoint.address == from.address;
+    const bool configured = peer != peers_.end() && peer->second.is_static;
+    const bool old_silent = now - route->second.last_heard >= options_.move_after_silence;
+    if (!same_host && !configured && !old_silent) {
+      ++counters_.claims_refused;
+      return Learnt::claim_refused;
+    }
+  }
   if (peer == peers_.end()) {
     if (learnt_peers_ >= options_.max_entries) {
       ++counters_.rejected_full;
@@ -31,12 +41,11 @@ Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4En
   peer->second.framing = framing;  // answer each peer the way it speaks
   peer->second.last_heard = now;
 
-  const std::uint16_t k = key(subsystem, node);
   Learnt result = Learnt::new_route;
   if (auto route = routes_.find(k); route != routes_.end()) {
     route->second.last_heard = now;
     if (route->second.endpoint == from) return Learnt::known;
-    erase_route(route);  // the node restarted elsewhere: the newest source wins
+    erase_route(route);  // the node restarted elsewhere (allowed above): the newest source wins
     ++counters_.moved;
     result = Learnt::moved;
   } else {

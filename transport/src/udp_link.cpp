@@ -59,6 +59,13 @@ Expected<std::unique_ptr<UdpLink>> UdpLink::open(asio::io_context& io, rt::Clock
   std::unique_ptr<UdpLink> link(new UdpLink(io, clock, scheduler, std::move(options), std::move(log)));
   auto bound = link->bind_sockets();
   if (!bound) return unexpected(bound.error());
+  // Reachable from the network and open to everyone on it: the operator
+  // should choose that knowingly.
+  const bool loopback = (link->options_.bind.address >> 24) == 127;
+  if (!loopback && link->options_.allow.empty())
+    link->log_(rt::LogLevel::warn, "listening on " + to_string(link->options_.bind) +
+                                       " with an empty allow-list: any host on the network may command this "
+                                       "node (list trusted networks in transport.allow)");
   return link;
 }
 
@@ -178,18 +185,23 @@ void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint
     const bool ours = from.port == local_port_ && (options_.bind.is_any() || from.address == options_.bind.address);
     return drop(DropReason::from_self, from, ours ? "" : "another node uses this node's ID " + header.source.to_string());
   }
-  if (header.source.is_valid() && !header.source.is_broadcast()) {
-    const Learnt learnt =
-        routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
-    if ((learnt == Learnt::new_route || learnt == Learnt::moved) && route_log_allowed()) {
-      const std::string node = std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node);
-      const std::string where = to_string(from) + " (" + std::string(to_string(unframed->framing)) + ")";
-      // A node flipping between endpoints is usually two peers using one JAUS ID.
-      if (learnt == Learnt::moved)
-        log_(rt::LogLevel::warn, "node " + node + " now heard from " + where + ": two peers with one ID?");
-      else
-        log_(rt::LogLevel::info, "node " + node + " at " + where);
-    }
+  // Nothing is learnt from, nor delivered for, a source that cannot answer.
+  if (!header.source.is_valid() || header.source.is_broadcast())
+    return drop(DropReason::invalid_source, from, "source " + header.source.to_string());
+  const Learnt learnt =
+      routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
+  const std::string node = std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node);
+  if (learnt == Learnt::claim_refused) {
+    const auto route = routes_.route(header.source.subsystem, header.source.node);
+    return drop(DropReason::route_claim, from,
+                "node " + node + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
+                    "; spoofed, or two peers with one ID");
+  }
+  if ((learnt == Learnt::new_route || learnt == Learnt::moved) && route_log_allowed()) {
+    const std::string where = to_string(from) + " (" + std::string(to_string(unframed->framing)) + ")";
+    // A move is a restarted peer (same host, or its old endpoint silent) or a
+    // configured one: worth a line, not a warning.
+    log_(rt::LogLevel::info, "node " + node + (learnt == Learnt::moved ? " moved to " : " at ") + where);
   }
   ++counters_.packets_delivered;
   if (handler_) handler_(unframed->packet, unframed->framing);

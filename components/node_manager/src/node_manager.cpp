@@ -1,5 +1,6 @@
 #include "jaus/components/node_manager.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace jaus::components {
@@ -105,9 +106,14 @@ void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
   const bool periodic = m.event_type == 0;
   if (!periodic && m.event_type != 1)
     return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kInvalidSetup);
-  const double rate = m.requested_rate_hz.value_or(0);
-  if (periodic && !(rate > 0))
+  const double requested = m.requested_rate_hz.value_or(0);
+  if (periodic && !(requested > 0))
     return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kInvalidSetup);
+  const double rate = std::min(requested, nm_.max_event_rate_hz);
+  const auto held = std::count_if(events_.begin(), events_.end(),
+                                  [&](const auto& entry) { return entry.second.requester == h.source; });
+  if (static_cast<std::size_t>(held) >= nm_.max_events_per_requester)
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kRefused);
   std::uint8_t query_field = msg::identification::kSubsystem;
   if (m.query_message && !m.query_message->empty()) query_field = m.query_message->front();
 
@@ -127,6 +133,19 @@ void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
   confirm_event(h.source, m.request_id, m.report_code, id, periodic ? std::optional<double>(rate) : std::nullopt,
                 event_response::kSuccessful);
   if (periodic) send_event(e);
+}
+
+void NodeManager::requester_lost(const Address& peer) {
+  for (auto it = events_.begin(); it != events_.end();) {
+    if (!peer.covers(it->second.requester)) {
+      ++it;
+      continue;
+    }
+    if (it->second.timer != kNoTimer) env().scheduler.cancel(it->second.timer);
+    log(LogLevel::info, "event " + std::to_string(it->first) + " for " + it->second.requester.to_string() +
+                            " ended: requester gone");
+    it = events_.erase(it);
+  }
 }
 
 void NodeManager::on_cancel_event(const Header& h, const msg::CancelEvent& m) {

@@ -150,12 +150,19 @@ void PrimitiveDriver::on_set_discrete_devices(const Header& h, const msg::SetDis
 
 // Safety: each Set Wrench Effort restarts the command timeout; when it runs
 // out, the drive stops, as if the controller had gone (a lost link that the
-// controller's liveness would notice only after seconds).
+// controller's liveness would notice only after seconds). A command only
+// moves the deadline; the one timer, set for the deadline, looks again when
+// it fires (no timer armed per command).
 void PrimitiveDriver::arm_command_timeout() {
-  cancel_command_timeout();
   if (options_.command_timeout <= Duration::zero()) return;
-  command_timer_ = env().scheduler.call_at(env().clock.now() + options_.command_timeout, [this] {
+  command_deadline_ = env().clock.now() + options_.command_timeout;
+  if (command_timer_ == kNoTimer) wait_for_command_deadline();
+}
+
+void PrimitiveDriver::wait_for_command_deadline() {
+  command_timer_ = env().scheduler.call_at(command_deadline_, [this] {
     command_timer_ = kNoTimer;
+    if (env().clock.now() < command_deadline_) return wait_for_command_deadline();  // a newer command
     if (!propels(drive_.applied_effort())) return;  // nothing to stop
     ++driver_counters_.command_timeouts;
     stop_platform("no Set Wrench Effort for " + seconds_text(options_.command_timeout));

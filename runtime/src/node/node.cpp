@@ -28,7 +28,6 @@ Node::Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& 
 }
 
 Node::~Node() {
-  if (drain_timer_ != rt::kNoTimer) scheduler_.cancel(drain_timer_);
   if (housekeeping_timer_ != rt::kNoTimer) scheduler_.cancel(housekeeping_timer_);
   components_.clear();  // before the queues they may still send into
 }
@@ -178,11 +177,17 @@ void Node::enqueue(Inbound message) {
     log(rt::LogLevel::warn, "inbound queue full: dropped a priority " + std::to_string(pushed.dropped_priority) +
                                 " message");
   }
-  if (drain_timer_ == rt::kNoTimer) drain_timer_ = scheduler_.call_at(clock_.now(), [this] { drain(); });
+  if (drain_posted_) return;
+  drain_posted_ = true;
+  // Posted, not timed: no timer armed per message. The node may be gone
+  // when it runs (a host stopped in between): `alive` says.
+  scheduler_.post([this, alive = std::weak_ptr<const char>(alive_)] {
+    if (alive.lock()) drain();
+  });
 }
 
 void Node::drain() {
-  drain_timer_ = rt::kNoTimer;
+  drain_posted_ = false;
   // Highest priority first; safety-critical (12-15) before everything queued.
   while (auto message = inbound_.pop()) {
     const Header& h = message->header;

@@ -12,8 +12,6 @@ namespace {
 // How often a controlled component asks its controller for its status: the
 // reply (or any other traffic) proves the controller is alive.
 constexpr int kControllerQueriesPerTimeout = 3;
-// At most one "not the controller" log line per sender per second.
-constexpr Duration kRefusalLogInterval = std::chrono::seconds(1);
 
 std::string describe(const Controller& c) {
   return c.address.to_string() + " (authority " + std::to_string(c.authority) + ")";
@@ -80,7 +78,8 @@ void Component::transition(LifecycleEvent event, const Address& by) {
 }
 
 void Component::hold_hardware_emergency(std::string_view why) {
-  if (!emergency_.set(config_.address) && lifecycle_.state() == PrimaryStatus::emergency) return;  // already held
+  if (!emergency_.set(config_.address, /*always=*/true) && lifecycle_.state() == PrimaryStatus::emergency)
+    return;  // already held
   log(LogLevel::warn, "emergency Stop from the hardware: " + std::string(why));
   if (lifecycle_.state() != PrimaryStatus::emergency) transition(LifecycleEvent::emergency_set, config_.address);
 }
@@ -125,6 +124,7 @@ void Component::peer_lost(const Address& peer) {
   services_.end_all_from(peer, "requester gone");
   if (const auto& controller = control_.controller(); controller && peer.covers(controller->address))
     take_control_away("controller " + controller->address.to_string() + " gone");
+  requester_lost(peer);
 }
 
 void Component::declare_failure(std::string_view why) {
@@ -177,28 +177,31 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
   }
   if (handler.ready_only && lifecycle_.state() != PrimaryStatus::ready) {
     ++counters_.refused_wrong_state;
-    log(LogLevel::warn, std::string(handler.name) + " from " + header.source.to_string() + " not executed in " +
-                            std::string(to_string(lifecycle_.state())));
+    log_repeated(wrong_state_log_, LogLevel::warn, [&] {
+      return std::string(handler.name) + " from " + header.source.to_string() + " not executed in " +
+             std::string(to_string(lifecycle_.state()));
+    });
     return;
   }
-  // A command from the controller feeds the deadman of its service connection.
-  if (handler.access == Access::controller && handler.ready_only) services_.on_command(header);
   if (auto error = handler.invoke(header, payload, dialect)) {
     ++counters_.decode_errors;
-    log(LogLevel::warn, "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " +
-                            error->message());
+    log_repeated(malformed_log_, LogLevel::warn, [&] {
+      return "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " + error->message();
+    });
+    return;
   }
+  // Only a command that decoded (and, checked above, came from the
+  // controller) feeds the deadman of its service connection.
+  if (handler.access == Access::controller && handler.ready_only) services_.on_command(header);
 }
 
 void Component::refuse_not_controller(const Header& header, std::string_view what) {
   ++counters_.refused_not_controller;
-  const TimePoint now = env_.clock.now();
-  auto [it, first] = refusal_logged_.try_emplace(header.source, now);
-  if (!first && now - it->second < kRefusalLogInterval) return;
-  it->second = now;
-  const auto& controller = control_.controller();
-  log(LogLevel::warn, std::string(what) + " from " + header.source.to_string() +
-                          " not executed: " + (controller ? "controlled by " + describe(*controller) : "not controlled"));
+  log_repeated(not_controller_log_, LogLevel::warn, [&] {
+    const auto& controller = control_.controller();
+    return std::string(what) + " from " + header.source.to_string() +
+           " not executed: " + (controller ? "controlled by " + describe(*controller) : "not controlled");
+  });
 }
 
 // ---- core messages -----------------------------------------------------------
@@ -321,9 +324,16 @@ void Component::on_set_emergency(const Header& h, const msg::SetEmergency& m) {
     return;
   }
   emergency_.set(h.source);
-  log(LogLevel::warn, "emergency Stop set by " + h.source.to_string());
-  if (lifecycle_.state() != PrimaryStatus::emergency) transition(LifecycleEvent::emergency_set, h.source);
-  // Already in Emergency: the platform is already stopped; nothing changes.
+  if (lifecycle_.state() != PrimaryStatus::emergency) {
+    log(LogLevel::warn, "emergency Stop set by " + h.source.to_string());
+    transition(LifecycleEvent::emergency_set, h.source);
+    return;
+  }
+  // Already in Emergency: the platform is already stopped; nothing changes,
+  // and a flood of repeats is one line a second.
+  log_repeated(emergency_log_, LogLevel::warn, [&] {
+    return "emergency Stop set by " + h.source.to_string() + " (already in Emergency)";
+  });
 }
 
 void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m) {
@@ -334,13 +344,17 @@ void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m
   switch (emergency_.clear(h.source)) {
     case EmergencyLatch::ClearResult::not_a_holder:
       ++counters_.refused_clears;
-      log(LogLevel::warn, "Clear Emergency from " + h.source.to_string() + " refused: it holds no emergency");
+      log_repeated(clear_refused_log_, LogLevel::warn, [&] {
+        return "Clear Emergency from " + h.source.to_string() + " refused: it holds no emergency";
+      });
       return;
     case EmergencyLatch::ClearResult::still_held: {
       ++counters_.refused_clears;
-      std::string holders;
-      for (const auto& a : emergency_.holders()) holders += (holders.empty() ? "" : ", ") + a.to_string();
-      log(LogLevel::warn, "emergency cleared by " + h.source.to_string() + "; still held by " + holders);
+      log_repeated(still_held_log_, LogLevel::warn, [&] {
+        std::string holders;
+        for (const auto& a : emergency_.holders()) holders += (holders.empty() ? "" : ", ") + a.to_string();
+        return "emergency cleared by " + h.source.to_string() + "; still held by " + holders;
+      });
       return;
     }
     case EmergencyLatch::ClearResult::released_last:
@@ -369,6 +383,7 @@ void Component::on_request_control(const Header& h, const msg::RequestComponentC
     ++counters_.control_changes;
     log(LogLevel::info, "controlled by " + describe(*control_.controller()) + ": " + std::string(outcome.why));
     arm_controller_watch();
+    end_stale_command_connections("control changed hands");
   }
   if (outcome.displaced) {
     send(outcome.displaced->address, msg::RejectComponentControl{});
@@ -387,6 +402,7 @@ void Component::on_release_control(const Header& h) {
   log(LogLevel::info, "released by " + h.source.to_string());
   if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
   controller_timer_ = kNoTimer;
+  end_stale_command_connections("control released");
   enforce_stop("control released");
 }
 
@@ -397,8 +413,14 @@ void Component::take_control_away(std::string_view why) {
     ++counters_.control_changes;
     log(LogLevel::warn, "control of " + describe(*previous) + " dropped: " + std::string(why));
     send(previous->address, msg::RejectComponentControl{});
+    end_stale_command_connections(why);
     enforce_stop(why);
   }
+}
+
+void Component::end_stale_command_connections(std::string_view why) {
+  const auto& controller = control_.controller();
+  services_.end_commands_not_from(controller ? std::optional<Address>(controller->address) : std::nullopt, why);
 }
 
 void Component::arm_controller_watch() {

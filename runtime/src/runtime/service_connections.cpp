@@ -122,11 +122,17 @@ void ServiceConnectionProvider::on_create(const Header& h, const msg::CreateServ
     fire(key);  // first report at once, then every period
 }
 
+Duration ServiceConnectionProvider::deadman_limit(const Connection& c) const {
+  const Duration most = std::max(limits_.deadman_minimum, limits_.deadman_maximum);
+  return std::clamp(after_periods(limits_.deadman_periods, c.rate_hz), limits_.deadman_minimum, most);
+}
+
 void ServiceConnectionProvider::schedule(const Key& key, Connection& c) {
   if (!c.active) return;
   // Reports go at ideal times start + k * period, so rounding never
-  // accumulates; a command SC's deadman is checked once a period.
-  const TimePoint next = c.command ? env_.clock.now() + after_periods(1, c.rate_hz)
+  // accumulates. A command SC's deadman timer is set for the moment the last
+  // command would expire: commands only move last_command, they arm nothing.
+  const TimePoint next = c.command ? c.last_command + deadman_limit(c)
                                    : c.start + after_periods(static_cast<double>(c.sent), c.rate_hz);
   c.timer = env_.scheduler.call_at(next, [this, key] { fire(key); });
 }
@@ -138,29 +144,30 @@ void ServiceConnectionProvider::fire(const Key& key) {
   c.timer = kNoTimer;
   if (!c.active) return;
   if (c.command) {
-    // Deadman: the commander must keep commanding.
-    const Duration limit = std::max(after_periods(limits_.deadman_periods, c.rate_hz), limits_.deadman_minimum);
-    if (!c.command_lost && env_.clock.now() - c.last_command > limit) {
-      c.command_lost = true;
-      ++counters_.commands_lost;
-      log(LogLevel::warn, "command SC " + code_text(key.code) + " from " + key.requester.to_string() +
-                              " silent: loss of command");
-      command_lost_(key.requester, key.code);
-    }
-  } else {
-    const auto& provided = provided_.at(key.code);
-    if (auto payload = provided.produce(c.presence)) {
-      Header h;
-      h.command_code = key.code;
-      h.destination = key.requester;
-      h.source = self_;
-      h.service_connection = true;
-      h.sequence = c.sequence++;
-      send_(h, *payload);
-      ++counters_.reports_sent;
-    }
-    ++c.sent;
+    // Deadman: the commander must keep commanding. A command since the timer
+    // was set moved the expiry: wait for the new one.
+    if (env_.clock.now() - c.last_command < deadman_limit(c)) return schedule(key, c);
+    c.command_lost = true;
+    ++counters_.commands_lost;
+    log(LogLevel::warn, "command SC " + code_text(key.code) + " from " + key.requester.to_string() +
+                            " silent: loss of command");
+    // Safety: the component stops its actuators here (Component::enforce_stop).
+    // The timer is set again by the next command (on_command).
+    command_lost_(key.requester, key.code);
+    return;
   }
+  const auto& provided = provided_.at(key.code);
+  if (auto payload = provided.produce(c.presence)) {
+    Header h;
+    h.command_code = key.code;
+    h.destination = key.requester;
+    h.source = self_;
+    h.service_connection = true;
+    h.sequence = c.sequence++;
+    send_(h, *payload);
+    ++counters_.reports_sent;
+  }
+  ++c.sent;
   schedule(key, c);
 }
 
@@ -171,8 +178,18 @@ void ServiceConnectionProvider::on_command(const Header& h) {
       if (c.command_lost) {
         c.command_lost = false;
         log(LogLevel::info, "command SC " + code_text(key.code) + " from " + key.requester.to_string() + " resumed");
+        if (c.timer == kNoTimer) schedule(key, c);
       }
     }
+}
+
+void ServiceConnectionProvider::end_commands_not_from(const std::optional<Address>& controller,
+                                                      std::string_view why) {
+  for (auto it = connections_.begin(); it != connections_.end();) {
+    auto next = std::next(it);
+    if (it->second.command && (!controller || it->first.requester != *controller)) stop(it, why);
+    it = next;
+  }
 }
 
 void ServiceConnectionProvider::on_activate(const Header& h, const msg::ActivateServiceConnection& m) {

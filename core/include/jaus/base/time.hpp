@@ -35,6 +35,11 @@ class Scheduler {
   virtual TimerId call_at(TimePoint when, std::function<void()> fn) = 0;
   // Cancels a pending call; a no-op for ids that already ran or were cancelled.
   virtual void cancel(TimerId id) = 0;
+  // Calls `fn` soon, after the current handler, without arming a timer: for
+  // work each incoming message triggers (a node draining its queue), where a
+  // timer per message would cost a system call. Cannot be cancelled: `fn`
+  // must check that what it works on still exists.
+  virtual void post(std::function<void()> fn) { call_at(TimePoint::min(), std::move(fn)); }
 };
 
 }  // namespace jaus::rt

@@ -9,6 +9,7 @@
 #include <boost/asio/io_context.hpp>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,13 @@ class NodeHost {
   // link is still open; then the link closes. Idempotent.
   void stop(const std::string& why);
   bool stopped() const { return stopped_; }
+
+  // Runs `io` (the one the host was opened on) until a stop signal (SIGINT,
+  // SIGTERM, SIGHUP, SIGQUIT), io.stop() or an exception escaping a handler.
+  // Safety: whatever ends the loop, stop() runs before this returns, so every
+  // component's stop path (platform commanded to stop) has run. Returns the
+  // exception's message when one ended the loop.
+  std::optional<std::string> run(boost::asio::io_context& io);
 
   const HostConfig& config() const { return config_; }
   node::Node& node() { return *node_; }

@@ -133,7 +133,8 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   rt::Component* configuration_holder_ = nullptr;  // the component that is the observer
   rt::ConfigurationObserver* configuration_observer_ = nullptr;
   PriorityQueue<Inbound> inbound_;
-  rt::TimerId drain_timer_ = rt::kNoTimer;
+  bool drain_posted_ = false;
+  std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);  // expires with the node
   rt::TimerId housekeeping_timer_ = rt::kNoTimer;
   LargeDataSetAssembler assembler_;
   AckTracker acks_;

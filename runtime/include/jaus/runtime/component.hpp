@@ -27,6 +27,7 @@
 #include "jaus/runtime/emergency_latch.hpp"
 #include "jaus/runtime/environment.hpp"
 #include "jaus/runtime/lifecycle.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/runtime/service_connection_client.hpp"
 #include "jaus/runtime/service_connections.hpp"
 
@@ -252,8 +253,20 @@ class Component {
   virtual void state_changed(PrimaryStatus /*before*/, PrimaryStatus /*after*/) {}
   // Component-specific secondary status bits (16-31 of Report Component Status).
   virtual std::uint32_t component_status_bits() const { return 0; }
+  // A peer is gone (peer_lost, after its service connections ended and its
+  // control was taken away): what else this component keeps for it ends here.
+  virtual void requester_lost(const Address& /*peer*/) {}
 
   void log(LogLevel level, const std::string& text) const;
+  // A line remote input can repeat at will: written at most once per window
+  // of its limiter, with the count of those left out; the text is only built
+  // when written.
+  template <class MakeText>
+  void log_repeated(RepeatLimiter& limiter, LogLevel level, MakeText make_text) {
+    std::string note;
+    if (limiter.admit(env_.clock.now(), note)) log(level, make_text() + note);
+  }
+  static constexpr Duration kRepeatedLogWindow = std::chrono::seconds(1);
   Environment& env() { return env_; }
 
  private:
@@ -276,6 +289,9 @@ class Component {
   void on_request_control(const Header& header, const msg::RequestComponentControl& request);
   void on_release_control(const Header& header);
   void take_control_away(std::string_view why);
+  // Control changed hands or ended: the command SCs of anyone but the new
+  // controller end (a deadman belongs to the controller that announced it).
+  void end_stale_command_connections(std::string_view why);
   void arm_controller_watch();
   void check_controller();
 
@@ -300,7 +316,14 @@ class Component {
   TimePoint controller_last_heard_{};
   TimerId controller_timer_ = kNoTimer;
   Duration time_offset_{};  // Set Time moves this component's clock, not the system's
-  std::map<Address, TimePoint> refusal_logged_;  // rate limit of "not the controller" logs
+  // Lines that remote input repeats at will, one limiter per reason (not per
+  // sender, which a flood of forged sources would multiply).
+  RepeatLimiter not_controller_log_{kRepeatedLogWindow};
+  RepeatLimiter wrong_state_log_{kRepeatedLogWindow};
+  RepeatLimiter malformed_log_{kRepeatedLogWindow};
+  RepeatLimiter emergency_log_{kRepeatedLogWindow};
+  RepeatLimiter clear_refused_log_{kRepeatedLogWindow};
+  RepeatLimiter still_held_log_{kRepeatedLogWindow};
   std::vector<std::uint8_t> send_buffer_;
   bool failure_declared_ = false;
   std::map<std::uint16_t, std::uint32_t> input_presence_;  // Report Services' input presence vectors  // Failure entered by declare_failure(), not by initialisation

@@ -3,8 +3,13 @@
 // Stop condition holds it until that same sender clears it; the component
 // leaves Emergency only when nobody holds it. A clear from someone who holds
 // nothing is refused (and logged by the caller). The latch survives Reset.
+// At most kMaxHolders are remembered, so forged senders cannot grow it without
+// bound; a holder beyond them is not recorded, and the component stays in
+// Emergency, held by the others (the safe side: a flood can keep a vehicle
+// stopped, never move it).
 #pragma once
 
+#include <cstdint>
 #include <set>
 #include <vector>
 
@@ -14,12 +19,21 @@ namespace jaus::rt {
 
 class EmergencyLatch {
  public:
+  static constexpr std::size_t kMaxHolders = 16;
+
   // Returns true when this is the first holder (the component enters Emergency).
-  bool set(const Address& holder) {
+  // `always`: the component's own hold (its hardware e-stop), recorded even
+  // when kMaxHolders others hold it, so that forged clears can never release it.
+  bool set(const Address& holder, bool always = false) {
     const bool was_clear = holders_.empty();
-    holders_.insert(holder);
+    if (always || holders_.size() < kMaxHolders || holders_.contains(holder))
+      holders_.insert(holder);
+    else
+      ++unrecorded_;
     return was_clear;
   }
+  // Holders not recorded because kMaxHolders others held the latch.
+  std::uint64_t unrecorded() const { return unrecorded_; }
 
   enum class ClearResult { released_last, still_held, not_a_holder };
   ClearResult clear(const Address& holder) {
@@ -32,6 +46,7 @@ class EmergencyLatch {
 
  private:
   std::set<Address> holders_;
+  std::uint64_t unrecorded_ = 0;
 };
 
 }  // namespace jaus::rt

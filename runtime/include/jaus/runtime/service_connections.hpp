@@ -8,8 +8,10 @@
 //   updates its SC. The presence vector sent is the AND of the requested one
 //   and what the component provides.
 // - Command SCs: the controller announces it will send a command at a rate.
-//   The provider watches it as a deadman: no command for several periods is a
-//   loss of command, reported to the component (a driver stops).
+//   The provider watches it as a deadman: no command for several periods (but
+//   never longer than a maximum) is a loss of command, reported to the
+//   component (a driver stops). Only commands that decoded and came from the
+//   controller feed it; a command SC ends when control changes hands.
 // - SCs end on Terminate, when their requester is gone, and at shutdown.
 #pragma once
 
@@ -32,8 +34,11 @@ struct ServiceConnectionLimits {
   std::size_t max_connections = 64;  // beyond this, Create is refused (response 4)
   // A command SC is lost after this many periods without its command...
   double deadman_periods = 3;
-  // ...and never sooner than this.
+  // ...never sooner than this (jitter)...
   Duration deadman_minimum = std::chrono::milliseconds(200);
+  // ...and never later than this: at the RA's slowest rate (one a minute),
+  // three periods would leave a vehicle on its last command for 3 minutes.
+  Duration deadman_maximum = std::chrono::seconds(1);
 };
 
 struct ServiceConnectionCounters {
@@ -69,8 +74,12 @@ class ServiceConnectionProvider {
   void on_activate(const Header& h, const msg::ActivateServiceConnection& m);
   void on_suspend(const Header& h, const msg::SuspendServiceConnection& m);
   void on_terminate(const Header& h, const msg::TerminateServiceConnection& m);
-  // Any command received: feeds the deadman of a matching command SC.
+  // A command from the controller that decoded and executed: feeds the
+  // deadman of its command SC.
   void on_command(const Header& h);
+  // Control changed hands: command SCs of anyone but `controller` (none:
+  // nobody controls) end; a new controller announces its own.
+  void end_commands_not_from(const std::optional<Address>& controller, std::string_view why);
 
   // The requester is gone (liveness) or the component shuts down.
   // Ends every connection whose requester `requester` covers (Address::covers).
@@ -115,6 +124,7 @@ class ServiceConnectionProvider {
   void confirm(const Header& h, std::uint16_t code, std::uint8_t instance, double rate, std::uint8_t response);
   std::uint8_t instance_for(std::uint16_t code, std::uint32_t presence, bool command, const Address& requester);
   void schedule(const Key& key, Connection& c);
+  Duration deadman_limit(const Connection& c) const;
   void fire(const Key& key);
   void stop(std::map<Key, Connection>::iterator it, std::string_view why);
   void log(LogLevel level, const std::string& text) const;

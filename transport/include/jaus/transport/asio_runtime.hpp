@@ -23,6 +23,7 @@ class AsioRuntime final : public rt::Clock, public rt::Scheduler {
   rt::UtcTime utc_now() const override;
   rt::TimerId call_at(rt::TimePoint when, std::function<void()> fn) override;
   void cancel(rt::TimerId id) override;
+  void post(std::function<void()> fn) override;
 
   std::size_t pending() const { return timers_.size(); }
 
@@ -30,6 +31,7 @@ class AsioRuntime final : public rt::Clock, public rt::Scheduler {
   boost::asio::io_context& io_;
   rt::TimerId last_id_ = rt::kNoTimer;
   std::map<rt::TimerId, std::unique_ptr<boost::asio::steady_timer>> timers_;
+  std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);  // expires with the runtime
 };
 
 }  // namespace jaus::transport

@@ -34,6 +34,8 @@ enum class DropReason : std::uint8_t {
   oversized,        // larger than any JAUS datagram
   not_allowed,      // source outside the allow-list
   from_self,        // our own multicast coming back
+  invalid_source,   // a source ID with a 0 (invalid) or 255 (broadcast) octet
+  route_claim,      // a node ID already heard from another live endpoint (spoofed, or two peers with one ID)
   count_            // number of reasons
 };
 std::string_view to_string(DropReason reason);

@@ -10,6 +10,11 @@
 // out peers already known. One endpoint is one node in RA 3.x, so a single
 // endpoint may hold only a few routes (its newest replace its oldest): a flood
 // of forged JAUS sources from one socket cannot fill the table either.
+// A known node moves to a new endpoint only when the claim comes from the same
+// IP address (a tool restarted on a new port), from a configured peer, or once
+// its old endpoint has been silent for `move_after_silence`; any other host
+// claiming its ID is refused, so nobody can steer a node's traffic away by
+// forging its ID.
 #pragma once
 
 #include <cstdint>
@@ -34,14 +39,17 @@ struct RouteTableOptions {
   std::size_t max_entries = 256;  // learnt routes, and learnt peer endpoints, each
   std::size_t max_routes_per_endpoint = 4;
   rt::Duration route_timeout = std::chrono::seconds(30);
+  rt::Duration move_after_silence = std::chrono::seconds(3);
 };
 
 // What learn() did, so the link can tell the operator about new and moved nodes.
-enum class Learnt : std::uint8_t { known, new_route, moved, rejected };
+// claim_refused: the node is heard from another live endpoint; drop the datagram.
+enum class Learnt : std::uint8_t { known, new_route, moved, rejected, claim_refused };
 
 struct RouteTableCounters {
   std::uint64_t learnt = 0;          // new routes
   std::uint64_t moved = 0;           // a node heard from a new endpoint
+  std::uint64_t claims_refused = 0;  // a node's ID from another host while its endpoint is live
   std::uint64_t rejected_full = 0;   // newcomers not recorded
   std::uint64_t replaced = 0;        // an endpoint's oldest route gave way to its newest
   std::uint64_t expired = 0;

@@ -24,6 +24,10 @@ struct NodeManagerConfig {
   std::uint16_t subsystem_type = 10001;  // 10001+ vehicle, 20001+ OCU, 30001+ other
   std::string node_name = "node";
   std::uint16_t node_type = 40001;
+  // Create Event: a periodic event is confirmed at most at this rate (Report
+  // Configuration changes rarely), and each requester holds at most this many.
+  double max_event_rate_hz = 10;
+  std::size_t max_events_per_requester = 4;
 };
 
 // Event response codes (Confirm Event Request).
@@ -47,6 +51,8 @@ class NodeManager final : public rt::Component, public rt::ConfigurationObserver
 
  protected:
   bool initialize() override;
+  // A requester that is gone gets no more events.
+  void requester_lost(const Address& peer) override;
 
  private:
   struct EventSubscription {

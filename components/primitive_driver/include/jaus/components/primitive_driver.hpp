@@ -60,12 +60,14 @@ class PrimitiveDriver final : public rt::Component {
   void on_set_discrete_devices(const Header& h, const msg::SetDiscreteDevices& m);
   void arm_command_timeout();
   void cancel_command_timeout();
+  void wait_for_command_deadline();
   std::uint8_t discrete_devices_presence() const;
 
   Drive& drive_;
   PrimitiveDriverOptions options_;
   PrimitiveDriverCounters driver_counters_;
   rt::TimerId command_timer_ = rt::kNoTimer;
+  rt::TimePoint command_deadline_{};
   std::optional<std::string> drive_fault_;  // as the drive last reported it
 };
 
