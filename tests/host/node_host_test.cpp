@@ -170,7 +170,7 @@ TEST_P(NodeHostStopSignal, EndsTheLoopWithAnOrderlyStop) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EverySignal, NodeHostStopSignal, ::testing::Values(SIGINT, SIGTERM, SIGHUP, SIGQUIT),
-                         [](const ::testing::TestParamInfo<int>& info) { return std::string(sigabbrev_np(info.param)); });
+                         [](const ::testing::TestParamInfo<int>& signal) { return std::string(sigabbrev_np(signal.param)); });
 
 TEST(NodeHost, ABusyAddressIsOneIoError) {
   boost::asio::io_context io;

@@ -218,7 +218,7 @@ TEST_P(TwoNodesStopSignal, IsAnOrderlyShutdown) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EverySignal, TwoNodesStopSignal, ::testing::Values(SIGTERM, SIGINT, SIGHUP, SIGQUIT),
-                         [](const ::testing::TestParamInfo<int>& info) { return std::string(sigabbrev_np(info.param)); });
+                         [](const ::testing::TestParamInfo<int>& signal) { return std::string(sigabbrev_np(signal.param)); });
 
 // A log output nobody reads (a full pipe, a stopped terminal) must not stall
 // the event loop: the node keeps answering while its debug log overflows the
