@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <csignal>
 
+#include "jaus/host/node_host.hpp"
 #include "jaus/ocu/names.hpp"
 
 namespace jaus::ocu {
@@ -62,6 +63,10 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
       });
   return s;
 }
+
+jaus::node::Node& OcuSession::node() { return host_->node(); }
+jaus::transport::UdpLink& OcuSession::link() { return host_->link(); }
+jaus::rt::Clock& OcuSession::clock() { return host_->runtime(); }
 
 OcuSession::~OcuSession() {
   if (signals_) {

@@ -25,7 +25,8 @@ std::string bind_error(const Ipv4Endpoint& endpoint, const boost::system::error_
 }
 
 constexpr rt::Duration kExpiryPeriod = std::chrono::seconds(1);
-constexpr rt::Duration kDropLogInterval = std::chrono::seconds(1);
+// New and moved routes are worth a line each, a flood of forged sources is not.
+constexpr int kNewRouteLinesPerWindow = 10;
 
 }  // namespace
 
@@ -49,8 +50,13 @@ UdpLink::UdpLink(asio::io_context& io, rt::Clock& clock, rt::Scheduler& schedule
       scheduler_(scheduler),
       options_(std::move(options)),
       log_(log ? std::move(log) : rt::silent_log()),
-      routes_(options_.routes) {
+      routes_(options_.routes),
+      repeated_lines_(clock_, scheduler_, log_) {
   for (const auto& peer : options_.peers) routes_.add_static_peer(peer.endpoint, peer.framing);
+}
+
+void UdpLink::receive_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
+  if (!closed_) on_datagram(from, datagram);
 }
 
 Expected<std::unique_ptr<UdpLink>> UdpLink::open(asio::io_context& io, rt::Clock& clock,
@@ -158,7 +164,8 @@ void UdpLink::receive_next(Socket& socket) {
                                    [this, &socket, alive = std::weak_ptr<int>(alive_)](
                                        const boost::system::error_code& ec, std::size_t size) {
                                      if (alive.expired() || ec == asio::error::operation_aborted || closed_) return;
-                                     if (!ec) on_datagram(socket.sender, std::span(socket.buffer).first(size));
+                                     if (!ec)
+                                       on_datagram(from_asio(socket.sender), std::span(socket.buffer).first(size));
                                      // Other errors (ICMP unreachable reported on the socket) are transient.
                                      receive_next(socket);
                                    });
@@ -171,9 +178,8 @@ bool UdpLink::allowed(std::uint32_t address) const {
   return false;
 }
 
-void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint8_t> datagram) {
+void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
   ++counters_.datagrams_received;
-  const Ipv4Endpoint from = from_asio(sender);
   if (!allowed(from.address)) return drop(DropReason::not_allowed, from, "");
   if (!options_.bind.is_any() && from == options_.bind) return drop(DropReason::from_self, from, "");
   auto unframed = unframe(datagram);
@@ -190,33 +196,24 @@ void UdpLink::on_datagram(const udp::endpoint& sender, std::span<const std::uint
     return drop(DropReason::invalid_source, from, "source " + header.source.to_string());
   const Learnt learnt =
       routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
-  const std::string node = std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node);
+  auto node = [&] { return std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node); };
   if (learnt == Learnt::claim_refused) {
     const auto route = routes_.route(header.source.subsystem, header.source.node);
     return drop(DropReason::route_claim, from,
-                "node " + node + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
+                "node " + node() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
                     "; spoofed, or two peers with one ID");
   }
-  if ((learnt == Learnt::new_route || learnt == Learnt::moved) && route_log_allowed()) {
-    const std::string where = to_string(from) + " (" + std::string(to_string(unframed->framing)) + ")";
+  if (learnt == Learnt::new_route || learnt == Learnt::moved) {
     // A move is a restarted peer (same host, or its old endpoint silent) or a
-    // configured one: worth a line, not a warning.
-    log_(rt::LogLevel::info, "node " + node + (learnt == Learnt::moved ? " moved to " : " at ") + where);
+    // configured one: worth a line, not a warning. A flood of forged sources
+    // is a few lines and a count.
+    repeated_lines_.write({"new and moved routes", kNewRouteLinesPerWindow}, rt::LogLevel::info, [&] {
+      return "node " + node() + (learnt == Learnt::moved ? " moved to " : " at ") + to_string(from) + " (" +
+             std::string(to_string(unframed->framing)) + ")";
+    });
   }
   ++counters_.packets_delivered;
   if (handler_) handler_(unframed->packet, unframed->framing);
-}
-
-bool UdpLink::route_log_allowed() {
-  // New and moved routes are worth a line each, but a flood of forged
-  // sources must not flood the log: at most a few lines a second.
-  constexpr int kRouteLinesPerSecond = 5;
-  const rt::TimePoint now = clock_.now();
-  if (now - route_log_window_ >= std::chrono::seconds(1)) {
-    route_log_window_ = now;
-    route_lines_in_window_ = 0;
-  }
-  return ++route_lines_in_window_ <= kRouteLinesPerSecond;
 }
 
 void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail) {
@@ -224,12 +221,11 @@ void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::strin
   ++counters_.dropped[index];
   // Own multicast coming back is expected, not worth a line.
   if (reason == DropReason::from_self && detail.empty()) return;
-  const rt::TimePoint now = clock_.now();
-  if (counters_.dropped[index] > 1 && now - last_drop_log_[index] < kDropLogInterval) return;
-  last_drop_log_[index] = now;
-  log_(rt::LogLevel::warn, "dropped a datagram from " + to_string(from) + ": " + std::string(to_string(reason)) +
-                               (detail.empty() ? "" : " (" + detail + ")") + " [" +
-                               std::to_string(counters_.dropped[index]) + " so far]");
+  // The reason's name is a literal (to_string), so it can key the limiter.
+  repeated_lines_.write(to_string(reason), rt::LogLevel::warn, [&] {
+    return "dropped a datagram from " + to_string(from) + ": " + std::string(to_string(reason)) +
+           (detail.empty() ? "" : " (" + detail + ")") + " [" + std::to_string(counters_.dropped[index]) + " so far]";
+  });
 }
 
 void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
@@ -263,10 +259,19 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
     send_to(*options_.multicast, options_.framing, packet);
     sent = true;
   }
-  for (const auto& [endpoint, peer] : routes_.peers()) {
-    if (!peer.is_static && !(broadcast && options_.broadcast_to_peers)) continue;
-    send_to(endpoint, peer.framing, packet);
-    sent = true;
+  if (broadcast && options_.broadcast_to_peers) {
+    for (const auto& [endpoint, peer] : routes_.peers()) {
+      send_to(endpoint, peer.framing, packet);
+      sent = true;
+    }
+  } else {
+    // Only the configured peers: a unicast to a node without a route (one of
+    // many forged requesters) must not cost a walk over every learnt peer.
+    for (const auto& configured : options_.peers) {
+      const auto peer = routes_.peers().find(configured.endpoint);
+      send_to(configured.endpoint, peer != routes_.peers().end() ? peer->second.framing : configured.framing, packet);
+      sent = true;
+    }
   }
   if (!sent && !broadcast) {
     ++counters_.no_route;

@@ -10,8 +10,10 @@ Communicator::Communicator(ComponentConfig config, Environment env, std::uint8_t
   using namespace msg;
   handle<SetDataLinkStatus>(Access::controller, false, [this](const Header& h, const SetDataLinkStatus& m) {
     if (m.state > data_link::kStandby) {
-      log(LogLevel::warn, "Set Data Link Status " + std::to_string(m.state) + " from " + h.source.to_string() +
-                              " ignored: reserved state");
+      log_repeated("Set Data Link Status with a reserved state ignored", LogLevel::warn, [&] {
+        return "Set Data Link Status " + std::to_string(m.state) + " from " + h.source.to_string() +
+               " ignored: reserved state";
+      });
       return;
     }
     // Part 3's Set Data Link Status carries no link ID: it applies to the selected link.
@@ -19,12 +21,15 @@ Communicator::Communicator(ComponentConfig config, Environment env, std::uint8_t
   });
   handle<SetDataLinkSelect>(Access::controller, false, [this](const Header& h, const SetDataLinkSelect& m) {
     if (!links_.contains(m.data_link_id)) {
-      log(LogLevel::warn, "Set Data Link Select " + std::to_string(m.data_link_id) + " from " +
-                              h.source.to_string() + " ignored: no such link");
+      log_repeated("Set Data Link Select of an unknown link ignored", LogLevel::warn, [&] {
+        return "Set Data Link Select " + std::to_string(m.data_link_id) + " from " + h.source.to_string() +
+               " ignored: no such link";
+      });
       return;
     }
     selected_ = m.data_link_id;
-    log(LogLevel::info, "data link " + std::to_string(selected_) + " selected by " + h.source.to_string());
+    log_repeated({"data links selected", kNoteworthyBurst}, LogLevel::info,
+                 [&] { return "data link " + std::to_string(selected_) + " selected by " + h.source.to_string(); });
   });
   handle<QueryDataLinkStatus>(Access::anyone, false, [this](const Header& h, const QueryDataLinkStatus& m) {
     send(h.source, ReportDataLinkStatus{{m.data_link_id, link_state(m.data_link_id)}});

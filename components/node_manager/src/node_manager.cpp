@@ -33,8 +33,10 @@ NodeManager::NodeManager(ComponentConfig config, Environment env, const NodeDire
         report.identification = name();
         break;
       default:
-        log(LogLevel::info, "Query Identification type " + std::to_string(m.query_type) + " from " +
-                                h.source.to_string() + " not answered: not a subsystem, node or component query");
+        log_repeated("Query Identification of an unknown type not answered", LogLevel::info, [&] {
+          return "Query Identification type " + std::to_string(m.query_type) + " from " + h.source.to_string() +
+                 " not answered: not a subsystem, node or component query";
+        });
         return;
     }
     send(h.source, report);
@@ -128,8 +130,10 @@ void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
   e.query_field = query_field;
   e.periodic = periodic;
   e.rate_hz = rate;
-  log(LogLevel::info, "event " + std::to_string(id) + " (Report Configuration, " +
-                          (periodic ? "periodic" : "every change") + ") for " + h.source.to_string());
+  log_repeated({"events created", kNoteworthyBurst}, LogLevel::info, [&] {
+    return "event " + std::to_string(id) + " (Report Configuration, " + (periodic ? "periodic" : "every change") +
+           ") for " + h.source.to_string();
+  });
   confirm_event(h.source, m.request_id, m.report_code, id, periodic ? std::optional<double>(rate) : std::nullopt,
                 event_response::kSuccessful);
   if (periodic) send_event(e);
@@ -142,8 +146,10 @@ void NodeManager::requester_lost(const Address& peer) {
       continue;
     }
     if (it->second.timer != kNoTimer) env().scheduler.cancel(it->second.timer);
-    log(LogLevel::info, "event " + std::to_string(it->first) + " for " + it->second.requester.to_string() +
-                            " ended: requester gone");
+    log_repeated({"events ended", kNoteworthyBurst}, LogLevel::info, [&] {
+      return "event " + std::to_string(it->first) + " for " + it->second.requester.to_string() +
+             " ended: requester gone";
+    });
     it = events_.erase(it);
   }
 }
@@ -159,7 +165,8 @@ void NodeManager::on_cancel_event(const Header& h, const msg::CancelEvent& m) {
       return;
     }
   }
-  log(LogLevel::info, "Cancel Event from " + h.source.to_string() + " matches no event");
+  log_repeated("Cancel Event matching no event", LogLevel::info,
+               [&] { return "Cancel Event from " + h.source.to_string() + " matches no event"; });
 }
 
 void NodeManager::send_event(EventSubscription& e) {

@@ -132,7 +132,8 @@ void PrimitiveDriver::on_set_wrench_effort(const Header& h, const msg::SetWrench
   const WrenchEffort applied = drive_.apply_effort(asked);
   ++driver_counters_.efforts_applied;
   if (applied != asked)
-    log(LogLevel::debug, "Set Wrench Effort from " + h.source.to_string() + " limited by the drive");
+    log_repeated("Set Wrench Effort limited by the drive", LogLevel::debug,
+                 [&] { return "Set Wrench Effort from " + h.source.to_string() + " limited by the drive"; });
   arm_command_timeout();
 }
 
@@ -140,12 +141,15 @@ void PrimitiveDriver::on_set_discrete_devices(const Header& h, const msg::SetDis
   const DeviceSet has = drive_.devices();
   const DiscreteDevices asked = to_discrete_devices(m, has);
   if (asked == DiscreteDevices{}) {
-    log(LogLevel::warn, "Set Discrete Devices from " + h.source.to_string() + " names no device this platform has");
+    log_repeated("Set Discrete Devices naming no device ignored", LogLevel::warn, [&] {
+      return "Set Discrete Devices from " + h.source.to_string() + " names no device this platform has";
+    });
     return;
   }
   drive_.set_devices(asked);
   ++driver_counters_.devices_set;
-  log(LogLevel::info, "discrete devices set by " + h.source.to_string());
+  log_repeated({"discrete devices set", kNoteworthyBurst}, LogLevel::info,
+               [&] { return "discrete devices set by " + h.source.to_string(); });
 }
 
 // Safety: each Set Wrench Effort restarts the command timeout; when it runs

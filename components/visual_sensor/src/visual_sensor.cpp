@@ -142,8 +142,9 @@ VisualSensor::Camera* VisualSensor::commanded_camera(const Header& h, std::uint8
   Camera* c = find(camera_id);
   if (!c) {
     ++sensor_counters_.refused_unknown_camera;
-    log(LogLevel::warn, std::string(what) + " from " + h.source.to_string() + " refused: no camera " +
-                            id_text(camera_id));
+    log_repeated("camera commands for no camera refused", LogLevel::warn, [&] {
+      return std::string(what) + " from " + h.source.to_string() + " refused: no camera " + id_text(camera_id);
+    });
   }
   return c;
 }
@@ -151,8 +152,10 @@ VisualSensor::Camera* VisualSensor::commanded_camera(const Header& h, std::uint8
 bool VisualSensor::queried_camera_exists(const Header& h, std::uint8_t camera_id, std::string_view what) {
   if (find(camera_id)) return true;
   ++sensor_counters_.refused_unknown_camera;
-  log(LogLevel::warn, std::string(what) + " from " + h.source.to_string() + " for camera " + id_text(camera_id) +
-                          ", which does not exist: no reply");
+  log_repeated("camera queries for no camera not answered", LogLevel::warn, [&] {
+    return std::string(what) + " from " + h.source.to_string() + " for camera " + id_text(camera_id) +
+           ", which does not exist: no reply";
+  });
   return false;
 }
 
@@ -227,7 +230,8 @@ void VisualSensor::on_select_camera(const Header& h, const msg::SelectCamera& m)
   selected_ = m.camera_id;
   ++sensor_counters_.cameras_selected;
   provide_images();
-  log(LogLevel::info, "camera " + id_text(selected_) + " selected by " + h.source.to_string());
+  log_repeated({"cameras selected", kNoteworthyBurst}, LogLevel::info,
+               [&] { return "camera " + id_text(selected_) + " selected by " + h.source.to_string(); });
 }
 
 void VisualSensor::on_set_camera_pose(const Header& h, const msg::SetCameraPose& m) {
@@ -235,8 +239,10 @@ void VisualSensor::on_set_camera_pose(const Header& h, const msg::SetCameraPose&
   if (!c) return;
   const PoseCommand pose = to_mount_command(m, *c->config);
   if (pose.ignored)
-    log(LogLevel::debug, "Set Camera Pose from " + h.source.to_string() + ": camera " + id_text(m.camera_id) +
-                             " has no axis for presence bits 0x" + wire::detail::hex_u32(pose.ignored));
+    log_repeated("Set Camera Pose bits without an axis ignored", LogLevel::debug, [&] {
+      return "Set Camera Pose from " + h.source.to_string() + ": camera " + id_text(m.camera_id) +
+             " has no axis for presence bits 0x" + wire::detail::hex_u32(pose.ignored);
+    });
   if (pose.command == MountCommand{}) return;
   cameras_.command_mount(m.camera_id, pose.command);
   ++sensor_counters_.poses_set;
@@ -258,14 +264,18 @@ void VisualSensor::on_set_capabilities(const Header& h, const msg::SetCameraCapa
       command.zoom = AxisCommand{AxisMode::position, std::clamp(*zoom, c->config->zoom.min, c->config->zoom.max)};
       cameras_.command_mount(m.camera_id, command);
     } else {
-      log(LogLevel::debug, "Set Camera Capabilities: camera " + id_text(m.camera_id) + " cannot change its FOV");
+      log_repeated("Set Camera Capabilities of a fixed field of view ignored", LogLevel::debug, [&] {
+        return "Set Camera Capabilities: camera " + id_text(m.camera_id) + " cannot change its FOV";
+      });
     }
   }
   ++sensor_counters_.capabilities_set;
   if (c->settings.frame_rate_fps != before.frame_rate_fps && m.camera_id == selected_) provide_images();
-  log(LogLevel::info, "camera " + id_text(m.camera_id) + " set by " + h.source.to_string() + ": " +
-                          std::to_string(c->settings.width) + "x" + std::to_string(c->settings.height) + " at " +
-                          std::to_string(c->settings.frame_rate_fps) + " fps");
+  log_repeated({"cameras set", kNoteworthyBurst}, LogLevel::info, [&] {
+    return "camera " + id_text(m.camera_id) + " set by " + h.source.to_string() + ": " +
+           std::to_string(c->settings.width) + "x" + std::to_string(c->settings.height) + " at " +
+           std::to_string(c->settings.frame_rate_fps) + " fps";
+  });
 }
 
 void VisualSensor::on_set_format(const Header& h, const msg::SetCameraFormatOptions& m) {
@@ -279,14 +289,18 @@ void VisualSensor::on_set_format(const Header& h, const msg::SetCameraFormatOpti
     refusal = "image format " + std::to_string(*m.image_format);
   if (!refusal.empty()) {
     ++sensor_counters_.refused_formats;
-    log(LogLevel::warn, "Set Camera Format Options from " + h.source.to_string() + " refused: camera " +
-                            id_text(m.camera_id) + " has no " + refusal);
+    log_repeated("Set Camera Format Options refused", LogLevel::warn, [&] {
+      return "Set Camera Format Options from " + h.source.to_string() + " refused: camera " + id_text(m.camera_id) +
+             " has no " + refusal;
+    });
     return;
   }
   if (!m.image_format) return;  // the format option is reserved: nothing else to do
   c->settings.image_format = *m.image_format;
   ++sensor_counters_.formats_set;
-  log(LogLevel::info, "camera " + id_text(m.camera_id) + " sends image format " + std::to_string(*m.image_format));
+  log_repeated({"image formats set", kNoteworthyBurst}, LogLevel::info, [&] {
+    return "camera " + id_text(m.camera_id) + " sends image format " + std::to_string(*m.image_format);
+  });
 }
 
 // Safety: the one place the mounts are told to hold (see the header).

@@ -23,7 +23,8 @@ Node::Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& 
       assembler_(config.large_data_sets),
       acks_(config.acks),
       liveness_(config.liveness),
-      sequences_(config.sequences) {
+      sequences_(config.sequences),
+      lines_(clock_, scheduler_, [this](rt::LogLevel level, const std::string& text) { this->log(level, text); }) {
   schedule_housekeeping();
 }
 
@@ -119,7 +120,8 @@ void Node::receive_bytes(std::span<const std::uint8_t> bytes) {
   if (!decoded) {
     ++counters_.packets_received;
     ++counters_.malformed;
-    log(rt::LogLevel::warn, "dropped a malformed packet: " + decoded.error().message());
+    lines_.write("malformed packets dropped", rt::LogLevel::warn,
+                 [&] { return "dropped a malformed packet: " + decoded.error().message(); });
     return;
   }
   receive(*decoded);
@@ -131,7 +133,8 @@ void Node::receive(const PacketView& packet) {
   const Address& s = h.source;
   if (!s.is_valid() || s.is_broadcast()) {
     ++counters_.invalid_source;
-    log(rt::LogLevel::warn, "dropped a packet from invalid source " + s.to_string());
+    lines_.write("packets from invalid sources dropped", rt::LogLevel::warn,
+                 [&] { return "dropped a packet from invalid source " + s.to_string(); });
     return;
   }
   if (s.subsystem == config_.subsystem && s.node == config_.node) {
@@ -148,8 +151,10 @@ void Node::receive(const PacketView& packet) {
   // ACK and NAK answer our own ACK-requested messages.
   if (h.ack_nak == AckNak::ack || h.ack_nak == AckNak::nak) {
     if (auto resolution = acks_.on_reply(h); resolution && resolution->outcome != AckOutcome::acknowledged)
-      log(rt::LogLevel::warn, "0x" + wire::detail::hex_u32(h.command_code) + " to " + s.to_string() + " " +
-                                  std::string(to_string(resolution->outcome)));
+      lines_.write("packets to unresolved destinations dropped", rt::LogLevel::warn, [&] {
+        return "0x" + wire::detail::hex_u32(h.command_code) + " to " + s.to_string() + " " +
+               std::string(to_string(resolution->outcome));
+      });
     return;
   }
   auto assembled = assembler_.feed(h, packet.payload, now);
@@ -163,8 +168,10 @@ void Node::receive(const PacketView& packet) {
     case AssemblyStatus::pending:
       return;
     case AssemblyStatus::dropped:
-      log(rt::LogLevel::warn, "large data set packet 0x" + wire::detail::hex_u32(h.command_code) + " from " +
-                                  s.to_string() + " dropped: " + std::string(to_string(assembled.issue)));
+      lines_.write("large data set packets dropped", rt::LogLevel::warn, [&] {
+        return "large data set packet 0x" + wire::detail::hex_u32(h.command_code) + " from " + s.to_string() +
+               " dropped: " + std::string(to_string(assembled.issue));
+      });
       return;
   }
 }
@@ -174,8 +181,9 @@ void Node::enqueue(Inbound message) {
   auto pushed = inbound_.push(priority, std::move(message));
   if (pushed.dropped) {
     ++counters_.queue_dropped;
-    log(rt::LogLevel::warn, "inbound queue full: dropped a priority " + std::to_string(pushed.dropped_priority) +
-                                " message");
+    lines_.write("inbound queue full", rt::LogLevel::warn, [&] {
+      return "inbound queue full: dropped a priority " + std::to_string(pushed.dropped_priority) + " message";
+    });
   }
   if (drain_posted_) return;
   drain_posted_ = true;
@@ -206,8 +214,10 @@ void Node::drain() {
     }
     if (!delivered && !h.destination.is_broadcast()) {
       ++counters_.undeliverable;
-      log(rt::LogLevel::debug, "no component " + h.destination.to_string() + " for 0x" +
-                                   wire::detail::hex_u32(h.command_code) + " from " + h.source.to_string());
+      lines_.write("messages for no local component", rt::LogLevel::debug, [&] {
+        return "no component " + h.destination.to_string() + " for 0x" + wire::detail::hex_u32(h.command_code) +
+               " from " + h.source.to_string();
+      });
     }
     if (h.ack_nak == AckNak::ack_requested && message->exclude == Address{}) answer_ack_request(h, delivered);
   }
@@ -234,15 +244,18 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
   if (!reaches_elsewhere(h.destination)) return;
   if (h.ack_nak == AckNak::ack_requested && payload.size() > kMaxPayloadSize) {
     // An ACK answers one packet; a large data set is not tracked as a whole.
-    log(rt::LogLevel::debug, "ACK request on a large data set ignored");
+    lines_.write("ACK requests on large data sets ignored", rt::LogLevel::debug,
+                 [&] { return "ACK request on a large data set ignored"; });
     h.ack_nak = AckNak::none;
   }
   if (h.ack_nak == AckNak::ack_requested) {
     const auto tracked = acks_.track(h, payload, clock_.now());
     if (tracked == TrackResult::full) {
       ++counters_.send_failures;
-      log(rt::LogLevel::warn, "too many messages awaiting ACK: 0x" + wire::detail::hex_u32(h.command_code) +
-                                  " to " + h.destination.to_string() + " not sent");
+      lines_.write("too many messages awaiting ACK", rt::LogLevel::warn, [&] {
+        return "too many messages awaiting ACK: 0x" + wire::detail::hex_u32(h.command_code) + " to " +
+               h.destination.to_string() + " not sent";
+      });
       return;
     }
   }
@@ -256,8 +269,9 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
   auto splitter = LargeDataSetSplitter::create(h, payload);
   if (!splitter) {
     ++counters_.send_failures;
-    log(rt::LogLevel::error, "cannot split 0x" + wire::detail::hex_u32(h.command_code) + ": " +
-                                 splitter.error().message());
+    lines_.write("messages that cannot be split", rt::LogLevel::error, [&] {
+      return "cannot split 0x" + wire::detail::hex_u32(h.command_code) + ": " + splitter.error().message();
+    });
     return;
   }
   // A large data set numbers its packets s, s+1, ...: reserve the rest.
@@ -304,23 +318,28 @@ void Node::housekeeping() {
     // silent controller on a live node is caught by the component's own
     // controller liveness check (Query Component Status).
     if (gone.level == LivenessLevel::component) {
-      log(rt::LogLevel::debug, gone.address.to_string() + " silent: forgotten");
+      lines_.write("silent peers forgotten", rt::LogLevel::debug,
+                   [&] { return gone.address.to_string() + " silent: forgotten"; });
       continue;
     }
-    log(rt::LogLevel::info, std::string(gone.level == LivenessLevel::node ? "node " : "subsystem ") +
-                                gone.address.to_string() + " silent: lost");
+    lines_.write({"peers lost", rt::kNoteworthyBurst}, rt::LogLevel::info, [&] {
+      return std::string(gone.level == LivenessLevel::node ? "node " : "subsystem ") + gone.address.to_string() +
+             " silent: lost";
+    });
     for (const auto& c : components_) c->peer_lost(gone.address);
   }
   for (const auto& discarded : assembler_.expire(now))
-    log(rt::LogLevel::warn, "large data set 0x" + wire::detail::hex_u32(discarded.key.command_code) + " from " +
-                                discarded.key.source.to_string() + " discarded: " +
-                                std::string(to_string(discarded.reason)));
+    lines_.write("large data sets discarded", rt::LogLevel::warn, [&] {
+      return "large data set 0x" + wire::detail::hex_u32(discarded.key.command_code) + " from " +
+             discarded.key.source.to_string() + " discarded: " + std::string(to_string(discarded.reason));
+    });
   auto poll = acks_.poll(now);
   for (const auto& again : poll.retransmit) transmit(again.header, again.payload);
   for (const auto& failed : poll.failed)
-    log(rt::LogLevel::warn, "no ACK for 0x" + wire::detail::hex_u32(failed.key.command_code) + " to " +
-                                failed.key.peer.to_string() + " after " + std::to_string(failed.transmissions) +
-                                " transmissions");
+    lines_.write({"messages never acknowledged", rt::kNoteworthyBurst}, rt::LogLevel::warn, [&] {
+      return "no ACK for 0x" + wire::detail::hex_u32(failed.key.command_code) + " to " + failed.key.peer.to_string() +
+             " after " + std::to_string(failed.transmissions) + " transmissions";
+    });
   schedule_housekeeping();
 }
 

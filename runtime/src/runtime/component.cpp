@@ -33,7 +33,9 @@ Component::Component(ComponentConfig config, Environment env)
       subscriptions_(
           env_, ServiceConnectionClient::Options{},
           [this](const Address& provider, const msg::CreateServiceConnection& m) { send(provider, m); },
-          [this](const Address& provider, const msg::TerminateServiceConnection& m) { send(provider, m); }) {
+          [this](const Address& provider, const msg::TerminateServiceConnection& m) { send(provider, m); }),
+      repeated_lines_(env_.clock, env_.scheduler,
+                      [this](LogLevel level, const std::string& text) { log(level, text); }) {
   register_core_handlers();
 }
 
@@ -58,13 +60,17 @@ void Component::transition(LifecycleEvent event, const Address& by) {
   const PrimaryStatus before = lifecycle_.state();
   if (!lifecycle_.process(event)) {
     ++counters_.refused_transitions;
-    log(LogLevel::warn, std::string(to_string(event)) + " from " + by.to_string() + " refused in " +
-                            std::string(to_string(before)));
+    log_repeated({"refused state changes", kNoteworthyBurst}, LogLevel::warn, [&] {
+      return std::string(to_string(event)) + " from " + by.to_string() + " refused in " +
+             std::string(to_string(before));
+    });
     return;
   }
   const PrimaryStatus after = lifecycle_.state();
-  log(LogLevel::info, std::string(to_string(before)) + " -> " + std::string(to_string(after)) + " (" +
-                          std::string(to_string(event)) + " from " + by.to_string() + ")");
+  log_repeated({"state changes", kNoteworthyBurst}, LogLevel::info, [&] {
+    return std::string(to_string(before)) + " -> " + std::string(to_string(after)) + " (" +
+           std::string(to_string(event)) + " from " + by.to_string() + ")";
+  });
   // Safety: leaving Ready, or re-entering a non-Ready state, always stops the platform.
   if (after != PrimaryStatus::ready) enforce_stop(std::string("entered ") + std::string(to_string(after)));
   if (after == PrimaryStatus::initialize || after == PrimaryStatus::shutdown) failure_declared_ = false;
@@ -166,8 +172,10 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
   if (it == handlers_.end()) {
     if (unhandled(header, payload)) return;
     ++counters_.unsupported;
-    log(LogLevel::debug, "ignored unsupported message 0x" + wire::detail::hex_u32(header.command_code) + " from " +
-                             header.source.to_string());
+    log_repeated("unsupported messages ignored", LogLevel::debug, [&] {
+      return "ignored unsupported message 0x" + wire::detail::hex_u32(header.command_code) + " from " +
+             header.source.to_string();
+    });
     return;
   }
   const Handler& handler = it->second;
@@ -177,7 +185,7 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
   }
   if (handler.ready_only && lifecycle_.state() != PrimaryStatus::ready) {
     ++counters_.refused_wrong_state;
-    log_repeated(wrong_state_log_, LogLevel::warn, [&] {
+    log_repeated("commands not executed outside Ready", LogLevel::warn, [&] {
       return std::string(handler.name) + " from " + header.source.to_string() + " not executed in " +
              std::string(to_string(lifecycle_.state()));
     });
@@ -185,7 +193,7 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
   }
   if (auto error = handler.invoke(header, payload, dialect)) {
     ++counters_.decode_errors;
-    log_repeated(malformed_log_, LogLevel::warn, [&] {
+    log_repeated("malformed messages ignored", LogLevel::warn, [&] {
       return "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " + error->message();
     });
     return;
@@ -197,7 +205,7 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
 
 void Component::refuse_not_controller(const Header& header, std::string_view what) {
   ++counters_.refused_not_controller;
-  log_repeated(not_controller_log_, LogLevel::warn, [&] {
+  log_repeated("commands from a non-controller not executed", LogLevel::warn, [&] {
     const auto& controller = control_.controller();
     return std::string(what) + " from " + header.source.to_string() +
            " not executed: " + (controller ? "controlled by " + describe(*controller) : "not controlled");
@@ -223,8 +231,10 @@ void Component::register_core_handlers() {
   // node manager also answers for its subsystem and node.
   handle<QueryIdentification>(Access::anyone, false, [this](const Header& h, const QueryIdentification& m) {
     if (m.query_type != identification::kComponent) {
-      log(LogLevel::debug, "Query Identification type " + std::to_string(m.query_type) + " from " +
-                               h.source.to_string() + " not answered: only node managers speak for a node");
+      log_repeated("Query Identification of another type not answered", LogLevel::debug, [&] {
+        return "Query Identification type " + std::to_string(m.query_type) + " from " + h.source.to_string() +
+               " not answered: only node managers speak for a node";
+      });
       return;
     }
     send(h.source, ReportIdentification{{identification::kComponent, control_.own_authority(), 0, name()}});
@@ -320,37 +330,38 @@ void Component::register_core_handlers() {
 
 void Component::on_set_emergency(const Header& h, const msg::SetEmergency& m) {
   if ((m.emergency_code & 0x1) == 0) {
-    log(LogLevel::warn, "Set Emergency from " + h.source.to_string() + " without the Stop bit ignored");
+    log_repeated("Set Emergency without the Stop bit ignored", LogLevel::warn,
+                 [&] { return "Set Emergency from " + h.source.to_string() + " without the Stop bit ignored"; });
     return;
   }
   emergency_.set(h.source);
   if (lifecycle_.state() != PrimaryStatus::emergency) {
-    log(LogLevel::warn, "emergency Stop set by " + h.source.to_string());
+    log_repeated({"emergency Stop set", kNoteworthyBurst}, LogLevel::warn,
+                 [&] { return "emergency Stop set by " + h.source.to_string(); });
     transition(LifecycleEvent::emergency_set, h.source);
     return;
   }
   // Already in Emergency: the platform is already stopped; nothing changes,
-  // and a flood of repeats is one line a second.
-  log_repeated(emergency_log_, LogLevel::warn, [&] {
-    return "emergency Stop set by " + h.source.to_string() + " (already in Emergency)";
-  });
+  // and a flood of repeats is one line and a count per window.
+  log_repeated("repeated Set Emergency", LogLevel::warn,
+               [&] { return "emergency Stop set by " + h.source.to_string() + " (already in Emergency)"; });
 }
 
 void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m) {
   if ((m.emergency_code & 0x1) == 0) {
-    log(LogLevel::warn, "Clear Emergency from " + h.source.to_string() + " without the Stop bit ignored");
+    log_repeated("Clear Emergency without the Stop bit ignored", LogLevel::warn,
+                 [&] { return "Clear Emergency from " + h.source.to_string() + " without the Stop bit ignored"; });
     return;
   }
   switch (emergency_.clear(h.source)) {
     case EmergencyLatch::ClearResult::not_a_holder:
       ++counters_.refused_clears;
-      log_repeated(clear_refused_log_, LogLevel::warn, [&] {
-        return "Clear Emergency from " + h.source.to_string() + " refused: it holds no emergency";
-      });
+      log_repeated("Clear Emergency from a non-holder refused", LogLevel::warn,
+                   [&] { return "Clear Emergency from " + h.source.to_string() + " refused: it holds no emergency"; });
       return;
     case EmergencyLatch::ClearResult::still_held: {
       ++counters_.refused_clears;
-      log_repeated(still_held_log_, LogLevel::warn, [&] {
+      log_repeated("Clear Emergency while others hold it", LogLevel::warn, [&] {
         std::string holders;
         for (const auto& a : emergency_.holders()) holders += (holders.empty() ? "" : ", ") + a.to_string();
         return "emergency cleared by " + h.source.to_string() + "; still held by " + holders;
@@ -369,8 +380,10 @@ void Component::on_request_control(const Header& h, const msg::RequestComponentC
   const auto previous = control_.controller();
   const auto outcome = control_.request(h.source, m.authority);
   if (!outcome.accepted) {
-    log(LogLevel::info, "control request from " + h.source.to_string() + " (authority " +
-                            std::to_string(m.authority) + ") refused: " + std::string(outcome.why));
+    log_repeated("control requests refused", LogLevel::info, [&] {
+      return "control request from " + h.source.to_string() + " (authority " + std::to_string(m.authority) +
+             ") refused: " + std::string(outcome.why);
+    });
     if (config_.reject_refused_requests)
       send(h.source, msg::RejectComponentControl{});
     else
@@ -381,13 +394,15 @@ void Component::on_request_control(const Header& h, const msg::RequestComponentC
   controller_last_heard_ = env_.clock.now();
   if (!previous || previous->address != h.source) {
     ++counters_.control_changes;
-    log(LogLevel::info, "controlled by " + describe(*control_.controller()) + ": " + std::string(outcome.why));
+    log_repeated({"control granted", kNoteworthyBurst}, LogLevel::info,
+                 [&] { return "controlled by " + describe(*control_.controller()) + ": " + std::string(outcome.why); });
     arm_controller_watch();
     end_stale_command_connections("control changed hands");
   }
   if (outcome.displaced) {
     send(outcome.displaced->address, msg::RejectComponentControl{});
-    log(LogLevel::info, "control taken from " + describe(*outcome.displaced));
+    log_repeated({"control taken over", kNoteworthyBurst}, LogLevel::info,
+                 [&] { return "control taken from " + describe(*outcome.displaced); });
     // The new controller has not commanded anything yet: stop what the old one commanded.
     enforce_stop("control changed hands");
   }
@@ -395,11 +410,14 @@ void Component::on_request_control(const Header& h, const msg::RequestComponentC
 
 void Component::on_release_control(const Header& h) {
   if (!control_.release(h.source)) {
-    log(LogLevel::info, "Release Component Control from " + h.source.to_string() + " ignored: not the controller");
+    log_repeated("Release Component Control from a non-controller ignored", LogLevel::info, [&] {
+      return "Release Component Control from " + h.source.to_string() + " ignored: not the controller";
+    });
     return;
   }
   ++counters_.control_changes;
-  log(LogLevel::info, "released by " + h.source.to_string());
+  log_repeated({"control released", kNoteworthyBurst}, LogLevel::info,
+               [&] { return "released by " + h.source.to_string(); });
   if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
   controller_timer_ = kNoTimer;
   end_stale_command_connections("control released");
@@ -465,12 +483,15 @@ void Component::on_set_time(const msg::SetTime& m) {
                   milliseconds{m.time->millisecond};
   }
   if (!date.ok()) {
-    log(LogLevel::warn, "Set Time with an invalid date ignored");
+    log_repeated("Set Time with an invalid date ignored", LogLevel::warn,
+                 [&] { return "Set Time with an invalid date ignored"; });
     return;
   }
   const UtcTime target = sys_days{date} + time_of_day;
   time_offset_ += target - now;
-  log(LogLevel::info, "time set (offset " + std::to_string(duration_cast<milliseconds>(time_offset_).count()) + " ms)");
+  log_repeated("time set", LogLevel::info, [&] {
+    return "time set (offset " + std::to_string(duration_cast<milliseconds>(time_offset_).count()) + " ms)";
+  });
 }
 
 }  // namespace jaus::rt

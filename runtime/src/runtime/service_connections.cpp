@@ -30,7 +30,8 @@ ServiceConnectionProvider::ServiceConnectionProvider(Environment& env, Address s
       limits_(limits),
       send_(std::move(send)),
       may_command_(std::move(may_command)),
-      command_lost_(std::move(command_lost)) {}
+      command_lost_(std::move(command_lost)),
+      lines_(env_.clock, env_.scheduler, [this](LogLevel level, const std::string& text) { log(level, text); }) {}
 
 ServiceConnectionProvider::~ServiceConnectionProvider() {
   for (auto& [key, c] : connections_)
@@ -63,8 +64,10 @@ void ServiceConnectionProvider::confirm(const Header& h, std::uint16_t code, std
   send_(out, std::span(payload).first(*size));
   if (response != kCreated) {
     ++counters_.refused;
-    log(LogLevel::info, "Create Service Connection for " + code_text(code) + " from " + h.source.to_string() +
-                            " refused (response " + std::to_string(response) + ")");
+    lines_.write("Create Service Connection refused", LogLevel::info, [&] {
+      return "Create Service Connection for " + code_text(code) + " from " + h.source.to_string() +
+             " refused (response " + std::to_string(response) + ")";
+    });
   }
 }
 
@@ -112,9 +115,10 @@ void ServiceConnectionProvider::on_create(const Header& h, const msg::CreateServ
   c.start = env_.clock.now();
   c.last_command = c.start;
   ++counters_.created;
-  log(LogLevel::info, std::string(command ? "command" : "inform") + " SC " + code_text(code) + "/" +
-                          std::to_string(instance) + " for " + h.source.to_string() + " at " + std::to_string(rate) +
-                          " Hz");
+  lines_.write({"service connections created", kNoteworthyBurst}, LogLevel::info, [&] {
+    return std::string(command ? "command" : "inform") + " SC " + code_text(code) + "/" + std::to_string(instance) +
+           " for " + h.source.to_string() + " at " + std::to_string(rate) + " Hz";
+  });
   confirm(h, code, instance, rate, kCreated);
   if (command)
     schedule(key, c);
@@ -149,8 +153,9 @@ void ServiceConnectionProvider::fire(const Key& key) {
     if (env_.clock.now() - c.last_command < deadman_limit(c)) return schedule(key, c);
     c.command_lost = true;
     ++counters_.commands_lost;
-    log(LogLevel::warn, "command SC " + code_text(key.code) + " from " + key.requester.to_string() +
-                            " silent: loss of command");
+    lines_.write({"command service connections lost", kNoteworthyBurst}, LogLevel::warn, [&] {
+      return "command SC " + code_text(key.code) + " from " + key.requester.to_string() + " silent: loss of command";
+    });
     // Safety: the component stops its actuators here (Component::enforce_stop).
     // The timer is set again by the next command (on_command).
     command_lost_(key.requester, key.code);
@@ -177,7 +182,11 @@ void ServiceConnectionProvider::on_command(const Header& h) {
       c.last_command = env_.clock.now();
       if (c.command_lost) {
         c.command_lost = false;
-        log(LogLevel::info, "command SC " + code_text(key.code) + " from " + key.requester.to_string() + " resumed");
+        lines_.write({"command service connections resumed", kNoteworthyBurst}, LogLevel::info,
+                     [&, &resumed = key] {  // a structured binding is captured through a reference of its own
+                       return "command SC " + code_text(resumed.code) + " from " + resumed.requester.to_string() +
+                              " resumed";
+                     });
         if (c.timer == kNoTimer) schedule(key, c);
       }
     }
@@ -212,8 +221,10 @@ void ServiceConnectionProvider::on_suspend(const Header& h, const msg::SuspendSe
 void ServiceConnectionProvider::on_terminate(const Header& h, const msg::TerminateServiceConnection& m) {
   auto it = connections_.find(Key{h.source, m.command_code, m.instance_id});
   if (it == connections_.end()) {
-    log(LogLevel::debug, "Terminate for unknown SC " + code_text(m.command_code) + "/" +
-                             std::to_string(m.instance_id) + " from " + h.source.to_string());
+    lines_.write("Terminate for an unknown service connection", LogLevel::debug, [&] {
+      return "Terminate for unknown SC " + code_text(m.command_code) + "/" + std::to_string(m.instance_id) + " from " +
+             h.source.to_string();
+    });
     return;
   }
   stop(it, "terminated by requester");
@@ -222,8 +233,10 @@ void ServiceConnectionProvider::on_terminate(const Header& h, const msg::Termina
 void ServiceConnectionProvider::stop(std::map<Key, Connection>::iterator it, std::string_view why) {
   if (it->second.timer != kNoTimer) env_.scheduler.cancel(it->second.timer);
   ++counters_.terminated;
-  log(LogLevel::info, "SC " + code_text(it->first.code) + "/" + std::to_string(it->first.instance) + " for " +
-                          it->first.requester.to_string() + " ended: " + std::string(why));
+  lines_.write({"service connections ended", kNoteworthyBurst}, LogLevel::info, [&] {
+    return "SC " + code_text(it->first.code) + "/" + std::to_string(it->first.instance) + " for " +
+           it->first.requester.to_string() + " ended: " + std::string(why);
+  });
   connections_.erase(it);
 }
 

@@ -46,17 +46,9 @@ namespace jaus::wire {
 enum class Dialect : std::uint8_t { ra, openjaus };
 
 // State shared by the fields of one message while it is encoded or decoded.
-// The dialect is a compile-time constant, so that the codecs' dialect choices
-// fold away: encode_payload/decode_payload_into pick the instantiation once.
-template <Dialect D>
-struct DialectContext {
-  static constexpr Dialect dialect = D;
-  // Counts declared once and used by several arrays (e.g. the joint count of
-  // Set Joint Motion, used by every pose).
-  std::array<std::uint32_t, 2> dims{};
-};
-
-// The same with the dialect chosen at run time (test generators, tools).
+// The dialect is a run-time value: the quirks it selects are a few branches,
+// and one instantiation per body instead of one per body and dialect halves
+// the codec's compile time and code size.
 struct CodecContext {
   Dialect dialect = Dialect::ra;
   std::array<std::uint32_t, 2> dims{};

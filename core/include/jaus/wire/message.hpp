@@ -60,13 +60,8 @@ Expected<std::size_t, Error> encode_payload(const M& message, std::span<std::uin
     return encode_payload<typename M::body_type>(message, out, dialect);  // one instantiation per body
   } else {
     ByteWriter w(out);
-    if (dialect == Dialect::openjaus) {
-      DialectContext<Dialect::openjaus> ctx;
-      encode_fields(message, w, ctx);
-    } else {
-      DialectContext<Dialect::ra> ctx;
-      encode_fields(message, w, ctx);
-    }
+    CodecContext ctx{dialect, {}};
+    encode_fields(message, w, ctx);
     if (w.failed()) return unexpected(w.error());
     return w.size();
   }
@@ -81,13 +76,8 @@ std::optional<Error> decode_payload_into(std::span<const std::uint8_t> payload, 
     return decode_payload_into<typename M::body_type>(payload, out, dialect, base_offset);
   } else {
     ByteReader r(payload, base_offset);
-    if (dialect == Dialect::openjaus) {
-      DialectContext<Dialect::openjaus> ctx;
-      decode_fields(r, out, ctx);
-    } else {
-      DialectContext<Dialect::ra> ctx;
-      decode_fields(r, out, ctx);
-    }
+    CodecContext ctx{dialect, {}};
+    decode_fields(r, out, ctx);
     if (!r.failed() && r.remaining() != 0) {
       r.set_field({});
       r.fail(ErrorCode::trailing_bytes, std::to_string(r.remaining()) + " bytes");

@@ -20,8 +20,19 @@
 #include <string>
 #include <vector>
 
-#include "jaus/host/node_host.hpp"
+#include "jaus/node/node.hpp"
 #include "jaus/ocu/ocu_component.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+// The node host is only held here: its header (every component kind, the
+// bridge, the Clearpath link) stays out of every OCU translation unit.
+namespace jaus::host {
+class NodeHost;
+}
+namespace jaus::transport {
+class UdpLink;
+}
 
 namespace jaus::ocu {
 
@@ -71,9 +82,9 @@ class OcuSession {
   const jaus::Address& self() const { return options_.self; }
   const SessionOptions& options() const { return options_; }
   OcuComponent& component() { return *component_; }
-  jaus::node::Node& node() { return host_->node(); }
-  jaus::transport::UdpLink& link() { return host_->link(); }
-  jaus::rt::Clock& clock() { return host_->runtime(); }
+  jaus::node::Node& node();
+  jaus::transport::UdpLink& link();
+  jaus::rt::Clock& clock();
 
   // Sends from the OCU component; the datagram has left when this returns.
   template <class M>

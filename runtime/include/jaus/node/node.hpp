@@ -23,6 +23,7 @@
 #include "jaus/node/liveness_table.hpp"
 #include "jaus/node/priority_queue.hpp"
 #include "jaus/node/sequence_counters.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/runtime/component.hpp"
 #include "jaus/runtime/node_directory.hpp"
 
@@ -141,6 +142,8 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   LivenessTable liveness_;
   SequenceCounters sequences_;
   NodeCounters counters_;
+  // Lines a flood repeats (malformed packets, lost peers, ...): per reason.
+  rt::RepeatedLines lines_;
   // One packet at a time is built here: the link copies or sends before
   // transmit() returns, so no packet allocates.
   std::vector<std::uint8_t> tx_buffer_ = std::vector<std::uint8_t>(kHeaderSize + kMaxPayloadSize);

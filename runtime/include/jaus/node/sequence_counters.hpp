@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <list>
 #include <map>
 
 #include "jaus/core/address.hpp"
@@ -39,15 +40,17 @@ class SequenceCounters {
   std::uint64_t evicted() const { return evicted_; }
 
  private:
+  // Least recently used first: a flood of new destinations makes every reply
+  // evict one, so eviction is O(1) (the list's front), not a scan.
+  using Recency = std::list<SequenceStream>;
   struct State {
     std::uint16_t next = 0;
-    std::uint64_t last_used = 0;  // use counter, for least-recently-used eviction
+    Recency::iterator in_recency;
   };
-  void evict_least_recently_used();
 
   Options options_;
   std::map<SequenceStream, State> streams_;
-  std::uint64_t uses_ = 0;
+  Recency recency_;
   std::uint64_t evicted_ = 0;
 };
 

@@ -258,15 +258,14 @@ class Component {
   virtual void requester_lost(const Address& /*peer*/) {}
 
   void log(LogLevel level, const std::string& text) const;
-  // A line remote input can repeat at will: written at most once per window
-  // of its limiter, with the count of those left out; the text is only built
-  // when written.
+  // A line remote input can repeat at will: written at most `kind.burst`
+  // times per 10 s window of its kind (a string literal, "unsupported
+  // messages ignored"), then counted, the count written when the window
+  // ends; the text is only built when written.
   template <class MakeText>
-  void log_repeated(RepeatLimiter& limiter, LogLevel level, MakeText make_text) {
-    std::string note;
-    if (limiter.admit(env_.clock.now(), note)) log(level, make_text() + note);
+  void log_repeated(Repeated kind, LogLevel level, MakeText make_text) {
+    repeated_lines_.write(kind, level, make_text);
   }
-  static constexpr Duration kRepeatedLogWindow = std::chrono::seconds(1);
   Environment& env() { return env_; }
 
  private:
@@ -316,17 +315,12 @@ class Component {
   TimePoint controller_last_heard_{};
   TimerId controller_timer_ = kNoTimer;
   Duration time_offset_{};  // Set Time moves this component's clock, not the system's
-  // Lines that remote input repeats at will, one limiter per reason (not per
+  // Lines that remote input repeats at will, limited per reason (not per
   // sender, which a flood of forged sources would multiply).
-  RepeatLimiter not_controller_log_{kRepeatedLogWindow};
-  RepeatLimiter wrong_state_log_{kRepeatedLogWindow};
-  RepeatLimiter malformed_log_{kRepeatedLogWindow};
-  RepeatLimiter emergency_log_{kRepeatedLogWindow};
-  RepeatLimiter clear_refused_log_{kRepeatedLogWindow};
-  RepeatLimiter still_held_log_{kRepeatedLogWindow};
+  RepeatedLines repeated_lines_;
   std::vector<std::uint8_t> send_buffer_;
-  bool failure_declared_ = false;
-  std::map<std::uint16_t, std::uint32_t> input_presence_;  // Report Services' input presence vectors  // Failure entered by declare_failure(), not by initialisation
+  bool failure_declared_ = false;  // Failure entered by declare_failure(), not by initialisation
+  std::map<std::uint16_t, std::uint32_t> input_presence_;  // Report Services' input presence vectors
 };
 
 }  // namespace jaus::rt

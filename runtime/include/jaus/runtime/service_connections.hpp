@@ -26,6 +26,7 @@
 #include "jaus/core/header.hpp"
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/runtime/environment.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
 
 namespace jaus::rt {
 
@@ -139,6 +140,7 @@ class ServiceConnectionProvider {
   std::vector<std::uint16_t> command_codes_;
   std::map<Key, Connection> connections_;
   ServiceConnectionCounters counters_;
+  RepeatedLines lines_;  // a create/terminate loop is a few lines and a count
 };
 
 }  // namespace jaus::rt

@@ -23,6 +23,7 @@
 
 #include "jaus/node/node.hpp"
 #include "jaus/runtime/environment.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
@@ -83,6 +84,11 @@ class UdpLink final : public node::Link {
   // Sends one message to an endpoint in a framing, outside routing (tools).
   void send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
 
+  // Takes `datagram` as if the socket had received it from `from`: every
+  // check, count and route rule applies. For captures replayed and floods
+  // driven in-process (tests); a closed link ignores it.
+  void receive_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
+
   Ipv4Endpoint local_endpoint() const;
   const UdpLinkCounters& counters() const { return counters_; }
   const RouteTable& routes() const { return routes_; }
@@ -93,10 +99,9 @@ class UdpLink final : public node::Link {
           rt::LogFn log);
   Expected<bool> bind_sockets();
   void receive_next(Socket& socket);
-  void on_datagram(const boost::asio::ip::udp::endpoint& from, std::span<const std::uint8_t> datagram);
+  void on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
   void drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail);
   bool allowed(std::uint32_t address) const;
-  bool route_log_allowed();
   void schedule_expiry();
 
   boost::asio::io_context& io_;
@@ -110,11 +115,10 @@ class UdpLink final : public node::Link {
   PacketHandler handler_;
   UdpLinkCounters counters_;
   rt::TimerId expiry_timer_ = rt::kNoTimer;
+  // Lines a flood repeats: per drop reason, and new routes (10 per window).
+  rt::RepeatedLines repeated_lines_;
   // Rate limit of drop logs: one line per reason per second.
-  std::array<rt::TimePoint, static_cast<std::size_t>(DropReason::count_)> last_drop_log_{};
   std::uint16_t local_port_ = 0;  // the bound port (options_.bind.port may be 0: any)
-  rt::TimePoint route_log_window_{};
-  int route_lines_in_window_ = 0;
   bool closed_ = false;
   // Completion handlers can run after the link is destroyed (the io_context
   // outlives it); they hold a weak reference to this and do nothing once it expires.
