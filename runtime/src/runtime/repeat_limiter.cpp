@@ -97,6 +97,10 @@ void RepeatedLines::arm() {
     if (entry.limiter.suppressed() > 0) earliest = std::min(earliest, entry.limiter.window_end());
   if (earliest == TimePoint::max()) return;
   if (timer_ != kNoTimer && timer_at_ <= earliest) return;
+  // With no timer pending, timer_at_ is when the last one fired: an owner
+  // writes at most one summary (per level) per window, whatever its kinds'
+  // windows.
+  if (timer_ == kNoTimer && timer_at_ != TimePoint{}) earliest = std::max(earliest, timer_at_ + kRepeatedLogWindow);
   if (timer_ != kNoTimer) scheduler_.cancel(timer_);
   timer_at_ = earliest;
   timer_ = scheduler_.call_at(earliest, [this] {
