@@ -57,7 +57,7 @@ RepeatedLines::Entry& RepeatedLines::entry_for(Repeated kind, LogLevel level) {
   if (it == entries_.end())
     it =
         entries_
-            .emplace(kind.reason, Entry{RepeatLimiter(std::string(kind.reason), kRepeatedLogWindow, kind.burst), level})
+            .emplace(kind.reason, Entry{RepeatLimiter(kRepeatedLogWindow, kind.burst), level})
             .first;
   return it->second;
 }

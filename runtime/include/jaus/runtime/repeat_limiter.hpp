@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <functional>
 #include <map>
-#include <optional>
 #include <string>
 #include <string_view>
 
@@ -46,9 +45,8 @@ struct Repeated {
 
 class RepeatLimiter {
  public:
-  // `what` names the reason in the summary line.
-  explicit RepeatLimiter(std::string what, Duration window = kRepeatedLogWindow, int burst = 1)
-      : what_(std::move(what)), window_(window), burst_(burst) {}
+  // (The owner's RepeatedLines names the kind in its summary line.)
+  explicit RepeatLimiter(Duration window = kRepeatedLogWindow, int burst = 1) : window_(window), burst_(burst) {}
 
   // Whether to write the line now. When it is, `note` is "" or, after lines
   // were left out and no summary said so, " [41203 more like this in the
@@ -67,7 +65,6 @@ class RepeatLimiter {
   std::uint64_t suppressed_total() const { return suppressed_total_; }
 
  private:
-  std::string what_;
   Duration window_;
   int burst_;
   bool window_open_ = false;
