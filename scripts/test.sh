@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Installs what the project needs, builds it and runs every test:
 #   1. Release build (GCC, -O2 as Debian builds, -Wall -Wextra -Werror): libraries, apps, benchmarks,
-#      and the system suite, which runs the shipped programs end to end;
+#      the system suite, which runs the shipped programs end to end, and the load suite (a node
+#      under a million datagrams; the sanitizer tree floods it with a tenth of that);
 #   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (clang, -Werror): every suite,
 #      and the libFuzzer targets (libraries instrumented for coverage), each run briefly on its seed
 #      corpus; line tables only (-g1), all a sanitizer report needs. Without clang the sanitizer
 #      build uses GCC and the fuzz targets are skipped.
-# Two compilers, two sets of warnings. The Release system suite (real-clock tests that mostly wait
-# on sockets and timers) runs while the sanitizer tree compiles at a lower CPU priority, so the
+# Two compilers, two sets of warnings. The Release system and load suites (real-clock tests that
+# mostly wait on sockets and timers, and one flood) run while the sanitizer tree compiles at a lower CPU priority, so the
 # tests get the CPU whenever they need it and the compiler takes the rest.
 # Usage: ./scripts/test.sh (from anywhere; builds go to build/)
 set -euo pipefail
@@ -34,16 +35,16 @@ run_tests() {  # $1 build dir
 echo "== release build"
 configure_and_build build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_TEST_SUITES=system
 
-echo "== release system suite (in the background, output at the end of the sanitizer build)"
+echo "== release system and load suites (in the background, output at the end of the sanitizer build)"
 release_log=build/release/system-suite.log
 run_tests build/release > "$release_log" 2>&1 &
 release_tests=$!
 finish_release_tests() {
   local status=0
   wait "$release_tests" || status=$?
-  echo "== release system suite:"
+  echo "== release system and load suites:"
   cat "$release_log"
-  if [ "$status" -ne 0 ]; then echo "== release system suite failed"; exit 1; fi
+  if [ "$status" -ne 0 ]; then echo "== release system and load suites failed"; exit 1; fi
 }
 
 sanitizer_options=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF)

@@ -165,11 +165,11 @@ struct ClearpathArm::State {
 
   void failed(const cp::AnyMessage& m, const cp::CommandOutcome& outcome) {
     ++counters.commands_failed;
-    const bool homing = std::holds_alternative<cp::HomeJoint>(m);
+    const bool homing = m.holds<cp::HomeJoint>();
     const bool was_ramping = timer != rt::kNoTimer;
     if (!homing) stop_ramp();  // safety: a stream of targets the platform does not take ends here
     synced = false;
-    std::string what = homing ? "Home Joint (joint " + std::to_string(std::get<cp::HomeJoint>(m).joint) + ")"
+    std::string what = homing ? "Home Joint (joint " + std::to_string(m.get<cp::HomeJoint>().joint) + ")"
                               : std::string("Set Absolute Joints");
     platform.log(rt::LogLevel::warn, "Clearpath arm: " + what + " not applied (" + outcome_text(outcome) + ")" +
                                          (was_ramping && !homing ? "; motion ended" : ""));
@@ -294,12 +294,12 @@ ClearpathArm::ClearpathArm(PlatformConnection& platform, rt::Scheduler& schedule
   platform.on_data(cp::AbsoluteJointsData::kType, [weak](const cp::Envelope& e) {
     const auto self = weak.lock();
     if (!self) return;
-    if (const auto* d = std::get_if<cp::AbsoluteJointsData>(&e.message)) self->on_setpoints(*d);
+    if (const auto* d = e.message.get_if<cp::AbsoluteJointsData>()) self->on_setpoints(*d);
   });
   platform.on_data(cp::JointTorqueData::kType, [weak](const cp::Envelope& e) {
     const auto self = weak.lock();
     if (!self) return;
-    if (const auto* d = std::get_if<cp::JointTorqueData>(&e.message)) self->torques = *d;
+    if (const auto* d = e.message.get_if<cp::JointTorqueData>()) self->torques = *d;
   });
   platform.on_alive([weak](bool alive) {
     if (const auto self = weak.lock()) self->on_alive(alive);

@@ -408,7 +408,7 @@ ClearpathCameras::ClearpathCameras(PlatformConnection& platform, rt::Scheduler& 
   platform.on_data(cp::PanTiltZoomData::kType, [weak](const cp::Envelope& e) {
     const auto self = weak.lock();
     if (!self) return;
-    if (const auto* d = std::get_if<cp::PanTiltZoomData>(&e.message)) self->on_data(*d);
+    if (const auto* d = e.message.get_if<cp::PanTiltZoomData>()) self->on_data(*d);
   });
   platform.on_alive([weak](bool alive) {
     if (const auto self = weak.lock()) self->on_alive(alive);

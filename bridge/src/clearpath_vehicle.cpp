@@ -317,41 +317,41 @@ struct ClearpathVehicle::State {
 
   void listen() {
     platform.on_data(cp::EncoderData::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::EncoderData>(&e.message)) on_encoders(*m);
+      if (const auto* m = e.message.get_if<cp::EncoderData>()) on_encoders(*m);
     });
     platform.on_data(cp::OrientationData::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::OrientationData>(&e.message)) orientation = *m;
+      if (const auto* m = e.message.get_if<cp::OrientationData>()) orientation = *m;
     });
     platform.on_data(cp::RotationalRateData::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::RotationalRateData>(&e.message)) {
+      if (const auto* m = e.message.get_if<cp::RotationalRateData>()) {
         rates = *m;
         rates_at = now();
       }
     });
     platform.on_data(cp::SystemStatus::kType, [this](const cp::Envelope& e) {
-      const auto* m = std::get_if<cp::SystemStatus>(&e.message);
+      const auto* m = e.message.get_if<cp::SystemStatus>();
       if (m == nullptr) return;
       if (!m->voltages.empty()) battery_v = m->voltages.front();
       if (!m->temperatures.empty()) temperature_c = *std::max_element(m->temperatures.begin(), m->temperatures.end());
     });
     platform.on_data(cp::PowerStatus::kType, [this](const cp::Envelope& e) {
-      const auto* m = std::get_if<cp::PowerStatus>(&e.message);
+      const auto* m = e.message.get_if<cp::PowerStatus>();
       if (m != nullptr && !m->batteries.empty()) charge_percent = m->batteries.front().charge;
     });
     platform.on_data(cp::MaxSpeedData::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::MaxSpeedData>(&e.message)) {
+      if (const auto* m = e.message.get_if<cp::MaxSpeedData>()) {
         max_forward_mps = m->forward;
         max_reverse_mps = m->reverse;
       }
     });
     platform.on_data(cp::PlatformName::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::PlatformName>(&e.message)) platform_name = m->name;
+      if (const auto* m = e.message.get_if<cp::PlatformName>()) platform_name = m->name;
     });
     platform.on_data(cp::GearData::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::GearData>(&e.message)) reported_gear = m->gear;
+      if (const auto* m = e.message.get_if<cp::GearData>()) reported_gear = m->gear;
     });
     platform.on_data(cp::SafetyStatus::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = std::get_if<cp::SafetyStatus>(&e.message)) on_safety(*m);
+      if (const auto* m = e.message.get_if<cp::SafetyStatus>()) on_safety(*m);
     });
     platform.on_alive([this](bool alive) {
       if (alive) {

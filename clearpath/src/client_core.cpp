@@ -45,7 +45,7 @@ void ClientCore::subscribe(AnyMessage request, CommandCallback done) {
     return;
   }
   std::uint8_t selector = 0;
-  std::visit(
+  visit(
       [&](const auto& m) {
         if constexpr (requires { m.mount; }) selector = m.mount;
         if constexpr (requires { m.joint; }) selector = m.joint;
@@ -59,7 +59,7 @@ void ClientCore::unsubscribe(std::uint16_t request_type, std::uint8_t selector) 
   const auto it = subscriptions_.find({request_type, selector});
   if (it == subscriptions_.end()) return;
   AnyMessage cancel = it->second;
-  std::visit(
+  visit(
       [](auto& m) {
         if constexpr (requires { m.subscription; }) m.subscription = kCancelSubscription;
       },
@@ -193,7 +193,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
     ++counters_.decode_errors;  // e.g. a type the document lacks: ignore it, never fail
     return;
   }
-  const auto* ack = std::get_if<Ack>(&envelope->message);
+  const auto* ack = envelope->message.get_if<Ack>();
   if (ack == nullptr) {
     ++counters_.data_received;
     if (on_data_) on_data_(*envelope);
@@ -243,7 +243,7 @@ void ClientCore::resubscribe() {
   for (const auto& info : message_catalogue()) {
     if (info.kind != MessageKind::request) continue;
     auto cancel = make_message(info.type);
-    std::visit(
+    visit(
         [](auto& m) {
           if constexpr (requires { m.subscription; }) m.subscription = kCancelSubscription;
         },

@@ -9,7 +9,7 @@ namespace jaus::clearpath {
 Expected<std::vector<std::uint8_t>> encode_payload(const AnyMessage& message) {
   std::vector<std::uint8_t> out;
   detail::PayloadWriter writer(out);
-  std::visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, writer); }, message);
+  visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, writer); }, message);
   if (writer.error) return unexpected(*writer.error);
   if (out.size() > kMaxPayload)
     return unexpected(Error{ErrorCode::payload_too_large, out.size(), "",
@@ -28,7 +28,7 @@ Expected<AnyMessage> decode_payload(std::uint16_t type, std::span<const std::uin
     return unexpected(Error{ErrorCode::unknown_message, 0, "", hex});
   }
   detail::PayloadReader reader(payload);
-  std::visit(
+  visit(
       [&](auto& m) {
         using M = std::remove_cvref_t<decltype(m)>;
         if constexpr (requires { M::prepare_decode(m, payload.size()); }) M::prepare_decode(m, payload.size());
@@ -69,7 +69,7 @@ Expected<Envelope> decode(const Frame& frame, Direction direction) {
 
 std::optional<Error> check_ranges(const AnyMessage& message) {
   detail::RangeChecker checker;
-  std::visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, checker); }, message);
+  visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, checker); }, message);
   return checker.error;
 }
 

@@ -44,7 +44,7 @@ Expected<T> header_number(const nlohmann::json& json, const char* key, T fallbac
 nlohmann::json fields_to_json(const AnyMessage& message) {
   nlohmann::json out;
   detail::JsonWriter writer(out);
-  std::visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, writer); }, message);
+  visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, writer); }, message);
   return out;
 }
 
@@ -53,11 +53,11 @@ nlohmann::json to_json(const Envelope& envelope) {
   const std::uint16_t type = envelope.header.type;
   j["type"] = hex16(type);
   j["name"] = std::string(name_of(envelope.message));
-  if (std::holds_alternative<Ack>(envelope.message)) {
+  if (envelope.message.holds<Ack>()) {
     j["kind"] = "ack";
     const auto target = find_message(type);
     j["acknowledges"] = target ? std::string(target->name) : hex16(type);
-    j["result_text"] = describe_ack_result(std::get<Ack>(envelope.message).result);
+    j["result_text"] = describe_ack_result(envelope.message.get<Ack>().result);
   } else {
     j["kind"] = std::string(to_string(kind_of(type)));
   }
@@ -73,7 +73,7 @@ Expected<AnyMessage> message_from_json(const AnyMessage& prototype, const nlohma
   AnyMessage message = prototype;
   detail::FieldPath path;
   detail::JsonReader reader(fields, path);
-  std::visit([&](auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, reader); }, message);
+  visit([&](auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, reader); }, message);
   if (reader.error) return unexpected(*reader.error);
   return message;
 }

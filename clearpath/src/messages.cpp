@@ -7,38 +7,41 @@
 namespace jaus::clearpath {
 namespace {
 
-// Alternatives 1..N of AnyMessage are the typed messages (0 is Ack).
-constexpr std::size_t kTyped = std::variant_size_v<MessageVariant> - 1;
+// MessageTypes[1..N] are the typed messages (0 is Ack).
+constexpr std::size_t kTyped = MessageTypes::size - 1;
 
-template <std::size_t... I>
-constexpr std::array<MessageTypeInfo, kTyped> build_catalogue(std::index_sequence<I...>) {
-  return {MessageTypeInfo{std::variant_alternative_t<I + 1, MessageVariant>::kType,
-                      std::variant_alternative_t<I + 1, MessageVariant>::kName,
-                      kind_of(std::variant_alternative_t<I + 1, MessageVariant>::kType)}...};
+template <class... Typed>
+constexpr std::array<MessageTypeInfo, kTyped> build_catalogue(TypeList<Ack, Typed...>) {
+  return {MessageTypeInfo{Typed::kType, Typed::kName, kind_of(Typed::kType)}...};
 }
 
-template <std::size_t... I>
-constexpr std::array<AnyMessage (*)(), kTyped> build_factories(std::index_sequence<I...>) {
-  return {+[]() -> AnyMessage { return AnyMessage(std::in_place_index<I + 1>); }...};
+template <class M>
+AnyMessage make_default() {
+  return AnyMessage(M{});
 }
 
-// Catalogue entries in variant order, and a by-type permutation.
-constexpr auto kInVariantOrder = build_catalogue(std::make_index_sequence<kTyped>{});
-constexpr auto kFactories = build_factories(std::make_index_sequence<kTyped>{});
+template <class... Typed>
+constexpr std::array<AnyMessage (*)(), kTyped> build_factories(TypeList<Ack, Typed...>) {
+  return {&make_default<Typed>...};
+}
+
+// Catalogue entries in the order of MessageTypes, and a by-type permutation.
+constexpr auto kInListOrder = build_catalogue(MessageTypes{});
+constexpr auto kFactories = build_factories(MessageTypes{});
 
 struct Sorted {
   std::array<MessageTypeInfo, kTyped> infos;
-  std::array<std::size_t, kTyped> variant_index;
+  std::array<std::size_t, kTyped> list_index;
 };
 
 constexpr Sorted build_sorted() {
-  Sorted s{kInVariantOrder, {}};
-  for (std::size_t i = 0; i < kTyped; ++i) s.variant_index[i] = i;
+  Sorted s{kInListOrder, {}};
+  for (std::size_t i = 0; i < kTyped; ++i) s.list_index[i] = i;
   // Insertion sort: constexpr-friendly and the list is short.
   for (std::size_t i = 1; i < kTyped; ++i)
     for (std::size_t j = i; j > 0 && s.infos[j - 1].type > s.infos[j].type; --j) {
       std::swap(s.infos[j - 1], s.infos[j]);
-      std::swap(s.variant_index[j - 1], s.variant_index[j]);
+      std::swap(s.list_index[j - 1], s.list_index[j]);
     }
   return s;
 }
@@ -78,11 +81,11 @@ std::optional<MessageTypeInfo> find_message(std::string_view name) {
 std::optional<AnyMessage> make_message(std::uint16_t type) {
   const auto at = sorted_position(type);
   if (!at) return std::nullopt;
-  return kFactories[kSorted.variant_index[*at]]();
+  return kFactories[kSorted.list_index[*at]]();
 }
 
 std::optional<std::uint16_t> type_of(const AnyMessage& message) {
-  return std::visit(
+  return visit(
       [](const auto& m) -> std::optional<std::uint16_t> {
         if constexpr (requires { std::remove_cvref_t<decltype(m)>::kType; }) {
           return std::remove_cvref_t<decltype(m)>::kType;
@@ -94,7 +97,7 @@ std::optional<std::uint16_t> type_of(const AnyMessage& message) {
 }
 
 std::string_view name_of(const AnyMessage& message) {
-  return std::visit([](const auto& m) { return std::remove_cvref_t<decltype(m)>::kName; }, message);
+  return visit([](const auto& m) { return std::remove_cvref_t<decltype(m)>::kName; }, message);
 }
 
 }  // namespace jaus::clearpath

@@ -55,7 +55,7 @@ struct WrittenOutputs {
     if (!f || f->header.type != cp::SetDifferentialOutput::kType) return;
     const auto m = cp::decode(*f, cp::Direction::to_platform);
     if (!m) return;
-    const auto& out = std::get<cp::SetDifferentialOutput>(m->message);
+    const auto& out = m->message.get<cp::SetDifferentialOutput>();
     if (out.left == wanted.load()) written_at.store(Clock::now().time_since_epoch().count());
   }
   // Microseconds from `start` until the wanted frame was written, or none within `limit`.

@@ -64,8 +64,8 @@ class ClearpathArmTest : public ::testing::Test {
       if (!f) return;
       const auto e = cp::decode(*f, cp::Direction::to_platform);
       if (!e) return;
-      if (const auto* m = std::get_if<cp::SetAbsoluteJoints>(&e->message)) joint_commands.push_back(*m);
-      if (const auto* m = std::get_if<cp::HomeJoint>(&e->message)) homes.push_back(m->joint);
+      if (const auto* m = e->message.get_if<cp::SetAbsoluteJoints>()) joint_commands.push_back(*m);
+      if (const auto* m = e->message.get_if<cp::HomeJoint>()) homes.push_back(m->joint);
     });
   }
 

@@ -76,7 +76,7 @@ class ClearpathCamerasTest : public ::testing::Test {
       const auto f = cp::decode_frame(frame);
       if (!f || f->header.type != cp::SetPanTiltZoom::kType) return;
       if (auto e = cp::decode(*f, cp::Direction::to_platform))
-        if (const auto* m = std::get_if<cp::SetPanTiltZoom>(&e->message)) sent.push_back(*m);
+        if (const auto* m = e->message.get_if<cp::SetPanTiltZoom>()) sent.push_back(*m);
     });
   }
 

@@ -128,7 +128,7 @@ TEST(ClearpathClientSim, RequestsAreAnsweredAndSubscriptionsKeepTheirRate) {
   ASSERT_EQ(link.data_of(0x8002), 1u);
   for (const auto& e : link.data)
     if (e.header.type == 0x8002) {
-      EXPECT_EQ(std::get<cp::PlatformName>(e.message).name, "Clearpath1");
+      EXPECT_EQ(e.message.get<cp::PlatformName>().name, "Clearpath1");
     }
   // One immediate reply, then 10 Hz for two seconds.
   EXPECT_GE(link.data_of(0x8004), 20u);
@@ -209,7 +209,7 @@ TEST(ClearpathClientSim, SetpointsAreLatestWinsAndResentToFeedTheWatchdog) {
   link.run_for(480ms);
   EXPECT_EQ(link.client.counters().setpoints_replaced, 1u);
   const auto sent = link.written_of(cp::SetVelocity::kType);
-  for (const auto& m : sent) EXPECT_DOUBLE_EQ(std::get<cp::SetVelocity>(m).translational, 0.2);
+  for (const auto& m : sent) EXPECT_DOUBLE_EQ(m.get<cp::SetVelocity>().translational, 0.2);
   // Resent every 50 ms (never less often than the 100 ms the notes require): 0, 50, ... 450 ms.
   EXPECT_EQ(sent.size(), 10u);
 }
@@ -241,8 +241,8 @@ TEST(ClearpathClientSim, AStopIsWrittenOnceAndEndsTheStream) {
   link.run_for(2ms);
   auto sent = link.written_of(cp::SetVelocity::kType);
   ASSERT_EQ(sent.size(), before + 1);
-  EXPECT_EQ(std::get<cp::SetVelocity>(sent.back()).translational, 0.0);
-  EXPECT_EQ(std::get<cp::SetVelocity>(sent.back()).rotational, 0.0);
+  EXPECT_EQ(sent.back().get<cp::SetVelocity>().translational, 0.0);
+  EXPECT_EQ(sent.back().get<cp::SetVelocity>().rotational, 0.0);
   link.run_for(1s);
   EXPECT_EQ(link.written_of(cp::SetVelocity::kType).size(), before + 1);
   EXPECT_EQ(link.platform().vehicle().linear_speed(), 0.0);

@@ -63,7 +63,7 @@ class RandomFiller {
 
 void randomize(AnyMessage& message, std::mt19937& rng) {
   RandomFiller filler(rng);
-  std::visit([&](auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, filler); }, message);
+  clearpath::visit([&](auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, filler); }, message);
 }
 
 }  // namespace jaus::clearpath::testing

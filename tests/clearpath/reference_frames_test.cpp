@@ -172,7 +172,7 @@ TEST(ClearpathReferenceFrames, DecodeToTheirValuesAndReencodeByteExact) {
         ref.attributes.at("dir") == "p2h" ? cp::Direction::from_platform : cp::Direction::to_platform;
     const auto envelope = cp::decode(*frame, direction);
     ASSERT_TRUE(envelope) << envelope.error().message();
-    EXPECT_EQ(std::holds_alternative<cp::Ack>(envelope->message), ref.attributes.at("kind") == "ack");
+    EXPECT_EQ(envelope->message.holds<cp::Ack>(), ref.attributes.at("kind") == "ack");
 
     const json decoded = cp::to_json(*envelope);
     const auto expected = expected_fields().find(key);
@@ -205,7 +205,7 @@ TEST(ClearpathDecode, ChangeGearAcceptsTheDocumentsOneByteForm) {
   const std::vector<std::uint8_t> payload = {0xFE};
   const auto message = cp::decode_payload(0x0212, payload, cp::Direction::to_platform);
   ASSERT_TRUE(message);
-  const auto& gear = std::get<cp::ChangeGear>(*message);
+  const auto& gear = message->get<cp::ChangeGear>();
   EXPECT_FALSE(gear.with_flags);
   EXPECT_EQ(gear.gear, -2);
   EXPECT_EQ(*cp::encode_payload(*message), payload);
@@ -239,7 +239,7 @@ TEST(ClearpathDecode, FromPlatformACommandTypeIsAnAck) {
   const std::vector<std::uint8_t> payload = {0x08, 0x00};
   const auto m = cp::decode_payload(0x0204, payload, cp::Direction::from_platform);
   ASSERT_TRUE(m);
-  EXPECT_EQ(std::get<cp::Ack>(*m).result, cp::kAckOutOfRange);
+  EXPECT_EQ(m->get<cp::Ack>().result, cp::kAckOutOfRange);
   EXPECT_EQ(cp::describe_ack_result(cp::kAckOutOfRange | cp::kAckBadChecksum), "bad checksum|out of range");
 }
 

@@ -86,7 +86,7 @@ TEST(ClearpathRoundTrip, AcksOfEveryCommandAndRequest) {
     ASSERT_TRUE(frame);
     const auto back = cp::decode(*frame, cp::Direction::from_platform);
     ASSERT_TRUE(back);
-    EXPECT_EQ(std::get<cp::Ack>(back->message), ack);
+    EXPECT_EQ(back->message.get<cp::Ack>(), ack);
     EXPECT_EQ(back->header.type, info.type);
   }
 }

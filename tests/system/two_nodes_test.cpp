@@ -229,7 +229,7 @@ TEST_F(TwoNodes, AStalledLogOutputNeverStallsTheNode) {
   const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // open, never read until the end
   ASSERT_GE(reader, 0);
   const fs::path config = dir / "c.yaml";
-  std::ofstream(config) << node_config(3, "127.0.0.24:3794", "127.0.0.23:3794");
+  std::ofstream(config) << node_config(3, "127.0.0.20:3794", "127.0.0.23:3794");
   ChildProcess c({JAUSD_PATH, "--config", config.string(), "--log-level", "debug"}, fifo.string());
   ASSERT_TRUE(c.started());
   const Address manager_c{3, 1, 1, 1};

@@ -237,9 +237,10 @@ void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const s
   main_->socket.send_to(buffers, to_asio(to), 0, ec);
   if (ec) {
     ++counters_.send_errors;
-    if (counters_.send_errors == 1 || counters_.send_errors % 1000 == 0)
-      log_(rt::LogLevel::warn, "cannot send to " + to_string(to) + ": " + ec.message() + " [" +
-                                   std::to_string(counters_.send_errors) + " send errors so far]");
+    repeated_lines_.write("send errors", rt::LogLevel::warn, [&] {
+      return "cannot send to " + to_string(to) + ": " + ec.message() + " [" + std::to_string(counters_.send_errors) +
+             " send errors so far]";
+    });
     return;
   }
   ++counters_.datagrams_sent;
@@ -275,9 +276,11 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
   }
   if (!sent && !broadcast) {
     ++counters_.no_route;
-    if (counters_.no_route == 1 || counters_.no_route % 1000 == 0)
-      log_(rt::LogLevel::warn, "no route to " + to.to_string() + ": dropped [" + std::to_string(counters_.no_route) +
-                                   " so far]");
+    // Replies to a flood of forged sources are as many as the flood: limited
+    // per window like the drops, not per count (a fast node sends thousands a second).
+    repeated_lines_.write("packets with no route dropped", rt::LogLevel::warn, [&] {
+      return "no route to " + to.to_string() + ": dropped [" + std::to_string(counters_.no_route) + " so far]";
+    });
   }
 }
 

@@ -58,7 +58,7 @@ void SimPlatform::append(std::vector<std::uint8_t>& out, std::uint16_t type, std
                          const AnyMessage& message) {
   // Our own messages always fit; a failure here would be a bug in the model.
   if (append_encoded(out, Envelope{{kDefaultVersion, timestamp, 0, type}, message})) {
-    if (std::holds_alternative<Ack>(message)) ++counters_.acks_out;
+    if (message.holds<Ack>()) ++counters_.acks_out;
     else ++counters_.data_out;
   }
 }
@@ -104,7 +104,7 @@ void SimPlatform::handle(const Frame& frame, rt::TimePoint now, std::vector<std:
   if (kind == MessageKind::command) {
     const std::uint16_t result = apply_command(*decoded, now);
     acknowledge(result);
-    if (result == 0 && std::holds_alternative<ResetProcessor>(*decoded)) {
+    if (result == 0 && decoded->holds<ResetProcessor>()) {
       // A reset loses subscriptions and restarts the platform clock.
       subscriptions_.clear();
       vehicle_ = VehicleModel(config_.vehicle);
@@ -125,15 +125,15 @@ void SimPlatform::handle(const Frame& frame, rt::TimePoint now, std::vector<std:
 std::uint16_t SimPlatform::handle_request(const AnyMessage& request, rt::TimePoint now, bool& reply_now) {
   std::uint16_t subscription = 0;
   std::uint8_t selector = 0;
-  std::visit(
+  visit(
       [&](const auto& m) {
         if constexpr (requires { m.subscription; }) subscription = m.subscription;
         if constexpr (requires { m.mount; }) selector = m.mount;
         if constexpr (requires { m.joint; }) selector = m.joint;
       },
       request);
-  if (std::holds_alternative<RequestPanTiltZoom>(request) && selector >= config_.vehicle.mounts) return kAckOutOfRange;
-  if (std::holds_alternative<RequestJointControl>(request) && selector >= config_.vehicle.joints) return kAckOutOfRange;
+  if (request.holds<RequestPanTiltZoom>() && selector >= config_.vehicle.mounts) return kAckOutOfRange;
+  if (request.holds<RequestJointControl>() && selector >= config_.vehicle.joints) return kAckOutOfRange;
 
   const SubscriptionKey key{*type_of(request), selector};
   if (subscription == kReplyOnce) {
@@ -168,7 +168,7 @@ std::uint16_t SimPlatform::handle_request(const AnyMessage& request, rt::TimePoi
 std::uint16_t SimPlatform::apply_command(const AnyMessage& command, rt::TimePoint now) {
   const double t = seconds(now);
   std::uint16_t result = 0;
-  std::visit(
+  visit(
       [&](const auto& m) {
         using M = std::remove_cvref_t<decltype(m)>;
         if constexpr (is<M, SetPlatformName>) {
@@ -291,7 +291,7 @@ std::optional<AnyMessage> SimPlatform::reply_to(const AnyMessage& request, rt::T
   const auto& v = vehicle_;
   const auto clamp = [](double x, double lo, double hi) { return std::clamp(x, lo, hi); };
   std::optional<AnyMessage> reply;
-  std::visit(
+  visit(
       [&](const auto& m) {
         using M = std::remove_cvref_t<decltype(m)>;
         if constexpr (is<M, RequestEcho>) {

@@ -1,11 +1,13 @@
-// A node under a flood: a million datagrams from random sources and codes
-// (queries, malformed and garbage packets, commands from non-controllers and
-// from sources spoofing the controller, control requests, emergencies, event
-// and service connection requests, invalid sources) go through the UDP link's
-// whole receive path in process, while an OCU on real loopback sockets holds
-// control of the driver and queries the node. Every table stays within its
-// limit, the heap stops growing once the tables are full, the log stays a few
-// hundred lines, and the OCU is answered and keeps control throughout.
+// A node under a flood: a million datagrams (a tenth of that under the
+// sanitizers, which run the same paths some 15 times slower) from random
+// sources and codes (queries, malformed and garbage packets, commands from
+// non-controllers and from sources spoofing the controller, control requests,
+// emergencies, event and service connection requests, invalid sources) go
+// through the UDP link's whole receive path in process, while an OCU on real
+// loopback sockets holds control of the driver and queries the node. Every
+// table stays within its limit, the heap stops growing once the tables are
+// full, the log stays a few hundred lines, and the OCU is answered and keeps
+// control throughout.
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <gtest/gtest.h>
@@ -41,6 +43,12 @@ namespace jaus::host {
 namespace {
 
 using namespace std::chrono_literals;
+
+#ifdef JAUS_FLOOD_TEST_ASAN
+constexpr int kDatagrams = 100'000;  // still fills every table many times over
+#else
+constexpr int kDatagrams = 1'000'000;
+#endif
 
 // Bytes the program has allocated and not freed (ASan's own count under the
 // sanitizer, glibc's otherwise).
@@ -210,8 +218,7 @@ HostConfig flooded_node_config() {
   return config;
 }
 
-TEST(NodeUnderFlood, AMillionDatagramsLeaveEveryTableBoundedAndTheOcuAnsweredAndInControl) {
-  constexpr int kDatagrams = 1'000'000;
+TEST(NodeUnderFlood, EveryTableStaysBoundedTheHeapFlatAndTheOcuAnsweredAndInControl) {
   constexpr int kCheckpoints = 10;
   boost::asio::io_context io;
   std::size_t log_lines = 0;
@@ -311,8 +318,10 @@ TEST(NodeUnderFlood, AMillionDatagramsLeaveEveryTableBoundedAndTheOcuAnsweredAnd
              if (n > 5) most += "\n  " + std::to_string(n) + " x " + start;
            return most;
          }();
-  std::printf("%zu log lines in %zu windows of 10 s\n", log_lines, windows);
+  std::printf("%d datagrams in %.1f s: %zu log lines in %zu windows of 10 s\n", kDatagrams,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), log_lines, windows);
   EXPECT_GT(link.counters().datagrams_received, static_cast<std::uint64_t>(kDatagrams) - 1);
+  EXPECT_EQ(node.node().counters().queue_dropped, 0u);  // every datagram that passed the link was handled
   EXPECT_GT(link.counters().dropped_for(transport::DropReason::route_claim), 0u);
   EXPECT_GT(link.counters().dropped_for(transport::DropReason::invalid_source), 0u);
   hold.release();
