@@ -99,8 +99,11 @@ std::string identification_problem(std::string_view key, std::string_view text) 
 
 // ---------------------------------------------------------------- errors
 
-std::string ConfigError::to_string() const {
-  return line > 0 ? file + ":" + std::to_string(line) + ": " + what : file + ": " + what;
+jaus::Error config_error(std::string_view file, int line, std::string what) {
+  std::string where(file);
+  if (line > 0) where += ":" + std::to_string(line);
+  std::string detail = where + ": " + what;
+  return jaus::Error{jaus::ErrorCode::invalid_argument, 0, std::move(where), std::move(detail)};
 }
 
 // ---------------------------------------------------------------- validation
@@ -623,34 +626,35 @@ ConfigResult load_config_string(std::string_view yaml, std::string_view name) {
   try {
     const TextShape shape = shape_of(yaml);
     if (shape.second_document_line != 0)
-      return jaus::unexpected(ConfigError{file, shape.second_document_line,
-                                          "a configuration holds one YAML document, this starts a second one"});
+      return jaus::unexpected(config_error(file, shape.second_document_line,
+                                           "a configuration holds one YAML document, this starts a second one"));
     const YAML::Node root = YAML::Load(std::string(yaml));
     // yaml-cpp reads some junk (",1") as an empty document: only an empty
     // file, or an explicit null, means "all defaults".
     const bool explicit_null = shape.first_content == "~" || shape.first_content == "null" ||
                                shape.first_content == "Null" || shape.first_content == "NULL";
     if ((!root.IsDefined() || root.IsNull()) && shape.first_content_line != 0 && !explicit_null)
-      return jaus::unexpected(ConfigError{file, shape.first_content_line,
-                                          "not a YAML mapping of settings: '" + shape.first_content.substr(0, 40) + "'"});
+      return jaus::unexpected(
+          config_error(file, shape.first_content_line,
+                       "not a YAML mapping of settings: '" + shape.first_content.substr(0, 40) + "'"));
     SourceLines lines;
     JausdConfig config = read_config(root, lines);
-    if (auto issue = check(config, lines)) return jaus::unexpected(ConfigError{file, issue->line, issue->what});
+    if (auto issue = check(config, lines)) return jaus::unexpected(config_error(file, issue->line, issue->what));
     return config;
   } catch (const Failure& f) {
-    return jaus::unexpected(ConfigError{file, f.line, f.what});
+    return jaus::unexpected(config_error(file, f.line, f.what));
   } catch (const YAML::Exception& e) {
     const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    return jaus::unexpected(ConfigError{file, line, "YAML syntax error: " + e.msg});
+    return jaus::unexpected(config_error(file, line, "YAML syntax error: " + e.msg));
   } catch (const std::exception& e) {
-    return jaus::unexpected(ConfigError{file, 0, std::string("cannot read the configuration: ") + e.what()});
+    return jaus::unexpected(config_error(file, 0, std::string("cannot read the configuration: ") + e.what()));
   }
 }
 
 ConfigResult load_config_file(const std::string& path) {
   constexpr std::uintmax_t kMaxFileSize = 1024 * 1024;
   const auto cannot_open = [&](const std::string& reason) {
-    return jaus::unexpected(ConfigError{path, 0, "cannot open " + path + ": " + reason});
+    return jaus::unexpected(config_error(path, 0, "cannot open " + path + ": " + reason));
   };
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return cannot_open("is a directory");

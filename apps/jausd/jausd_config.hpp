@@ -87,14 +87,12 @@ struct JausdConfig {
   static jaus::components::ArmConfig default_arm();
 };
 
-struct ConfigError {
-  std::string file;
-  int line = 0;  // 1-based; 0 when no line applies
-  std::string what;
-  std::string to_string() const;  // "file:line: what", or "file: what" when line is 0
-};
+// A configuration that cannot be used: invalid_argument, field = where
+// ("file:line", or "file" when no line applies), detail = the whole line
+// ("file:line: what").
+jaus::Error config_error(std::string_view file, int line, std::string what);
 
-using ConfigResult = jaus::Expected<JausdConfig, ConfigError>;
+using ConfigResult = jaus::Expected<JausdConfig>;
 
 // Reads and checks a configuration file (parse, ranges, then validate()).
 // Never throws.

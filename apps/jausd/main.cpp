@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   if (!cl.config_path.empty()) {
     auto loaded = jausd::load_config_file(cl.config_path);
     if (!loaded) {
-      std::cerr << loaded.error().to_string() << "\n";
+      std::cerr << loaded.error().message() << "\n";
       return kExitBadInput;
     }
     config = std::move(*loaded);

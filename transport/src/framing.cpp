@@ -27,41 +27,59 @@ std::string_view to_string(DropReason reason) {
   return "unknown";
 }
 
-Expected<Unframed, FramingError> unframe(std::span<const std::uint8_t> datagram) {
+namespace {
+Error unframing_error(ErrorCode code, std::size_t offset, std::string detail) {
+  return Error{code, offset, {}, std::move(detail)};
+}
+}  // namespace
+
+Expected<Unframed> unframe(std::span<const std::uint8_t> datagram) {
   if (datagram.size() > kMaxDatagramSize)
-    return unexpected(FramingError{DropReason::oversized, std::to_string(datagram.size()) + " bytes, at most " +
-                                                              std::to_string(kMaxDatagramSize) + " are JAUS"});
+    return unexpected(unframing_error(ErrorCode::payload_too_large, kMaxDatagramSize,
+                                      std::to_string(datagram.size()) + " bytes, at most " +
+                                          std::to_string(kMaxDatagramSize) + " are JAUS"));
   Framing framing;
-  std::span<const std::uint8_t> message;
+  std::size_t prefix_size;
   if (datagram.size() >= kOpcPrefix.size() && std::equal(kOpcPrefix.begin(), kOpcPrefix.end(), datagram.begin())) {
     framing = Framing::opc;
-    message = datagram.subspan(kOpcPrefix.size());
+    prefix_size = kOpcPrefix.size();
   } else if (!datagram.empty() && datagram[0] == kJudpVersion) {
     if (datagram.size() < kJudpPrefixSize)
-      return unexpected(FramingError{DropReason::truncated, "JUDP prefix cut at " + std::to_string(datagram.size()) +
-                                                                " bytes"});
+      return unexpected(unframing_error(ErrorCode::truncated, datagram.size(),
+                                        "JUDP prefix cut at " + std::to_string(datagram.size()) + " bytes"));
     if (datagram[1] != 0 || datagram[2] != 0)
-      return unexpected(FramingError{DropReason::unknown_framing, "JUDP header compression is not supported"});
+      return unexpected(unframing_error(ErrorCode::bad_frame, 1, "JUDP header compression is not supported"));
     framing = Framing::judp;
-    message = datagram.subspan(kJudpPrefixSize);
+    prefix_size = kJudpPrefixSize;
     const std::size_t declared = (std::size_t{datagram[3]} << 8) | datagram[4];
-    if (declared != message.size())
-      return unexpected(FramingError{DropReason::length_mismatch, "JUDP length " + std::to_string(declared) +
-                                                                      ", datagram carries " +
-                                                                      std::to_string(message.size()) + " bytes"});
+    if (declared != datagram.size() - prefix_size)
+      return unexpected(unframing_error(ErrorCode::data_size_mismatch, 3,
+                                        "JUDP length " + std::to_string(declared) + ", datagram carries " +
+                                            std::to_string(datagram.size() - prefix_size) + " bytes"));
   } else {
-    return unexpected(FramingError{DropReason::unknown_framing, "neither \"JAUS01.0\" nor a JUDP prefix"});
+    return unexpected(unframing_error(ErrorCode::bad_frame, 0, "neither \"JAUS01.0\" nor a JUDP prefix"));
   }
+  const auto message = datagram.subspan(prefix_size);
   if (message.size() < kHeaderSize)
-    return unexpected(FramingError{DropReason::truncated, "message of " + std::to_string(message.size()) +
-                                                              " bytes, a header needs 16"});
+    return unexpected(unframing_error(ErrorCode::truncated, datagram.size(),
+                                      "message of " + std::to_string(message.size()) + " bytes, a header needs 16"));
   auto packet = decode_packet(message);
   if (!packet) {
-    const DropReason reason =
-        packet.error().code == ErrorCode::data_size_mismatch ? DropReason::length_mismatch : DropReason::bad_header;
-    return unexpected(FramingError{reason, packet.error().message()});
+    Error error = packet.error();
+    error.offset += prefix_size;  // in the datagram, not the message
+    return unexpected(std::move(error));
   }
   return Unframed{framing, *packet};
+}
+
+DropReason drop_reason(const Error& unframe_error) {
+  switch (unframe_error.code) {
+    case ErrorCode::payload_too_large: return DropReason::oversized;
+    case ErrorCode::truncated: return DropReason::truncated;
+    case ErrorCode::bad_frame: return DropReason::unknown_framing;
+    case ErrorCode::data_size_mismatch: return DropReason::length_mismatch;
+    default: return DropReason::bad_header;  // version, data size over 4080, data flag
+  }
 }
 
 FramePrefix frame_prefix(Framing framing, std::size_t message_size) {

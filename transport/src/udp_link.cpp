@@ -183,7 +183,7 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
   if (!allowed(from.address)) return drop(DropReason::not_allowed, from, "");
   if (!options_.bind.is_any() && from == options_.bind) return drop(DropReason::from_self, from, "");
   auto unframed = unframe(datagram);
-  if (!unframed) return drop(unframed.error().reason, from, unframed.error().detail);
+  if (!unframed) return drop(drop_reason(unframed.error()), from, unframed.error().message());
   const Header& header = unframed->packet.header;
   if (header.source.subsystem == options_.subsystem && header.source.node == options_.node) {
     // Our own broadcast looped back comes from our port; anything else with

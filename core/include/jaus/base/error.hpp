@@ -27,7 +27,7 @@ enum class ErrorCode : std::uint8_t {
   unknown_message,        // message code or type not in the message set
   output_too_small,       // encode buffer cannot hold the message
   payload_too_large,      // payload larger than one packet or frame can carry (detail: the limit)
-  bad_frame,              // bytes that are not one well-formed Clearpath frame
+  bad_frame,              // bytes that are not one well-formed frame (Clearpath; a JAUS datagram's framing)
   json,                   // JSON input malformed or of the wrong type
   // Everything else: the detail is the whole story, one line.
   io,                     // a socket, port or file cannot be opened, bound or used
@@ -45,7 +45,8 @@ bool has_position(ErrorCode code);
 struct Error {
   ErrorCode code{};
   std::size_t offset = 0;  // byte offset in the buffer being decoded/encoded (codec errors)
-  std::string field;       // field name or path ("latitude_deg", "voltages[2]"), empty if none
+  std::string field;       // field name or path ("latitude_deg", "voltages[2]"), empty if none; for other
+                           // errors what they concern, if anything (an option's key, "jausd.yaml:12")
   std::string detail;      // extra words (limits, the bad value); the whole message for other errors
 
   // One line. Codec errors: "offset 23, field 'latitude_deg': truncated (needs 4 bytes)";

@@ -45,13 +45,12 @@ struct Unframed {
   PacketView packet;  // header decoded, payload a view into the datagram
 };
 
-struct FramingError {
-  DropReason reason;
-  std::string detail;  // "JUDP length 40, datagram carries 36 bytes", ...
-};
-
-// Detects the framing, checks the framing's length and the JAUS header.
-Expected<Unframed, FramingError> unframe(std::span<const std::uint8_t> datagram);
+// Detects the framing, checks the framing's length and the JAUS header. An
+// error's offset is in the datagram ("offset 3: data size mismatch (JUDP
+// length 40, datagram carries 36 bytes)").
+Expected<Unframed> unframe(std::span<const std::uint8_t> datagram);
+// The counter an unframe() error counts in.
+DropReason drop_reason(const Error& unframe_error);
 
 // The bytes that go before a message of `message_size` bytes (header included).
 struct FramePrefix {
