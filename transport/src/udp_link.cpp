@@ -178,30 +178,49 @@ bool UdpLink::allowed(std::uint32_t address) const {
   return false;
 }
 
+template <class MakeDetail>
+void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, MakeDetail make_detail) {
+  count_drop(reason);
+  // The reason's name is a literal (to_string), so it can key the limiter.
+  repeated_lines_.write(to_string(reason), rt::LogLevel::warn, [&] {
+    const std::string detail = make_detail();
+    return "dropped a datagram from " + to_string(from) + ": " + std::string(to_string(reason)) +
+           (detail.empty() ? "" : " (" + detail + ")") + " [" +
+           std::to_string(counters_.dropped[static_cast<std::size_t>(reason)]) + " so far]";
+  });
+}
+
+void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from) {
+  drop(reason, from, [] { return std::string(); });
+}
+
 void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
   ++counters_.datagrams_received;
-  if (!allowed(from.address)) return drop(DropReason::not_allowed, from, "");
-  if (!options_.bind.is_any() && from == options_.bind) return drop(DropReason::from_self, from, "");
+  if (!allowed(from.address)) return drop(DropReason::not_allowed, from);
+  if (!options_.bind.is_any() && from == options_.bind) return count_drop(DropReason::from_self);
   auto unframed = unframe(datagram);
-  if (!unframed) return drop(drop_reason(unframed.error()), from, unframed.error().message());
+  if (!unframed) return drop(drop_reason(unframed.error()), from, [&] { return unframed.error().message(); });
   const Header& header = unframed->packet.header;
   if (header.source.subsystem == options_.subsystem && header.source.node == options_.node) {
     // Our own broadcast looped back comes from our port; anything else with
     // our ID is a misconfigured peer, which the operator must hear about.
     const bool ours = from.port == local_port_ && (options_.bind.is_any() || from.address == options_.bind.address);
-    return drop(DropReason::from_self, from, ours ? "" : "another node uses this node's ID " + header.source.to_string());
+    if (ours) return count_drop(DropReason::from_self);
+    return drop(DropReason::from_self, from,
+                [&] { return "another node uses this node's ID " + header.source.to_string(); });
   }
   // Nothing is learnt from, nor delivered for, a source that cannot answer.
   if (!header.source.is_valid() || header.source.is_broadcast())
-    return drop(DropReason::invalid_source, from, "source " + header.source.to_string());
+    return drop(DropReason::invalid_source, from, [&] { return "source " + header.source.to_string(); });
   const Learnt learnt =
       routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
   auto node = [&] { return std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node); };
   if (learnt == Learnt::claim_refused) {
-    const auto route = routes_.route(header.source.subsystem, header.source.node);
-    return drop(DropReason::route_claim, from,
-                "node " + node() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
-                    "; spoofed, or two peers with one ID");
+    return drop(DropReason::route_claim, from, [&] {
+      const auto route = routes_.route(header.source.subsystem, header.source.node);
+      return "node " + node() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
+             "; spoofed, or two peers with one ID";
+    });
   }
   if (learnt == Learnt::new_route || learnt == Learnt::moved) {
     // A move is a restarted peer (same host, or its old endpoint silent) or a
@@ -214,18 +233,6 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
   }
   ++counters_.packets_delivered;
   if (handler_) handler_(unframed->packet, unframed->framing);
-}
-
-void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail) {
-  const auto index = static_cast<std::size_t>(reason);
-  ++counters_.dropped[index];
-  // Own multicast coming back is expected, not worth a line.
-  if (reason == DropReason::from_self && detail.empty()) return;
-  // The reason's name is a literal (to_string), so it can key the limiter.
-  repeated_lines_.write(to_string(reason), rt::LogLevel::warn, [&] {
-    return "dropped a datagram from " + to_string(from) + ": " + std::string(to_string(reason)) +
-           (detail.empty() ? "" : " (" + detail + ")") + " [" + std::to_string(counters_.dropped[index]) + " so far]";
-  });
 }
 
 void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {

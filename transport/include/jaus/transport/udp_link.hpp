@@ -100,7 +100,14 @@ class UdpLink final : public node::Link {
   Expected<bool> bind_sockets();
   void receive_next(Socket& socket);
   void on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
-  void drop(DropReason reason, const Ipv4Endpoint& from, const std::string& detail);
+  // Counts a dropped datagram and writes its line, limited per reason; the
+  // detail ("source 0.1.1.1") is built only for a line that is written, not
+  // per datagram of a flood. (Defined and used in udp_link.cpp only.)
+  template <class MakeDetail>
+  void drop(DropReason reason, const Ipv4Endpoint& from, MakeDetail make_detail);
+  void drop(DropReason reason, const Ipv4Endpoint& from);
+  // Counts a drop that is expected and worth no line (our multicast coming back).
+  void count_drop(DropReason reason) { ++counters_.dropped[static_cast<std::size_t>(reason)]; }
   bool allowed(std::uint32_t address) const;
   void schedule_expiry();
 
