@@ -1,6 +1,8 @@
 // `jausctl control`: granted, held past the component's controller timeout
 // (its liveness checks are answered), released on exit; a takeover or a
-// refusal is reported.
+// refusal is reported. On the real clock, each test acts on what it has seen
+// (a state shown, enough checks answered), never at a fixed time; the
+// liveness rule itself is timed under virtual time (tests/runtime/control_test.cpp).
 #include "jaus/ocu/control_hold.hpp"
 #include "ocu_fixture.hpp"
 
@@ -11,8 +13,11 @@ const jaus::Address kOcuB{254, 2, 40, 1};
 
 class ControlTest : public OcuTest {
  protected:
-  // A short controller timeout: the component checks its controller every 100 ms.
-  void SetUp() override { start_target(TargetOptions{300ms, false}); }
+  // The component checks its controller every 0.5 s. Long enough that only a
+  // stall of this process for about a second could make it drop a controller
+  // that answers; short enough to hold past it quickly.
+  static constexpr jaus::rt::Duration kControllerTimeout = 1500ms;
+  void SetUp() override { start_target(TargetOptions{kControllerTimeout, false}); }
 
   std::optional<jaus::Address> controller() const {
     const auto& c = target->communicator().control().controller();
@@ -30,10 +35,12 @@ TEST_F(ControlTest, GrantedHeldPastTheControllerTimeoutAndReleased) {
   EXPECT_EQ(ocu::control_request_text(requested, kCommunicator, 5), "control of 1.1.35.1 granted (authority 5)");
   EXPECT_EQ(controller(), ocu->self());
 
-  // Three controller timeouts: without answers to its liveness checks the component would drop us.
-  EXPECT_EQ(control.hold(900ms), ocu::ControlHold::End::time_up);
+  // The fourth check comes a third of a timeout past the controller timeout: had
+  // the first three gone unanswered, the component would have dropped us instead.
+  once([&] { return control.liveness_checks() >= 4; }, [&] { ocu->interrupt(); });
+  EXPECT_EQ(control.hold(30s), ocu::ControlHold::End::interrupted);
   EXPECT_EQ(controller(), ocu->self());
-  EXPECT_GE(control.liveness_checks(), 3u);
+  EXPECT_GE(control.liveness_checks(), 4u);
 
   control.release();
   ASSERT_TRUE(run_until([&] { return !controller(); }));
@@ -45,7 +52,8 @@ TEST_F(ControlTest, CommandHoldsForAWhileThenReleases) {
   ocu::ControlOptions options;
   options.target = kCommunicator;
   options.authority = 7;
-  options.hold_for = 700ms;
+  // Long enough for the first status report (due at once) on any machine.
+  options.hold_for = 2s;
   ASSERT_EQ(ocu::run_control(*ocu, options, io()), kExitOk) << err.str();
   const auto lines = out_lines();
   ASSERT_EQ(lines.size(), 3u) << out.str();
@@ -63,12 +71,14 @@ TEST_F(ControlTest, StateChangesWhileHeldAreShown) {
   auto ocu = open_ocu();
   auto other = open_ocu(kOcuB);
   ASSERT_TRUE(ocu && other);
-  target->runtime().call_at(target->runtime().now() + 400ms,
-                            [&] { other->send(kCommunicator, jaus::msg::SetEmergency{{1}}); });
+  // Emergency once Ready is shown; the hold ends once the change is shown.
+  once([&] { return out_has("1.1.35.1: state Ready\n"); },
+       [&] { other->send(kCommunicator, jaus::msg::SetEmergency{{1}}); });
+  once([&] { return out_has("Ready -> Emergency"); }, [&] { ocu->interrupt(); });
   ocu::ControlOptions options;
   options.target = kCommunicator;
   options.authority = 7;
-  options.hold_for = 1200ms;
+  options.hold_for = 30s;  // only if the change never shows
   ASSERT_EQ(ocu::run_control(*ocu, options, io()), kExitOk) << err.str();
   EXPECT_NE(out.str().find("1.1.35.1: state Ready\n1.1.35.1: state Ready -> Emergency\n"), std::string::npos)
       << out.str();
@@ -80,9 +90,9 @@ TEST_F(ControlTest, ANodeThatFallsSilentEndsTheHold) {
   ocu::ControlHold control(*ocu, kCommunicator, 5, 600ms);
   ASSERT_EQ(control.request(1s).outcome, ocu::ControlHold::Outcome::granted);
   std::vector<std::string> states;
-  // The node goes quiet once its first status reports have come.
-  target->runtime().call_at(target->runtime().now() + 400ms, [&] { target->go_silent(); });
-  EXPECT_EQ(control.hold(5s, [&](const std::string& s) { states.push_back(s); }), ocu::ControlHold::End::silent);
+  // The node goes quiet once its first status report has come.
+  once([&] { return !states.empty(); }, [&] { target->go_silent(); });
+  EXPECT_EQ(control.hold(30s, [&](const std::string& s) { states.push_back(s); }), ocu::ControlHold::End::silent);
   ASSERT_FALSE(states.empty());
   EXPECT_EQ(states.front(), "Ready");
 }
@@ -90,8 +100,8 @@ TEST_F(ControlTest, ANodeThatFallsSilentEndsTheHold) {
 TEST_F(ControlTest, AnInterruptReleases) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
-  // What SIGINT does: interrupt the session while it holds control.
-  target->runtime().call_at(target->runtime().now() + 500ms, [&] { ocu->interrupt(); });
+  // What SIGINT does: interrupt the session while it holds control (once the state is shown).
+  once([&] { return out_has("1.1.35.1: state Ready\n"); }, [&] { ocu->interrupt(); });
   ocu::ControlOptions options;
   options.target = kCommunicator;
   options.authority = 7;
@@ -104,13 +114,13 @@ TEST_F(ControlTest, AHigherAuthorityTakeoverIsReportedAsLost) {
   auto a = open_ocu();
   auto b = open_ocu(kOcuB);
   ASSERT_TRUE(a && b);
-  // B asks for control with a higher authority while A holds it.
-  target->runtime().call_at(target->runtime().now() + 400ms,
-                            [&] { b->send(kCommunicator, jaus::msg::RequestComponentControl{{10}}); });
+  // B asks for control with a higher authority while A holds it (and has shown its state).
+  once([&] { return out_has("1.1.35.1: state Ready\n"); },
+       [&] { b->send(kCommunicator, jaus::msg::RequestComponentControl{{10}}); });
   ocu::ControlOptions options;
   options.target = kCommunicator;
   options.authority = 5;
-  options.hold_for = 3s;
+  options.hold_for = 30s;  // only if B never takes over
   EXPECT_EQ(ocu::run_control(*a, options, io()), kExitFailure);
   EXPECT_EQ(out.str(), "control of 1.1.35.1 granted (authority 5)\n1.1.35.1: state Ready\n");
   const std::string e = err.str();
@@ -139,7 +149,7 @@ TEST_F(ControlTest, ALowerAuthorityIsRefusedWithTheResponseCode) {
 }
 
 TEST_F(ControlTest, ARejectAsTheAnswerIsARefusal) {
-  start_target(TargetOptions{300ms, true});
+  start_target(TargetOptions{kControllerTimeout, true});
   auto a = open_ocu();
   auto b = open_ocu(kOcuB);
   ASSERT_TRUE(a && b);

@@ -2,6 +2,10 @@
 // drives both, single-threaded, over real loopback sockets.
 #pragma once
 
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <boost/asio/steady_timer.hpp>
+#include <list>
 #include <sstream>
 
 #include "ocu/ocu_commands.hpp"
@@ -33,9 +37,10 @@ class OcuTest : public ::testing::Test {
     return std::move(*session);
   }
 
-  // Runs the shared io_context (so the target works) until `done` or 2 s.
+  // Runs the shared io_context (so the target works) until `done` or 10 s:
+  // generous, since a loaded 2-core machine under ASan can stall this process.
   bool run_until(const std::function<bool()>& done) {
-    const auto deadline = std::chrono::steady_clock::now() + 2s;
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
     while (!done()) {
       if (std::chrono::steady_clock::now() > deadline) return false;
       if (context.stopped()) context.restart();
@@ -44,7 +49,15 @@ class OcuTest : public ::testing::Test {
     return true;
   }
 
+  // Runs `action` once `condition` holds, looked at every 10 ms while the
+  // io_context runs (a command runs it): a test acts on what has happened
+  // (a state shown, a report in), not at a time by which it should have.
+  void once(std::function<bool()> condition, std::function<void()> action) {
+    poll(pollers_.emplace_back(context), std::move(condition), std::move(action));
+  }
+
   ocu::CommandIo io() { return ocu::CommandIo{out, err}; }
+  bool out_has(const std::string& text) const { return out.str().find(text) != std::string::npos; }
   std::vector<std::string> out_lines() const {
     std::vector<std::string> lines;
     std::istringstream in(out.str());
@@ -56,6 +69,18 @@ class OcuTest : public ::testing::Test {
   std::unique_ptr<TargetNode> target;
   std::ostringstream out;
   std::ostringstream err;
+
+ private:
+  void poll(boost::asio::steady_timer& timer, std::function<bool()> condition, std::function<void()> action) {
+    timer.expires_after(10ms);
+    timer.async_wait([this, &timer, condition = std::move(condition),
+                      action = std::move(action)](const boost::system::error_code& ec) mutable {
+      if (ec) return;
+      if (condition()) return action();
+      poll(timer, std::move(condition), std::move(action));
+    });
+  }
+  std::list<boost::asio::steady_timer> pollers_;  // declared after the io_context: gone before it
 };
 
 }  // namespace jausctl::test
