@@ -1,9 +1,19 @@
-// Round trip and throughput of a real jausd on loopback, next to a bare UDP
-// echo measured in the same run (what the kernel and the loop cost alone).
+// Round trip and throughput of a real jausd on loopback, next to bare UDP
+// echoes measured in the same run (what the kernel and a loop cost alone).
 //   1. Query Component Status -> Report Component Status, one at a time:
-//      p50 / p99 / max over N queries (default 10,000);
-//   2. the same with a bare UDP echo thread;
+//      p50 / p99 / max over N queries (default 10,000), after 2,000 not
+//      counted (routes learnt, caches and the scheduler settled);
+//   2. the same with a blocking echo (a thread asleep in recvfrom, woken by
+//      each datagram as jausd's event loop is) and a busy-polling echo (a
+//      thread spinning on its socket: the floor, no wake-up at all);
 //   3. queries per second jausd answers with up to 32 in flight, for 3 s.
+// Where the kernel wakes a sleeping server decides most of a round trip: on
+// the client's core it is a context switch, on the other core an
+// inter-processor wake-up out of idle (some 15 us more). Left to itself the
+// scheduler switches between the two within a run, so 1 and 2 are measured
+// with the client and the server pinned both ways (one core, two cores), and
+// once unpinned, as a user would run it; jausd is compared with the echo in
+// the same placement.
 // jausd is started as a child process on 127.0.0.90:3794 (its own loopback
 // address, so a jausd already running on 127.0.0.1 is left alone).
 // Usage: bench_node_udp [queries] [path to jausd]. Prints figures; not a test.
@@ -15,6 +25,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <pthread.h>
+#include <sched.h>
 #include <signal.h>
 #include <spawn.h>
 #include <string>
@@ -36,6 +49,7 @@ using namespace std::chrono_literals;
 
 const char* kNodeAddress = "127.0.0.90";
 const char* kEchoAddress = "127.0.0.91";
+constexpr int kWarmUp = 2000;
 
 std::vector<std::uint8_t> query_status_datagram(std::uint16_t sequence) {
   jaus::Header h;
@@ -52,6 +66,30 @@ std::vector<std::uint8_t> query_status_datagram(std::uint16_t sequence) {
 bool is_status_report(std::span<const std::uint8_t> datagram) {
   auto unframed = jaus::transport::unframe(datagram);
   return unframed && unframed->packet.header.command_code == jaus::msg::ReportComponentStatus::code;
+}
+
+cpu_set_t cpus(int cpu) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (cpu < 0) {
+    for (int c = 0; c < CPU_SETSIZE; ++c) CPU_SET(c, &set);  // unpinned: the kernel keeps what exists
+  } else {
+    CPU_SET(cpu, &set);
+  }
+  return set;
+}
+
+// Every thread of the process (jausd has its event loop and its log drain).
+void pin_process(pid_t pid, int cpu) {
+  const cpu_set_t set = cpus(cpu);
+  std::error_code ec;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task", ec))
+    sched_setaffinity(std::stoi(task.path().filename().string()), sizeof(set), &set);
+}
+
+void pin_thread(pthread_t thread, int cpu) {
+  const cpu_set_t set = cpus(cpu);
+  pthread_setaffinity_np(thread, sizeof(set), &set);
 }
 
 struct Figures {
@@ -155,12 +193,57 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  // The bare echo: the same datagrams bounced by a thread doing nothing else.
+  // The echoes: the same datagrams bounced by threads doing nothing else.
   std::atomic<bool> stop{false};
   udp::socket echo(io, udp::endpoint(asio::ip::make_address_v4(kEchoAddress), 0));
   echo.non_blocking(true);
   const udp::endpoint echo_at = echo.local_endpoint();
-  std::thread echo_thread([&] {
+  udp::socket blocking_echo(io, udp::endpoint(asio::ip::make_address_v4(kEchoAddress), 0));
+  const udp::endpoint blocking_echo_at = blocking_echo.local_endpoint();
+  std::thread blocking_echo_thread([&] {
+    std::array<std::uint8_t, 9000> buffer{};
+    while (true) {
+      udp::endpoint from;
+      boost::system::error_code ec;
+      const std::size_t size = blocking_echo.receive_from(asio::buffer(buffer), from, 0, ec);
+      if (ec || size == 0) return;  // an empty datagram ends it
+      blocking_echo.send_to(asio::buffer(buffer.data(), size), from, 0, ec);
+    }
+  });
+
+  auto measure = [&](const char* what, const udp::endpoint& to, bool expect_status) {
+    round_trips(client, to, kWarmUp, expect_status);
+    const Figures f = round_trips(client, to, count, expect_status);
+    print(what, f, count);
+    return f;
+  };
+  auto ratio = [](const Figures& of_node, const Figures& of_echo) {
+    std::printf("  jausd / blocking echo:            p50 %.1fx   p99 %.1fx\n", of_node.p50_us / of_echo.p50_us,
+                of_node.p99_us / of_echo.p99_us);
+  };
+  const bool two_cores = std::thread::hardware_concurrency() >= 2;
+  std::printf("round trip over loopback, %d queries each (busy-polling client, %d not counted first):\n", count,
+              kWarmUp);
+
+  const int server_cores[] = {0, 1, -1};
+  const char* placements[] = {"client and server on one core", "client and server on two cores",
+                              "unpinned (the scheduler's choice)"};
+  Figures node_on_two_cores;
+  for (int p = 0; p < 3; ++p) {
+    if (server_cores[p] == 1 && !two_cores) continue;
+    pin_thread(pthread_self(), server_cores[p] < 0 ? -1 : 0);
+    pin_process(child, server_cores[p]);
+    pin_thread(blocking_echo_thread.native_handle(), server_cores[p]);
+    std::printf("%s:\n", placements[p]);
+    const Figures node_figures = measure("  jausd Query/Report Status", node, true);
+    const Figures echo_figures = measure("  blocking UDP echo", blocking_echo_at, false);
+    ratio(node_figures, echo_figures);
+    if (server_cores[p] == 1) node_on_two_cores = node_figures;
+  }
+  // The floor, measured last: a spinning thread beside the others would
+  // take a core from them.
+  std::printf("floor, echo spinning on another core:\n");
+  std::thread spinning_echo([&] {
     std::array<std::uint8_t, 9000> buffer{};
     while (!stop) {
       udp::endpoint from;
@@ -169,12 +252,18 @@ int main(int argc, char** argv) {
       if (!ec) echo.send_to(asio::buffer(buffer.data(), size), from, 0, ec);
     }
   });
-
-  std::printf("round trip over loopback, %d queries each (busy-polling client):\n", count);
-  print("jausd Query/Report Component Status", round_trips(client, node, count, true), count);
-  print("bare UDP echo", round_trips(client, echo_at, count, false), count);
+  pin_thread(pthread_self(), 0);
+  pin_thread(spinning_echo.native_handle(), two_cores ? 1 : 0);
+  const Figures floor = measure("  busy-polling UDP echo", echo_at, false);
+  if (two_cores)
+    std::printf("  jausd on two cores / floor:       p50 %.1fx   p99 %.1fx\n", node_on_two_cores.p50_us / floor.p50_us,
+                node_on_two_cores.p99_us / floor.p99_us);
   stop = true;
-  echo_thread.join();
+  spinning_echo.join();
+  client.send_to(asio::buffer(query_status_datagram(0).data(), 0), blocking_echo_at);
+  blocking_echo_thread.join();
+  pin_thread(pthread_self(), -1);
+  pin_process(child, -1);
 
   std::printf("jausd answers %.0f Query Component Status per second (32 in flight, 3 s)\n",
               queries_per_second(client, node, 3s));

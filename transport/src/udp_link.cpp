@@ -3,6 +3,8 @@
 #include <boost/asio/ip/multicast.hpp>
 #include <numeric>
 
+#include "handler_memory.hpp"
+
 namespace jaus::transport {
 
 namespace asio = boost::asio;
@@ -38,6 +40,8 @@ struct UdpLink::Socket {
   explicit Socket(asio::io_context& io) : socket(io) {}
   udp::socket socket;
   udp::endpoint sender;
+  // The one outstanding receive's operation (and one being freed) lives here.
+  std::shared_ptr<detail::HandlerMemory> receive_memory = std::make_shared<detail::HandlerMemory>(2, 512);
   // One byte more than any JAUS datagram, so a larger one shows as oversized
   // instead of being silently cut to a plausible length.
   std::array<std::uint8_t, kMaxDatagramSize + 1> buffer{};
@@ -160,15 +164,15 @@ void UdpLink::schedule_expiry() {
 }
 
 void UdpLink::receive_next(Socket& socket) {
+  auto on_received = [this, &socket, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec,
+                                                                         std::size_t size) {
+    if (alive.expired() || ec == asio::error::operation_aborted || closed_) return;
+    if (!ec) on_datagram(from_asio(socket.sender), std::span(socket.buffer).first(size));
+    // Other errors (ICMP unreachable reported on the socket) are transient.
+    receive_next(socket);
+  };
   socket.socket.async_receive_from(asio::buffer(socket.buffer), socket.sender,
-                                   [this, &socket, alive = std::weak_ptr<int>(alive_)](
-                                       const boost::system::error_code& ec, std::size_t size) {
-                                     if (alive.expired() || ec == asio::error::operation_aborted || closed_) return;
-                                     if (!ec)
-                                       on_datagram(from_asio(socket.sender), std::span(socket.buffer).first(size));
-                                     // Other errors (ICMP unreachable reported on the socket) are transient.
-                                     receive_next(socket);
-                                   });
+                                   detail::with_memory(socket.receive_memory, std::move(on_received)));
 }
 
 bool UdpLink::allowed(std::uint32_t address) const {

@@ -160,7 +160,7 @@ void Node::receive(const PacketView& packet) {
   auto assembled = assembler_.feed(h, packet.payload, now);
   switch (assembled.status) {
     case AssemblyStatus::single:
-      enqueue(Inbound{h, {packet.payload.begin(), packet.payload.end()}, Address{}});
+      enqueue(Inbound{h, copy_payload(packet.payload), Address{}});
       return;
     case AssemblyStatus::complete:
       enqueue(Inbound{assembled.message->first_header, std::move(assembled.message->payload), Address{}});
@@ -220,7 +220,26 @@ void Node::drain() {
       });
     }
     if (h.ack_nak == AckNak::ack_requested && message->exclude == Address{}) answer_ack_request(h, delivered);
+    recycle_payload(std::move(message->payload));
   }
+}
+
+std::vector<std::uint8_t> Node::copy_payload(std::span<const std::uint8_t> payload) {
+  std::vector<std::uint8_t> copy;
+  if (!spare_payloads_.empty()) {
+    copy = std::move(spare_payloads_.back());
+    spare_payloads_.pop_back();
+  }
+  copy.assign(payload.begin(), payload.end());  // within the spare's capacity once traffic has been seen
+  return copy;
+}
+
+void Node::recycle_payload(std::vector<std::uint8_t> payload) {
+  // Large data sets' buffers are not kept: the spares stay a few kilobytes.
+  if (payload.capacity() == 0 || payload.capacity() > kMaxPayloadSize || spare_payloads_.size() >= kSparePayloads)
+    return;
+  payload.clear();
+  spare_payloads_.push_back(std::move(payload));
 }
 
 void Node::answer_ack_request(const Header& h, bool delivered) {
@@ -240,7 +259,7 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
   // Service connection reports carry their own per-SC sequence numbers.
   if (!h.service_connection) h.sequence = sequences_.take({h.source, h.destination});
   if (is_local(h.destination) && local_matches(h.destination, h.source) > 0)
-    enqueue(Inbound{h, {payload.begin(), payload.end()}, h.source});
+    enqueue(Inbound{h, copy_payload(payload), h.source});
   if (!reaches_elsewhere(h.destination)) return;
   if (h.ack_nak == AckNak::ack_requested && payload.size() > kMaxPayloadSize) {
     // An ACK answers one packet; a large data set is not tracked as a whole.

@@ -172,6 +172,9 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
   if (it == handlers_.end()) {
     if (unhandled(header, payload)) return;
     ++counters_.unsupported;
+    // A broadcast reaches every component, most of which have no use for it
+    // (the node manager's own heartbeat, each second): counted, not a line.
+    if (header.destination.is_broadcast()) return;
     log_repeated("unsupported messages ignored", LogLevel::debug, [&] {
       return "ignored unsupported message 0x" + wire::detail::hex_u32(header.command_code) + " from " +
              header.source.to_string();

@@ -162,14 +162,14 @@ void ServiceConnectionProvider::fire(const Key& key) {
     return;
   }
   const auto& provided = provided_.at(key.code);
-  if (auto payload = provided.produce(c.presence)) {
+  if (provided.produce(c.presence, report_buffer_)) {
     Header h;
     h.command_code = key.code;
     h.destination = key.requester;
     h.source = self_;
     h.service_connection = true;
     h.sequence = c.sequence++;
-    send_(h, *payload);
+    send_(h, report_buffer_);
     ++counters_.reports_sent;
   }
   ++c.sent;

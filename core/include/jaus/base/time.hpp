@@ -5,7 +5,8 @@
 
 #include <chrono>
 #include <cstdint>
-#include <functional>
+
+#include "jaus/base/callback.hpp"
 
 namespace jaus::rt {
 
@@ -28,18 +29,20 @@ using TimerId = std::uint64_t;
 inline constexpr TimerId kNoTimer = 0;
 
 // Runs callbacks at given times on the runtime's single thread of execution.
+// A Callback keeps a small capture (`this`, a key, a weak_ptr) in place: a
+// timer set or work posted per message allocates nothing.
 class Scheduler {
  public:
   virtual ~Scheduler() = default;
   // Calls `fn` once at `when` (or as soon as possible if `when` has passed).
-  virtual TimerId call_at(TimePoint when, std::function<void()> fn) = 0;
+  virtual TimerId call_at(TimePoint when, Callback fn) = 0;
   // Cancels a pending call; a no-op for ids that already ran or were cancelled.
   virtual void cancel(TimerId id) = 0;
   // Calls `fn` soon, after the current handler, without arming a timer: for
   // work each incoming message triggers (a node draining its queue), where a
   // timer per message would cost a system call. Cannot be cancelled: `fn`
   // must check that what it works on still exists.
-  virtual void post(std::function<void()> fn) { call_at(TimePoint::min(), std::move(fn)); }
+  virtual void post(Callback fn) { call_at(TimePoint::min(), std::move(fn)); }
 };
 
 }  // namespace jaus::rt

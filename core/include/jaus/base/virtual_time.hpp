@@ -16,7 +16,7 @@ class VirtualTime final : public Clock, public Scheduler {
   TimePoint now() const override { return now_; }
   UtcTime utc_now() const override { return utc_origin_ + now_.time_since_epoch(); }
 
-  TimerId call_at(TimePoint when, std::function<void()> fn) override {
+  TimerId call_at(TimePoint when, Callback fn) override {
     const TimerId id = ++last_id_;
     // Ordered by time, then by scheduling order: equal times run FIFO.
     queue_.emplace(Key{when < now_ ? now_ : when, id}, std::move(fn));
@@ -60,7 +60,7 @@ class VirtualTime final : public Clock, public Scheduler {
   TimePoint now_{};
   UtcTime utc_origin_;
   TimerId last_id_ = kNoTimer;
-  std::map<Key, std::function<void()>> queue_;
+  std::map<Key, Callback> queue_;
 };
 
 }  // namespace jaus::rt

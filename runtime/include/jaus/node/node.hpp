@@ -119,6 +119,10 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   std::size_t local_matches(const Address& destination, const Address& exclude) const;
   void enqueue(Inbound message);
   void drain();
+  // Payload buffers of dispatched messages are used again for the next ones:
+  // copying an inbound payload allocates nothing in steady state.
+  std::vector<std::uint8_t> copy_payload(std::span<const std::uint8_t> payload);
+  void recycle_payload(std::vector<std::uint8_t> payload);
   void transmit(const Header& header, std::span<const std::uint8_t> payload);
   void answer_ack_request(const Header& header, bool delivered);
   void schedule_housekeeping();
@@ -134,6 +138,12 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   rt::Component* configuration_holder_ = nullptr;  // the component that is the observer
   rt::ConfigurationObserver* configuration_observer_ = nullptr;
   PriorityQueue<Inbound> inbound_;
+  static constexpr std::size_t kSparePayloads = 32;
+  std::vector<std::vector<std::uint8_t>> spare_payloads_ = [] {
+    std::vector<std::vector<std::uint8_t>> spares;
+    spares.reserve(kSparePayloads);
+    return spares;
+  }();
   bool drain_posted_ = false;
   std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);  // expires with the node
   rt::TimerId housekeeping_timer_ = rt::kNoTimer;

@@ -8,9 +8,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "jaus/core/header.hpp"
 
@@ -19,6 +19,42 @@ namespace jaus::node {
 inline constexpr std::uint8_t kPriorityLevels = 16;
 
 inline bool is_safety_critical(std::uint8_t priority) { return priority >= priority::kSafetyCritical; }
+
+// First in, first out over a ring that grows and never shrinks: once it has
+// grown to the traffic's bursts, pushing and popping allocate nothing (a
+// std::deque frees and allocates a block every few messages).
+template <class T>
+class Fifo {
+ public:
+  bool empty() const { return size_ == 0; }
+  T& front() { return slots_[head_]; }
+  void push_back(T item) {
+    if (size_ == slots_.size()) grow();
+    slots_[(head_ + size_) % slots_.size()] = std::move(item);
+    ++size_;
+  }
+  // What stays in the slot is a moved-from T (an empty vector holds nothing).
+  void pop_front() {
+    head_ = (head_ + 1) % slots_.size();
+    --size_;
+  }
+  void clear() {
+    slots_.assign(slots_.size(), T{});
+    head_ = size_ = 0;
+  }
+
+ private:
+  void grow() {
+    std::vector<T> bigger(slots_.empty() ? 8 : slots_.size() * 2);
+    for (std::size_t i = 0; i < size_; ++i) bigger[i] = std::move(slots_[(head_ + i) % slots_.size()]);
+    slots_.swap(bigger);
+    head_ = 0;
+  }
+
+  std::vector<T> slots_;
+  std::size_t head_ = 0;
+  std::size_t size_ = 0;
+};
 
 template <class T>
 class PriorityQueue {
@@ -117,7 +153,7 @@ class PriorityQueue {
 
   std::size_t capacity_;
   std::size_t size_ = 0;
-  std::array<std::deque<T>, kPriorityLevels> levels_;
+  std::array<Fifo<T>, kPriorityLevels> levels_;
   Counters counters_;
 };
 

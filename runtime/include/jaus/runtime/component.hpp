@@ -200,27 +200,27 @@ class Component {
   template <class M>
   void provide_if(std::uint32_t available_presence, std::function<std::optional<M>()> produce,
                   double max_rate_hz = 0) {
-    services_.provide(M::code, available_presence,
-                      [this, produce = std::move(produce)](std::uint32_t mask)
-                          -> std::optional<std::vector<std::uint8_t>> {
-                        std::optional<M> report = produce();
-                        if (!report) return std::nullopt;
-                        wire::mask_presence(*report, mask);
-                        std::vector<std::uint8_t> payload(kMaxPayloadSize);
-                        auto size = wire::encode_payload(*report, payload);
-                        if (!size && size.error().code == ErrorCode::output_too_small) {
-                          payload.resize(kMaxLargeDataSetSize);  // the node sends a large data set
-                          size = wire::encode_payload(*report, payload);
-                        }
-                        if (!size) {
-                          log(LogLevel::error, std::string("cannot encode ") + std::string(M::name) + ": " +
-                                                   size.error().message());
-                          return std::nullopt;
-                        }
-                        payload.resize(*size);
-                        return payload;
-                      },
-                      max_rate_hz);
+    services_.provide(
+        M::code, available_presence,
+        [this, produce = std::move(produce)](std::uint32_t mask, std::vector<std::uint8_t>& payload) {
+          std::optional<M> report = produce();
+          if (!report) return false;
+          wire::mask_presence(*report, mask);
+          // The provider's buffer, reused: a report period allocates nothing.
+          if (payload.size() < kMaxPayloadSize) payload.resize(kMaxPayloadSize);
+          auto size = wire::encode_payload(*report, payload);
+          if (!size && size.error().code == ErrorCode::output_too_small) {
+            payload.resize(kMaxLargeDataSetSize);  // the node sends a large data set
+            size = wire::encode_payload(*report, payload);
+          }
+          if (!size) {
+            log(LogLevel::error, std::string("cannot encode ") + std::string(M::name) + ": " + size.error().message());
+            return false;
+          }
+          payload.resize(*size);
+          return true;
+        },
+        max_rate_hz);
   }
 
   // The fields of input `code` this component acts on (a command) or can

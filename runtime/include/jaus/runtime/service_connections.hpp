@@ -52,8 +52,10 @@ struct ServiceConnectionCounters {
 
 class ServiceConnectionProvider {
  public:
-  // Produces the payload of a report for the given presence mask.
-  using Producer = std::function<std::optional<std::vector<std::uint8_t>>(std::uint32_t presence_mask)>;
+  // Writes the payload of a report for the given presence mask into
+  // `payload` (the provider's buffer, resized to it); false: nothing to send
+  // this period.
+  using Producer = std::function<bool(std::uint32_t presence_mask, std::vector<std::uint8_t>& payload)>;
   // Sends one SC message (header prepared by the provider: SC flag, sequence).
   using Send = std::function<void(Header header, std::span<const std::uint8_t> payload)>;
   // Asks the component whether `who` may command it with `code` (command SCs).
@@ -139,6 +141,7 @@ class ServiceConnectionProvider {
   std::map<std::uint16_t, Provided> provided_;
   std::vector<std::uint16_t> command_codes_;
   std::map<Key, Connection> connections_;
+  std::vector<std::uint8_t> report_buffer_;  // every report's payload, written in place
   ServiceConnectionCounters counters_;
   RepeatedLines lines_;  // a create/terminate loop is a few lines and a count
 };
