@@ -1,5 +1,9 @@
 #include "logging.hpp"
 
+#include <cstdlib>
+#include <future>
+#include <thread>
+
 #include <spdlog/async.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
@@ -32,8 +36,23 @@ jaus::rt::LogFn log_function(std::shared_ptr<spdlog::logger> logger) {
 }
 
 LogDrain::~LogDrain() {
-  // The queued lines (the last ones say how the node stopped) are written out.
-  spdlog::shutdown();
+  // The queued lines (the last ones say how the node stopped) are written out
+  // by spdlog::shutdown, which waits for the logging thread; that thread may
+  // be blocked for good in a write. The node's stop paths have run by now
+  // (NodeHost::run: platform commanded to stop), so after the limit the
+  // process leaves without the lines; nothing can be said on stderr, which is
+  // what is stalled.
+  std::promise<void> done;
+  std::future<void> drained = done.get_future();
+  std::thread drainer([&done] {
+    spdlog::shutdown();
+    done.set_value();
+  });
+  if (drained.wait_for(kLogDrainLimit) == std::future_status::ready) {
+    drainer.join();
+    return;
+  }
+  std::_Exit(code_);
 }
 
 }  // namespace jausd

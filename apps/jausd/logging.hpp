@@ -2,6 +2,7 @@
 // runtime's LogFn feeding it.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string_view>
 
@@ -16,12 +17,26 @@ std::shared_ptr<spdlog::logger> make_logger(std::string_view level);
 jaus::rt::LogFn log_function(std::shared_ptr<spdlog::logger> logger);
 
 // Held by main from make_logger on: when main returns, what is still queued
-// is written out before the process exits.
-struct LogDrain {
+// is written out before the process exits, for at most kLogDrainLimit. An
+// output nobody reads (a full pipe, a stopped terminal) does not keep a node
+// that has stopped from exiting: it exits with the code main returned through
+// exiting_with(), without its last lines.
+inline constexpr std::chrono::seconds kLogDrainLimit{5};
+
+class LogDrain {
+ public:
   LogDrain() = default;
   LogDrain(const LogDrain&) = delete;
   LogDrain& operator=(const LogDrain&) = delete;
   ~LogDrain();
+
+  int exiting_with(int code) {
+    code_ = code;
+    return code;
+  }
+
+ private:
+  int code_ = 1;  // main left without saying (an exception)
 };
 
 }  // namespace jausd

@@ -85,13 +85,13 @@ int main(int argc, char** argv) {
   }
 
   auto logger = jausd::make_logger(config.log_level);
-  const jausd::LogDrain drain_logs_at_exit;
+  jausd::LogDrain drain_logs_at_exit;
   const jaus::rt::LogFn log = jausd::log_function(logger);
   boost::asio::io_context io;
   auto host = jaus::host::NodeHost::open(jausd::host_config(config), io, log);
   if (!host) {
     logger->error("{}", host.error().message());
-    return kExitBadInput;
+    return drain_logs_at_exit.exiting_with(kExitBadInput);
   }
   const auto& link = (*host)->link();
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
@@ -100,5 +100,5 @@ int main(int argc, char** argv) {
   // Safety: NodeHost::run ends with every component's stop path run
   // (platform commanded to stop, the zero setpoint flushed), whether a stop
   // signal or an exception ended the loop.
-  return (*host)->run(io) ? kExitFailure : kExitOk;
+  return drain_logs_at_exit.exiting_with((*host)->run(io) ? kExitFailure : kExitOk);
 }

@@ -223,21 +223,34 @@ TEST_P(TwoNodesStopSignal, IsAnOrderlyShutdown) {
 INSTANTIATE_TEST_SUITE_P(EverySignal, TwoNodesStopSignal, ::testing::Values(SIGTERM, SIGINT, SIGHUP, SIGQUIT),
                          [](const ::testing::TestParamInfo<int>& signal) { return std::string(sigabbrev_np(signal.param)); });
 
+// Fills a pipe that has a reader (which never reads) to the brim, as a log
+// output nobody reads ends up.
+bool fill(const fs::path& fifo) {
+  const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  if (writer < 0) return false;
+  const std::array<char, 4096> filler{};
+  std::size_t filled = 0;
+  for (ssize_t n; (n = ::write(writer, filler.data(), filler.size())) > 0;) filled += static_cast<std::size_t>(n);
+  ::close(writer);
+  return filled >= filler.size();
+}
+
 // A log output nobody reads (a full pipe, a stopped terminal) must not stall
-// the event loop: the node keeps answering while its debug log overflows the
-// pipe, and once the pipe drains its last lines say how it stopped.
+// the event loop: the node keeps answering while its log cannot be written,
+// and once the pipe drains its last lines say how it stopped.
 TEST_F(TwoNodes, AStalledLogOutputNeverStallsTheNode) {
   const fs::path fifo = dir / "c.fifo";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // open, never read until the end
   ASSERT_GE(reader, 0);
+  ASSERT_TRUE(fill(fifo));
   const fs::path config = dir / "c.yaml";
   std::ofstream(config) << node_config(3, "127.0.0.20:3794", "127.0.0.23:3794");
   ChildProcess c({JAUSD_PATH, "--config", config.string(), "--log-level", "debug"}, fifo.string());
   ASSERT_TRUE(c.started());
   const Address manager_c{3, 1, 1, 1};
   ASSERT_TRUE(answers(manager_c));
-  // Every query is a few debug lines: 5,000 of them are far more than a pipe holds (64 KiB).
+  // Queries and their debug lines, while the log cannot be written.
   for (int i = 0; i < 5000; ++i) {
     ocu->send_to(manager_c, msg::QueryIdentification{{msg::identification::kComponent}});
     if (i % 100 == 0) run_for(5ms);
@@ -267,6 +280,31 @@ TEST_F(TwoNodes, AStalledLogOutputNeverStallsTheNode) {
   ::close(reader);
   EXPECT_EQ(exit_code, std::optional<int>(0));
   EXPECT_NE(tail.find("stopped (SIGTERM)"), std::string::npos) << tail.substr(tail.size() > 2000 ? tail.size() - 2000 : 0);
+}
+
+// An output nobody ever reads: the stop still runs in full (the controller
+// hears control is gone) and the process exits with its code once its queued
+// lines have had jausd::kLogDrainLimit (5 s) to be written, instead of waiting
+// for a reader forever.
+TEST_F(TwoNodes, AnOutputNobodyReadsNeverKeepsAStoppedNodeFromExiting) {
+  const fs::path fifo = dir / "c.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // open, never read
+  ASSERT_GE(reader, 0);
+  ASSERT_TRUE(fill(fifo));  // jausd's first line blocks its logging thread
+  const fs::path config = dir / "c.yaml";
+  std::ofstream(config) << node_config(3, "127.0.0.20:3794", "127.0.0.23:3794");
+  ChildProcess c({JAUSD_PATH, "--config", config.string(), "--log-level", "debug"}, fifo.string());
+  ASSERT_TRUE(c.started());
+  const Address manager_c{3, 1, 1, 1};
+  const Address communicator_c{3, 1, 35, 1};
+  ASSERT_TRUE(answers(manager_c));
+  ocu->send_to(communicator_c, msg::RequestComponentControl{{50}});
+  ASSERT_TRUE(run_until([&] { return !ocu->received_from<msg::ConfirmComponentControl>(communicator_c).empty(); }));
+  c.signal(SIGTERM);
+  EXPECT_TRUE(run_until([&] { return !ocu->received_from<msg::RejectComponentControl>(communicator_c).empty(); }));
+  EXPECT_EQ(c.wait(30s), std::optional<int>(0));
+  ::close(reader);
 }
 
 TEST_F(TwoNodes, ABusyAddressAndABadFileExitWith2AndOneLine) {
