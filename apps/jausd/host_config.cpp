@@ -94,6 +94,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   c.reject_refused_requests = config.reject_refused_control;
   c.service_connections.max_rate_hz = config.service_connections.max_rate_hz;
   c.service_connections.max_connections = config.service_connections.max_connections;
+  c.service_connections.max_total_rate_hz = config.service_connections.max_total_rate_hz;
   c.service_connections.deadman_periods = config.service_connections.deadman_periods;
   c.service_connections.deadman_minimum = seconds(config.service_connections.deadman_minimum_s);
   c.service_connections.deadman_maximum = seconds(config.service_connections.deadman_maximum_s);

@@ -81,6 +81,7 @@ constexpr std::size_t kMaxPlatformName = 15;  // Report Platform Specifications'
 constexpr NumberRange kTimeoutRange{0, true, kMaxSeconds, "a number of seconds 0..86400"};
 constexpr NumberRange kPositiveTimeoutRange{0, false, kMaxSeconds, "a number of seconds > 0 and <= 86400"};
 constexpr NumberRange kRateRange{0, false, 1092, "a number > 0 and <= 1092"};
+constexpr NumberRange kTotalRateRange{0, false, 1'000'000, "a number > 0 and <= 1000000"};
 constexpr NumberRange kDeadmanPeriodsRange{1, true, 1000, "a number 1..1000"};
 
 // Empty when `text` is a valid identification string, else what is wrong.
@@ -227,6 +228,7 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
       {"heartbeat_hz", c.heartbeat_hz, &kHeartbeatRange},
       {"controller_timeout_s", c.controller_timeout_s, &kTimeoutRange},
       {"max_rate_hz", sc.max_rate_hz, &kRateRange},
+      {"max_total_rate_hz", sc.max_total_rate_hz, &kTotalRateRange},
       {"deadman_periods", sc.deadman_periods, &kDeadmanPeriodsRange},
       {"deadman_minimum_s", sc.deadman_minimum_s, &kTimeoutRange},
       {"deadman_maximum_s", sc.deadman_maximum_s, &kPositiveTimeoutRange},
@@ -487,6 +489,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                    {{"max_rate_hz", [&](const Entry& e) { sc.max_rate_hz = number(e, kRateRange); }},
                     {"max_connections",
                      [&](const Entry& e) { sc.max_connections = integer<std::size_t>(e, 1, kMaxConnectionsLimit); }},
+                    {"max_total_rate_hz", [&](const Entry& e) { sc.max_total_rate_hz = number(e, kTotalRateRange); }},
                     {"deadman_periods", [&](const Entry& e) { sc.deadman_periods = number(e, kDeadmanPeriodsRange); }},
                     {"deadman_minimum_s", [&](const Entry& e) { sc.deadman_minimum_s = number(e, kTimeoutRange); }},
                     {"deadman_maximum_s",

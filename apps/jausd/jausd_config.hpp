@@ -43,6 +43,7 @@ using ComponentSpec = jaus::host::ComponentSpec;  // kinds and options: jaus/hos
 struct ServiceConnectionSettings {  // per component, see jaus::rt::ServiceConnectionLimits
   double max_rate_hz = 1092;        // confirmed rates are capped at this
   std::size_t max_connections = 64;
+  double max_total_rate_hz = 4000;  // reports a second of all of a component's inform SCs
   double deadman_periods = 3;       // a command SC is lost after this many silent periods...
   double deadman_minimum_s = 0.2;   // ...never sooner than this...
   double deadman_maximum_s = 1.0;   // ...and never later than this

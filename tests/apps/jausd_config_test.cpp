@@ -200,7 +200,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 147);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 148);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -243,6 +243,7 @@ control:
 service_connections:
   max_rate_hz: 50.5
   max_connections: 255
+  max_total_rate_hz: 500
   deadman_periods: 1.5
   deadman_minimum_s: 0
   deadman_maximum_s: 2.5
@@ -289,6 +290,7 @@ logging:
   EXPECT_TRUE(c.reject_refused_control);
   EXPECT_EQ(c.service_connections.max_rate_hz, 50.5);
   EXPECT_EQ(c.service_connections.max_connections, 255u);
+  EXPECT_EQ(c.service_connections.max_total_rate_hz, 500);
   EXPECT_EQ(c.service_connections.deadman_periods, 1.5);
   EXPECT_EQ(c.service_connections.deadman_minimum_s, 0);
   EXPECT_EQ(c.service_connections.deadman_maximum_s, 2.5);
@@ -311,16 +313,16 @@ logging:
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 38);
+  EXPECT_EQ(c.components[0].line, 39);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 41);
+  EXPECT_EQ(c.components[1].line, 42);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 47);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 48);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -438,7 +440,7 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "unsafe_no_controller_timeout)");
   expect_error("service_connections: {max_rate: 10}\n", 1,
                "unknown key 'max_rate' in service_connections (known: max_rate_hz, max_connections, "
-               "deadman_periods, deadman_minimum_s, deadman_maximum_s)");
+               "max_total_rate_hz, deadman_periods, deadman_minimum_s, deadman_maximum_s)");
   expect_error("liveness:\n\n  peer_timeout_s: 1\n", 3,
                "unknown key 'peer_timeout_s' in liveness (known: component_timeout_s, node_timeout_s, "
                "subsystem_timeout_s)");

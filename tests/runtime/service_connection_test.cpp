@@ -116,6 +116,43 @@ TEST_F(ServiceConnectionTest, ConfirmedRateIsCappedByTheLimit) {
   EXPECT_EQ(outbox.to<msg::ConfirmServiceConnection>(kOcuB).at(0).response_code, msg::sc_response::kRefused);
 }
 
+// The reports of all connections together stay within the budget: a flood of
+// Create Service Connection at the top rate cannot make a component spend
+// its time on reports, most of them for spoofed requesters.
+TEST_F(ServiceConnectionTest, AllConnectionsTogetherStayWithinTheTotalRate) {
+  rt::ComponentConfig config;
+  config.address = kDriver;
+  config.service_connections.max_total_rate_hz = 100;
+  TestDriver d(config, rt::Environment{time, time, outbox});
+  d.start();
+  auto create_at = [&](const Address& from, double rate_hz, std::uint32_t presence) {
+    msg::CreateServiceConnection m;
+    m.command_code = msg::ReportGlobalPose::code;
+    m.periodic_rate_hz = rate_hz;
+    m.presence_vector = presence;
+    Header h;
+    h.command_code = m.code;
+    h.source = from;
+    h.destination = kDriver;
+    std::vector<std::uint8_t> payload(16);
+    const auto size = wire::encode_payload(m, payload);
+    outbox.clear();
+    d.receive(h, std::span(payload).first(*size));
+    return outbox.to<msg::ConfirmServiceConnection>(from).at(0);
+  };
+  EXPECT_NEAR(create_at(kOcuA, 60, 0x1FF).confirmed_rate_hz, 60, 0.02);
+  EXPECT_NEAR(create_at(kOcuB, 60, 0x1FF).confirmed_rate_hz, 40, 0.02);  // what is left
+  EXPECT_EQ(create_at(kOcuC, 10, 0x1FF).response_code, msg::sc_response::kRefused);
+  // Asking again gives the connection's own rate back first.
+  EXPECT_NEAR(create_at(kOcuA, 50, 0x1FF).confirmed_rate_hz, 50, 0.02);
+  EXPECT_NEAR(create_at(kOcuC, 30, 0x1FF).confirmed_rate_hz, 10, 0.02);
+  EXPECT_EQ(d.service_connections().active(), 3u);
+  // 100 reports a second in all, whatever was asked.
+  outbox.clear();
+  time.advance(10s);
+  EXPECT_NEAR(static_cast<double>(outbox.count<msg::ReportGlobalPose>()), 1000, 3);
+}
+
 TEST_F(ServiceConnectionTest, SameCodeAndPresenceShareAnInstance) {
   const auto a = create(kOcuA, msg::ReportGlobalPose::code, 5, 0x0003);
   const auto b = create(kOcuB, msg::ReportGlobalPose::code, 2, 0x0003);

@@ -106,6 +106,15 @@ void ServiceConnectionProvider::on_create(const Header& h, const msg::CreateServ
   // nor the rate the report's source updates at.
   double rate = std::min(m.periodic_rate_hz, limits_.max_rate_hz);
   if (!command && provided->second.max_rate_hz > 0) rate = std::min(rate, provided->second.max_rate_hz);
+  if (!command) {
+    // What the other inform connections already send (a connection created
+    // again gives its own rate back first).
+    double sending = 0;
+    for (const auto& [other, c] : connections_)
+      if (!c.command && !(other == key)) sending += c.rate_hz;
+    rate = std::min(rate, limits_.max_total_rate_hz - sending);
+    if (!(rate >= kMinimumRateHz)) return confirm(h, code, 0, 0, kRefused);
+  }
   Connection& c = existing != connections_.end() ? existing->second : connections_[key];
   if (c.timer != kNoTimer) env_.scheduler.cancel(c.timer);
   c = Connection{};

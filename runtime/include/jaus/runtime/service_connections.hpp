@@ -33,6 +33,11 @@ namespace jaus::rt {
 struct ServiceConnectionLimits {
   double max_rate_hz = 1092;         // confirmed rate is at most this
   std::size_t max_connections = 64;  // beyond this, Create is refused (response 4)
+  // Reports a second of all inform SCs together: a new one is confirmed at
+  // most at what is left, and refused (response 4) when that is below the
+  // RA's slowest rate. 64 connections at 1092 Hz would be 70,000 reports a
+  // second, most of them for spoofed requesters in a flood.
+  double max_total_rate_hz = 4000;
   // A command SC is lost after this many periods without its command...
   double deadman_periods = 3;
   // ...never sooner than this (jitter)...
