@@ -1,28 +1,19 @@
 // The core cases: what RA 3.x requires of every component, whatever its kind
-// (Part 3 core messages; discovery per jaus-wire-notes.md). Each asks once
-// and judges the answer; none leaves the component controlled.
-#include "jaus/conform/conformance_case.hpp"
+// (Part 3 core and communications messages; discovery per the wire notes).
+// Each leaves the component as it found it: control released, emergency
+// cleared, state restored.
+#include "case_support.hpp"
+#include "jaus/messages/communications_messages.hpp"
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/messages/discovery_messages.hpp"
 #include "jaus/ocu/names.hpp"
+#include "state_support.hpp"
 
 namespace jaus::conform {
 
 namespace {
 
-CaseOutcome pass(std::string detail) { return {Verdict::pass, std::move(detail)}; }
-CaseOutcome fail(std::string detail) { return {Verdict::fail, std::move(detail)}; }
-
-// Sends `query`, waits for a reply of type R from the target and decodes it.
-template <class R, class Q>
-Expected<R> ask(CaseContext& c, const Q& query) {
-  auto reply = c.session.request(c.target, query, {R::code}, c.reply_timeout);
-  if (!reply) return unexpected(reply.error());
-  R report{};
-  if (auto error = wire::decode_payload_into(reply->payload, report, c.session.options().dialect, kHeaderSize))
-    return unexpected(make_error(ErrorCode::malformed, std::string(R::name) + " does not decode: " + error->message()));
-  return report;
-}
+using namespace detail;
 
 CaseOutcome identification(CaseContext& c) {
   auto report = ask<msg::ReportIdentification>(c, msg::QueryIdentification{{msg::identification::kComponent}});
@@ -55,44 +46,109 @@ CaseOutcome services(CaseContext& c) {
   for (const auto& service : report->services)
     for (const auto& input : service.inputs)
       if (input.command_code == msg::QueryComponentStatus::code)
-        return pass(std::to_string(report->services.size()) + " service entries, Query Component Status among the inputs");
+        return pass(std::to_string(report->services.size()) +
+                    " service entries, Query Component Status among the inputs");
   return fail("Report Services does not list Query Component Status (0x2002) among the inputs");
 }
 
-CaseOutcome control_round_trip(CaseContext& c) {
-  // The lowest authority: a component that grants it must report us as its
-  // controller; one that refuses answers Confirm 2 (or Reject); either is conformant.
-  auto confirm = c.session.request(c.target, msg::RequestComponentControl{{0}},
-                                   {msg::ConfirmComponentControl::code, msg::RejectComponentControl::code},
-                                   c.reply_timeout);
-  if (!confirm) return fail(confirm.error().message());
-  if (confirm->header.command_code == msg::RejectComponentControl::code)
-    return pass("control refused with Reject Component Control");
-  msg::ConfirmComponentControl answer{};
-  if (wire::decode_payload_into(confirm->payload, answer, c.session.options().dialect, kHeaderSize))
-    return fail("Confirm Component Control does not decode");
-  if (answer.response_code != msg::control_response::kAccepted)
-    return pass("control refused: " + ocu::control_response_text(answer.response_code));
-  auto held = ask<msg::ReportComponentControl>(c, msg::QueryComponentControl{});
-  c.session.send(c.target, msg::ReleaseComponentControl{});
-  if (!held) return fail("granted, then " + held.error().message());
-  if (held->controller != c.session.self())
-    return fail("granted, but Report Component Control names " + held->controller.to_string() + " as controller");
-  auto after = ask<msg::ReportComponentControl>(c, msg::QueryComponentControl{});
-  if (!after) return fail("released, then " + after.error().message());
-  if (after->controller == c.session.self()) return fail("still reports us as controller after Release Component Control");
-  return pass("granted, reported, released");
+CaseOutcome heartbeat(CaseContext& c) {
+  auto report = ask<msg::ReportHeartbeatPulse>(c, msg::QueryHeartbeatPulse{});
+  if (!report) return fail(report.error().message());
+  return pass("Report Heartbeat Pulse");
+}
+
+// Set Emergency puts the component in Emergency whoever sends it; Clear
+// Emergency from the same sender returns it to the state it left.
+CaseOutcome emergency(CaseContext& c) {
+  auto before = primary_status(c);
+  if (!before) return fail(before.error().message());
+  if (*before != msg::PrimaryStatus::ready && *before != msg::PrimaryStatus::standby)
+    return skip("in " + state_text(*before) + ": Set Emergency is checked from Ready or Standby");
+  send(c, msg::SetEmergency{{1}}, priority::kSafetyCritical);
+  auto during = primary_status(c);
+  send(c, msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // whatever happened: never left set
+  if (!during) return fail("after Set Emergency, " + during.error().message());
+  if (*during != msg::PrimaryStatus::emergency)
+    return fail("Set Emergency left it in " + state_text(*during) + ", not Emergency");
+  auto after = primary_status(c);
+  if (!after) return fail("after Clear Emergency, " + after.error().message());
+  if (c.profile == Profile::openjaus && *after == msg::PrimaryStatus::standby && *before == msg::PrimaryStatus::ready) {
+    // The RA 3.3 implementation's Clear Emergency always goes to Standby (wire
+    // notes), and its Resume needs no control: back to Ready as found.
+    send(c, msg::Resume{});
+    return pass("Ready -> Emergency -> Standby (profile openjaus), resumed");
+  }
+  if (*after != *before)
+    return fail("Clear Emergency left it in " + state_text(*after) + ", not " + state_text(*before) + " as before");
+  return pass(state_text(*before) + " -> Emergency -> " + state_text(*after));
+}
+
+// The controller's Standby and Resume move it between Ready and Standby.
+CaseOutcome standby_and_resume(CaseContext& c) {
+  auto before = primary_status(c);
+  if (!before) return fail(before.error().message());
+  if (*before != msg::PrimaryStatus::ready) return skip("in " + state_text(*before) + ", not Ready");
+  ControlHeld control(c);
+  if (!control.granted()) return skip("control not granted (" + control.why() + "): Resume needs the controller");
+  send(c, msg::Standby{});
+  auto standing_by = primary_status(c);
+  send(c, msg::Resume{});
+  auto resumed = primary_status(c);
+  if (!standing_by) return fail("after Standby, " + standing_by.error().message());
+  if (*standing_by != msg::PrimaryStatus::standby)
+    return fail("Standby from its controller left it in " + state_text(*standing_by));
+  if (!resumed) return fail("after Resume, " + resumed.error().message());
+  if (*resumed != msg::PrimaryStatus::ready)
+    return fail("Resume from its controller left it in " + state_text(*resumed));
+  return pass("Ready -> Standby -> Ready");
+}
+
+// Commands that change a component's state are the controller's: Resume,
+// Reset and Shutdown from anyone else change nothing, and it keeps answering.
+CaseOutcome refused_without_control(CaseContext& c) {
+  if (c.profile == Profile::openjaus)
+    return skip(
+        "profile openjaus: the RA 3.3 implementation lets anyone Shutdown, Standby, Resume and Reset "
+        "(wire notes); not sent");
+  auto before = primary_status(c);
+  if (!before) return fail(before.error().message());
+  if (*before == msg::PrimaryStatus::shutdown) return skip("already in Shutdown");
+  auto controller = current_controller(c);
+  if (!controller) return fail(controller.error().message());
+  if (*controller == c.session.self()) return skip("the runner controls it");
+  for (const char* command : {"Resume", "Reset", "Shutdown"}) {
+    const std::string what(command);
+    if (what == "Resume") send(c, msg::Resume{});
+    if (what == "Reset") send(c, msg::Reset{});
+    if (what == "Shutdown") send(c, msg::Shutdown{});
+    auto after = primary_status(c);
+    if (!after) return fail(what + " from a non-controller, then " + after.error().message());
+    // Resume from Ready or Reset may pass through Initialize only when executed.
+    if (*after != *before)
+      return fail(what + " from a non-controller moved it from " + state_text(*before) + " to " + state_text(*after));
+  }
+  return pass("Resume, Reset and Shutdown from a non-controller: still " + state_text(*before));
 }
 
 const std::vector<ConformanceCase>& cases() {
   static const std::vector<ConformanceCase> list{
       {"core.identification", "answers Query Identification (component) with Report Identification type 4",
-       identification},
-      {"core.status", "answers Query Component Status with a primary status the RA defines", status},
-      {"core.authority", "answers Query Component Authority", authority},
-      {"core.services", "answers Query Services, listing the core queries it accepts", services},
-      {"core.control", "grants or refuses control as the RA says; a granted controller is reported and released",
-       control_round_trip},
+       "Part 3, Code 2B00h Query Identification; wire notes: Liveness and discovery", nullptr, identification},
+      {"core.status", "answers Query Component Status with a primary status the RA defines",
+       "Part 3, Code 2002h Query Component Status, Figure 5.1", nullptr, status},
+      {"core.authority", "answers Query Component Authority", "Part 3, Code 2001h Query Component Authority", nullptr,
+       authority},
+      {"core.services", "answers Query Services, listing the core queries it accepts",
+       "Part 3, Code 2B03h Query Services; wire notes: Liveness and discovery", nullptr, services},
+      {"core.heartbeat", "answers Query Heartbeat Pulse with Report Heartbeat Pulse",
+       "Part 3, Code 2202h Query Heartbeat Pulse", nullptr, heartbeat},
+      {"core.emergency", "Set Emergency puts it in Emergency; Clear Emergency returns it to the state it left",
+       "Part 3, Code 0006h Set Emergency, Code 0007h Clear Emergency", nullptr, emergency},
+      {"core.standby_resume", "its controller's Standby and Resume move it Ready -> Standby -> Ready",
+       "Part 3, Code 0003h Standby, Code 0004h Resume", nullptr, standby_and_resume},
+      {"core.refused_without_control", "Resume, Reset and Shutdown from a non-controller change nothing",
+       "Part 3, Code 000Dh Request Component Control (commands are the controller's)", nullptr,
+       refused_without_control},
   };
   return list;
 }

@@ -1,20 +1,132 @@
-#include "jaus/conform/conformance_case.hpp"
+#include "jaus/conform/runner.hpp"
+
+#include <algorithm>
+
+#include "jaus/messages/discovery_messages.hpp"
+#include "jaus/wire/codecs.hpp"
 
 namespace jaus::conform {
 
-std::string_view to_string(Verdict verdict) { return verdict == Verdict::pass ? "pass" : "fail"; }
+std::string_view to_string(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::pass:
+      return "pass";
+    case Verdict::fail:
+      return "fail";
+    case Verdict::skip:
+      return "skip";
+  }
+  return "?";
+}
 
-std::vector<CaseResult> run_cases(ocu::OcuSession& session, const Address& target,
-                                  std::span<const ConformanceCase> cases, rt::Duration reply_timeout) {
+std::string_view to_string(Profile profile) { return profile == Profile::ra ? "ra" : "openjaus"; }
+
+std::optional<Profile> parse_profile(std::string_view text) {
+  if (text == "ra") return Profile::ra;
+  if (text == "openjaus") return Profile::openjaus;
+  return std::nullopt;
+}
+
+std::vector<const ConformanceCase*> all_cases() {
+  std::vector<const ConformanceCase*> all;
+  for (auto suite : {core_cases(), control_cases(), service_connection_cases(), robustness_cases()})
+    for (const auto& c : suite) all.push_back(&c);
+  return all;
+}
+
+std::size_t RunReport::count(Verdict verdict) const {
+  std::size_t n = 0;
+  for (const auto& r : results) n += r.outcome.verdict == verdict;
+  return n;
+}
+
+namespace {
+
+// A service entry's type is the component ID it describes (0: the core
+// service). A node manager answers for its whole node: only its own entries
+// describe it. An answer whose types follow no such rule is taken whole.
+void take_services(ComponentUnderTest& component, const std::vector<msg::ServiceEntry>& services) {
+  component.services_known = true;
+  const bool typed = std::any_of(services.begin(), services.end(),
+                                 [&](const auto& s) { return s.type == component.address.component; });
+  for (const auto& service : services) {
+    if (typed && service.type != component.address.component && service.type != 0) continue;
+    for (const auto& input : service.inputs) component.inputs.insert(input.command_code);
+    for (const auto& output : service.outputs) component.outputs[output.command_code] |= output.presence_vector;
+  }
+}
+
+const ocu::DiscoveredComponent* find(const ocu::Discovery& discovery, const Address& address,
+                                     const ocu::DiscoveredNode** node_out) {
+  const auto subsystem = discovery.subsystems().find(address.subsystem);
+  if (subsystem == discovery.subsystems().end()) return nullptr;
+  const auto node = subsystem->second.nodes.find(address.node);
+  if (node == subsystem->second.nodes.end()) return nullptr;
+  const auto component = node->second.components.find({address.component, address.instance});
+  if (component == node->second.components.end()) return nullptr;
+  *node_out = &node->second;
+  return &component->second;
+}
+
+}  // namespace
+
+Expected<ComponentUnderTest> learn_component(ocu::OcuSession& session, const Address& address,
+                                             const ocu::Discovery* discovery, rt::Duration reply_timeout) {
+  ComponentUnderTest component;
+  component.address = address;
+  const auto dialect = session.options().dialect;
+  auto identification = session.request(address, msg::QueryIdentification{{msg::identification::kComponent}},
+                                        {msg::ReportIdentification::code}, reply_timeout);
+  if (!identification) return unexpected(identification.error());
+  msg::ReportIdentification id{};
+  if (!wire::decode_payload_into(identification->payload, id, dialect, kHeaderSize)) component.name = id.identification;
+  auto services = session.request(address, msg::QueryServices{}, {msg::ReportServices::code}, reply_timeout);
+  msg::ReportServices report{};
+  if (services && !wire::decode_payload_into(services->payload, report, dialect, kHeaderSize)) {
+    take_services(component, report.services);
+  } else if (discovery) {
+    // Some nodes answer Query Services only at the node manager.
+    const ocu::DiscoveredNode* node = nullptr;
+    if (const auto* found = find(*discovery, address, &node))
+      if (auto listed = ocu::Discovery::services_of(*node, *found); !listed.empty()) take_services(component, listed);
+  }
+  return component;
+}
+
+std::vector<Address> discovered_components(const ocu::Discovery& discovery) {
+  std::vector<Address> components;
+  for (const auto& [sid, subsystem] : discovery.subsystems())
+    for (const auto& [nid, node] : subsystem.nodes)
+      for (const auto& [key, component] : node.components) components.push_back(component.address);
+  return components;
+}
+
+std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnderTest& component,
+                                  const std::vector<const ConformanceCase*>& cases, const RunOptions& options,
+                                  const ResultListener& on_result) {
   std::vector<CaseResult> results;
-  results.reserve(cases.size());
-  for (const auto& c : cases) {
+  for (const ConformanceCase* test_case : cases) {
+    if (!options.only.empty() && std::string_view(test_case->id).find(options.only) == std::string_view::npos) continue;
+    CaseResult result{test_case, component.address, component.name, {}, {}, {}};
     if (session.interrupted()) {
-      results.push_back({&c, CaseOutcome{Verdict::fail, "interrupted before it ran"}});
-      continue;
+      result.outcome = {Verdict::fail, "interrupted before it ran"};
+    } else if (std::string why = test_case->not_applicable ? test_case->not_applicable(component) : std::string();
+               !why.empty()) {
+      result.outcome = {Verdict::skip, "does not apply: " + why};
+    } else {
+      CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now()};
+      // What the component sends the runner during the case, for the report.
+      const auto recorder = session.listen([&](const ocu::Received& r) {
+        if (r.header.source == component.address)
+          context.exchange.push_back(Exchanged{false, r.header, r.payload, session.clock().now() - context.started});
+      });
+      result.outcome = test_case->run(context);
+      session.unlisten(recorder);
+      result.took = session.clock().now() - context.started;
+      result.exchange = std::move(context.exchange);
     }
-    CaseContext context{session, target, reply_timeout};
-    results.push_back({&c, c.run(context)});
+    if (on_result) on_result(result);
+    results.push_back(std::move(result));
   }
   return results;
 }

@@ -1,11 +1,16 @@
-// The core conformance cases against a node of ours (they must pass on every
-// component it hosts) and against an address where nothing answers (every
-// case fails, saying why).
+// The conformance cases against nodes in this process: every case that
+// applies passes on each component of a node of ours; each is seen failing,
+// with its reason and exchange, against a component broken on purpose (one
+// that obeys anyone, one that never confirms a service connection, one that
+// echoes the presence vector it is asked for), and against an address where
+// nothing answers. The cases run as jaus-conform runs them (runner.hpp).
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "jaus/conform/conformance_case.hpp"
+#include "broken_components.hpp"
+#include "jaus/conform/reports.hpp"
+#include "jaus/conform/runner.hpp"
 #include "target_node.hpp"
 
 namespace jaus::conform {
@@ -18,54 +23,163 @@ using jausctl::test::kNobody;
 using jausctl::test::kPoseSensor;
 using jausctl::test::kTargetManager;
 
-class CoreCases : public ::testing::Test {
+std::string describe(const std::vector<CaseResult>& results) {
+  std::string out;
+  for (const auto& r : results) out += case_line(r) + "\n";
+  return out;
+}
+
+const CaseResult* result_of(const std::vector<CaseResult>& results, std::string_view id) {
+  for (const auto& r : results)
+    if (r.test_case->id == id) return &r;
+  return nullptr;
+}
+
+class Conformance : public ::testing::Test {
  protected:
   void SetUp() override {
     target = std::make_unique<jausctl::test::TargetNode>(io);
+    broken = std::make_unique<test::BrokenNode>(io);
     ocu::SessionOptions options;
-    options.to = {target->endpoint()};
+    options.to = {target->endpoint(), broken->endpoint()};
     options.bind = transport::Ipv4Endpoint{kLoopback, 0};
     auto opened = ocu::OcuSession::open(options, &io);
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
 
-  std::string describe(const std::vector<CaseResult>& results) {
-    std::string out;
-    for (const auto& r : results)
-      out += std::string(r.test_case->id) + ": " + std::string(to_string(r.outcome.verdict)) + " (" + r.outcome.detail + ")\n";
-    return out;
+  std::vector<CaseResult> run(const Address& address, std::string only = {}) {
+    auto component = learn_component(*session, address, nullptr, 1s);
+    if (!component) {
+      ADD_FAILURE() << address.to_string() << ": " << component.error().message();
+      return {};
+    }
+    RunOptions options;
+    options.only = std::move(only);
+    return run_cases(*session, *component, all_cases(), options);
   }
 
   boost::asio::io_context io;
   std::unique_ptr<jausctl::test::TargetNode> target;
+  std::unique_ptr<test::BrokenNode> broken;
   std::unique_ptr<ocu::OcuSession> session;
 };
 
-TEST_F(CoreCases, EveryComponentOfOurNodePassesThem) {
-  ASSERT_GE(core_cases().size(), 5u);
-  for (const Address& component : {kTargetManager, kCommunicator, kPoseSensor}) {
-    const auto results = run_cases(*session, component, core_cases());
-    ASSERT_EQ(results.size(), core_cases().size());
-    for (const auto& r : results)
-      EXPECT_EQ(r.outcome.verdict, Verdict::pass) << component.to_string() << "\n" << describe(results);
+// One component per test, so that ctest runs them side by side (each waits
+// on its service connections for some seconds).
+class OurNodeConforms : public Conformance, public ::testing::WithParamInterface<Address> {};
+
+TEST_P(OurNodeConforms, EveryApplicableCasePasses) {
+  const Address component = GetParam();
+  const auto results = run(component);
+  ASSERT_EQ(results.size(), all_cases().size());
+  for (const auto& r : results) EXPECT_NE(r.outcome.verdict, Verdict::fail) << describe(results);
+  // The pose sensor provides Report Global Pose: its presence vector was checked.
+  if (component == kPoseSensor) {
+    EXPECT_EQ(result_of(results, "sc.reports")->outcome.verdict, Verdict::pass) << describe(results);
+    EXPECT_NE(result_of(results, "sc.reports")->outcome.detail.find("presence 0x"), std::string::npos);
   }
-  // The control case leaves nobody in control.
+  // The cases leave nobody in control.
   EXPECT_FALSE(target->communicator().control().controller().has_value());
 }
 
-TEST_F(CoreCases, ACaseFailsWithTheReasonWhenNothingAnswers) {
-  const auto results = run_cases(*session, kNobody, core_cases(), 200ms);
+INSTANTIATE_TEST_SUITE_P(Components, OurNodeConforms, ::testing::Values(kTargetManager, kCommunicator, kPoseSensor),
+                         [](const ::testing::TestParamInfo<Address>& p) {
+                           return "component_" + std::to_string(p.param.component);
+                         });
+
+TEST_F(Conformance, AComponentThatObeysAnyoneFailsTheControllerCase) {
+  const auto results = run(test::kObeysAnyone, "core.refused_without_control");
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find("from a non-controller moved it"), std::string::npos)
+      << results[0].outcome.detail;
+  // The report shows what was sent and what came back.
+  RunReport report{"in process", Profile::ra, results};
+  const std::string markdown = markdown_report(report);
+  EXPECT_NE(markdown.find("## Failures"), std::string::npos);
+  EXPECT_NE(markdown.find("-> 0x0005 Reset to " + test::kObeysAnyone.to_string()), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("<- 0x4002 Report Component Status from"), std::string::npos) << markdown;
+}
+
+// The openjaus profile accepts what the RA 3.3 implementation is documented
+// to do (anyone may Reset it): the case is skipped, saying why, and nothing
+// is sent; everything else is judged as the RA says.
+TEST_F(Conformance, TheOpenjausProfileSkipsWhatThatImplementationIsDocumentedToDoOtherwise) {
+  auto component = learn_component(*session, test::kObeysAnyone, nullptr, 1s);
+  ASSERT_TRUE(component) << component.error().message();
+  RunOptions options;
+  options.profile = Profile::openjaus;
+  options.only = "core.";
+  const auto results = run_cases(*session, *component, all_cases(), options);
   ASSERT_EQ(results.size(), core_cases().size());
   for (const auto& r : results) {
-    EXPECT_EQ(r.outcome.verdict, Verdict::fail) << describe(results);
-    EXPECT_EQ(r.outcome.detail, "no reply from " + kNobody.to_string() + " within 0.2 s") << r.test_case->id;
+    if (r.test_case->id == std::string_view("core.refused_without_control")) {
+      EXPECT_EQ(r.outcome.verdict, Verdict::skip);
+      EXPECT_NE(r.outcome.detail.find("profile openjaus"), std::string::npos) << r.outcome.detail;
+      EXPECT_TRUE(r.exchange.empty());
+    } else {
+      EXPECT_EQ(r.outcome.verdict, Verdict::pass) << describe(results);
+    }
   }
 }
 
-TEST_F(CoreCases, CaseIdsAreUnique) {
+TEST_F(Conformance, AComponentThatNeverConfirmsFailsTheServiceConnectionCases) {
+  const auto results = run(test::kNeverConfirms, "sc.");
+  ASSERT_EQ(results.size(), service_connection_cases().size());
+  for (const auto& r : results) {
+    EXPECT_EQ(r.outcome.verdict, Verdict::fail) << describe(results);
+    EXPECT_NE(r.outcome.detail.find("no reply from " + test::kNeverConfirms.to_string()), std::string::npos)
+        << r.outcome.detail;
+  }
+}
+
+TEST_F(Conformance, ASensorThatEchoesThePresenceVectorFailsThePresenceCase) {
+  const auto results = run(test::kEchoesPresence, "sc.reports");
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find("presence vector 0x"), std::string::npos) << results[0].outcome.detail;
+}
+
+TEST_F(Conformance, CasesThatDoNotApplyAreSkippedWithWhy) {
+  // The communicator provides Report Component Status only; a component
+  // whose services are unknown gets no service connection case.
+  ComponentUnderTest unknown;
+  unknown.address = kCommunicator;
+  RunOptions options;
+  options.only = "sc.";
+  const auto results = run_cases(*session, unknown, all_cases(), options);
+  ASSERT_EQ(results.size(), service_connection_cases().size());
+  for (const auto& r : results) {
+    EXPECT_EQ(r.outcome.verdict, Verdict::skip);
+    EXPECT_EQ(r.outcome.detail, "does not apply: its services are unknown (no Report Services)");
+  }
+}
+
+TEST_F(Conformance, EveryCaseFailsWithTheReasonWhenNothingAnswers) {
+  EXPECT_FALSE(learn_component(*session, kNobody, nullptr, 200ms).has_value());
+  ComponentUnderTest nobody;
+  nobody.address = kNobody;
+  RunOptions options;
+  options.reply_timeout = 200ms;
+  options.only = "core.";
+  const auto results = run_cases(*session, nobody, all_cases(), options);
+  ASSERT_EQ(results.size(), core_cases().size());
+  for (const auto& r : results) {
+    EXPECT_EQ(r.outcome.verdict, Verdict::fail) << describe(results);
+    EXPECT_NE(r.outcome.detail.find("no reply from " + kNobody.to_string() + " within 0.2 s"), std::string::npos)
+        << r.test_case->id << ": " << r.outcome.detail;
+  }
+}
+
+TEST(ConformanceCases, IdsAreUniqueAndEachCaseSaysWhatItChecksAndWhere) {
   std::set<std::string_view> ids;
-  for (const auto& c : core_cases()) EXPECT_TRUE(ids.insert(c.id).second) << c.id;
+  for (const auto* c : all_cases()) {
+    EXPECT_TRUE(ids.insert(c->id).second) << c->id;
+    EXPECT_FALSE(c->title.empty()) << c->id;
+    EXPECT_FALSE(c->reference.empty()) << c->id;
+    EXPECT_TRUE(c->run) << c->id;
+  }
 }
 
 }  // namespace

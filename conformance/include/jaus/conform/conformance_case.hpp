@@ -1,52 +1,93 @@
 // One conformance check: what the RA requires of a component, asked of it
-// over the network through an OCU session, with a verdict and why.
+// over the network through an OCU session, with a verdict, why, and the
+// messages exchanged. Cases are grouped in suites (core, control, service
+// connections, ...); each says which components it applies to, so that the
+// runner can test any node, ours or another implementation's.
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <functional>
+#include <map>
+#include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "jaus/core/address.hpp"
+#include "jaus/core/header.hpp"
 #include "jaus/ocu/session.hpp"
 
 namespace jaus::conform {
 
-enum class Verdict { pass, fail };
+enum class Verdict { pass, fail, skip };
 std::string_view to_string(Verdict verdict);
+
+// `ra` checks the RA as written; `openjaus` accepts the documented quirks of
+// the common RA 3.3 implementation (docs/conformance.md lists them), so a
+// team testing a node built on it sees only real differences.
+enum class Profile { ra, openjaus };
+std::string_view to_string(Profile profile);
+std::optional<Profile> parse_profile(std::string_view text);
+
+// What the runner knows of a component before testing it: its address, its
+// name (Report Identification) and what it says it accepts and provides
+// (its own Report Services, or its node manager's entry for it).
+struct ComponentUnderTest {
+  Address address;
+  std::string name;
+  std::set<std::uint16_t> inputs;                  // message codes it accepts
+  std::map<std::uint16_t, std::uint32_t> outputs;  // report codes it provides on service connections -> presence
+  bool services_known = false;                     // it answered Query Services (or its node manager did)
+
+  bool accepts(std::uint16_t code) const { return inputs.count(code) != 0; }
+  bool provides(std::uint16_t code) const { return outputs.count(code) != 0; }
+};
+
+// One message of a case's exchange with the component, for the report.
+struct Exchanged {
+  bool sent = false;  // by the runner; else received by it
+  Header header;
+  std::vector<std::uint8_t> payload;
+  rt::Duration at{};  // since the case started
+};
 
 struct CaseOutcome {
   Verdict verdict = Verdict::fail;
   std::string detail;  // one line: what was seen ("Report Identification type 4, 'communicator'")
 };
 
-// Each case gets the session and the component under test, and this budget
-// for every reply it waits for.
+// What a case works with: the session, the component under test, the
+// profile, the budget for every reply it waits for, and the exchange so far.
 struct CaseContext {
   ocu::OcuSession& session;
-  Address target;
+  const ComponentUnderTest& component;
+  Profile profile = Profile::ra;
   rt::Duration reply_timeout = std::chrono::seconds(1);
+  std::vector<Exchanged> exchange;
+  rt::TimePoint started{};
+
+  const Address& target() const { return component.address; }
 };
 
 struct ConformanceCase {
-  std::string_view id;     // stable, for reports and filters: "core.identification"
-  std::string_view title;  // what the RA requires, in one line
+  std::string_view id;         // stable, for reports and --only: "core.identification"
+  std::string_view title;      // what the RA requires, in one line
+  std::string_view reference;  // where it says so: "Part 3 3.2.3 Query Identification", "wire notes: Liveness"
+  // Why the case does not apply to a component (it is then skipped with that
+  // reason); empty when it applies. Null: applies to every component.
+  std::function<std::string(const ComponentUnderTest&)> not_applicable;
   std::function<CaseOutcome(CaseContext&)> run;
 };
 
-// Cases every RA 3.x component must pass (core messages and discovery).
-std::span<const ConformanceCase> core_cases();
-
-struct CaseResult {
-  const ConformanceCase* test_case = nullptr;
-  CaseOutcome outcome;
-};
-
-// Runs `cases` in order against `target`; a case that cannot run (no reply,
-// interrupted) fails with the reason.
-std::vector<CaseResult> run_cases(ocu::OcuSession& session, const Address& target,
-                                  std::span<const ConformanceCase> cases,
-                                  rt::Duration reply_timeout = std::chrono::seconds(1));
+// The suites, each in its own file (src/<suite>_cases.cpp).
+std::span<const ConformanceCase> core_cases();                // every component: core queries and states
+std::span<const ConformanceCase> control_cases();             // the control matrix
+std::span<const ConformanceCase> service_connection_cases();  // components that provide reports
+std::span<const ConformanceCase> robustness_cases();          // every component: what it cannot use
+// Every case of every suite, in order.
+std::vector<const ConformanceCase*> all_cases();
 
 }  // namespace jaus::conform

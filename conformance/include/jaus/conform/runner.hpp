@@ -1,0 +1,59 @@
+// Runs conformance cases against components on the network: learns each
+// component (identification, services), picks the cases that apply, runs
+// them one after another and keeps every result with its exchange.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "jaus/conform/conformance_case.hpp"
+#include "jaus/ocu/discovery.hpp"
+
+namespace jaus::conform {
+
+struct RunOptions {
+  Profile profile = Profile::ra;
+  rt::Duration reply_timeout = std::chrono::seconds(1);
+  // Runs only the cases whose id contains this text ("control.", "core.status");
+  // empty: every case.
+  std::string only;
+};
+
+struct CaseResult;
+// Hears each result as soon as its case ends (the terminal's lines).
+using ResultListener = std::function<void(const CaseResult&)>;
+
+struct CaseResult {
+  const ConformanceCase* test_case = nullptr;
+  Address component;
+  std::string component_name;
+  CaseOutcome outcome;
+  rt::Duration took{};
+  std::vector<Exchanged> exchange;
+};
+
+struct RunReport {
+  std::string node;  // what was tested, as the user named it ("127.0.0.1:3794")
+  Profile profile = Profile::ra;
+  std::vector<CaseResult> results;
+
+  std::size_t count(Verdict verdict) const;
+  // Every case that applied passed (and at least one ran).
+  bool passed() const { return count(Verdict::fail) == 0 && count(Verdict::pass) > 0; }
+};
+
+// Asks `address` for its identification and services (falling back on what
+// `discovery` learnt from its node manager). Fails when it answers nothing.
+Expected<ComponentUnderTest> learn_component(ocu::OcuSession& session, const Address& address,
+                                             const ocu::Discovery* discovery, rt::Duration reply_timeout);
+
+// The components discovery found, in address order (the OCU's own left out).
+std::vector<Address> discovered_components(const ocu::Discovery& discovery);
+
+// Runs `cases` against `component`: a case that does not apply is skipped
+// with its reason; one filtered out by `options.only` is left out.
+std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnderTest& component,
+                                  const std::vector<const ConformanceCase*>& cases, const RunOptions& options,
+                                  const ResultListener& on_result = {});
+
+}  // namespace jaus::conform

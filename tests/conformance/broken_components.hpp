@@ -1,0 +1,117 @@
+// Components broken on purpose, each in a way a conformance case must catch,
+// on a node of their own (subsystem 3, 127.0.0.1, an ephemeral port):
+//   3.1.50.1 obeys anyone: a Reset from a non-controller puts it in Failure;
+//   3.1.51.1 never confirms a service connection (it provides Report Global Pose);
+//   3.1.52.1 echoes the presence vector it is asked for, whatever it has.
+#pragma once
+
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <boost/asio/io_context.hpp>
+#include <memory>
+#include <stdexcept>
+
+#include "jaus/host/node_host.hpp"
+#include "jaus/messages/all.hpp"
+#include "target_node.hpp"
+
+namespace jaus::conform::test {
+
+inline const Address kObeysAnyone{3, 1, 50, 1};
+inline const Address kNeverConfirms{3, 1, 51, 1};
+inline const Address kEchoesPresence{3, 1, 52, 1};
+
+class ObeysAnyone final : public rt::Component {
+ public:
+  ObeysAnyone(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    // The broken part: Reset is executed whoever sends it.
+    handle<msg::Reset>(Access::anyone, false, [this](const Header& h, const msg::Reset&) {
+      declare_failure("Reset by " + h.source.to_string());
+    });
+  }
+};
+
+class NeverConfirms final : public rt::Component {
+ public:
+  NeverConfirms(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    provide<msg::ReportGlobalPose>(jausctl::test::PoseSensor::kAvailable,
+                                   [] { return jausctl::test::PoseSensor::pose(); });
+    handle<msg::CreateServiceConnection>(Access::anyone, false,
+                                         [](const Header&, const msg::CreateServiceConnection&) {});  // silence
+  }
+};
+
+// Serves its one service connection by hand, sending the requested presence
+// vector back instead of the requested AND available one.
+class EchoesPresence final : public rt::Component {
+ public:
+  EchoesPresence(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    provide<msg::ReportGlobalPose>(jausctl::test::PoseSensor::kAvailable,
+                                   [] { return jausctl::test::PoseSensor::pose(); });
+    handle<msg::CreateServiceConnection>(Access::anyone, false,
+                                         [this](const Header& h, const msg::CreateServiceConnection& m) {
+                                           msg::ConfirmServiceConnection confirm;
+                                           confirm.command_code = m.command_code;
+                                           confirm.confirmed_rate_hz = m.periodic_rate_hz;
+                                           send(h.source, confirm);
+                                           requester_ = h.source;
+                                           presence_ = m.presence_vector;
+                                           report_in(std::chrono::milliseconds(1));
+                                         });
+    handle<msg::TerminateServiceConnection>(
+        Access::anyone, false, [this](const Header&, const msg::TerminateServiceConnection&) { requester_.reset(); });
+  }
+  ~EchoesPresence() override { env().scheduler.cancel(timer_); }
+
+ private:
+  void report_in(rt::Duration delay) {
+    timer_ = env().scheduler.call_at(env().clock.now() + delay, [this] {
+      if (!requester_) return;
+      // Every field, those it does not have (attitude, time stamp) too.
+      msg::ReportGlobalPose report = jausctl::test::PoseSensor::pose();
+      report.attitude_rms_rad = 0.1;
+      report.time_stamp = TimeStamp{1, 2, 3, 4, 5};
+      wire::mask_presence(report, presence_);  // the broken part: not AND the available fields
+      std::vector<std::uint8_t> payload(kMaxPayloadSize);
+      const auto size = wire::encode_payload(report, payload);
+      Header h;
+      h.command_code = msg::ReportGlobalPose::code;
+      h.source = address();
+      h.destination = *requester_;
+      h.service_connection = true;
+      h.sequence = sequence_++;
+      h.data_size = static_cast<std::uint16_t>(size ? *size : 0);
+      env().outbox.send(h, std::span(payload).first(size ? *size : 0));
+      report_in(std::chrono::milliseconds(100));
+    });
+  }
+
+  std::optional<Address> requester_;
+  std::uint32_t presence_ = 0;
+  std::uint16_t sequence_ = 0;
+  rt::TimerId timer_ = rt::kNoTimer;
+};
+
+class BrokenNode {
+ public:
+  explicit BrokenNode(boost::asio::io_context& io) {
+    host::HostConfig config;
+    config.node.subsystem = 3;
+    config.node.node = 1;
+    config.link.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
+    config.settings.identity.subsystem_name = "broken";
+    config.settings.identity.node_name = "broken";
+    auto host = host::NodeHost::open(config, io);
+    if (!host) throw std::runtime_error(host.error().message());
+    host_ = std::move(*host);
+    host_->emplace<ObeysAnyone>(host_->component_config("obeys anyone", kObeysAnyone.component));
+    host_->emplace<NeverConfirms>(host_->component_config("never confirms", kNeverConfirms.component));
+    host_->emplace<EchoesPresence>(host_->component_config("echoes presence", kEchoesPresence.component));
+  }
+  transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
+
+ private:
+  std::unique_ptr<host::NodeHost> host_;
+};
+
+}  // namespace jaus::conform::test

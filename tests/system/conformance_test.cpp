@@ -1,0 +1,84 @@
+// jaus-conform against a real jausd, as a team would run it before an event:
+// with the default configuration (every component, on the simulated
+// Clearpath platform) and with the components' own simulated vehicle. Every
+// applicable case passes, and the JUnit and readable reports are written.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "default_jausd.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Platform {
+  const char* name;
+  const char* address;
+  const char* config;
+};
+
+void PrintTo(const Platform& platform, std::ostream* out) { *out << platform.name; }
+
+class JausConform : public ::testing::TestWithParam<Platform> {};
+
+TEST_P(JausConform, EveryApplicableCasePassesAgainstJausd) {
+  const Platform& platform = GetParam();
+  DefaultJausd node(std::string("conform-") + platform.name, 1, platform.address, platform.config);
+  ASSERT_TRUE(node.started());
+  const auto junit = node.dir() / "junit.xml";
+  const auto report = node.dir() / "report.md";
+  ChildProcess conform({JAUS_CONFORM_PATH, "--to", platform.address, "--junit", junit.string(), "--report",
+                        report.string(), "--wait", "3"},
+                       (node.dir() / "jaus-conform.log").string());
+  ASSERT_TRUE(conform.started());
+  EXPECT_EQ(conform.wait(110s), std::optional<int>(0)) << conform.output() << "\n" << read(report);
+  const std::string output = conform.output();
+  // Every component of the node was tested, and the summary says so.
+  for (const char* component : {"1.1.1.1", "1.1.35.1", "1.1.33.1", "1.1.38.1", "1.1.42.1", "1.1.37.1", "1.1.49.1"})
+    EXPECT_NE(output.find(std::string("== ") + component), std::string::npos) << component << "\n" << output;
+  EXPECT_NE(output.find(" 0 failed"), std::string::npos) << output;
+  const std::string xml = read(junit);
+  EXPECT_NE(xml.find("<testsuites name=\"jaus-conform"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("failures=\"0\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"1.1.33.1\" name=\"control.round_trip\""), std::string::npos) << xml;
+  const std::string markdown = read(report);
+  EXPECT_NE(markdown.find("# JAUS conformance: " + std::string(platform.address) + ":3794"), std::string::npos)
+      << markdown;
+  EXPECT_EQ(markdown.find("## Failures"), std::string::npos) << markdown;
+}
+
+INSTANTIATE_TEST_SUITE_P(Platforms, JausConform,
+                         ::testing::Values(Platform{"clearpath_sim", "127.0.0.40", ""},
+                                           Platform{"model", "127.0.0.41", "platform: model\n"}),
+                         [](const ::testing::TestParamInfo<Platform>& p) { return std::string(p.param.name); });
+
+// A node that is not there: exit 2 and one line saying so.
+TEST(JausConformUsage, NoNodeIsExit2AndOneLine) {
+  ChildProcess conform(
+      {JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--wait", "0.5"},
+      (std::filesystem::temp_directory_path() / ("jaus-conform-none-" + std::to_string(::getpid()) + ".log")).string());
+  EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
+  EXPECT_TRUE(conform.output_contains("jaus-conform: no JAUS node heard at 127.0.0.42:3794 within 0.5 s"))
+      << conform.output();
+}
+
+TEST(JausConformUsage, BadArgumentsAreExit2AndOneLine) {
+  ChildProcess conform(
+      {JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--profile", "nasa"},
+      (std::filesystem::temp_directory_path() / ("jaus-conform-bad-" + std::to_string(::getpid()) + ".log")).string());
+  EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
+  EXPECT_TRUE(conform.output_contains("jaus-conform: --profile nasa: expected ra or openjaus")) << conform.output();
+}
+
+}  // namespace
+}  // namespace jaus::test
