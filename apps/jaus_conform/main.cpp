@@ -32,6 +32,12 @@ struct Options {
   std::string bind;
 };
 
+// What every component is asked first (its identification, its services):
+// one that does not answer fails this and is tested no further.
+const jaus::conform::ConformanceCase kAnswers{"runner.answers", "answers Query Identification (component)",
+                                              "wire notes: Liveness and discovery (typical OCU sequence)", nullptr,
+                                              nullptr};
+
 int bad_usage(const std::string& what) {
   std::cerr << "jaus-conform: " << what << " (--help for usage)\n";
   return kExitBadUsage;
@@ -95,10 +101,14 @@ int run(const Options& o) {
   for (const Address& address : components) {
     auto component = conform::learn_component(**session, address, &discovery, reply_timeout);
     if (!component) {
-      std::cout << "fail  " << address.to_string() << ": " << component.error().message() << "\n";
-      std::cerr << "jaus-conform: " << address.to_string() << " does not answer: " << component.error().message()
-                << "\n";
-      return requested.empty() ? kExitFailures : kExitBadUsage;
+      // A component that does not answer is a failure of its own; the others are still tested.
+      conform::CaseResult unreachable;
+      unreachable.test_case = &kAnswers;
+      unreachable.component = address;
+      unreachable.outcome = {conform::Verdict::fail, component.error().message()};
+      std::cout << "== " << address.to_string() << "\n" << conform::case_line(unreachable) << std::endl;
+      report.results.push_back(std::move(unreachable));
+      continue;
     }
     std::cout << "== " << address.to_string() << (component->name.empty() ? "" : " " + component->name) << "\n";
     auto results = conform::run_cases(**session, *component, cases, run_options, [](const conform::CaseResult& r) {

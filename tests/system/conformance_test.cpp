@@ -62,6 +62,20 @@ INSTANTIATE_TEST_SUITE_P(Platforms, JausConform,
                                            Platform{"model", "127.0.0.41", "platform: model\n"}),
                          [](const ::testing::TestParamInfo<Platform>& p) { return std::string(p.param.name); });
 
+// A component that does not answer fails, and the others are still tested.
+TEST(JausConformUsage, AComponentThatDoesNotAnswerFailsAndTheOthersAreStillTested) {
+  DefaultJausd node("conform-missing", 1, "127.0.0.42", "platform: model\n");
+  ASSERT_TRUE(node.started());
+  ChildProcess conform({JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--component", "1.1.99.1", "--component", "1.1.35.1",
+                        "--only", "core.status", "--wait", "1"},
+                       (node.dir() / "jaus-conform.log").string());
+  EXPECT_EQ(conform.wait(60s), std::optional<int>(1)) << conform.output();
+  EXPECT_TRUE(conform.output_contains("fail  1.1.99.1 runner.answers: no reply from 1.1.99.1 within 1 s"))
+      << conform.output();
+  EXPECT_TRUE(conform.output_contains("pass  1.1.35.1 core.status: primary status")) << conform.output();
+  EXPECT_TRUE(conform.output_contains("2 cases: 1 passed, 1 failed, 0 skipped")) << conform.output();
+}
+
 // A node that is not there: exit 2 and one line saying so.
 TEST(JausConformUsage, NoNodeIsExit2AndOneLine) {
   ChildProcess conform(
