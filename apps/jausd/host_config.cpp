@@ -85,6 +85,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.link.framing = config.transport.framing;
   h.link.multicast = config.transport.multicast;
   h.link.broadcast_to_peers = config.transport.broadcast_to_peers;
+  h.link.relay = config.transport.relay;
   h.link.peers = config.transport.peers;
   h.link.allow = config.transport.allow;
   h.link.routes.max_entries = config.transport.max_peers;

@@ -522,6 +522,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                                              jaus::quoted(jaus::transport::ipv4_to_string(t.multicast->address)));
                 }},
                {"broadcast_to_peers", [&](const Entry& e) { t.broadcast_to_peers = boolean(e); }},
+               {"relay", [&](const Entry& e) { t.relay = boolean(e); }},
                {"peers",
                 [&](const Entry& e) {
                   for (const auto& item : read_list(e)) peers.push_back(peer(item));

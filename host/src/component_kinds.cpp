@@ -56,7 +56,8 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
   if (spec.kind == "node_manager")
     made = std::make_unique<components::NodeManager>(c, node.environment(), node, settings.identity);
   else if (spec.kind == "communicator")
-    made = std::make_unique<components::Communicator>(c, node.environment());
+    made = std::make_unique<components::Communicator>(
+        c, node.environment(), components::CommunicatorConfig{1, settings.identity.heartbeat_period});
   else if (needs_vehicle(spec.kind)) {
     const bool drives = spec.kind == "primitive_driver";
     if (drives ? !vehicle.drive : !vehicle.pose)

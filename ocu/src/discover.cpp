@@ -18,6 +18,9 @@ void send_queries(OcuSession& session, const std::vector<DiscoveryQuery>& querie
       case DiscoveryQuery::Kind::services:
         session.send(q.to, msg::QueryServices{});
         break;
+      case DiscoveryQuery::Kind::subsystem_list:
+        session.send(q.to, msg::QuerySubsystemList{});
+        break;
     }
   }
 }

@@ -53,6 +53,7 @@ void Discovery::add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<
   const jaus::Address whole_subsystem{subsystem, 0, 0, 0};
   ask(out, manager, Kind::identification, id::kSubsystem, whole_subsystem);
   ask(out, manager, Kind::configuration, id::kSubsystem, whole_subsystem);
+  ask(out, manager, Kind::subsystem_list, 0, whole_subsystem);
   ask(out, manager, Kind::identification, id::kNode, manager);
   // A node manager may describe only its own node in a subsystem answer.
   ask(out, manager, Kind::configuration, id::kNode, manager);
@@ -101,6 +102,16 @@ std::vector<DiscoveryQuery> Discovery::received(const jaus::Header& h, std::span
         for (const auto& c : node.components)
           if (is_real_id(c.component_id) && is_real_id(c.instance))
             add_component(jaus::Address{from.subsystem, node.node_id, c.component_id, c.instance}, out);
+      }
+      break;
+    }
+    case jaus::msg::ReportSubsystemList::code: {
+      const auto report = decode<jaus::msg::ReportSubsystemList>(payload, dialect);
+      if (!report) break;
+      // Each entry speaks for its subsystem: asked like a heartbeat's source.
+      for (const auto& entry : report->subsystems) {
+        auto more = heard(entry);
+        out.insert(out.end(), more.begin(), more.end());
       }
       break;
     }

@@ -46,6 +46,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.link.bind = o.bind;
   config.link.framing = o.framing;
   for (const auto& peer : o.to) config.link.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
+  config.link.relay = false;  // messages end at the OCU
   config.settings.identity.subsystem_name = "jausctl";
   config.settings.identity.subsystem_type = kOcuSubsystemType;
   config.settings.identity.node_name = "jausctl";

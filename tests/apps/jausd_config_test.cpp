@@ -135,6 +135,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.transport.framing, Framing::opc);
   EXPECT_FALSE(c.transport.multicast);
   EXPECT_TRUE(c.transport.broadcast_to_peers);
+  EXPECT_TRUE(c.transport.relay);
   EXPECT_TRUE(c.transport.peers.empty());
   EXPECT_TRUE(c.transport.allow.empty());
   EXPECT_EQ(c.transport.max_peers, 256u);
@@ -256,6 +257,7 @@ transport:
   framing: judp
   multicast: 224.1.0.1:3795
   broadcast_to_peers: false
+  relay: false
   peers:
     - address: 127.0.0.3:3794
       framing: opc
@@ -301,6 +303,7 @@ logging:
   EXPECT_EQ(c.transport.framing, Framing::judp);
   EXPECT_EQ(c.transport.multicast, endpoint("224.1.0.1:3795"));
   EXPECT_FALSE(c.transport.broadcast_to_peers);
+  EXPECT_FALSE(c.transport.relay);
   ASSERT_EQ(c.transport.peers.size(), 3u);
   EXPECT_EQ(c.transport.peers[0], (StaticPeer{endpoint("127.0.0.3:3794"), Framing::opc}));
   EXPECT_EQ(c.transport.peers[1], (StaticPeer{endpoint("127.0.0.4:3794"), Framing::judp}));  // transport.framing
@@ -445,8 +448,8 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "unknown key 'peer_timeout_s' in liveness (known: component_timeout_s, node_timeout_s, "
                "subsystem_timeout_s)");
   expect_error("transport:\n  port: 3794\n", 2,
-               "unknown key 'port' in transport (known: bind, framing, multicast, broadcast_to_peers, peers, "
-               "allow, max_peers)");
+               "unknown key 'port' in transport (known: bind, framing, multicast, broadcast_to_peers, relay, "
+               "peers, allow, max_peers)");
   expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framming: judp\n", 4,
                "unknown key 'framming' in transport.peers (known: address, framing)");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    ID: 35\n", 4,

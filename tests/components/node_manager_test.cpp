@@ -14,6 +14,10 @@ class FakeDirectory : public rt::NodeDirectory {
  public:
   std::vector<const rt::Component*> local_components() const override { return components; }
   std::vector<Address> known_subsystems() const override { return subsystems; }
+  bool hosts_component(std::uint8_t id) const override {
+    return std::any_of(components.begin(), components.end(),
+                       [&](const auto* c) { return c->address().component == id; });
+  }
   std::vector<const rt::Component*> components;
   std::vector<Address> subsystems;
 };
@@ -58,11 +62,31 @@ class NodeManagerTest : public ::testing::Test {
   std::unique_ptr<TestDriver> driver;
 };
 
+const Address kEverySubsystem{255, 255, 1, 1};
+
 TEST_F(NodeManagerTest, SendsHeartbeatsToTheSubsystemAndTheNode) {
   outbox.clear();
   time.advance(3500ms);
   EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{1, 255, 1, 1}).size(), 3u);
   EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{1, 1, 255, 255}).size(), 3u);
+  // No communicator on this node to announce the subsystem: the node manager does.
+  EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(kEverySubsystem).size(), 3u);
+}
+
+TEST_F(NodeManagerTest, LeavesOtherSubsystemsToTheCommunicator) {
+  rt::ComponentConfig config;
+  config.address = Address{1, 1, 35, 1};
+  components::Communicator communicator(config, rt::Environment{time, time, outbox});
+  directory.components.push_back(&communicator);
+  communicator.start();
+  outbox.clear();
+  time.advance(3500ms);
+  EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{1, 255, 1, 1}).size(), 3u);
+  // From the communicator only: one a second, as from the node manager before.
+  const auto announced = outbox.to<msg::ReportHeartbeatPulse>(kEverySubsystem);
+  EXPECT_EQ(announced.size(), 3u);
+  for (const auto& sent : outbox.sent)
+    if (sent.header.destination == kEverySubsystem) EXPECT_EQ(sent.header.source, config.address);
 }
 
 TEST_F(NodeManagerTest, AnswersIdentificationAtEachLevel) {
@@ -134,6 +158,49 @@ TEST_F(NodeManagerTest, ConfigurationEventsOnEveryChange) {
   EXPECT_EQ(outbox.to<msg::Event>(kOcuA).size(), 1u);
 }
 
+// The subsystem list changes with the network (a subsystem heard or silent),
+// not with this node: its own events, at most 10 a second whatever the churn.
+TEST_F(NodeManagerTest, SubsystemListEventsOnEveryChangeAtABoundedRate) {
+  msg::CreateEvent create;
+  create.request_id = 3;
+  create.report_code = msg::ReportSubsystemList::code;
+  create.event_type = 1;
+  deliver(kOcuA, create);
+  const auto confirm = outbox.to<msg::ConfirmEventRequest>(kOcuA).at(0);
+  EXPECT_EQ(confirm.message_code, msg::ReportSubsystemList::code);
+  EXPECT_EQ(confirm.response_code, components::event_response::kSuccessful);
+
+  const auto subsystems_in = [](const msg::Event& event) {
+    EXPECT_EQ(event.report_code, msg::ReportSubsystemList::code);
+    const auto list = wire::decode_payload<msg::ReportSubsystemList>(event.report_message);
+    EXPECT_TRUE(list);
+    return list ? list->subsystems : std::vector<Address>{};
+  };
+  manager->configuration_changed();  // this node's components: not the subsystem list
+  EXPECT_TRUE(outbox.to<msg::Event>(kOcuA).empty());
+
+  directory.subsystems.push_back(Address{3, 1, 35, 1});
+  manager->subsystems_changed();
+  auto events = outbox.to<msg::Event>(kOcuA);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].event_id, confirm.event_id);
+  EXPECT_EQ(subsystems_in(events[0]), directory.subsystems);
+
+  // A burst of changes within 100 ms: one Event when the rate allows, with the last list.
+  directory.subsystems.pop_back();
+  manager->subsystems_changed();
+  directory.subsystems.pop_back();
+  manager->subsystems_changed();
+  EXPECT_EQ(outbox.to<msg::Event>(kOcuA).size(), 1u);
+  time.advance(100ms);
+  events = outbox.to<msg::Event>(kOcuA);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(subsystems_in(events[1]), (std::vector<Address>{kNodeManager}));
+  EXPECT_EQ(events[1].sequence_number, events[0].sequence_number + 1);
+  time.advance(1s);
+  EXPECT_EQ(outbox.to<msg::Event>(kOcuA).size(), 2u);  // nothing changed since
+}
+
 TEST_F(NodeManagerTest, PeriodicConfigurationEventsAndRefusals) {
   msg::CreateEvent periodic;
   periodic.request_id = 1;
@@ -190,7 +257,7 @@ TEST(Communicator, ReportsAndSetsDataLinks) {
   rt::ComponentConfig config;
   config.address = Address{1, 1, 35, 1};
   config.authority = 0;
-  components::Communicator communicator(config, rt::Environment{time, time, outbox}, 2);
+  components::Communicator communicator(config, rt::Environment{time, time, outbox}, components::CommunicatorConfig{2});
   communicator.start();
   auto deliver = [&](const Address& from, auto message) {
     std::vector<std::uint8_t> payload(64);
@@ -212,6 +279,29 @@ TEST(Communicator, ReportsAndSetsDataLinks) {
   deliver(kOcuB, msg::QuerySelectedDataLinkStatus{});
   EXPECT_EQ(outbox.to<msg::ReportDataLinkStatus>(kOcuB).at(0).state, components::data_link::kStandby);
   EXPECT_EQ(outbox.to<msg::ReportSelectedDataLinkStatus>(kOcuB).at(0).data_link_id, 1);
+}
+
+// Other subsystems' node managers accept only their own subsystem and 255:
+// the communicator announces its subsystem to (255, 255, 1, 1), and to
+// nothing addressed to its own subsystem.
+TEST(Communicator, HeartbeatsToEverySubsystemAtItsRate) {
+  rt::VirtualTime time;
+  RecordingOutbox outbox;
+  rt::ComponentConfig config;
+  config.address = Address{2, 1, 35, 1};
+  components::Communicator communicator(config, rt::Environment{time, time, outbox},
+                                        components::CommunicatorConfig{1, 500ms});
+  communicator.start();
+  time.advance(2200ms);
+  EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{255, 255, 1, 1}).size(), 5u);  // at 0, 0.5, ... 2 s
+  for (const auto& sent : outbox.sent) EXPECT_NE(sent.header.destination.subsystem, 2);
+  // A Reset runs Initialize again: still one heartbeat per period.
+  deliver_to(communicator, time, kOcuA, msg::RequestComponentControl{{10}});
+  deliver_to(communicator, time, kOcuA, msg::Reset{});
+  EXPECT_EQ(communicator.state(), msg::PrimaryStatus::ready);
+  outbox.clear();
+  time.advance(1000ms);
+  EXPECT_EQ(outbox.to<msg::ReportHeartbeatPulse>(Address{255, 255, 1, 1}).size(), 2u);
 }
 
 }  // namespace

@@ -58,6 +58,8 @@ struct TargetOptions {
   jaus::rt::Duration controller_timeout = 3s;
   bool reject_refused = false;
   std::uint8_t subsystem = 1;  // the component addresses above are those of subsystem 1
+  std::vector<jaus::transport::Ipv4Endpoint> peers = {};  // static peers
+  jaus::rt::Duration subsystem_timeout = 5s;              // a silent node or subsystem is lost after this
 };
 
 class TargetNode {
@@ -66,6 +68,9 @@ class TargetNode {
     jaus::host::HostConfig config;
     config.node.subsystem = options.subsystem;
     config.link.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
+    for (const auto& peer : options.peers) config.link.peers.push_back({peer, jaus::transport::Framing::opc});
+    config.node.liveness.node_timeout = options.subsystem_timeout;
+    config.node.liveness.subsystem_timeout = options.subsystem_timeout;
     config.settings.defaults.controller_timeout = options.controller_timeout;
     config.settings.defaults.reject_refused_requests = options.reject_refused;
     config.settings.identity.subsystem_name = "test-vehicle";
@@ -85,6 +90,7 @@ class TargetNode {
   // The network goes quiet (cable pulled, process frozen): nothing in or out.
   void go_silent() { host_->link().close(); }
   jaus::node::Node& node() { return host_->node(); }
+  jaus::transport::UdpLink& link() { return host_->link(); }
   jaus::components::Communicator& communicator() { return *communicator_; }
   PoseSensor& pose_sensor() { return *pose_; }
   jaus::transport::AsioRuntime& runtime() { return host_->runtime(); }

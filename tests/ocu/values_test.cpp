@@ -179,6 +179,7 @@ TEST_F(DiscoveryModel, AHeartbeatStartsTheSequenceAndEachQuestionIsAskedOnce) {
   EXPECT_TRUE(asks(first, manager, K::identification, 3));
   EXPECT_TRUE(asks(first, manager, K::identification, 4));
   EXPECT_TRUE(asks(first, manager, K::services, 0));
+  EXPECT_TRUE(asks(first, manager, K::subsystem_list, 0));
   EXPECT_TRUE(discovery.heard(manager).empty());  // the next heartbeat asks nothing new
   EXPECT_TRUE(discovery.heard(jaus::Address{254, 1, 1, 1}).empty());  // the OCU's own node
 
@@ -198,6 +199,24 @@ TEST_F(DiscoveryModel, AHeartbeatStartsTheSequenceAndEachQuestionIsAskedOnce) {
   const auto driver_services = Discovery::services_of(node, node.components.at({33, 1}));
   ASSERT_EQ(driver_services.size(), 1u);
   EXPECT_EQ(driver_services[0].inputs[0].command_code, 0x0405);
+}
+
+// A node's subsystem list names the subsystems it knows (and relays to): each
+// is asked in turn, as if heard; the OCU's own node is not.
+TEST_F(DiscoveryModel, EverySubsystemInASubsystemListIsAsked) {
+  using K = DiscoveryQuery::Kind;
+  const jaus::Address manager{3, 2, 1, 1};
+  discovery.heard(manager);
+  const jaus::Address other_communicator{5, 1, 35, 1};
+  const auto next = reply(manager, jaus::msg::ReportSubsystemList{{{manager, other_communicator, {254, 1, 1, 1}}}});
+  EXPECT_TRUE(asks(next, jaus::Address{5, 1, 1, 1}, K::identification, 2));
+  EXPECT_TRUE(asks(next, jaus::Address{5, 1, 1, 1}, K::configuration, 2));
+  EXPECT_TRUE(asks(next, jaus::Address{5, 1, 1, 1}, K::subsystem_list, 0));
+  EXPECT_TRUE(asks(next, other_communicator, K::identification, 4));
+  for (const auto& q : next) EXPECT_NE(q.to.subsystem, 254) << q.to.to_string();
+  for (const auto& q : next) EXPECT_NE(q.to.subsystem, 3) << "asked again: " << q.to.to_string();
+  ASSERT_EQ(discovery.subsystems().size(), 2u);
+  EXPECT_TRUE(discovery.subsystems().contains(5));
 }
 
 TEST_F(DiscoveryModel, ANodeClaimingTooManyComponentsIsNotBelieved) {

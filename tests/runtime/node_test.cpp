@@ -321,3 +321,73 @@ TEST(NodeWithManager, PeersDiscoverEachOtherFromHeartbeats) {
 
 }  // namespace
 }  // namespace jaus::test
+
+namespace jaus::test {
+namespace {
+
+// A subsystem heard (from its communicator, then its node manager) joins the
+// node manager's subsystem list, with an Event to its subscriber; silent for
+// the subsystem timeout, it leaves the list, with another Event.
+TEST(NodeWithManager, SubsystemsFoundAndLostChangeTheListWithAnEvent) {
+  rt::VirtualTime time;
+  MemoryLink link(time);
+  node::NodeConfig config;
+  config.subsystem = 2;
+  node::Node node(config, time, time, link);
+  rt::ComponentConfig manager_config;
+  manager_config.name = "node manager";
+  manager_config.address = Address{2, 1, 1, 1};
+  node.add(std::make_unique<components::NodeManager>(manager_config, node.environment(), node,
+                                                     components::NodeManagerConfig{}));
+  const auto receive = [&](const Address& from, const Address& to, const auto& message) {
+    std::vector<std::uint8_t> bytes(kHeaderSize + kMaxPayloadSize);
+    const auto size = wire::encode_payload(message, std::span(bytes).subspan(kHeaderSize));
+    ASSERT_TRUE(size);
+    Header h;
+    h.command_code = std::decay_t<decltype(message)>::code;
+    h.source = from;
+    h.destination = to;
+    h.data_size = static_cast<std::uint16_t>(*size);
+    encode_header_unchecked(h, std::span(bytes).first<kHeaderSize>());
+    node.receive_bytes(std::span(bytes).first(kHeaderSize + *size));
+  };
+  const auto events_to = [&](const Address& requester) {
+    std::vector<std::vector<Address>> lists;
+    for (const auto& p : link.packets) {
+      const auto h = *decode_header(p);
+      if (h.command_code != msg::Event::code || h.destination != requester) continue;
+      const auto event = wire::decode_payload<msg::Event>(std::span(p).subspan(kHeaderSize));
+      EXPECT_TRUE(event);
+      if (!event) continue;
+      const auto list = wire::decode_payload<msg::ReportSubsystemList>(event->report_message);
+      EXPECT_TRUE(list);
+      if (list) lists.push_back(list->subsystems);
+    }
+    return lists;
+  };
+  const Address ocu{9, 1, 40, 1}, everyone{255, 255, 1, 1};
+  msg::CreateEvent create;
+  create.report_code = msg::ReportSubsystemList::code;
+  create.event_type = 1;
+  receive(ocu, manager_config.address, create);
+  time.advance(10ms);
+  ASSERT_TRUE(events_to(ocu).empty());
+
+  receive(Address{5, 3, 35, 1}, everyone, msg::ReportHeartbeatPulse{});  // a communicator announces subsystem 5
+  time.advance(10ms);
+  ASSERT_EQ(events_to(ocu).size(), 1u);
+  EXPECT_EQ(events_to(ocu).back(), (std::vector<Address>{{2, 1, 1, 1}, {5, 3, 35, 1}, {9, 1, 1, 1}}));
+  receive(Address{5, 2, 1, 1}, Address{5, 255, 1, 1}, msg::ReportHeartbeatPulse{});  // and one of its node managers
+  EXPECT_EQ(node.known_subsystems()[1], (Address{5, 2, 1, 1}));
+
+  for (int second = 0; second < 7; ++second) {  // subsystem 5 falls silent; the OCU keeps heartbeating
+    receive(Address{9, 1, 1, 1}, everyone, msg::ReportHeartbeatPulse{});
+    time.advance(1s);
+  }
+  ASSERT_EQ(events_to(ocu).size(), 2u);
+  EXPECT_EQ(events_to(ocu).back(), (std::vector<Address>{{2, 1, 1, 1}, {9, 1, 1, 1}}));
+  EXPECT_EQ(node.known_subsystems(), (std::vector<Address>{{2, 1, 1, 1}, {9, 1, 1, 1}}));
+}
+
+}  // namespace
+}  // namespace jaus::test

@@ -58,6 +58,50 @@ TEST(RouteTable, AnotherHostClaimingALiveNodesIdIsRefused) {
   EXPECT_EQ(table.counters().claims_refused, 2u);
 }
 
+// A configured peer that is another node relays (udp_link.hpp): its copy of a
+// message from a node we hear directly moves nothing and is dropped.
+TEST(RouteTable, AConfiguredRelaysCopyOfANodeHeardDirectlyMovesNothing) {
+  rt::VirtualTime time;
+  RouteTable table;
+  const Ipv4Endpoint kRelay{0x7F000004, 3794};
+  const Ipv4Endpoint kRestarted{0x7F000005, 3794};
+  table.add_static_peer(kRelay, Framing::opc);
+  table.add_static_peer(kRestarted, Framing::opc);
+  table.learn(2, 1, kRelay, Framing::opc, time.now());  // the relay is node 2.1
+  table.learn(9, 1, kPeerA, Framing::opc, time.now());  // an OCU, heard directly
+  EXPECT_EQ(table.learn(9, 1, kRelay, Framing::opc, time.now()), Learnt::relayed_copy);
+  EXPECT_EQ(table.route(9, 1)->endpoint, kPeerA);
+  EXPECT_EQ(table.counters().relayed_copies, 1u);
+  EXPECT_FALSE(table.peers().at(kRelay).hosts_subsystem(9));
+  // A configured endpoint that is no other node is still believed at once (a restart).
+  EXPECT_EQ(table.learn(9, 1, kRestarted, Framing::opc, time.now()), Learnt::moved);
+  // Once the OCU is silent, its route may move through the relay.
+  time.advance(3s);
+  EXPECT_EQ(table.learn(9, 1, kRelay, Framing::opc, time.now()), Learnt::moved);
+}
+
+// Each endpoint knows the subsystems of its routes: a subsystem's broadcasts go to its own nodes only.
+TEST(RouteTable, EachPeerKnowsTheSubsystemsItHosts) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{256, 2, 10s});
+  table.add_static_peer(kPeerB, Framing::opc);
+  EXPECT_TRUE(table.peers().at(kPeerB).subsystems.none());  // not heard yet: unknown
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  table.learn(1, 1, kPeerA, Framing::opc, time.now() + 1s);  // relayed through A
+  EXPECT_TRUE(table.peers().at(kPeerA).hosts_subsystem(2));
+  EXPECT_TRUE(table.peers().at(kPeerA).hosts_subsystem(1));
+  time.advance(2s);
+  table.learn(3, 1, kPeerA, Framing::opc, time.now());  // two routes per endpoint: 2.1, the oldest, gives way
+  EXPECT_FALSE(table.peers().at(kPeerA).hosts_subsystem(2));
+  EXPECT_TRUE(table.peers().at(kPeerA).hosts_subsystem(3));
+  table.learn(3, 1, kPeerB, Framing::opc, time.now() + 3s);  // moved (a configured peer)
+  EXPECT_FALSE(table.peers().at(kPeerA).hosts_subsystem(3));
+  EXPECT_TRUE(table.peers().at(kPeerB).hosts_subsystem(3));
+  time.advance(20s);
+  table.expire(time.now());
+  EXPECT_TRUE(table.peers().at(kPeerB).subsystems.none());  // static, its route silent
+}
+
 TEST(RouteTable, SilentLearntRoutesExpireStaticPeersStay) {
   rt::VirtualTime time;
   RouteTable table(RouteTableOptions{256, 4, 10s});

@@ -10,6 +10,7 @@
 #include <boost/asio/ip/udp.hpp>
 #include <atomic>
 #include <functional>
+#include <map>
 #include <random>
 #include <thread>
 #include <unistd.h>
@@ -396,6 +397,100 @@ TEST(UdpLinks, BroadcastsReachStaticPeersWhichThenLearnTheRouteBack) {
   // Unicast to a node nobody has heard of, with no static peer and no multicast: dropped, counted.
   transmit(**b, packet_of(Address{2, 1, 1, 1}, Address{9, 9, 1, 1}, msg::QueryIdentification{}));
   EXPECT_EQ((*b)->counters().no_route, 1u);
+}
+
+// Links on loopback, each with its own subsystem and node, recording what
+// reaches them (jaus-wire-notes.md, "Liveness and discovery").
+class SubsystemLinks : public ::testing::Test {
+ protected:
+  UdpLink& open(std::uint8_t subsystem, std::uint8_t node, std::vector<UdpLink*> peers = {}, bool relay = true) {
+    UdpLinkOptions options;
+    options.subsystem = subsystem;
+    options.node = node;
+    options.bind = Ipv4Endpoint{kLoopback1, 0};
+    options.relay = relay;
+    for (auto* peer : peers) options.peers.push_back(StaticPeer{peer->local_endpoint(), Framing::opc});
+    auto opened = UdpLink::open(io, runtime, runtime, options);
+    EXPECT_TRUE(opened) << opened.error().message();
+    UdpLink& link = *links.emplace_back(std::move(*opened));
+    auto& heard = at[&link];
+    link.on_packet([&heard](const PacketView& p, Framing) { heard.push_back(p.header); });
+    link.start();
+    return link;
+  }
+  bool heard(UdpLink& link, const Address& from, const Address& to) {
+    return std::any_of(at[&link].begin(), at[&link].end(),
+                       [&](const Header& h) { return h.source == from && h.destination == to; });
+  }
+  bool heard_for_subsystem(UdpLink& link, std::uint8_t subsystem) {
+    return std::any_of(at[&link].begin(), at[&link].end(),
+                       [&](const Header& h) { return h.destination.subsystem == subsystem; });
+  }
+
+  asio::io_context io;
+  AsioRuntime runtime{io};
+  std::vector<std::unique_ptr<UdpLink>> links;
+  std::map<UdpLink*, std::vector<Header>> at;  // the links' handlers hold references into it: never erased
+};
+
+// Another subsystem's node manager drops what is addressed to ours: a
+// subsystem's broadcasts go only to peers heard as its nodes; (255, ...) to all.
+TEST_F(SubsystemLinks, ASubsystemsBroadcastsReachOnlyItsOwnNodes) {
+  UdpLink& other = open(1, 1);
+  UdpLink& sibling = open(2, 2);
+  UdpLink& self = open(2, 1, {&other, &sibling});
+  const Address manager{2, 1, 1, 1};
+  const Address our_subsystem{2, 255, 1, 1}, every_subsystem{255, 255, 1, 1};
+  // Peers not heard yet may be of any subsystem: only (255, ...) goes to them.
+  transmit(self, packet_of(manager, our_subsystem, msg::ReportHeartbeatPulse{}));
+  transmit(self, packet_of(manager, every_subsystem, msg::ReportHeartbeatPulse{}));
+  ASSERT_TRUE(run_io_until(
+      io, [&] { return heard(other, manager, every_subsystem) && heard(sibling, manager, every_subsystem); }));
+  EXPECT_FALSE(heard_for_subsystem(other, 2));
+  EXPECT_FALSE(heard_for_subsystem(sibling, 2));
+
+  // Once each has spoken, the sibling (subsystem 2) gets subsystem 2's broadcasts.
+  transmit(other, packet_of(Address{1, 1, 35, 1}, every_subsystem, msg::ReportHeartbeatPulse{}));
+  transmit(sibling, packet_of(Address{2, 2, 1, 1}, every_subsystem, msg::ReportHeartbeatPulse{}));
+  ASSERT_TRUE(run_io_until(io, [&] { return self.routes().route(1, 1) && self.routes().route(2, 2); }));
+  for (auto& [link, headers] : at) headers.clear();
+  transmit(self, packet_of(manager, our_subsystem, msg::ReportHeartbeatPulse{}));
+  transmit(self, packet_of(manager, every_subsystem, msg::ReportHeartbeatPulse{}));
+  // Datagrams from one socket to one socket arrive in order: the second is the mark.
+  ASSERT_TRUE(run_io_until(
+      io, [&] { return heard(other, manager, every_subsystem) && heard(sibling, manager, every_subsystem); }));
+  EXPECT_TRUE(heard(sibling, manager, our_subsystem));
+  EXPECT_FALSE(heard_for_subsystem(other, 2));
+}
+
+// An OCU that reaches one node reaches the subsystems that node has heard:
+// the node relays to where each was heard, and the replies come back the same way.
+TEST_F(SubsystemLinks, AMessageForAnotherSubsystemIsRelayedToWhereItsNodeWasHeard) {
+  UdpLink& remote = open(1, 1, {}, /*relay=*/false);
+  UdpLink& node = open(2, 1, {&remote});
+  UdpLink& ocu = open(254, 1, {&node}, /*relay=*/false);
+  const Address remote_manager{1, 1, 1, 1}, ocu_component{254, 1, 40, 1};
+  remote.send_to(node.local_endpoint(), Framing::opc,
+                 packet_of(Address{1, 1, 35, 1}, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  ASSERT_TRUE(run_io_until(io, [&] { return node.routes().route(1, 1).has_value(); }));
+
+  // The OCU knows no route to subsystem 1: its static peer, the node, gets it and relays it.
+  transmit(ocu, packet_of(ocu_component, remote_manager, msg::QueryIdentification{}));
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(remote, ocu_component, remote_manager); }));
+  EXPECT_EQ(node.counters().relayed, 1u);
+  EXPECT_EQ(remote.routes().route(254, 1)->endpoint, node.local_endpoint());  // the OCU lives behind the node
+  transmit(remote, packet_of(remote_manager, ocu_component, msg::ReportIdentification{}));
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(ocu, remote_manager, ocu_component); }));
+  EXPECT_EQ(node.counters().relayed, 2u);
+  EXPECT_EQ(ocu.routes().route(1, 1)->endpoint, node.local_endpoint());
+
+  // Its own subsystem's messages, broadcasts, and what has nowhere known to go are not relayed.
+  transmit(ocu, packet_of(ocu_component, Address{2, 7, 1, 1}, msg::QueryIdentification{}));
+  transmit(ocu, packet_of(ocu_component, Address{1, 255, 1, 1}, msg::QueryIdentification{}));
+  transmit(ocu, packet_of(ocu_component, Address{3, 1, 1, 1}, msg::QueryIdentification{}));
+  transmit(ocu, packet_of(ocu_component, remote_manager, msg::QueryIdentification{}));  // the mark
+  ASSERT_TRUE(run_io_until(io, [&] { return node.counters().relayed == 3; }));
+  EXPECT_EQ(at[&remote].size(), 2u);  // the two queries to 1.1.1.1, nothing else
 }
 
 TEST(UdpLinks, BroadcastsGoToTheMulticastGroupAndOwnOnesAreNotTakenBack) {

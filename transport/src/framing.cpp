@@ -22,6 +22,7 @@ std::string_view to_string(DropReason reason) {
     case DropReason::from_self: return "own datagram";
     case DropReason::invalid_source: return "invalid source ID";
     case DropReason::route_claim: return "node ID claimed from a second endpoint";
+    case DropReason::relayed_copy: return "relayed copy of a direct message";
     case DropReason::count_: break;
   }
   return "unknown";

@@ -8,13 +8,23 @@ void RouteTable::add_static_peer(const Ipv4Endpoint& endpoint, Framing framing) 
   auto [it, inserted] = peers_.try_emplace(endpoint);
   if (!inserted && !it->second.is_static) --learnt_peers_;
   const std::size_t routes = it->second.routes;
-  it->second = Peer{endpoint, framing, true, {}, routes};
+  const auto subsystems = it->second.subsystems;
+  it->second = Peer{endpoint, framing, true, {}, routes, subsystems};
 }
 
 void RouteTable::erase_route(std::map<std::uint16_t, Route>::iterator route) {
-  if (auto peer = peers_.find(route->second.endpoint); peer != peers_.end() && peer->second.routes > 0)
-    --peer->second.routes;
+  const auto peer = peers_.find(route->second.endpoint);
   routes_.erase(route);
+  if (peer == peers_.end()) return;
+  if (peer->second.routes > 0) --peer->second.routes;
+  recount_subsystems(peer->second);
+}
+
+void RouteTable::recount_subsystems(Peer& peer) const {
+  // Rare (a route replaced, moved or expired): a walk over at most max_entries routes.
+  peer.subsystems.reset();
+  for (const auto& [k, route] : routes_)
+    if (route.endpoint == peer.endpoint) peer.subsystems.set(k >> 8);
 }
 
 Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
@@ -25,6 +35,10 @@ Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4En
     const bool same_host = route->second.endpoint.address == from.address;
     const bool configured = peer != peers_.end() && peer->second.is_static;
     const bool old_silent = now - route->second.last_heard >= options_.move_after_silence;
+    if (configured && peer->second.routes > 0 && !same_host && !old_silent) {
+      ++counters_.relayed_copies;
+      return Learnt::relayed_copy;
+    }
     if (!same_host && !configured && !old_silent) {
       ++counters_.claims_refused;
       return Learnt::claim_refused;
@@ -35,7 +49,7 @@ Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4En
       ++counters_.rejected_full;
       return Learnt::rejected;
     }
-    peer = peers_.emplace(from, Peer{from, framing, false, now, 0}).first;
+    peer = peers_.emplace(from, Peer{from, framing, false, now, 0, {}}).first;
     ++learnt_peers_;
   }
   peer->second.framing = framing;  // answer each peer the way it speaks
@@ -64,6 +78,7 @@ Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4En
   }
   routes_.emplace(k, Route{from, now});
   ++peer->second.routes;
+  peer->second.subsystems.set(subsystem);
   return result;
 }
 

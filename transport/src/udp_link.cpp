@@ -219,6 +219,7 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
   const Learnt learnt =
       routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
   auto node = [&] { return std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node); };
+  if (learnt == Learnt::relayed_copy) return count_drop(DropReason::relayed_copy);
   if (learnt == Learnt::claim_refused) {
     return drop(DropReason::route_claim, from, [&] {
       const auto route = routes_.route(header.source.subsystem, header.source.node);
@@ -235,8 +236,27 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
              std::string(to_string(unframed->framing)) + ")";
     });
   }
+  if (options_.relay) relay(from, header, datagram.last(kHeaderSize + unframed->packet.payload.size()));
   ++counters_.packets_delivered;
   if (handler_) handler_(unframed->packet, unframed->framing);
+}
+
+void UdpLink::relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet) {
+  const Address& to = header.destination;
+  if (to.subsystem == options_.subsystem || to.subsystem == Address::kBroadcast || to.node == Address::kBroadcast)
+    return;
+  const auto next = routes_.route(to.subsystem, to.node);
+  if (!next || next->endpoint == from) return;
+  // Only what its sender handed us itself: a relayed message is never relayed
+  // again, so two relays cannot pass one back and forth.
+  const auto sender = routes_.route(header.source.subsystem, header.source.node);
+  if (!sender || sender->endpoint != from) return;
+  ++counters_.relayed;
+  send_to(next->endpoint, next->framing, packet);
+}
+
+bool UdpLink::broadcast_reaches(const Address& to, const Peer& peer) {
+  return to.subsystem == Address::kBroadcast || peer.hosts_subsystem(to.subsystem);
 }
 
 void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
@@ -273,6 +293,7 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
   }
   if (broadcast && options_.broadcast_to_peers) {
     for (const auto& [endpoint, peer] : routes_.peers()) {
+      if (!broadcast_reaches(to, peer)) continue;
       send_to(endpoint, peer.framing, packet);
       sent = true;
     }

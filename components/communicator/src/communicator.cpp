@@ -4,9 +4,13 @@ namespace jaus::components {
 
 using namespace rt;
 
-Communicator::Communicator(ComponentConfig config, Environment env, std::uint8_t link_count)
-    : Component(std::move(config), std::move(env)) {
-  for (std::uint8_t id = 0; id < link_count; ++id) links_[id] = data_link::kOn;
+namespace {
+constexpr std::uint8_t kNodeManagerComponent = 1;
+}  // namespace
+
+Communicator::Communicator(ComponentConfig config, Environment env, CommunicatorConfig options)
+    : Component(std::move(config), std::move(env)), heartbeat_period_(options.heartbeat_period) {
+  for (std::uint8_t id = 0; id < options.link_count; ++id) links_[id] = data_link::kOn;
   using namespace msg;
   handle<SetDataLinkStatus>(Access::controller, false, [this](const Header& h, const SetDataLinkStatus& m) {
     if (m.state > data_link::kStandby) {
@@ -37,6 +41,23 @@ Communicator::Communicator(ComponentConfig config, Environment env, std::uint8_t
   handle<QuerySelectedDataLinkStatus>(Access::anyone, false, [this](const Header& h, const QuerySelectedDataLinkStatus&) {
     send(h.source, ReportSelectedDataLinkStatus{{selected_}});
   });
+}
+
+Communicator::~Communicator() {
+  if (heartbeat_timer_ != kNoTimer) env().scheduler.cancel(heartbeat_timer_);
+}
+
+bool Communicator::initialize() {
+  // Initialize runs again after a Reset: one heartbeat timer, not two.
+  if (heartbeat_timer_ == kNoTimer && heartbeat_period_ > Duration::zero()) heartbeat();
+  return true;
+}
+
+void Communicator::heartbeat() {
+  // To every subsystem's node managers: the link leaves it out of nothing
+  // (255 is accepted by every subsystem), unlike this subsystem's own broadcasts.
+  send(Address{Address::kBroadcast, Address::kBroadcast, kNodeManagerComponent, 1}, msg::ReportHeartbeatPulse{});
+  heartbeat_timer_ = env().scheduler.call_at(env().clock.now() + heartbeat_period_, [this] { heartbeat(); });
 }
 
 std::uint8_t Communicator::link_state(std::uint8_t link) const {

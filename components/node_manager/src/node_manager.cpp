@@ -9,6 +9,11 @@ using namespace rt;
 
 namespace {
 constexpr std::uint8_t kNodeManagerComponent = 1;
+constexpr std::uint8_t kCommunicatorComponent = 35;
+
+bool supports_events(std::uint16_t report_code) {
+  return report_code == msg::ReportConfiguration::code || report_code == msg::ReportSubsystemList::code;
+}
 }  // namespace
 
 NodeManager::NodeManager(ComponentConfig config, Environment env, const NodeDirectory& directory,
@@ -44,11 +49,8 @@ NodeManager::NodeManager(ComponentConfig config, Environment env, const NodeDire
   handle<QueryConfiguration>(Access::anyone, false, [this](const Header& h, const QueryConfiguration& m) {
     send(h.source, configuration(m.query_field));
   });
-  handle<QuerySubsystemList>(Access::anyone, false, [this](const Header& h, const QuerySubsystemList&) {
-    ReportSubsystemList report;
-    report.subsystems = directory_.known_subsystems();
-    send(h.source, report);
-  });
+  handle<QuerySubsystemList>(Access::anyone, false,
+                             [this](const Header& h, const QuerySubsystemList&) { send(h.source, subsystem_list()); });
   handle<QueryServices>(Access::anyone, false, [this](const Header& h, const QueryServices&) { send(h.source, services()); });
   handle<CreateEvent>(Access::anyone, false, [this](const Header& h, const CreateEvent& m) { on_create_event(h, m); });
   handle<CancelEvent>(Access::anyone, false, [this](const Header& h, const CancelEvent& m) { on_cancel_event(h, m); });
@@ -56,6 +58,7 @@ NodeManager::NodeManager(ComponentConfig config, Environment env, const NodeDire
 
 NodeManager::~NodeManager() {
   if (heartbeat_timer_ != kNoTimer) env().scheduler.cancel(heartbeat_timer_);
+  if (subsystem_events_timer_ != kNoTimer) env().scheduler.cancel(subsystem_events_timer_);
   for (auto& [id, e] : events_)
     if (e.timer != kNoTimer) env().scheduler.cancel(e.timer);
 }
@@ -70,6 +73,11 @@ void NodeManager::heartbeat() {
   const Address& self = address();
   send(Address{self.subsystem, Address::kBroadcast, kNodeManagerComponent, 1}, msg::ReportHeartbeatPulse{});
   send(Address{self.subsystem, self.node, Address::kBroadcast, Address::kBroadcast}, msg::ReportHeartbeatPulse{});
+  // Other subsystems drop what is addressed to this one; without a
+  // communicator to announce it, this node does, or they would never hear it
+  // (and would drop its control and service connections as silent).
+  if (!directory_.hosts_component(kCommunicatorComponent))
+    send(Address{Address::kBroadcast, Address::kBroadcast, kNodeManagerComponent, 1}, msg::ReportHeartbeatPulse{});
   heartbeat_timer_ = env().scheduler.call_at(env().clock.now() + nm_.heartbeat_period, [this] { heartbeat(); });
 }
 
@@ -82,6 +90,12 @@ msg::ReportConfiguration NodeManager::configuration(std::uint8_t) const {
     node.components.push_back({c->address().component, c->address().instance});
   msg::ReportConfiguration report;
   report.nodes.push_back(std::move(node));
+  return report;
+}
+
+msg::ReportSubsystemList NodeManager::subsystem_list() const {
+  msg::ReportSubsystemList report;
+  report.subsystems = directory_.known_subsystems();
   return report;
 }
 
@@ -103,7 +117,7 @@ void NodeManager::confirm_event(const Address& to, std::uint8_t request_id, std:
 }
 
 void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
-  if (m.report_code != msg::ReportConfiguration::code)
+  if (!supports_events(m.report_code))
     return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kMessageNotSupported);
   const bool periodic = m.event_type == 0;
   if (!periodic && m.event_type != 1)
@@ -125,14 +139,17 @@ void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
     return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kRefused);
   EventSubscription& e = events_[id];
   e.requester = h.source;
+  e.report_code = m.report_code;
   e.event_id = id;
   e.request_id = m.request_id;
   e.query_field = query_field;
   e.periodic = periodic;
   e.rate_hz = rate;
   log_repeated({"events created", kNoteworthyBurst}, LogLevel::info, [&] {
-    return "event " + std::to_string(id) + " (Report Configuration, " + (periodic ? "periodic" : "every change") +
-           ") for " + h.source.to_string();
+    const char* report =
+        m.report_code == msg::ReportConfiguration::code ? "Report Configuration" : "Report Subsystem List";
+    return "event " + std::to_string(id) + " (" + report + ", " + (periodic ? "periodic" : "every change") + ") for " +
+           h.source.to_string();
   });
   confirm_event(h.source, m.request_id, m.report_code, id, periodic ? std::optional<double>(rate) : std::nullopt,
                 event_response::kSuccessful);
@@ -159,7 +176,7 @@ void NodeManager::on_cancel_event(const Header& h, const msg::CancelEvent& m) {
     const bool same_id = !m.event_id || *m.event_id == it->first;
     if (it->second.requester == h.source && same_id) {
       if (it->second.timer != kNoTimer) env().scheduler.cancel(it->second.timer);
-      confirm_event(h.source, m.request_id, msg::ReportConfiguration::code, it->first, std::nullopt,
+      confirm_event(h.source, m.request_id, it->second.report_code, it->first, std::nullopt,
                     event_response::kSuccessful);
       events_.erase(it);
       return;
@@ -171,13 +188,14 @@ void NodeManager::on_cancel_event(const Header& h, const msg::CancelEvent& m) {
 
 void NodeManager::send_event(EventSubscription& e) {
   e.timer = kNoTimer;
-  const auto report = configuration(e.query_field);
   std::vector<std::uint8_t> payload(kMaxPayloadSize);
-  const auto size = wire::encode_payload(report, payload);
+  const auto size = e.report_code == msg::ReportSubsystemList::code
+                        ? wire::encode_payload(subsystem_list(), payload)
+                        : wire::encode_payload(configuration(e.query_field), payload);
   if (!size) return;
   msg::Event event;
   event.event_id = e.event_id;
-  event.report_code = msg::ReportConfiguration::code;
+  event.report_code = e.report_code;
   event.sequence_number = e.sequence++;
   event.report_message.assign(payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(*size));
   send(e.requester, event);
@@ -192,7 +210,28 @@ void NodeManager::send_event(EventSubscription& e) {
 
 void NodeManager::configuration_changed() {
   for (auto& [id, e] : events_)
-    if (!e.periodic) send_event(e);
+    if (!e.periodic && e.report_code == msg::ReportConfiguration::code) send_event(e);
+}
+
+void NodeManager::subsystems_changed() {
+  if (subsystem_events_timer_ != kNoTimer) return;  // the held-back Event will carry this change too
+  const auto spacing = nm_.max_event_rate_hz > 0
+                           ? Duration(static_cast<Duration::rep>(std::llround(1e9 / nm_.max_event_rate_hz)))
+                           : Duration::zero();
+  const TimePoint now = env().clock.now();
+  if (!last_subsystem_events_ || now >= *last_subsystem_events_ + spacing) return send_subsystem_list_events();
+  subsystem_events_timer_ = env().scheduler.call_at(*last_subsystem_events_ + spacing, [this] {
+    subsystem_events_timer_ = kNoTimer;
+    send_subsystem_list_events();
+  });
+}
+
+void NodeManager::send_subsystem_list_events() {
+  for (auto& [id, e] : events_) {
+    if (e.periodic || e.report_code != msg::ReportSubsystemList::code) continue;
+    send_event(e);
+    last_subsystem_events_ = env().clock.now();  // the rate limit counts Events sent, not changes
+  }
 }
 
 }  // namespace jaus::components

@@ -1,6 +1,8 @@
 #include "jaus/node/node.hpp"
 
 #include <algorithm>
+#include <array>
+#include <optional>
 
 #include "jaus/node/ack_reply.hpp"
 #include "jaus/node/large_data_set_splitter.hpp"
@@ -11,6 +13,7 @@ namespace {
 // How often liveness, reassembly timeouts and retransmissions are looked at.
 constexpr rt::Duration kHousekeepingPeriod = std::chrono::milliseconds(100);
 constexpr std::uint8_t kNodeManager = 1;
+constexpr std::uint8_t kCommunicator = 35;
 }  // namespace
 
 Node::Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& link, rt::LogFn log)
@@ -89,12 +92,37 @@ std::vector<const rt::Component*> Node::local_components() const {
 }
 
 std::vector<Address> Node::known_subsystems() const {
+  // Per subsystem, who speaks for it: a node manager heard (lowest node),
+  // else a communicator heard, else the node manager of the lowest node heard
+  // (every node has one). One pass per level: the entries come in address order.
+  std::array<std::optional<Address>, 256> manager, communicator, lowest_node;
+  for (const auto& c : liveness_.known(LivenessLevel::component)) {
+    const Address& a = c.address;
+    if (!manager[a.subsystem] && a.component == kNodeManager && a.instance == 1) manager[a.subsystem] = a;
+    if (!communicator[a.subsystem] && a.component == kCommunicator) communicator[a.subsystem] = a;
+  }
+  for (const auto& n : liveness_.known(LivenessLevel::node))
+    if (!lowest_node[n.address.subsystem])
+      lowest_node[n.address.subsystem] = Address{n.address.subsystem, n.address.node, kNodeManager, 1};
   std::vector<Address> out{Address{config_.subsystem, config_.node, kNodeManager, 1}};
-  for (const auto& entry : liveness_.known(LivenessLevel::subsystem))
-    if (entry.address.subsystem != config_.subsystem)
-      out.push_back(Address{entry.address.subsystem, entry.address.node == 0 ? std::uint8_t{1} : entry.address.node,
-                            kNodeManager, 1});
+  for (const auto& subsystem : liveness_.known(LivenessLevel::subsystem)) {
+    const std::uint8_t id = subsystem.address.subsystem;
+    if (id == config_.subsystem) continue;
+    out.push_back(manager[id]        ? *manager[id]
+                  : communicator[id] ? *communicator[id]
+                  : lowest_node[id]  ? *lowest_node[id]
+                                     : Address{id, 1, kNodeManager, 1});
+  }
   return out;
+}
+
+bool Node::hosts_component(std::uint8_t component_id) const {
+  return std::any_of(components_.begin(), components_.end(),
+                     [&](const auto& c) { return c->address().component == component_id; });
+}
+
+void Node::subsystems_changed() {
+  if (configuration_observer_) configuration_observer_->subsystems_changed();
 }
 
 bool Node::is_local(const Address& d) const {
@@ -143,7 +171,11 @@ void Node::receive(const PacketView& packet) {
     return;
   }
   const rt::TimePoint now = clock_.now();
-  liveness_.heard(s, now);
+  if (liveness_.heard(s, now).new_subsystem && s.subsystem != config_.subsystem) {
+    lines_.write({"subsystems found", rt::kNoteworthyBurst}, rt::LogLevel::info,
+                 [&] { return "subsystem " + std::to_string(s.subsystem) + " found (" + s.to_string() + ")"; });
+    subsystems_changed();
+  }
   if (!is_local(h.destination)) {
     ++counters_.not_for_this_node;
     return;
@@ -330,6 +362,7 @@ void Node::schedule_housekeeping() {
 void Node::housekeeping() {
   housekeeping_timer_ = rt::kNoTimer;
   const rt::TimePoint now = clock_.now();
+  bool subsystem_lost = false;
   for (const auto& gone : liveness_.expire(now)) {
     // A silent component whose node still heartbeats is normal: an OCU that
     // only receives reports sends nothing from its component. Losing its node
@@ -346,7 +379,9 @@ void Node::housekeeping() {
              " silent: lost";
     });
     for (const auto& c : components_) c->peer_lost(gone.address);
+    subsystem_lost |= gone.level == LivenessLevel::subsystem && gone.address.subsystem != config_.subsystem;
   }
+  if (subsystem_lost) subsystems_changed();
   for (const auto& discarded : assembler_.expire(now))
     lines_.write("large data sets discarded", rt::LogLevel::warn, [&] {
       return "large data set 0x" + wire::detail::hex_u32(discarded.key.command_code) + " from " +

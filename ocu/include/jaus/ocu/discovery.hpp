@@ -1,9 +1,11 @@
 // What `jausctl discover` learns about the JAUS system, and which queries it
 // asks next (jaus-wire-notes.md, "typical OCU sequence"): a subsystem heard
-// for the first time is asked for its identification and configuration, each
-// node for its identification and configuration, each component for its
-// identification and services. Sans-I/O: messages in, queries out; the
-// command sends them.
+// for the first time is asked for its identification, configuration and
+// subsystem list, each node for its identification and configuration, each
+// component for its identification and services. Every subsystem in a
+// subsystem list is then asked in turn, so an OCU that reaches one node
+// learns the subsystems that node knows (it relays to them). Sans-I/O:
+// messages in, queries out; the command sends them.
 #pragma once
 
 #include <cstdint>
@@ -50,7 +52,7 @@ struct DiscoveredSubsystem {
 };
 
 struct DiscoveryQuery {
-  enum class Kind { identification, configuration, services };
+  enum class Kind { identification, configuration, services, subsystem_list };
   jaus::Address to;
   Kind kind = Kind::identification;
   std::uint8_t field = 0;  // query type (identification) or query field (configuration)

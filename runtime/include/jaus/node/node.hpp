@@ -100,6 +100,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   // rt::NodeDirectory.
   std::vector<const rt::Component*> local_components() const override;
   std::vector<Address> known_subsystems() const override;
+  bool hosts_component(std::uint8_t component_id) const override;
 
   const NodeConfig& config() const { return config_; }
   const NodeCounters& counters() const { return counters_; }
@@ -125,6 +126,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   void recycle_payload(std::vector<std::uint8_t> payload);
   void transmit(const Header& header, std::span<const std::uint8_t> payload);
   void answer_ack_request(const Header& header, bool delivered);
+  void subsystems_changed();
   void schedule_housekeeping();
   void housekeeping();
   void log(rt::LogLevel level, const std::string& text) const;

@@ -36,6 +36,7 @@ enum class DropReason : std::uint8_t {
   from_self,        // our own multicast coming back
   invalid_source,   // a source ID with a 0 (invalid) or 255 (broadcast) octet
   route_claim,      // a node ID already heard from another live endpoint (spoofed, or two peers with one ID)
+  relayed_copy,     // a configured peer relayed a message of a node we hear directly: a duplicate
   count_            // number of reasons
 };
 std::string_view to_string(DropReason reason);

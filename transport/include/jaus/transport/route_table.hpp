@@ -14,9 +14,12 @@
 // IP address (a tool restarted on a new port), from a configured peer, or once
 // its old endpoint has been silent for `move_after_silence`; any other host
 // claiming its ID is refused, so nobody can steer a node's traffic away by
-// forging its ID.
+// forging its ID. A configured peer that is already another live node's
+// endpoint is relaying (udp_link.hpp): what it relays for a node heard
+// directly is a copy, dropped without moving the route.
 #pragma once
 
+#include <bitset>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -33,6 +36,10 @@ struct Peer {
   bool is_static = false;
   rt::TimePoint last_heard{};
   std::size_t routes = 0;  // routes through this endpoint
+  // The subsystems of those routes: a subsystem's broadcasts go only to its
+  // own nodes (jaus-wire-notes.md, "Liveness and discovery").
+  std::bitset<256> subsystems;
+  bool hosts_subsystem(std::uint8_t subsystem) const { return subsystems.test(subsystem); }
 };
 
 struct RouteTableOptions {
@@ -44,12 +51,15 @@ struct RouteTableOptions {
 
 // What learn() did, so the link can tell the operator about new and moved nodes.
 // claim_refused: the node is heard from another live endpoint; drop the datagram.
-enum class Learnt : std::uint8_t { known, new_route, moved, rejected, claim_refused };
+// relayed_copy: a configured peer that is another node relayed a message of a
+// node heard directly: drop the copy, keep the direct route.
+enum class Learnt : std::uint8_t { known, new_route, moved, rejected, claim_refused, relayed_copy };
 
 struct RouteTableCounters {
   std::uint64_t learnt = 0;          // new routes
   std::uint64_t moved = 0;           // a node heard from a new endpoint
   std::uint64_t claims_refused = 0;  // a node's ID from another host while its endpoint is live
+  std::uint64_t relayed_copies = 0;  // a configured relay's copy of a node heard directly
   std::uint64_t rejected_full = 0;   // newcomers not recorded
   std::uint64_t replaced = 0;        // an endpoint's oldest route gave way to its newest
   std::uint64_t expired = 0;
@@ -83,6 +93,7 @@ class RouteTable {
     rt::TimePoint last_heard{};
   };
   void erase_route(std::map<std::uint16_t, Route>::iterator route);
+  void recount_subsystems(Peer& peer) const;
 
   RouteTableOptions options_;
   std::map<std::uint16_t, Route> routes_;         // (subsystem, node) -> endpoint

@@ -4,7 +4,12 @@
 //
 // One socket sends and receives, bound to the configured address and port
 // (3794 by default), so replies leave from the port peers expect: two nodes on
-// one host bind 127.0.0.1:3794 and 127.0.0.2:3794. Sending is synchronous and
+// one host bind 127.0.0.1:3794 and 127.0.0.2:3794. A subsystem's broadcasts
+// (S.255.x.x) go only to peers known to be nodes of S (and the multicast
+// group): other subsystems' node managers drop them (jaus-wire-notes.md).
+// The link relays a message for another subsystem that arrives from a node
+// heard directly to where that subsystem's node was heard, so an OCU that
+// talks to one node reaches the subsystems that node knows. Sending is synchronous and
 // non-blocking (the node's bytes are only valid during transmit()); a full
 // socket buffer drops the datagram and counts it, never blocks the node.
 // Everything runs on the io_context's thread.
@@ -40,6 +45,9 @@ struct UdpLinkOptions {
   std::optional<Ipv4Endpoint> multicast;    // broadcasts go here (e.g. 224.1.0.1:3794)
   std::uint8_t multicast_ttl = 1;
   bool broadcast_to_peers = true;           // broadcasts also go to every known peer
+  // Relay messages for other subsystems to where their node was heard (a
+  // node, yes; an OCU, no: it is where messages end).
+  bool relay = true;
   std::vector<StaticPeer> peers;
   std::vector<Cidr> allow;                  // empty: anyone may talk to the node
   RouteTableOptions routes;
@@ -53,6 +61,7 @@ struct UdpLinkCounters {
   std::uint64_t send_errors = 0;        // the socket refused (buffer full, unreachable, ...)
   std::uint64_t unrouted = 0;           // unicast to an unknown node: sent to static peers and multicast
   std::uint64_t no_route = 0;           // ...and nowhere to send it: dropped
+  std::uint64_t relayed = 0;            // messages for another subsystem sent on to its node
   std::uint64_t dropped_total() const;
   std::uint64_t dropped_for(DropReason reason) const { return dropped[static_cast<std::size_t>(reason)]; }
 };
@@ -109,6 +118,12 @@ class UdpLink final : public node::Link {
   // Counts a drop that is expected and worth no line (our multicast coming back).
   void count_drop(DropReason reason) { ++counters_.dropped[static_cast<std::size_t>(reason)]; }
   bool allowed(std::uint32_t address) const;
+  // A message for a node of another subsystem whose route we know, from a
+  // node heard directly at `from`: sent on, in the framing that node speaks.
+  void relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet);
+  // Whether a broadcast to `to` goes to `peer`: a subsystem's broadcasts only
+  // to nodes of that subsystem (a peer not heard yet may be of any: none).
+  static bool broadcast_reaches(const Address& to, const Peer& peer);
   void schedule_expiry();
 
   boost::asio::io_context& io_;

@@ -1,9 +1,13 @@
 // The node manager (component 1, instance 1): the node's face to discovery
 // (RA 3.2/3.3 dynamic configuration, jaus-wire-notes.md). It sends Report
 // Heartbeat Pulse at a configured rate to (subsystem, 255, 1, 1) and
-// (subsystem, node, 255, 255), answers Query Identification, Configuration,
-// Subsystem List and Services, and keeps Create Event subscriptions to Report
-// Configuration, sending an Event on every change (or periodically).
+// (subsystem, node, 255, 255), and to (255, 255, 1, 1) when the node hosts no
+// communicator (which otherwise announces the subsystem to other subsystems),
+// so a node is always heard across subsystems. It answers Query
+// Identification, Configuration, Subsystem List (this subsystem and every
+// other one the node has heard, until it falls silent) and Services, and
+// keeps Create Event subscriptions to Report Configuration and Report
+// Subsystem List, sending an Event on every change (or periodically).
 #pragma once
 
 #include <map>
@@ -47,6 +51,9 @@ class NodeManager final : public rt::Component, public rt::ConfigurationObserver
 
   // The node added or removed a component: subscribers get an Event.
   void configuration_changed() override;
+  // A subsystem was found or lost: subscribers to the subsystem list get an
+  // Event, at most max_event_rate_hz (a flood of new sources is one Event).
+  void subsystems_changed() override;
   std::size_t event_subscriptions() const { return events_.size(); }
 
  protected:
@@ -57,6 +64,7 @@ class NodeManager final : public rt::Component, public rt::ConfigurationObserver
  private:
   struct EventSubscription {
     Address requester;
+    std::uint16_t report_code = 0;  // Report Configuration or Report Subsystem List
     std::uint8_t event_id = 0;
     std::uint8_t request_id = 0;
     std::uint8_t query_field = msg::identification::kSubsystem;
@@ -69,6 +77,8 @@ class NodeManager final : public rt::Component, public rt::ConfigurationObserver
   void heartbeat();
   msg::ReportConfiguration configuration(std::uint8_t query_field) const;
   msg::ReportServices services() const;
+  msg::ReportSubsystemList subsystem_list() const;
+  void send_subsystem_list_events();
   void on_create_event(const Header& h, const msg::CreateEvent& m);
   void on_cancel_event(const Header& h, const msg::CancelEvent& m);
   void send_event(EventSubscription& e);
@@ -78,6 +88,8 @@ class NodeManager final : public rt::Component, public rt::ConfigurationObserver
   const rt::NodeDirectory& directory_;
   NodeManagerConfig nm_;
   rt::TimerId heartbeat_timer_ = rt::kNoTimer;
+  rt::TimerId subsystem_events_timer_ = rt::kNoTimer;  // change events held back by the rate limit
+  std::optional<rt::TimePoint> last_subsystem_events_;
   std::map<std::uint8_t, EventSubscription> events_;  // by event ID
 };
 

@@ -1,0 +1,167 @@
+// A scripted peer that behaves like the node manager of the common RA 3.3
+// implementation on its subsystem interface (jaus-wire-notes.md,
+// "Liveness and discovery" and "Interoperability"): subsystem 1, node 1, a
+// plain UDP socket on loopback. It drops every message whose destination
+// subsystem is neither its own nor 255 (and keeps them, so a test can say
+// none came), heartbeats its subsystem (from its node manager) and every
+// subsystem (from its communicator) once a second to the endpoints it is
+// given, and answers Query Identification, Configuration, Subsystem List and
+// Services as that node manager would. It answers to the endpoint a query
+// came from (the real one answers IP:3794; the tests' nodes are on ephemeral
+// ports).
+#pragma once
+
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <array>
+#include <map>
+#include <vector>
+
+#include "jaus/messages/all.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+namespace jausctl::test {
+
+class Ra33Peer {
+ public:
+  static constexpr std::uint8_t kSubsystem = 1;
+  static constexpr jaus::Address kManager{kSubsystem, 1, 1, 1};
+  static constexpr jaus::Address kCommunicator{kSubsystem, 1, 35, 1};
+  static constexpr const char* kName = "ra33-vehicle";
+
+  explicit Ra33Peer(boost::asio::io_context& io) : socket_(io), timer_(io) {
+    namespace ip = boost::asio::ip;
+    socket_.open(ip::udp::v4());
+    socket_.bind(ip::udp::endpoint(ip::make_address_v4("127.0.0.1"), 0));
+    receive();
+  }
+
+  jaus::transport::Ipv4Endpoint endpoint() const {
+    const auto e = socket_.local_endpoint();
+    return jaus::transport::Ipv4Endpoint{e.address().to_v4().to_uint(), e.port()};
+  }
+  // Starts the 1 Hz heartbeats to `to` (its configured peers).
+  void heartbeat_to(std::vector<jaus::transport::Ipv4Endpoint> to) {
+    heartbeat_to_ = std::move(to);
+    heartbeat();
+  }
+  // Gone without a word (power cut): nothing in or out.
+  void go_silent() {
+    timer_.cancel();
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+  }
+
+  // What it accepted and what it dropped (addressed to another subsystem).
+  std::vector<jaus::Header> accepted;
+  std::vector<jaus::Header> dropped;
+
+ private:
+  using Endpoint = boost::asio::ip::udp::endpoint;
+
+  void receive() {
+    socket_.async_receive_from(boost::asio::buffer(buffer_), from_,
+                               [this](const boost::system::error_code& ec, std::size_t size) {
+                                 if (ec == boost::asio::error::operation_aborted || !socket_.is_open()) return;
+                                 if (!ec) on_datagram(std::span(buffer_).first(size));
+                                 receive();
+                               });
+  }
+
+  void on_datagram(std::span<const std::uint8_t> datagram) {
+    const auto unframed = jaus::transport::unframe(datagram);
+    if (!unframed) return;
+    const jaus::Header& h = unframed->packet.header;
+    const auto to = h.destination;
+    if (to.subsystem != kSubsystem && to.subsystem != jaus::Address::kBroadcast) {
+      dropped.push_back(h);
+      return;
+    }
+    accepted.push_back(h);
+    heard_[h.source.subsystem] = h.source;
+    for (const jaus::Address self : {kManager, kCommunicator})
+      if (to.matches(self)) answer(self, h, unframed->packet.payload);
+  }
+
+  void answer(const jaus::Address& self, const jaus::Header& h, std::span<const std::uint8_t> payload) {
+    using namespace jaus::msg;
+    switch (h.command_code) {
+      case QueryIdentification::code: {
+        const auto q = jaus::wire::decode_payload<QueryIdentification>(payload);
+        if (!q) return;
+        if (self == kManager && q->query_type == identification::kSubsystem)
+          return reply(self, h.source, ReportIdentification{{q->query_type, 0, 10001, kName}});
+        if (self == kManager && q->query_type == identification::kNode)
+          return reply(self, h.source, ReportIdentification{{q->query_type, 0, 40001, "ra33-node"}});
+        if (q->query_type == identification::kComponent)
+          return reply(self, h.source,
+                       ReportIdentification{{q->query_type, 0, 0, self == kManager ? "NodeManager" : "Communicator"}});
+        return;
+      }
+      case QueryConfiguration::code:
+        if (self != kManager) return;
+        return reply(self, h.source, ReportConfiguration{{{{1, {{1, 1}, {35, 1}}}}}});
+      case QuerySubsystemList::code: {
+        if (self != kManager) return;
+        ReportSubsystemList list;
+        list.subsystems.push_back(kManager);
+        for (const auto& [subsystem, address] : heard_)
+          if (subsystem != kSubsystem) list.subsystems.push_back(address);
+        return reply(self, h.source, list);
+      }
+      case QueryServices::code:
+        return reply(self, h.source, ReportServices{});
+      default:
+        return;
+    }
+  }
+
+  template <class M>
+  void reply(const jaus::Address& from, const jaus::Address& to, const M& message) {
+    send(from, to, message, from_);
+  }
+
+  template <class M>
+  void send(const jaus::Address& from, const jaus::Address& to, const M& message, const Endpoint& endpoint) {
+    std::vector<std::uint8_t> packet(jaus::kHeaderSize + jaus::kMaxPayloadSize);
+    const auto size = jaus::wire::encode_payload(message, std::span(packet).subspan(jaus::kHeaderSize));
+    if (!size) return;
+    jaus::Header h;
+    h.command_code = M::code;
+    h.source = from;
+    h.destination = to;
+    h.data_size = static_cast<std::uint16_t>(*size);
+    jaus::encode_header_unchecked(h, std::span(packet).first<jaus::kHeaderSize>());
+    packet.resize(jaus::kHeaderSize + *size);
+    const auto prefix = jaus::transport::frame_prefix(jaus::transport::Framing::opc, packet.size());
+    std::vector<std::uint8_t> datagram(prefix.view().begin(), prefix.view().end());
+    datagram.insert(datagram.end(), packet.begin(), packet.end());
+    boost::system::error_code ignored;
+    socket_.send_to(boost::asio::buffer(datagram), endpoint, 0, ignored);
+  }
+
+  void heartbeat() {
+    for (const auto& peer : heartbeat_to_) {
+      const Endpoint endpoint(boost::asio::ip::address_v4(peer.address), peer.port);
+      send(kManager, jaus::Address{kSubsystem, 255, 1, 1}, jaus::msg::ReportHeartbeatPulse{}, endpoint);
+      send(kCommunicator, jaus::Address{255, 255, 1, 1}, jaus::msg::ReportHeartbeatPulse{}, endpoint);
+    }
+    timer_.expires_after(std::chrono::seconds(1));
+    timer_.async_wait([this](const boost::system::error_code& ec) {
+      if (!ec) heartbeat();
+    });
+  }
+
+  boost::asio::ip::udp::socket socket_;
+  boost::asio::steady_timer timer_;
+  Endpoint from_;
+  std::array<std::uint8_t, 9000> buffer_{};
+  std::vector<jaus::transport::Ipv4Endpoint> heartbeat_to_;
+  std::map<std::uint8_t, jaus::Address> heard_;  // by subsystem: who spoke for it
+};
+
+}  // namespace jausctl::test
