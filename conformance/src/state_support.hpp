@@ -64,8 +64,11 @@ class ControlHeld {
     granted_ = confirm->response_code == msg::control_response::kAccepted;
     if (!granted_) why_ = "Confirm Component Control response " + std::to_string(confirm->response_code);
   }
-  ~ControlHeld() {
+  ~ControlHeld() { release(); }
+  // Releases control now (a case that checks what a release does).
+  void release() {
     if (granted_) send(c_, msg::ReleaseComponentControl{});
+    granted_ = false;
   }
   ControlHeld(const ControlHeld&) = delete;
   ControlHeld& operator=(const ControlHeld&) = delete;

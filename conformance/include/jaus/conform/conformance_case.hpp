@@ -87,6 +87,10 @@ std::span<const ConformanceCase> core_cases();                // every component
 std::span<const ConformanceCase> control_cases();             // the control matrix
 std::span<const ConformanceCase> service_connection_cases();  // components that provide reports
 std::span<const ConformanceCase> robustness_cases();          // every component: what it cannot use
+std::span<const ConformanceCase> primitive_driver_cases();    // components that take Set Wrench Effort
+std::span<const ConformanceCase> sensor_cases();              // pose and velocity state sensors
+std::span<const ConformanceCase> visual_sensor_cases();       // cameras: selection, formats, images
+std::span<const ConformanceCase> manipulator_cases();         // joint counts, refusals, hold on stop
 // Every case of every suite, in order.
 std::vector<const ConformanceCase*> all_cases();
 
