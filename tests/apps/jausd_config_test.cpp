@@ -201,7 +201,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 148);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 149);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -316,16 +316,16 @@ logging:
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 39);
+  EXPECT_EQ(c.components[0].line, 40);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 42);
+  EXPECT_EQ(c.components[1].line, 43);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 48);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 49);
   EXPECT_EQ(c.log_level, "debug");
 }
 
