@@ -2,7 +2,9 @@
 // on a node of their own (subsystem 3, 127.0.0.1, an ephemeral port):
 //   3.1.50.1 obeys anyone: a Reset from a non-controller puts it in Failure;
 //   3.1.51.1 never confirms a service connection (it provides Report Global Pose);
-//   3.1.52.1 echoes the presence vector it is asked for, whatever it has.
+//   3.1.52.1 echoes the presence vector it is asked for, whatever it has;
+//   3.1.53.1 .. 3.1.66.1 drivers, sensors, cameras and arms broken for the
+//   per-kind cases (broken_kind_components.hpp).
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -11,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "broken_kind_components.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
 #include "target_node.hpp"
@@ -107,10 +110,30 @@ class BrokenNode {
     host_->emplace<ObeysAnyone>(host_->component_config("obeys anyone", kObeysAnyone.component));
     host_->emplace<NeverConfirms>(host_->component_config("never confirms", kNeverConfirms.component));
     host_->emplace<EchoesPresence>(host_->component_config("echoes presence", kEchoesPresence.component));
+    add<BrokenDriver>("driver obeys anyone", kDriverObeysAnyone, DriverFlaw::obeys_anyone);
+    add<BrokenDriver>("driver forgets effort", kDriverForgetsEffort, DriverFlaw::forgets_effort);
+    add<BrokenDriver>("driver keeps effort", kDriverKeepsEffortOnStop, DriverFlaw::keeps_effort_on_stop);
+    add<BrokenDriver>("driver resumes effort", kDriverResumesLatchedEffort, DriverFlaw::resumes_latched_effort);
+    add<BrokenPoseSensor>("frozen time", kSensorFrozenTime, SensorFlaw::frozen_time);
+    add<BrokenPoseSensor>("echoes query presence", kSensorEchoesQueryPresence, SensorFlaw::echoes_query_presence);
+    add<BrokenPoseSensor>("sc elsewhere", kSensorScElsewhere, SensorFlaw::sc_elsewhere);
+    add<BrokenCameras>("ignores selection", kCamerasIgnoreSelection, CamerasFlaw::ignores_selection);
+    add<BrokenCameras>("cameras obey anyone", kCamerasObeyAnyone, CamerasFlaw::obeys_anyone);
+    add<BrokenCameras>("mislabels format", kCamerasMislabelFormat, CamerasFlaw::mislabels_format);
+    add<BrokenArm>("arm executes partly", kArmExecutesPartly, ArmFlaw::executes_partly);
+    add<BrokenArm>("arm obeys anyone", kArmObeysAnyone, ArmFlaw::obeys_anyone);
+    add<BrokenArm>("arm keeps moving", kArmKeepsMovingOnStop, ArmFlaw::keeps_moving_on_stop);
+    add<BrokenArm>("arm miscounts joints", kArmMiscountsJoints, ArmFlaw::miscounts_joints);
   }
   transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
+  host::NodeHost& host() { return *host_; }
 
  private:
+  template <class C, class Flaw>
+  void add(const char* name, const Address& at, Flaw flaw) {
+    host_->emplace<C>(host_->component_config(name, at.component), flaw);
+  }
+
   std::unique_ptr<host::NodeHost> host_;
 };
 
