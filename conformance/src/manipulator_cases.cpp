@@ -222,8 +222,8 @@ CaseOutcome out_of_range_refused_whole(CaseContext& c) {
   auto after = positions(c);
   if (!after) return fail(after.error().message());
   if (auto motion = moved(found->at, *after); !motion.empty())
-    return fail("Set Joint Velocities with joint " + std::to_string(last + 1) + " at " + value_text(over) +
-                " (limit " + value_text(found->spec.max_velocity[last]) + ") was executed in part: " + motion);
+    return fail("Set Joint Velocities with joint " + std::to_string(last + 1) + " at " + value_text(over) + " (limit " +
+                value_text(found->spec.max_velocity[last]) + ") was executed in part: " + motion);
   return pass("joint " + std::to_string(last + 1) + " at " + value_text(over) + " over its limit " +
               value_text(found->spec.max_velocity[last]) + ": no joint moved in 0.3 s");
 }
@@ -244,8 +244,8 @@ CaseOutcome non_controller_ignored(CaseContext& c) {
   if (auto motion = moved(found->at, *after); !motion.empty()) {
     ControlHeld control(c);
     if (control.granted()) move_back(c, found->at);
-    return fail("Set Joint Velocities from a non-controller (controller " + controller->to_string() +
-                ") executed: " + motion + (control.granted() ? "; moved back" : "; control not granted to move it back"));
+    return fail("Set Joint Velocities from a non-controller (controller " + controller->to_string() + ") executed: " +
+                motion + (control.granted() ? "; moved back" : "; control not granted to move it back"));
   }
   return pass("Set Joint Velocities from a non-controller: no joint moved in 0.3 s");
 }

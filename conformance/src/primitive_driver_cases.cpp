@@ -34,8 +34,7 @@ bool near(double a, double b) { return std::fabs(a - b) <= kEffortTolerancePerce
 std::string unless_driver(const ComponentUnderTest& component) {
   if (auto why = unless_accepts(component, msg::SetWrenchEffort::code, "Set Wrench Effort (0x0405)"); !why.empty())
     return why;
-  if (auto why = unless_accepts(component, msg::QueryWrenchEffort::code, "Query Wrench Effort (0x2405)");
-      !why.empty())
+  if (auto why = unless_accepts(component, msg::QueryWrenchEffort::code, "Query Wrench Effort (0x2405)"); !why.empty())
     return why;
   // A driver that says which fields it reports must act on throttle.
   if (component.provides(msg::ReportWrenchEffort::code) &&
@@ -112,7 +111,8 @@ CaseOutcome effort_reported(CaseContext& c) {
   auto driving = reported_forward_effort(c);
   send(c, zero_effort());
   auto stopped = reported_forward_effort(c);
-  if (!driving) return fail("after Set Wrench Effort " + percent_text(kSmallEffortPercent) + ", " + driving.error().message());
+  if (!driving)
+    return fail("after Set Wrench Effort " + percent_text(kSmallEffortPercent) + ", " + driving.error().message());
   if (!near(*driving, kSmallEffortPercent))
     return fail("Set Wrench Effort " + percent_text(kSmallEffortPercent) + " from its controller, reported as " +
                 percent_text(*driving));
@@ -134,7 +134,8 @@ CaseOutcome non_controller_ignored(CaseContext& c) {
   if (*controller == c.session.self()) return skip("the runner controls it");
   auto before = reported_forward_effort(c);
   if (!before) return fail(before.error().message());
-  if (!near(*before, 0)) return skip("it is driving (" + percent_text(*before) + "): a change could be its controller's");
+  if (!near(*before, 0))
+    return skip("it is driving (" + percent_text(*before) + "): a change could be its controller's");
   send(c, effort_forward(kSmallEffortPercent));
   auto after = reported_forward_effort(c);
   if (!after) return fail("after Set Wrench Effort from a non-controller, " + after.error().message());
@@ -271,8 +272,8 @@ CaseOutcome no_resume_after_stop(CaseContext& c) {
     if (!observed.skip.empty()) return skip(path_text(path) + ": " + observed.skip);
     if (!observed.error.empty()) return fail(observed.error);
     if (!near(observed.back, 0))
-      return fail(path_text(path) + " then " + way_back_text(path) + " resumed the latched effort: " +
-                  percent_text(observed.back));
+      return fail(path_text(path) + " then " + way_back_text(path) +
+                  " resumed the latched effort: " + percent_text(observed.back));
     seen += (seen.empty() ? "" : ", ") + way_back_text(path);
   }
   return pass("after " + seen + ": still zero");

@@ -37,8 +37,8 @@ struct SensorFields<msg::GlobalPoseBody> {
   static constexpr std::array<std::optional<double> B::*, kValueFields> members{
       &B::latitude_deg, &B::longitude_deg, &B::elevation_m, &B::position_rms_m,
       &B::roll_rad,     &B::pitch_rad,     &B::yaw_rad,     &B::attitude_rms_rad};
-  static constexpr std::array<const char*, kValueFields> names{"latitude",  "longitude", "elevation", "position RMS",
-                                                               "roll",      "pitch",     "yaw",       "attitude RMS"};
+  static constexpr std::array<const char*, kValueFields> names{"latitude", "longitude", "elevation", "position RMS",
+                                                               "roll",     "pitch",     "yaw",       "attitude RMS"};
   static constexpr std::array<double, kValueFields> tolerance{1e-6, 1e-6, 0.05, 0.05, 0.005, 0.005, 0.005, 0.005};
 };
 
@@ -58,9 +58,8 @@ struct SensorFields<msg::VelocityStateBody> {
   static constexpr std::array<std::optional<double> B::*, kValueFields> members{
       &B::velocity_x_mps, &B::velocity_y_mps, &B::velocity_z_mps, &B::velocity_rms_mps,
       &B::roll_rate_rps,  &B::pitch_rate_rps, &B::yaw_rate_rps,   &B::rate_rms_rps};
-  static constexpr std::array<const char*, kValueFields> names{"velocity X", "velocity Y", "velocity Z",
-                                                               "velocity RMS", "roll rate", "pitch rate",
-                                                               "yaw rate",     "rate RMS"};
+  static constexpr std::array<const char*, kValueFields> names{"velocity X", "velocity Y", "velocity Z", "velocity RMS",
+                                                               "roll rate",  "pitch rate", "yaw rate",   "rate RMS"};
   static constexpr std::array<double, kValueFields> tolerance{0.01, 0.01, 0.01, 0.01, 0.005, 0.005, 0.005, 0.005};
 };
 
@@ -115,8 +114,8 @@ struct Sensor {
     if (!full) return fail(full.error().message());
     const std::uint32_t available = full->first;
     if (c.component.provides(Report::code) && available != c.component.outputs.at(Report::code))
-      return fail("presence vector " + hex(available) + " for " + hex(kDefinedFields) + " asked; Report Services says " +
-                  hex(c.component.outputs.at(Report::code)) + " available");
+      return fail("presence vector " + hex(available) + " for " + hex(kDefinedFields) +
+                  " asked; Report Services says " + hex(c.component.outputs.at(Report::code)) + " available");
     if (available == 0) return skip("it reports no field now (no sample yet?)");
     const std::uint32_t has = available & (~available + 1);
     const std::uint32_t lacking = kDefinedFields & ~available;
@@ -217,8 +216,8 @@ struct Sensor {
         return fail(text);
       }
     }
-    return pass("the query's " + hex(presence_in(*answer)) + " fields within those of " +
-                std::to_string(on_sc.size()) + " reports around it");
+    return pass("the query's " + hex(presence_in(*answer)) + " fields within those of " + std::to_string(on_sc.size()) +
+                " reports around it");
   }
 };
 
@@ -250,8 +249,7 @@ const std::vector<ConformanceCase>& cases() {
       {"sensor.velocity_state.time_advances", "Report Velocity State time stamps advance",
        "Part 3, Code 4404h Report Velocity State (Time Stamp)", VelocityState::not_applicable,
        VelocityState::time_advances},
-      {"sensor.velocity_state.query_matches_sc",
-       "a query's Report Velocity State agrees with the service connection's",
+      {"sensor.velocity_state.query_matches_sc", "a query's Report Velocity State agrees with the service connection's",
        "Part 3, Code 4404h Report Velocity State, Code 0008h Create Service Connection", VelocityState::not_applicable,
        VelocityState::query_matches_sc},
   };

@@ -144,8 +144,8 @@ CaseOutcome image_in_advertised_format(CaseContext& c) {
   auto formats = ask<msg::ReportCameraFormatOptions>(c, query_formats);
   if (!formats) return fail(formats.error().message());
   std::vector<std::uint8_t> advertised;
-  for (const auto& f : {formats->image_format_1, formats->image_format_2, formats->image_format_3,
-                        formats->image_format_4})
+  for (const auto& f :
+       {formats->image_format_1, formats->image_format_2, formats->image_format_3, formats->image_format_4})
     if (f && *f != 0) advertised.push_back(*f);
   if (advertised.empty()) return fail("Report Camera Format Options advertises no image format");
   std::size_t packets = 0;
@@ -159,10 +159,11 @@ CaseOutcome image_in_advertised_format(CaseContext& c) {
   c.session.unlisten(watcher);
   if (!image) return fail(image.error().message());
   if (image->camera_id != *camera)
-    return fail("Report Image from camera " + std::to_string(image->camera_id) + ", camera " +
-                std::to_string(*camera) + " selected");
+    return fail("Report Image from camera " + std::to_string(image->camera_id) + ", camera " + std::to_string(*camera) +
+                " selected");
   if (std::find(advertised.begin(), advertised.end(), image->image_format) == advertised.end())
-    return fail("Report Image in " + format_text(image->image_format) + ", which Report Camera Format Options does "
+    return fail("Report Image in " + format_text(image->image_format) +
+                ", which Report Camera Format Options does "
                 "not advertise");
   const std::size_t size = image->data.size() + 2;
   if (size > kMaxPayloadSize && !large)
@@ -172,8 +173,7 @@ CaseOutcome image_in_advertised_format(CaseContext& c) {
     if (f.code != image->image_format) continue;
     if (data.size() < f.starts.size() || !std::equal(f.starts.begin(), f.starts.end(), data.begin()))
       return fail("Report Image says " + format_text(f.code) + " but its data does not start like one");
-    if (!f.ends.empty() &&
-        (data.size() < f.ends.size() || !std::equal(f.ends.rbegin(), f.ends.rend(), data.rbegin())))
+    if (!f.ends.empty() && (data.size() < f.ends.size() || !std::equal(f.ends.rbegin(), f.ends.rend(), data.rbegin())))
       return fail("the " + format_text(f.code) + " image of " + std::to_string(data.size()) +
                   " bytes does not end like a whole one");
   }

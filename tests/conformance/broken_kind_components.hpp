@@ -180,37 +180,34 @@ class BrokenArm final : public rt::Component {
   BrokenArm(rt::ComponentConfig config, rt::Environment env, ArmFlaw flaw)
       : Component(std::move(config), std::move(env)), flaw_(flaw), last_(this->env().clock.now()) {
     const bool anyone = flaw == ArmFlaw::obeys_anyone;
-    handle<msg::SetJointVelocities>(anyone ? Access::anyone : Access::controller, !anyone,
-                                    [this](const Header&, const msg::SetJointVelocities& m) {
-                                      if (m.velocities_rps.size() != kJoints) return;
-                                      advance();
-                                      bool over = false;
-                                      for (double v : m.velocities_rps) over = over || std::fabs(v) > kMaxVelocity;
-                                      if (over && flaw_ != ArmFlaw::executes_partly) return;  // refused whole
-                                      for (std::size_t j = 0; j < kJoints; ++j)
-                                        velocities_[j] =
-                                            std::fabs(m.velocities_rps[j]) > kMaxVelocity ? 0 : m.velocities_rps[j];
-                                    });
+    handle<msg::SetJointVelocities>(
+        anyone ? Access::anyone : Access::controller, !anyone, [this](const Header&, const msg::SetJointVelocities& m) {
+          if (m.velocities_rps.size() != kJoints) return;
+          advance();
+          bool over = false;
+          for (double v : m.velocities_rps) over = over || std::fabs(v) > kMaxVelocity;
+          if (over && flaw_ != ArmFlaw::executes_partly) return;  // refused whole
+          for (std::size_t j = 0; j < kJoints; ++j)
+            velocities_[j] = std::fabs(m.velocities_rps[j]) > kMaxVelocity ? 0 : m.velocities_rps[j];
+        });
     handle<msg::SetJointPositions>(Access::controller, true, [this](const Header&, const msg::SetJointPositions& m) {
       if (m.positions_rad.size() != kJoints) return;
       positions_ = m.positions_rad;  // there at once
       velocities_.assign(kJoints, 0.0);
       last_ = this->env().clock.now();
     });
-    handle<msg::QueryManipulatorSpecifications>(Access::anyone, false,
-                                                [this](const Header& h, const msg::QueryManipulatorSpecifications&) {
-                                                  send(h.source, specifications());
-                                                });
+    handle<msg::QueryManipulatorSpecifications>(
+        Access::anyone, false,
+        [this](const Header& h, const msg::QueryManipulatorSpecifications&) { send(h.source, specifications()); });
     handle<msg::QueryJointPositions>(Access::anyone, false, [this](const Header& h, const msg::QueryJointPositions&) {
       advance();
       send(h.source, msg::ReportJointPositions{{positions_}});
     });
-    handle<msg::QueryJointVelocities>(Access::anyone, false,
-                                      [this](const Header& h, const msg::QueryJointVelocities&) {
-                                        auto listed = velocities_;
-                                        if (flaw_ == ArmFlaw::miscounts_joints) listed.push_back(0);
-                                        send(h.source, msg::ReportJointVelocities{{listed}});
-                                      });
+    handle<msg::QueryJointVelocities>(Access::anyone, false, [this](const Header& h, const msg::QueryJointVelocities&) {
+      auto listed = velocities_;
+      if (flaw_ == ArmFlaw::miscounts_joints) listed.push_back(0);
+      send(h.source, msg::ReportJointVelocities{{listed}});
+    });
   }
 
  protected:
