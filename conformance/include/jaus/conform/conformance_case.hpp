@@ -87,6 +87,7 @@ std::span<const ConformanceCase> core_cases();                // every component
 std::span<const ConformanceCase> control_cases();             // the control matrix
 std::span<const ConformanceCase> service_connection_cases();  // components that provide reports
 std::span<const ConformanceCase> robustness_cases();          // every component: what it cannot use
+std::span<const ConformanceCase> discovery_cases();           // node managers: their discovery reports agree
 std::span<const ConformanceCase> primitive_driver_cases();    // components that take Set Wrench Effort
 std::span<const ConformanceCase> sensor_cases();              // pose and velocity state sensors
 std::span<const ConformanceCase> visual_sensor_cases();       // cameras: selection, formats, images
