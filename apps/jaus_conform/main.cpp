@@ -27,6 +27,7 @@ struct Options {
   std::string junit;
   std::string report;
   std::string only;
+  std::string skip;
   double timeout_s = 1.0;
   double wait_s = 2.0;
   std::string bind;
@@ -97,6 +98,7 @@ int run(const Options& o) {
   run_options.profile = *profile;
   run_options.reply_timeout = reply_timeout;
   run_options.only = o.only;
+  run_options.skip = o.skip;
   const auto cases = conform::all_cases();
   for (const Address& address : components) {
     auto component = conform::learn_component(**session, address, &discovery, reply_timeout);
@@ -121,7 +123,9 @@ int run(const Options& o) {
   bool written = true;
   if (!o.junit.empty()) written = write_file(o.junit, conform::junit_xml(report)) && written;
   if (!o.report.empty()) written = write_file(o.report, conform::markdown_report(report)) && written;
-  if (report.results.empty()) return bad_usage("no case matches --only " + o.only);
+  if (report.results.empty())
+    return bad_usage(o.skip.empty() ? "no case matches --only " + o.only
+                                    : "no case left by --only '" + o.only + "' and --skip '" + o.skip + "'");
   return report.passed() && written ? kExitPassed : kExitFailures;
 }
 
@@ -146,6 +150,7 @@ int main(int argc, char** argv) {
   app.add_option("--junit", o.junit, "write JUnit XML to FILE");
   app.add_option("--report", o.report, "write a readable Markdown report to FILE");
   app.add_option("--only", o.only, "run only the cases whose id contains PATTERN (e.g. control. or sc.rate)");
+  app.add_option("--skip", o.skip, "leave out the cases whose id contains PATTERN (e.g. control.silent_requester)");
   app.add_option("--timeout", o.timeout_s, "seconds to wait for each reply")->capture_default_str();
   app.add_option("--wait", o.wait_s, "seconds of discovery before the cases")->capture_default_str();
   app.add_option("--bind", o.bind,

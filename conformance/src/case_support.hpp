@@ -17,20 +17,28 @@ inline CaseOutcome fail(std::string detail) { return {Verdict::fail, std::move(d
 // not granted): neither pass nor fail.
 inline CaseOutcome skip(std::string why) { return {Verdict::skip, std::move(why)}; }
 
-// Sends `message` to `to` from the OCU and records it.
+// Sends `message` to `to` from `from` (the runner's session or its second
+// OCU) and records it.
 template <class M>
-void send(CaseContext& c, const Address& to, const M& message, std::uint8_t priority = priority::kDefault) {
+void send_from(CaseContext& c, ocu::OcuSession& from, const Address& to, const M& message,
+               std::uint8_t priority = priority::kDefault) {
   std::vector<std::uint8_t> payload(kMaxPayloadSize);
   const auto size = wire::encode_payload(message, payload);
   payload.resize(size ? *size : 0);
   Header h;
   h.command_code = M::code;
   h.priority = priority;
-  h.source = c.session.self();
+  h.source = from.self();
   h.destination = to;
   h.data_size = static_cast<std::uint16_t>(payload.size());
-  c.exchange.push_back(Exchanged{true, h, std::move(payload), c.session.clock().now() - c.started});
-  c.session.send(to, message, priority);
+  c.exchange.push_back(
+      Exchanged{true, h, std::move(payload), c.session.clock().now() - c.started, &from != &c.session});
+  from.send(to, message, priority);
+}
+// Sends `message` to `to` from the OCU and records it.
+template <class M>
+void send(CaseContext& c, const Address& to, const M& message, std::uint8_t priority = priority::kDefault) {
+  send_from(c, c.session, to, message, priority);
 }
 template <class M>
 void send(CaseContext& c, const M& message, std::uint8_t priority = priority::kDefault) {
@@ -49,6 +57,21 @@ Expected<R> decode(CaseContext& c, const ocu::Received& received) {
 // The next message from the target with one of `codes`.
 inline Expected<ocu::Received> await(CaseContext& c, std::vector<std::uint16_t> codes) {
   return c.session.await_reply(c.target(), std::move(codes), c.reply_timeout);
+}
+
+// The next message from the target to `at` (the runner or its second OCU)
+// with one of `codes`.
+inline Expected<ocu::Received> await_at(CaseContext& c, ocu::OcuSession& at, std::vector<std::uint16_t> codes) {
+  return at.await_reply(c.target(), std::move(codes), c.reply_timeout);
+}
+
+// Sends `query` to the target from `from`, waits for its reply R and decodes it.
+template <class R, class Q>
+Expected<R> ask_from(CaseContext& c, ocu::OcuSession& from, const Q& query) {
+  send_from(c, from, c.target(), query);
+  auto reply = await_at(c, from, {R::code});
+  if (!reply) return unexpected(reply.error());
+  return decode<R>(c, *reply);
 }
 
 // Sends `query` to the target, waits for a reply R and decodes it.

@@ -83,6 +83,48 @@ CaseOutcome emergency(CaseContext& c) {
   return pass(state_text(*before) + " -> Emergency -> " + state_text(*after));
 }
 
+// Two holders of the emergency (the runner and its second OCU): the first
+// one's Clear leaves it in Emergency, the second one's returns it to the
+// state it left ("provided that all emergency conditions have been cleared").
+CaseOutcome emergency_two_holders(CaseContext& c) {
+  auto before = primary_status(c);
+  if (!before) return fail(before.error().message());
+  if (*before != msg::PrimaryStatus::ready && *before != msg::PrimaryStatus::standby)
+    return skip("in " + state_text(*before) + ": Set Emergency is checked from Ready or Standby");
+  auto second = c.second();
+  if (!second) return fail(second.error().message());
+  ocu::OcuSession& other = **second;
+  send(c, msg::SetEmergency{{1}}, priority::kSafetyCritical);
+  send_from(c, other, c.target(), msg::SetEmergency{{1}}, priority::kSafetyCritical);
+  // Asked by the second holder: answered after its own Set Emergency.
+  auto during = ask_from<msg::ReportComponentStatus>(c, other, msg::QueryComponentStatus{});
+  send(c, msg::ClearEmergency{{1}}, priority::kSafetyCritical);
+  auto after_first = primary_status(c);
+  send_from(c, other, c.target(), msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // never left set
+  auto after_both = ask_from<msg::ReportComponentStatus>(c, other, msg::QueryComponentStatus{});
+  if (!during) return fail("after two Set Emergency, " + during.error().message());
+  const auto state_of = [](const msg::ReportComponentStatus& r) {
+    return static_cast<msg::PrimaryStatus>(r.primary_status & 0x0F);
+  };
+  if (state_of(*during) != msg::PrimaryStatus::emergency)
+    return fail("two Set Emergency left it in " + state_text(state_of(*during)) + ", not Emergency");
+  if (!after_first) return fail("after the first holder's Clear Emergency, " + after_first.error().message());
+  if (*after_first != msg::PrimaryStatus::emergency)
+    return fail("the first holder's Clear Emergency left Emergency (for " + state_text(*after_first) +
+                ") while the second OCU still held it");
+  if (!after_both) return fail("after both holders' Clear Emergency, " + after_both.error().message());
+  const auto after = state_of(*after_both);
+  if (c.profile == Profile::openjaus && after == msg::PrimaryStatus::standby && *before == msg::PrimaryStatus::ready) {
+    // Its Clear Emergency goes to Standby (wire notes); its Resume needs no control.
+    send(c, msg::Resume{});
+    return pass("Ready -> Emergency (two holders) -> Emergency (one cleared) -> Standby (profile openjaus), resumed");
+  }
+  if (after != *before)
+    return fail("both holders' Clear Emergency left it in " + state_text(after) + ", not " + state_text(*before) +
+                " as before");
+  return pass(state_text(*before) + " -> Emergency (two holders) -> Emergency (one cleared) -> " + state_text(after));
+}
+
 // The controller's Standby and Resume move it between Ready and Standby.
 CaseOutcome standby_and_resume(CaseContext& c) {
   auto before = primary_status(c);
@@ -144,6 +186,10 @@ const std::vector<ConformanceCase>& cases() {
        "Part 3, Code 2202h Query Heartbeat Pulse", nullptr, heartbeat},
       {"core.emergency", "Set Emergency puts it in Emergency; Clear Emergency returns it to the state it left",
        "Part 3, Code 0006h Set Emergency, Code 0007h Clear Emergency", nullptr, emergency},
+      {"core.emergency_two_holders",
+       "with two holders, one Clear Emergency leaves it in Emergency; the second returns it to the state it left",
+       "Part 3, Code 0007h Clear Emergency (\"provided that all emergency conditions have been cleared\")", nullptr,
+       emergency_two_holders},
       {"core.standby_resume", "its controller's Standby and Resume move it Ready -> Standby -> Ready",
        "Part 3, Code 0003h Standby, Code 0004h Resume", nullptr, standby_and_resume},
       {"core.refused_without_control", "Resume, Reset and Shutdown from a non-controller change nothing",

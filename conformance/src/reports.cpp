@@ -74,8 +74,8 @@ std::string exchange_text(const std::vector<Exchanged>& exchange) {
     out += "    " + seconds(e.at) + " s " + (e.sent ? "-> " : "<- ") + ocu::code_text(e.header.command_code) + " " +
            message_name(e.header.command_code) + (e.sent ? " to " : " from ") +
            (e.sent ? e.header.destination : e.header.source).to_string() +
-           (e.header.service_connection ? " (SC, sequence " + std::to_string(e.header.sequence) + ")" : "") + ": " +
-           hex(e.payload) + "\n";
+           (e.header.service_connection ? " (SC, sequence " + std::to_string(e.header.sequence) + ")" : "") +
+           (e.second ? std::string(e.sent ? " by " : " to ") + "the second OCU" : "") + ": " + hex(e.payload) + "\n";
   }
   return out;
 }

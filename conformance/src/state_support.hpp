@@ -41,13 +41,15 @@ inline Expected<Address> current_controller(CaseContext& c) {
   return report->controller;
 }
 
-// Control of the component for one case, at the highest authority, released
-// when the case ends however it ends.
+// Control of the component for one case, at the highest authority unless
+// told, by the runner or its second OCU (`by`), released when the case ends
+// however it ends.
 class ControlHeld {
  public:
-  explicit ControlHeld(CaseContext& c, std::uint8_t authority = 255) : c_(c) {
-    send(c_, msg::RequestComponentControl{{authority}});
-    auto reply = await(c_, {msg::ConfirmComponentControl::code, msg::RejectComponentControl::code});
+  explicit ControlHeld(CaseContext& c, std::uint8_t authority = 255) : ControlHeld(c, authority, c.session) {}
+  ControlHeld(CaseContext& c, std::uint8_t authority, ocu::OcuSession& by) : c_(c), by_(by) {
+    send_from(c_, by_, c_.target(), msg::RequestComponentControl{{authority}});
+    auto reply = await_at(c_, by_, {msg::ConfirmComponentControl::code, msg::RejectComponentControl::code});
     if (!reply) {
       why_ = reply.error().message();
       return;
@@ -67,7 +69,7 @@ class ControlHeld {
   ~ControlHeld() { release(); }
   // Releases control now (a case that checks what a release does).
   void release() {
-    if (granted_) send(c_, msg::ReleaseComponentControl{});
+    if (granted_) send_from(c_, by_, c_.target(), msg::ReleaseComponentControl{});
     granted_ = false;
   }
   ControlHeld(const ControlHeld&) = delete;
@@ -78,6 +80,7 @@ class ControlHeld {
 
  private:
   CaseContext& c_;
+  ocu::OcuSession& by_;
   bool granted_ = false;
   std::string why_;
 };

@@ -2,7 +2,10 @@
 // on a node of their own (subsystem 3, 127.0.0.1, an ephemeral port):
 //   3.1.50.1 obeys anyone: a Reset from a non-controller puts it in Failure;
 //   3.1.51.1 never confirms a service connection (it provides Report Global Pose);
-//   3.1.52.1 echoes the presence vector it is asked for, whatever it has;
+//   3.1.52.1 echoes the presence vector it is asked for, whatever it has
+//            (its hand-made service connection also outlives a silent requester);
+//   3.1.67.1 .. 3.1.70.1 keep control by hand, each with one flaw (ControlFlaw);
+//   3.1.71.1 leaves Emergency on the first holder's Clear Emergency;
 //   3.1.53.1 .. 3.1.66.1 drivers, sensors, cameras and arms broken for the
 //   per-kind cases (broken_kind_components.hpp).
 #pragma once
@@ -11,6 +14,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "broken_kind_components.hpp"
@@ -23,6 +27,11 @@ namespace jaus::conform::test {
 inline const Address kObeysAnyone{3, 1, 50, 1};
 inline const Address kNeverConfirms{3, 1, 51, 1};
 inline const Address kEchoesPresence{3, 1, 52, 1};
+inline const Address kAnyoneTakesOver{3, 1, 67, 1};
+inline const Address kNeverTakenOver{3, 1, 68, 1};
+inline const Address kAnyoneReleases{3, 1, 69, 1};
+inline const Address kKeepsSilentController{3, 1, 70, 1};
+inline const Address kFirstClearEnds{3, 1, 71, 1};
 
 class ObeysAnyone final : public rt::Component {
  public:
@@ -95,6 +104,69 @@ class EchoesPresence final : public rt::Component {
   rt::TimerId timer_ = rt::kNoTimer;
 };
 
+// Control kept by hand (the runtime's arbiter is private to Component), as
+// the RA says but for one flaw; none has a controller liveness check, which
+// is the flaw of keeps_silent_controller.
+enum class ControlFlaw {
+  anyone_takes_over,        // any request from another requester takes control, whatever its authority
+  never_taken_over,         // a higher authority from another requester is refused
+  anyone_releases,          // a Release from anyone ends control
+  keeps_silent_controller,  // only the missing liveness check
+};
+
+class HandMadeControl final : public rt::Component {
+ public:
+  HandMadeControl(rt::ComponentConfig config, rt::Environment env, ControlFlaw flaw)
+      : Component(std::move(config), std::move(env)), flaw_(flaw) {
+    handle<msg::RequestComponentControl>(
+        Access::anyone, false, [this](const Header& h, const msg::RequestComponentControl& m) {
+          const bool taken_over = controller_ && *controller_ != h.source &&
+                                  (flaw_ == ControlFlaw::anyone_takes_over ||
+                                   (flaw_ != ControlFlaw::never_taken_over && m.authority > authority_));
+          const bool granted = !controller_ || *controller_ == h.source || taken_over;
+          if (taken_over) send(*controller_, msg::RejectComponentControl{});
+          if (granted) {
+            controller_ = h.source;
+            authority_ = m.authority;
+          }
+          send(h.source, msg::ConfirmComponentControl{
+                             {granted ? msg::control_response::kAccepted : msg::control_response::kNotAccepted}});
+        });
+    handle<msg::ReleaseComponentControl>(Access::anyone, false,
+                                         [this](const Header& h, const msg::ReleaseComponentControl&) {
+                                           if (controller_ == h.source || flaw_ == ControlFlaw::anyone_releases)
+                                             controller_.reset();
+                                         });
+    handle<msg::QueryComponentControl>(
+        Access::anyone, false, [this](const Header& h, const msg::QueryComponentControl&) {
+          send(h.source, msg::ReportComponentControl{{controller_.value_or(Address{0, 0, 0, 0}), authority_}});
+        });
+  }
+
+ private:
+  ControlFlaw flaw_;
+  std::optional<Address> controller_;
+  std::uint8_t authority_ = 0;
+};
+
+// Emergency kept by hand with one flag instead of a holder per sender: the
+// first Clear Emergency ends it, whoever else still holds it.
+class FirstClearEnds final : public rt::Component {
+ public:
+  FirstClearEnds(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    handle<msg::SetEmergency>(Access::anyone, false, [this](const Header&, const msg::SetEmergency&) { set_ = true; });
+    handle<msg::ClearEmergency>(Access::anyone, false,
+                                [this](const Header&, const msg::ClearEmergency&) { set_ = false; });
+    handle<msg::QueryComponentStatus>(Access::anyone, false, [this](const Header& h, const msg::QueryComponentStatus&) {
+      const auto state = set_ ? msg::PrimaryStatus::emergency : msg::PrimaryStatus::ready;
+      send(h.source, msg::ReportComponentStatus{{static_cast<std::uint8_t>(state), set_ ? 1u : 0u}});
+    });
+  }
+
+ private:
+  bool set_ = false;
+};
+
 class BrokenNode {
  public:
   explicit BrokenNode(boost::asio::io_context& io) {
@@ -110,6 +182,11 @@ class BrokenNode {
     host_->emplace<ObeysAnyone>(host_->component_config("obeys anyone", kObeysAnyone.component));
     host_->emplace<NeverConfirms>(host_->component_config("never confirms", kNeverConfirms.component));
     host_->emplace<EchoesPresence>(host_->component_config("echoes presence", kEchoesPresence.component));
+    add<HandMadeControl>("anyone takes over", kAnyoneTakesOver, ControlFlaw::anyone_takes_over);
+    add<HandMadeControl>("never taken over", kNeverTakenOver, ControlFlaw::never_taken_over);
+    add<HandMadeControl>("anyone releases", kAnyoneReleases, ControlFlaw::anyone_releases);
+    add<HandMadeControl>("keeps silent controller", kKeepsSilentController, ControlFlaw::keeps_silent_controller);
+    host_->emplace<FirstClearEnds>(host_->component_config("first clear ends", kFirstClearEnds.component));
     add<BrokenDriver>("driver obeys anyone", kDriverObeysAnyone, DriverFlaw::obeys_anyone);
     add<BrokenDriver>("driver forgets effort", kDriverForgetsEffort, DriverFlaw::forgets_effort);
     add<BrokenDriver>("driver keeps effort", kDriverKeepsEffortOnStop, DriverFlaw::keeps_effort_on_stop);

@@ -37,8 +37,11 @@ TEST_P(JausConform, EveryApplicableCasePassesAgainstJausd) {
   ASSERT_TRUE(node.started());
   const auto junit = node.dir() / "junit.xml";
   const auto report = node.dir() / "report.md";
+  // The silent-requester case takes some 6 s per component (a node notices
+  // silence after seconds): every component shares the runtime's liveness
+  // code, so it runs once, on the driver, below.
   ChildProcess conform({JAUS_CONFORM_PATH, "--to", platform.address, "--junit", junit.string(), "--report",
-                        report.string(), "--wait", "3"},
+                        report.string(), "--wait", "3", "--skip", "control.silent_requester"},
                        (node.dir() / "jaus-conform.log").string());
   ASSERT_TRUE(conform.started());
   EXPECT_EQ(conform.wait(110s), std::optional<int>(0)) << conform.output() << "\n" << read(report);
@@ -55,6 +58,16 @@ TEST_P(JausConform, EveryApplicableCasePassesAgainstJausd) {
   EXPECT_NE(markdown.find("# JAUS conformance: " + std::string(platform.address) + ":3794"), std::string::npos)
       << markdown;
   EXPECT_EQ(markdown.find("## Failures"), std::string::npos) << markdown;
+
+  // A requester that falls silent loses the driver's control and its service connection.
+  ChildProcess silent({JAUS_CONFORM_PATH, "--to", platform.address, "--component", "1.1.33.1", "--only",
+                       "control.silent_requester", "--wait", "1"},
+                      (node.dir() / "jaus-conform-silent.log").string());
+  ASSERT_TRUE(silent.started());
+  EXPECT_EQ(silent.wait(30s), std::optional<int>(0)) << silent.output();
+  EXPECT_TRUE(silent.output_contains("pass  1.1.33.1 control.silent_requester: control dropped after"))
+      << silent.output();
+  EXPECT_TRUE(silent.output_contains("reports stopped after")) << silent.output();
 }
 
 INSTANTIATE_TEST_SUITE_P(Platforms, JausConform,

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <span>
@@ -52,12 +53,20 @@ struct Exchanged {
   Header header;
   std::vector<std::uint8_t> payload;
   rt::Duration at{};  // since the case started
+  bool second = false;  // by or to the runner's second OCU (CaseContext::second())
 };
 
 struct CaseOutcome {
   Verdict verdict = Verdict::fail;
   std::string detail;  // one line: what was seen ("Report Identification type 4, 'communicator'")
 };
+
+struct SecondOcu;  // runner.cpp
+
+// The runner's second OCU: its own node (the runner's node ID + 1, so
+// 254.2.40.1 beside 254.1.40.1: one node ID on two ports would look like a
+// spoofed claim), the same peers and dialect, on the runner's io_context.
+Address second_ocu_address(const Address& runner);
 
 // What a case works with: the session, the component under test, the
 // profile, the budget for every reply it waits for, and the exchange so far.
@@ -68,8 +77,19 @@ struct CaseContext {
   rt::Duration reply_timeout = std::chrono::seconds(1);
   std::vector<Exchanged> exchange;
   rt::TimePoint started{};
+  std::shared_ptr<SecondOcu> second_ocu{};  // opened by second(), closed when the case ends
 
   const Address& target() const { return component.address; }
+
+  // A second requester for the cases that need two (takeover, emergency
+  // holders): opened on first use, its messages recorded in the exchange.
+  // After silence_second(), the next call opens a fresh one at the same
+  // address (to clean up what the silent one left).
+  Expected<ocu::OcuSession*> second();
+  // The second OCU falls silent: its link closes, so it neither sends (no
+  // heartbeats, no answers to liveness queries) nor answers; what still
+  // reaches its port is heard and recorded (second, received), never answered.
+  std::optional<Error> silence_second();
 };
 
 struct ConformanceCase {

@@ -17,6 +17,9 @@ struct RunOptions {
   // Runs only the cases whose id contains this text ("control.", "core.status");
   // empty: every case.
   std::string only;
+  // Leaves out the cases whose id contains this text (a slow case already
+  // run elsewhere); empty: none.
+  std::string skip;
 };
 
 struct CaseResult;
@@ -51,7 +54,7 @@ Expected<ComponentUnderTest> learn_component(ocu::OcuSession& session, const Add
 std::vector<Address> discovered_components(const ocu::Discovery& discovery);
 
 // Runs `cases` against `component`: a case that does not apply is skipped
-// with its reason; one filtered out by `options.only` is left out.
+// with its reason; one filtered out by `options.only` or `options.skip` is left out.
 std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnderTest& component,
                                   const std::vector<const ConformanceCase*>& cases, const RunOptions& options,
                                   const ResultListener& on_result = {});

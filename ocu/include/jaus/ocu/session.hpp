@@ -85,6 +85,8 @@ class OcuSession {
   jaus::node::Node& node();
   jaus::transport::UdpLink& link();
   jaus::rt::Clock& clock();
+  // What runs it: another session opened on it runs whenever this one does.
+  boost::asio::io_context& io_context() { return io_; }
 
   // Sends from the OCU component; the datagram has left when this returns.
   template <class M>
