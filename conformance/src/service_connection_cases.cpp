@@ -169,6 +169,31 @@ CaseOutcome terminate_stops_reports(CaseContext& c) {
   return pass("no report after Terminate");
 }
 
+// Suspend Service Connection from its creator stops the reports ("the
+// service provided on this connection shall be suspended"). Activate is not
+// checked: Part 3 gives it "no effect if sent by Inform requesters", and a
+// command service connection would make the runner a controller whose
+// silence stops the platform.
+CaseOutcome suspend_stops_reports(CaseContext& c) {
+  const auto [code, available] = chosen_report(c.component);
+  auto created = create(c, code, 10, available);
+  if (!created) return fail(created.error().message());
+  if (created->confirm.response_code != msg::sc_response::kCreated)
+    return fail("refused: " + ocu::service_connection_response_text(created->confirm.response_code));
+  if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
+    terminate(c, *created);
+    return fail("no report in 0.3 s at 10 Hz");
+  }
+  send(c, msg::SuspendServiceConnection{{code, created->confirm.instance_id}});
+  c.session.run_for(std::chrono::milliseconds(200));  // reports already on their way
+  const auto after = collect_reports(c, code, std::chrono::milliseconds(500));
+  terminate(c, *created);
+  std::size_t on_sc = 0;
+  for (const auto& r : after) on_sc += r.header.service_connection;
+  if (on_sc > 0) return fail(std::to_string(on_sc) + " reports in the half second after Suspend");
+  return pass("no report after Suspend; terminated");
+}
+
 // What cannot be served is answered with the RA's response codes: a report
 // it does not provide (6), a rate below the RA's slowest (5).
 CaseOutcome refusals(CaseContext& c) {
@@ -207,6 +232,8 @@ const std::vector<ConformanceCase>& cases() {
        unless_it_provides_reports, rate},
       {"sc.terminate", "Terminate Service Connection ends the reports",
        "Part 3, Code 000Ch Terminate Service Connection", unless_it_provides_reports, terminate_stops_reports},
+      {"sc.suspend", "Suspend Service Connection from its creator stops the reports",
+       "Part 3, Code 000Bh Suspend Service Connection", unless_it_provides_reports, suspend_stops_reports},
       {"sc.refusals", "an unprovided report is refused with 6, a rate below 0.0166 Hz with 5",
        "Part 3, Code 0009h Confirm Service Connection (response codes)", unless_it_provides_reports, refusals},
   };

@@ -3,7 +3,8 @@
 //   3.1.50.1 obeys anyone: a Reset from a non-controller puts it in Failure;
 //   3.1.51.1 never confirms a service connection (it provides Report Global Pose);
 //   3.1.52.1 echoes the presence vector it is asked for, whatever it has
-//            (its hand-made service connection also outlives a silent requester);
+//            (its hand-made service connection also ignores Suspend and outlives a
+//            silent requester);
 //   3.1.67.1 .. 3.1.70.1 keep control by hand, each with one flaw (ControlFlaw);
 //   3.1.71.1 leaves Emergency on the first holder's Clear Emergency;
 //   3.1.53.1 .. 3.1.66.1 drivers, sensors, cameras and arms broken for the

@@ -165,6 +165,17 @@ TEST_F(MultiRequester, AServiceConnectionThatOutlivesItsSilentRequesterFails) {
                     "reports on a silent requester's service connection still came");
 }
 
+// Listed with these in issue 14, needing no second requester: our pose
+// sensor's Report Global Pose stops on Suspend; a hand-made service
+// connection that ignores Suspend is caught.
+TEST_F(MultiRequester, SuspendStopsReportsOnOurNodeAndACaseCatchesOneThatKeepsSending) {
+  const CaseResult ours = run_one(kPoseSensor, "sc.suspend");
+  EXPECT_EQ(ours.outcome.verdict, Verdict::pass) << describe({ours});
+  session->run_for(200ms);  // the Terminate on its way
+  EXPECT_EQ(target->pose_sensor().service_connections().active(), 0u);
+  expect_fails_with(test::kEchoesPresence, "sc.suspend", "reports in the half second after Suspend");
+}
+
 // The RA 3.3 implementation never compares authorities and has no control
 // timeout (wire notes): under openjaus those checks are skipped, saying why.
 TEST_F(MultiRequester, TheOpenjausProfileSkipsTheAuthorityAndTimeoutChecks) {
