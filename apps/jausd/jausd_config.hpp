@@ -33,7 +33,7 @@ struct TransportConfig {
   jaus::transport::Framing framing = jaus::transport::Framing::opc;   // for peers not heard from yet
   std::optional<jaus::transport::Ipv4Endpoint> multicast;  // e.g. 224.1.0.1:3794; absent = no multicast
   bool broadcast_to_peers = true;                  // broadcasts also go to every known peer
-  bool relay = true;  // messages for other subsystems sent on to where their node was heard
+  bool relay = false;  // messages for other subsystems sent on to where their node was heard
   std::vector<jaus::transport::StaticPeer> peers;  // known from the start (no discovery needed)
   std::vector<jaus::transport::Cidr> allow;        // sources that may talk to the node; empty = everyone
   std::size_t max_peers = 256;  // peers learnt from traffic remembered at once (static ones come on top)

@@ -135,7 +135,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.transport.framing, Framing::opc);
   EXPECT_FALSE(c.transport.multicast);
   EXPECT_TRUE(c.transport.broadcast_to_peers);
-  EXPECT_TRUE(c.transport.relay);
+  EXPECT_FALSE(c.transport.relay);
   EXPECT_TRUE(c.transport.peers.empty());
   EXPECT_TRUE(c.transport.allow.empty());
   EXPECT_EQ(c.transport.max_peers, 256u);
@@ -257,7 +257,7 @@ transport:
   framing: judp
   multicast: 224.1.0.1:3795
   broadcast_to_peers: false
-  relay: false
+  relay: true
   peers:
     - address: 127.0.0.3:3794
       framing: opc
@@ -303,7 +303,7 @@ logging:
   EXPECT_EQ(c.transport.framing, Framing::judp);
   EXPECT_EQ(c.transport.multicast, endpoint("224.1.0.1:3795"));
   EXPECT_FALSE(c.transport.broadcast_to_peers);
-  EXPECT_FALSE(c.transport.relay);
+  EXPECT_TRUE(c.transport.relay);
   ASSERT_EQ(c.transport.peers.size(), 3u);
   EXPECT_EQ(c.transport.peers[0], (StaticPeer{endpoint("127.0.0.3:3794"), Framing::opc}));
   EXPECT_EQ(c.transport.peers[1], (StaticPeer{endpoint("127.0.0.4:3794"), Framing::judp}));  // transport.framing

@@ -68,6 +68,9 @@ class TargetNode {
     jaus::host::HostConfig config;
     config.node.subsystem = options.subsystem;
     config.link.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
+    // The node an OCU talks to also bridges to the other subsystems it hears
+    // (the cross-subsystem discovery tests reach a peer through it).
+    config.link.relay = true;
     for (const auto& peer : options.peers) config.link.peers.push_back({peer, jaus::transport::Framing::opc});
     config.node.liveness.node_timeout = options.subsystem_timeout;
     config.node.liveness.subsystem_timeout = options.subsystem_timeout;

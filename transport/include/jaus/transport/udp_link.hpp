@@ -45,9 +45,12 @@ struct UdpLinkOptions {
   std::optional<Ipv4Endpoint> multicast;    // broadcasts go here (e.g. 224.1.0.1:3794)
   std::uint8_t multicast_ttl = 1;
   bool broadcast_to_peers = true;           // broadcasts also go to every known peer
-  // Relay messages for other subsystems to where their node was heard (a
-  // node, yes; an OCU, no: it is where messages end).
-  bool relay = true;
+  // Relay messages for other subsystems to where their node was heard: for
+  // a node that bridges subsystems (an OCU reaches every subsystem through
+  // it). Off by default: a relay's copy of a message the sender also sent
+  // directly can teach a receiver the relay's endpoint for the sender while
+  // both start, and forwarding strangers' traffic is a choice to make.
+  bool relay = false;
   std::vector<StaticPeer> peers;
   std::vector<Cidr> allow;                  // empty: anyone may talk to the node
   RouteTableOptions routes;
