@@ -56,6 +56,10 @@ class Conformance : public ::testing::Test {
     }
     RunOptions options;
     options.only = std::move(only);
+    // The silent-requester case takes some 6 s a component (a controller
+    // timeout and a liveness timeout on the real clock): it runs on three
+    // components in multi_requester_cases_test.cpp, not again here.
+    options.skip = "control.silent_requester";
     return run_cases(*session, *component, all_cases(), options);
   }
 
@@ -72,7 +76,7 @@ class OurNodeConforms : public Conformance, public ::testing::WithParamInterface
 TEST_P(OurNodeConforms, EveryApplicableCasePasses) {
   const Address component = GetParam();
   const auto results = run(component);
-  ASSERT_EQ(results.size(), all_cases().size());
+  ASSERT_EQ(results.size(), all_cases().size() - 1);  // all but the silent-requester case
   for (const auto& r : results) EXPECT_NE(r.outcome.verdict, Verdict::fail) << describe(results);
   // The pose sensor provides Report Global Pose: its presence vector was checked.
   if (component == kPoseSensor) {

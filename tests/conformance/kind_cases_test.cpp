@@ -49,6 +49,10 @@ class KindConformance : public ::testing::Test {
     }
     RunOptions options;
     options.only = std::move(only);
+    // The silent-requester case takes some 6 s a component (a controller
+    // timeout and a liveness timeout on the real clock): it runs on three
+    // components in multi_requester_cases_test.cpp, not again here.
+    options.skip = "control.silent_requester";
     return run_cases(*session, *component, all_cases(), options);
   }
 
@@ -87,7 +91,7 @@ TEST_P(OurKindsConform, EveryApplicableCasePassesAndThoseOfItsKindRun) {
   std::vector<double> arm_before;
   if (tested.address == kManipulator) arm_before = ours->host().arm()->positions();
   const auto results = run(tested.address);
-  ASSERT_EQ(results.size(), all_cases().size());
+  ASSERT_EQ(results.size(), all_cases().size() - 1);  // all but the silent-requester case
   for (const auto& r : results) {
     EXPECT_NE(r.outcome.verdict, Verdict::fail) << describe(results);
     for (const auto prefix : tested.passing)
