@@ -59,6 +59,16 @@ Expected<Created> create(CaseContext& c, std::uint16_t code, double rate_hz, std
   return Created{*confirm, code};
 }
 
+// The same, for the cases that need the connection: one refused is the
+// component's failure ("refused: ..."), as one that gets no answer is.
+Expected<Created> create_accepted(CaseContext& c, std::uint16_t code, double rate_hz, std::uint32_t presence) {
+  auto created = create(c, code, rate_hz, presence);
+  if (created && created->confirm.response_code != msg::sc_response::kCreated)
+    return unexpected(make_error(ErrorCode::refused,
+                                 "refused: " + ocu::service_connection_response_text(created->confirm.response_code)));
+  return created;
+}
+
 void terminate(CaseContext& c, const Created& created) {
   if (created.confirm.response_code == msg::sc_response::kCreated)
     send(c, msg::TerminateServiceConnection{{created.code, created.confirm.instance_id}});
@@ -104,10 +114,8 @@ CaseOutcome reports_flagged_numbered_and_masked(CaseContext& c) {
   std::uint32_t requested = available & (~available + 1);
   const std::uint32_t defined = width >= 4 ? 0xFFFFFFFF : (1u << (8 * width)) - 1;
   if (const std::uint32_t missing = defined & ~available; missing != 0) requested |= missing & (~missing + 1);
-  auto created = create(c, code, 10, requested);
+  auto created = create_accepted(c, code, 10, requested);
   if (!created) return fail(created.error().message());
-  if (created->confirm.response_code != msg::sc_response::kCreated)
-    return fail("refused: " + ocu::service_connection_response_text(created->confirm.response_code));
   const auto reports = collect_reports(c, code, std::chrono::seconds(1));
   terminate(c, *created);
   if (reports.size() < 3) return fail(std::to_string(reports.size()) + " reports in 1 s at 10 Hz");
@@ -134,10 +142,8 @@ CaseOutcome reports_flagged_numbered_and_masked(CaseContext& c) {
 // The measured rate is the confirmed one, within what a network allows.
 CaseOutcome rate(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
-  auto created = create(c, code, 20, available);
+  auto created = create_accepted(c, code, 20, available);
   if (!created) return fail(created.error().message());
-  if (created->confirm.response_code != msg::sc_response::kCreated)
-    return fail("refused: " + ocu::service_connection_response_text(created->confirm.response_code));
   const double confirmed = created->confirm.confirmed_rate_hz;
   const auto reports = collect_reports(c, code, std::chrono::seconds(1));
   terminate(c, *created);
@@ -152,10 +158,8 @@ CaseOutcome rate(CaseContext& c) {
 // After Terminate Service Connection, reports stop.
 CaseOutcome terminate_stops_reports(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
-  auto created = create(c, code, 10, available);
+  auto created = create_accepted(c, code, 10, available);
   if (!created) return fail(created.error().message());
-  if (created->confirm.response_code != msg::sc_response::kCreated)
-    return fail("refused: " + ocu::service_connection_response_text(created->confirm.response_code));
   if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
     terminate(c, *created);
     return fail("no report in 0.3 s at 10 Hz");
@@ -176,10 +180,8 @@ CaseOutcome terminate_stops_reports(CaseContext& c) {
 // silence stops the platform.
 CaseOutcome suspend_stops_reports(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
-  auto created = create(c, code, 10, available);
+  auto created = create_accepted(c, code, 10, available);
   if (!created) return fail(created.error().message());
-  if (created->confirm.response_code != msg::sc_response::kCreated)
-    return fail("refused: " + ocu::service_connection_response_text(created->confirm.response_code));
   if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
     terminate(c, *created);
     return fail("no report in 0.3 s at 10 Hz");

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "broken_components.hpp"
+#include "case_results.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
 #include "target_node.hpp"
@@ -22,18 +23,8 @@ using jausctl::test::kLoopback;
 using jausctl::test::kNobody;
 using jausctl::test::kPoseSensor;
 using jausctl::test::kTargetManager;
-
-std::string describe(const std::vector<CaseResult>& results) {
-  std::string out;
-  for (const auto& r : results) out += case_line(r) + "\n";
-  return out;
-}
-
-const CaseResult* result_of(const std::vector<CaseResult>& results, std::string_view id) {
-  for (const auto& r : results)
-    if (r.test_case->id == id) return &r;
-  return nullptr;
-}
+using test::describe;
+using test::result_of;
 
 class Conformance : public ::testing::Test {
  protected:

@@ -11,6 +11,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "broken_discovery_components.hpp"
+#include "case_results.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
 #include "ra33_peer.hpp"
@@ -22,16 +23,11 @@ namespace {
 using namespace std::chrono_literals;
 using jausctl::test::kLoopback;
 using jausctl::test::Ra33Peer;
+using test::describe;
 using test::NodeManagerFlaw;
 
 const Address kOurManager{2, 1, 1, 1};
 const Address kOurCommunicator{2, 1, 35, 1};
-
-std::string describe(const std::vector<CaseResult>& results) {
-  std::string out;
-  for (const auto& r : results) out += case_line(r) + "\n";
-  return out;
-}
 
 // Adds a component to a node every 200 ms while it lives: a node whose
 // configuration changes while a case listens for Events.

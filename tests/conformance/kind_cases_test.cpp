@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "broken_components.hpp"
+#include "case_results.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
 #include "kind_node.hpp"
@@ -19,14 +20,6 @@ namespace {
 
 using namespace std::chrono_literals;
 using namespace test;
-
-std::string describe(const std::vector<CaseResult>& results) {
-  std::string out;
-  for (const auto& r : results) out += case_line(r) + "\n";
-  return out;
-}
-
-bool starts_with(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
 
 class KindConformance : public ::testing::Test {
  protected:
@@ -95,7 +88,7 @@ TEST_P(OurKindsConform, EveryApplicableCasePassesAndThoseOfItsKindRun) {
   for (const auto& r : results) {
     EXPECT_NE(r.outcome.verdict, Verdict::fail) << describe(results);
     for (const auto prefix : tested.passing)
-      if (starts_with(r.test_case->id, prefix))
+      if (std::string_view(r.test_case->id).starts_with(prefix))
         EXPECT_EQ(r.outcome.verdict, Verdict::pass) << r.test_case->id << "\n" << describe(results);
   }
   // Left as found: nobody in control (once the last Release arrives), the
@@ -189,7 +182,7 @@ TEST_F(KindConformance, PerKindCasesSayWhyTheyDoNotApplyToOtherComponents) {
     for (const auto& c : suite) {
       ASSERT_TRUE(c.not_applicable) << c.id;
       const std::string why = c.not_applicable(*manager);
-      EXPECT_TRUE(starts_with(why, "it does not accept ")) << c.id << ": " << why;
+      EXPECT_TRUE(std::string_view(why).starts_with("it does not accept ")) << c.id << ": " << why;
     }
   }
   // A driver that reports no propulsive linear X effort is not one these cases can drive.

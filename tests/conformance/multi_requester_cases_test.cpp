@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "broken_components.hpp"
+#include "case_results.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
 #include "target_node.hpp"
@@ -25,9 +26,7 @@ using jausctl::test::kTargetManager;
 
 // The verdicts, then the Markdown report's failures with their exchanges.
 std::string describe(const std::vector<CaseResult>& results) {
-  std::string out;
-  for (const auto& r : results) out += case_line(r) + "\n";
-  return out + markdown_report(RunReport{"in process", Profile::ra, results});
+  return test::describe(results) + markdown_report(RunReport{"in process", Profile::ra, results});
 }
 
 class MultiRequester : public ::testing::Test {
