@@ -10,6 +10,7 @@
 
 #include <boost/system/error_code.hpp>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <new>
 #include <vector>
@@ -33,7 +34,9 @@ class HandlerMemory {
     return p;
   }
   void deallocate(void* p) {
-    if (p >= static_cast<void*>(storage_.get()) && p < end_)
+    // std::less: a total order even for a pointer from the heap, where `<` on
+    // pointers into different objects is unspecified.
+    if (!std::less<void*>()(p, storage_.get()) && std::less<void*>()(p, end_))
       free_.push_back(p);  // within the reserved capacity: never allocates
     else
       ::operator delete(p);
