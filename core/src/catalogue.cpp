@@ -239,6 +239,14 @@ this file and the descriptions disagree. Regenerate with
   (`reserved_presence_bits`), since the layout after it cannot be known. A
   query's `presence_vector` is a request mask: bits beyond the report's are
   ignored, as the wire notes say.
+- `enum: 0 initialize, 1 ready, ...` fields appear in JSON by name
+  (`"primary_status": "ready"`) and are read back by name or number; a value
+  without a name (reserved, vendor, a gear within a range) stays a number.
+  `bits: bit 0 stop, ...` fields appear as an object of their named bits
+  (`{"stop": true}`; a wider part is a number or its value's name) plus
+  `"other_bits"` when bits no name covers are set, and are read back from such
+  an object (absent bits are 0) or a plain number. On the wire both are the
+  plain integer.
 - Counts (`u8 count`) are derived from the array length on encode and checked
   against the bytes left on decode; "0 is reserved" counts are rejected.
 - Decoding consumes every byte: trailing bytes are an error.

@@ -28,6 +28,16 @@ template <class T>
 void random_value(const wire::Int<T>&, T& v, Rng& rng, wire::CodecContext&) {
   v = uniform_int<T>(rng, std::numeric_limits<T>::min(), std::numeric_limits<T>::max());
 }
+// Any value of the wire type: named ones, unnamed ones and bits no name covers.
+template <class T, std::size_t N>
+void random_value(const wire::Enum<T, N>& c, T& v, Rng& rng, wire::CodecContext&) {
+  v = (rng() & 1) ? static_cast<T>(c.names[uniform_int<std::size_t>(rng, 0, N - 1)].value)
+                  : uniform_int<T>(rng, 0, std::numeric_limits<T>::max());
+}
+template <class T, std::size_t N>
+void random_value(const wire::Flags<T, N>&, T& v, Rng& rng, wire::CodecContext&) {
+  v = uniform_int<T>(rng, 0, std::numeric_limits<T>::max());
+}
 template <class T>
 void random_value(const wire::Real<T>&, T& v, Rng& rng, wire::CodecContext&) {
   v = static_cast<T>(uniform(rng, -1e6, 1e6));

@@ -34,7 +34,7 @@ TEST(MessageJson, DecodePrintsCodeNameHeaderAndFields) {
   EXPECT_EQ((*json)["name"], "Report Component Status");
   EXPECT_EQ((*json)["header"]["source"], "1.1.33.1");
   EXPECT_EQ((*json)["header"]["sequence"], 7);
-  EXPECT_EQ((*json)["fields"]["primary_status"], 1);
+  EXPECT_EQ((*json)["fields"]["primary_status"], "ready");
   // Decoding then encoding is the identity.
   auto again = message_from_json(*json);
   ASSERT_TRUE(again);

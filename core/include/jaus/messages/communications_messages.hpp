@@ -6,10 +6,16 @@
 namespace jaus::msg {
 
 // Data link states (Set: 0 off, 1 on, 2 standby; Report adds 3 loss of command).
+inline constexpr auto kSetDataLinkState = wire::enum_of<std::uint8_t>({{0, "off"}, {1, "on"}, {2, "standby"}});
+inline constexpr auto kDataLinkState =
+    wire::enum_of<std::uint8_t>({{0, "off"}, {1, "on"}, {2, "standby"}, {3, "loss_of_command"}});
+
 struct DataLinkStateBody {
   std::uint8_t state = 0;
   bool operator==(const DataLinkStateBody&) const = default;
-  static constexpr auto describe() { return std::make_tuple(wire::field("state", &DataLinkStateBody::state, Byte{})); }
+  static constexpr auto describe() {
+    return std::make_tuple(wire::field("state", &DataLinkStateBody::state, kSetDataLinkState));
+  }
 };
 
 struct DataLinkIdBody {
@@ -26,7 +32,7 @@ struct DataLinkStatusBody {
   bool operator==(const DataLinkStatusBody&) const = default;
   static constexpr auto describe() {
     return std::make_tuple(wire::field("data_link_id", &DataLinkStatusBody::data_link_id, Byte{}),
-                           wire::field("state", &DataLinkStatusBody::state, Byte{}));
+                           wire::field("state", &DataLinkStatusBody::state, kDataLinkState));
   }
 };
 

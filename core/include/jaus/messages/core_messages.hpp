@@ -14,11 +14,14 @@ struct AuthorityBody {
   }
 };
 
+// Emergency code: bit 0 the Stop condition, bits 1-15 reserved.
+inline constexpr auto kEmergencyCode = wire::bits_of<std::uint16_t>({"stop"});
+
 struct EmergencyBody {
   std::uint16_t emergency_code = 1;  // bit 0: stop
   bool operator==(const EmergencyBody&) const = default;
   static constexpr auto describe() {
-    return std::make_tuple(wire::field("emergency_code", &EmergencyBody::emergency_code, UShort{}));
+    return std::make_tuple(wire::field("emergency_code", &EmergencyBody::emergency_code, kEmergencyCode));
   }
 };
 
@@ -45,6 +48,14 @@ inline constexpr std::uint8_t kRefused = 4;
 inline constexpr std::uint8_t kInvalidParameters = 5;
 inline constexpr std::uint8_t kCommandNotSupported = 6;
 }  // namespace sc_response
+inline constexpr auto kServiceConnectionResponse =
+    wire::enum_of<std::uint8_t>({{sc_response::kCreated, "created"},
+                                 {sc_response::kNodeNotCapable, "node_not_capable"},
+                                 {sc_response::kComponentNotCapable, "component_not_capable"},
+                                 {sc_response::kInsufficientAuthority, "insufficient_authority"},
+                                 {sc_response::kRefused, "refused"},
+                                 {sc_response::kInvalidParameters, "invalid_parameters"},
+                                 {sc_response::kCommandNotSupported, "command_not_supported"}});
 
 struct ConfirmServiceConnectionBody {
   std::uint16_t command_code = 0;
@@ -57,7 +68,7 @@ struct ConfirmServiceConnectionBody {
     return std::make_tuple(wire::field("command_code", &B::command_code, UShort{}),
                            wire::field("instance_id", &B::instance_id, Byte{}),
                            wire::field("confirmed_rate_hz", &B::confirmed_rate_hz, kServiceRate),
-                           wire::field("response_code", &B::response_code, Byte{}));
+                           wire::field("response_code", &B::response_code, kServiceConnectionResponse));
   }
 };
 
@@ -78,12 +89,16 @@ inline constexpr std::uint8_t kAccepted = 0;
 inline constexpr std::uint8_t kNotSupported = 1;
 inline constexpr std::uint8_t kNotAccepted = 2;
 }  // namespace control_response
+inline constexpr auto kControlResponse =
+    wire::enum_of<std::uint8_t>({{control_response::kAccepted, "accepted"},
+                                 {control_response::kNotSupported, "not_supported"},
+                                 {control_response::kNotAccepted, "not_accepted"}});
 
 struct ResponseCodeBody {
   std::uint8_t response_code = 0;
   bool operator==(const ResponseCodeBody&) const = default;
   static constexpr auto describe() {
-    return std::make_tuple(wire::field("response_code", &ResponseCodeBody::response_code, Byte{}));
+    return std::make_tuple(wire::field("response_code", &ResponseCodeBody::response_code, kControlResponse));
   }
 };
 
@@ -117,8 +132,9 @@ struct ComponentStatusBody {
   bool operator==(const ComponentStatusBody&) const = default;
   static constexpr auto describe() {
     using B = ComponentStatusBody;
-    return std::make_tuple(wire::field("primary_status", &B::primary_status, Byte{}),
-                           wire::field("secondary_status", &B::secondary_status, UInt{}));
+    return std::make_tuple(
+        wire::field("primary_status", &B::primary_status, wire::enum_of<std::uint8_t>(kComponentStates)),
+        wire::field("secondary_status", &B::secondary_status, UInt{}));
   }
 };
 

@@ -13,12 +13,19 @@ inline constexpr std::uint8_t kSubsystem = 2;
 inline constexpr std::uint8_t kNode = 3;
 inline constexpr std::uint8_t kComponent = 4;
 }  // namespace identification
+inline constexpr auto kIdentificationType = wire::enum_of<std::uint8_t>({{identification::kSystem, "system"},
+                                                                         {identification::kSubsystem, "subsystem"},
+                                                                         {identification::kNode, "node"},
+                                                                         {identification::kComponent, "component"}});
+// Query Configuration asks for a subsystem's or a node's configuration.
+inline constexpr auto kConfigurationField =
+    wire::enum_of<std::uint8_t>({{identification::kSubsystem, "subsystem"}, {identification::kNode, "node"}});
 
 struct QueryIdentificationBody {
   std::uint8_t query_type = identification::kSubsystem;
   bool operator==(const QueryIdentificationBody&) const = default;
   static constexpr auto describe() {
-    return std::make_tuple(wire::field("query_type", &QueryIdentificationBody::query_type, Byte{}));
+    return std::make_tuple(wire::field("query_type", &QueryIdentificationBody::query_type, kIdentificationType));
   }
 };
 
@@ -31,7 +38,7 @@ struct IdentificationBody {
   bool operator==(const IdentificationBody&) const = default;
   static constexpr auto describe() {
     using B = IdentificationBody;
-    return std::make_tuple(wire::field("query_type", &B::query_type, Byte{}),
+    return std::make_tuple(wire::field("query_type", &B::query_type, kIdentificationType),
                            wire::field("authority", &B::authority, Byte{}), wire::field("type", &B::type, UShort{}),
                            wire::field("identification", &B::identification, wire::Text<80, true>{}));
   }
@@ -42,7 +49,7 @@ struct QueryConfigurationBody {
   std::uint8_t query_field = identification::kSubsystem;
   bool operator==(const QueryConfigurationBody&) const = default;
   static constexpr auto describe() {
-    return std::make_tuple(wire::field("query_field", &QueryConfigurationBody::query_field, Byte{}));
+    return std::make_tuple(wire::field("query_field", &QueryConfigurationBody::query_field, kConfigurationField));
   }
 };
 

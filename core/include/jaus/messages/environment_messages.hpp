@@ -14,6 +14,9 @@ struct CameraIdBody {
 
 // Set Camera Pose: +-100 % of full scale; mode_indicator bits 0-5 choose rate (1)
 // or position (0) for the six axes in order.
+inline constexpr auto kCameraPoseMode = wire::bits_of<std::uint8_t>(
+    {"x_linear_rate", "y_linear_rate", "z_linear_rate", "x_angular_rate", "y_angular_rate", "z_angular_rate"});
+
 struct CameraPoseCommandBody {
   std::uint8_t camera_id = 1;
   std::uint8_t mode_indicator = 0;
@@ -28,7 +31,7 @@ struct CameraPoseCommandBody {
     using B = CameraPoseCommandBody;
     constexpr wire::Scaled<std::int16_t> percent{-100, 100};
     return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("camera_id", &B::camera_id, Byte{}),
-                           wire::field("mode_indicator", &B::mode_indicator, Byte{}),
+                           wire::field("mode_indicator", &B::mode_indicator, kCameraPoseMode),
                            wire::optional(0, "x_linear_percent", &B::x_linear_percent, percent),
                            wire::optional(1, "y_linear_percent", &B::y_linear_percent, percent),
                            wire::optional(2, "z_linear_percent", &B::z_linear_percent, percent),
@@ -71,8 +74,8 @@ struct CameraCapabilitiesCommandBody {
                            wire::optional(6, "gain_percent", &B::gain_percent, kPercentByte),
                            wire::optional(7, "frame_rate_fps", &B::frame_rate_fps, UShort{}),
                            wire::optional(8, "shutter_inverse_s", &B::shutter_inverse_s, UShort{}),
-                           wire::optional(9, "imagery_control", &B::imagery_control, UShort{}),
-                           wire::optional(10, "audio_control", &B::audio_control, UShort{}));
+                           wire::optional(9, "imagery_control", &B::imagery_control, kImageryControl),
+                           wire::optional(10, "audio_control", &B::audio_control, kAudioControl));
   }
 };
 
@@ -88,8 +91,8 @@ struct CameraFormatCommandBody {
   static constexpr auto describe() {
     using B = CameraFormatCommandBody;
     return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("camera_id", &B::camera_id, Byte{}),
-                           wire::optional(0, "audio_format", &B::audio_format, Byte{}),
-                           wire::optional(1, "image_format", &B::image_format, Byte{}),
+                           wire::optional(0, "audio_format", &B::audio_format, kAudioFormat),
+                           wire::optional(1, "image_format", &B::image_format, kImageFormat),
                            wire::optional(2, "format_option", &B::format_option, UInt{}));
   }
 };
@@ -194,23 +197,22 @@ struct CameraCapabilitiesReportBody {
   bool operator==(const CameraCapabilitiesReportBody&) const = default;
   static constexpr auto describe() {
     using B = CameraCapabilitiesReportBody;
-    return std::make_tuple(
-        wire::presence_vector<std::uint16_t>(), wire::field("camera_id", &B::camera_id, Byte{}),
-        wire::optional(0, "description", &B::description, wire::Text<50>{}),
-        wire::optional(1, "max_horizontal_fov_rad", &B::max_horizontal_fov_rad, kFieldOfView),
-        wire::optional(2, "min_horizontal_fov_rad", &B::min_horizontal_fov_rad, kFieldOfView),
-        wire::optional(3, "max_vertical_fov_rad", &B::max_vertical_fov_rad, kFieldOfView),
-        wire::optional(4, "min_vertical_fov_rad", &B::min_vertical_fov_rad, kFieldOfView),
-        wire::optional(5, "max_horizontal_resolution", &B::max_horizontal_resolution, UShort{}),
-        wire::optional(6, "min_horizontal_resolution", &B::min_horizontal_resolution, UShort{}),
-        wire::optional(7, "max_vertical_resolution", &B::max_vertical_resolution, UShort{}),
-        wire::optional(8, "min_vertical_resolution", &B::min_vertical_resolution, UShort{}),
-        wire::optional(9, "min_frame_rate_fps", &B::min_frame_rate_fps, UShort{}),
-        wire::optional(10, "max_frame_rate_fps", &B::max_frame_rate_fps, UShort{}),
-        wire::optional(11, "min_shutter_inverse_s", &B::min_shutter_inverse_s, UShort{}),
-        wire::optional(12, "max_shutter_inverse_s", &B::max_shutter_inverse_s, UShort{}),
-        wire::optional(13, "imagery_control", &B::imagery_control, UShort{}),
-        wire::optional(14, "audio_control", &B::audio_control, UShort{}));
+    return std::make_tuple(wire::presence_vector<std::uint16_t>(), wire::field("camera_id", &B::camera_id, Byte{}),
+                           wire::optional(0, "description", &B::description, wire::Text<50>{}),
+                           wire::optional(1, "max_horizontal_fov_rad", &B::max_horizontal_fov_rad, kFieldOfView),
+                           wire::optional(2, "min_horizontal_fov_rad", &B::min_horizontal_fov_rad, kFieldOfView),
+                           wire::optional(3, "max_vertical_fov_rad", &B::max_vertical_fov_rad, kFieldOfView),
+                           wire::optional(4, "min_vertical_fov_rad", &B::min_vertical_fov_rad, kFieldOfView),
+                           wire::optional(5, "max_horizontal_resolution", &B::max_horizontal_resolution, UShort{}),
+                           wire::optional(6, "min_horizontal_resolution", &B::min_horizontal_resolution, UShort{}),
+                           wire::optional(7, "max_vertical_resolution", &B::max_vertical_resolution, UShort{}),
+                           wire::optional(8, "min_vertical_resolution", &B::min_vertical_resolution, UShort{}),
+                           wire::optional(9, "min_frame_rate_fps", &B::min_frame_rate_fps, UShort{}),
+                           wire::optional(10, "max_frame_rate_fps", &B::max_frame_rate_fps, UShort{}),
+                           wire::optional(11, "min_shutter_inverse_s", &B::min_shutter_inverse_s, UShort{}),
+                           wire::optional(12, "max_shutter_inverse_s", &B::max_shutter_inverse_s, UShort{}),
+                           wire::optional(13, "imagery_control", &B::imagery_control, kImageryControl),
+                           wire::optional(14, "audio_control", &B::audio_control, kAudioControl));
   }
 };
 
@@ -227,12 +229,12 @@ struct CameraFormatReportBody {
   static constexpr auto describe() {
     using B = CameraFormatReportBody;
     return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("camera_id", &B::camera_id, Byte{}),
-                           wire::optional(0, "audio_format_1", &B::audio_format_1, Byte{}),
-                           wire::optional(1, "audio_format_2", &B::audio_format_2, Byte{}),
-                           wire::optional(2, "image_format_1", &B::image_format_1, Byte{}),
-                           wire::optional(3, "image_format_2", &B::image_format_2, Byte{}),
-                           wire::optional(4, "image_format_3", &B::image_format_3, Byte{}),
-                           wire::optional(5, "image_format_4", &B::image_format_4, Byte{}),
+                           wire::optional(0, "audio_format_1", &B::audio_format_1, kAudioFormat),
+                           wire::optional(1, "audio_format_2", &B::audio_format_2, kAudioFormat),
+                           wire::optional(2, "image_format_1", &B::image_format_1, kImageFormat),
+                           wire::optional(3, "image_format_2", &B::image_format_2, kImageFormat),
+                           wire::optional(4, "image_format_3", &B::image_format_3, kImageFormat),
+                           wire::optional(5, "image_format_4", &B::image_format_4, kImageFormat),
                            wire::optional(6, "format_option", &B::format_option, UInt{}));
   }
 };
@@ -250,7 +252,7 @@ struct ImageBody {
   bool operator==(const ImageBody&) const = default;
   static constexpr auto describe() {
     return std::make_tuple(wire::field("camera_id", &ImageBody::camera_id, Byte{}),
-                           wire::field("image_format", &ImageBody::image_format, Byte{}),
+                           wire::field("image_format", &ImageBody::image_format, kImageFormat),
                            wire::field("data", &ImageBody::data, wire::Bytes<>{}));
   }
 };

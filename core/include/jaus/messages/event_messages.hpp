@@ -10,6 +10,19 @@ namespace jaus::msg {
 // and out of boundary, 4 periodic without repeats, 5 one time on demand.
 // Boundaries: 0 equal, 1 not equal, 2 inside inclusive, 3 inside exclusive,
 // 4 outside inclusive, 5 outside exclusive.
+inline constexpr auto kEventType = wire::enum_of<std::uint8_t>({{0, "periodic"},
+                                                                {1, "every_change"},
+                                                                {2, "first_change"},
+                                                                {3, "first_change_in_and_out_of_boundary"},
+                                                                {4, "periodic_without_repeats"},
+                                                                {5, "one_time"}});
+inline constexpr auto kEventBoundary = wire::enum_of<std::uint8_t>({{0, "equal"},
+                                                                    {1, "not_equal"},
+                                                                    {2, "inside_inclusive"},
+                                                                    {3, "inside_exclusive"},
+                                                                    {4, "outside_inclusive"},
+                                                                    {5, "outside_exclusive"}});
+
 struct EventRequestBody {
   std::uint8_t request_id = 0;
   std::uint16_t report_code = 0;
@@ -27,8 +40,8 @@ struct EventRequestBody {
     using B = EventRequestBody;
     return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
                            wire::field("report_code", &B::report_code, UShort{}),
-                           wire::field("event_type", &B::event_type, Byte{}),
-                           wire::optional(0, "event_boundary", &B::event_boundary, Byte{}),
+                           wire::field("event_type", &B::event_type, kEventType),
+                           wire::optional(0, "event_boundary", &B::event_boundary, kEventBoundary),
                            wire::optional(1, "limit_data_field", &B::limit_data_field, Byte{}),
                            wire::optional(2, "lower_limit", &B::lower_limit, wire::EventLimitCodec{}),
                            wire::optional(3, "upper_limit", &B::upper_limit, wire::EventLimitCodec{}),
@@ -58,8 +71,8 @@ struct EventUpdateBody {
     using B = EventUpdateBody;
     return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
                            wire::field("report_code", &B::report_code, UShort{}),
-                           wire::field("event_type", &B::event_type, Byte{}),
-                           wire::optional(0, "event_boundary", &B::event_boundary, Byte{}),
+                           wire::field("event_type", &B::event_type, kEventType),
+                           wire::optional(0, "event_boundary", &B::event_boundary, kEventBoundary),
                            wire::optional(1, "limit_data_field", &B::limit_data_field, Byte{}),
                            wire::optional(2, "lower_limit", &B::lower_limit, wire::EventLimitCodec{}),
                            wire::optional(3, "upper_limit", &B::upper_limit, wire::EventLimitCodec{}),
@@ -84,12 +97,22 @@ struct CancelEventBody {
   }
 };
 
+// Confirm Event Request response codes, as the RA 3.3 peers (and our node
+// manager) send them; Part 3 defines only 0.
+inline constexpr auto kEventResponse = wire::enum_of<std::uint8_t>({{0, "successful"},
+                                                                    {1, "periodic_not_supported"},
+                                                                    {2, "change_based_not_supported"},
+                                                                    {3, "connection_refused"},
+                                                                    {4, "invalid_event_setup"},
+                                                                    {5, "message_not_supported"},
+                                                                    {6, "invalid_event_id_for_update"}});
+
 struct ConfirmEventRequestBody {
   std::uint8_t request_id = 0;
   std::uint16_t message_code = 0;
   std::uint8_t event_id = 0;
   std::optional<double> confirmed_rate_hz;
-  std::uint8_t response_code = 0;  // 0 ok
+  std::uint8_t response_code = 0;  // kEventResponse
   bool operator==(const ConfirmEventRequestBody&) const = default;
   static constexpr auto describe() {
     using B = ConfirmEventRequestBody;
@@ -97,7 +120,7 @@ struct ConfirmEventRequestBody {
                            wire::field("message_code", &B::message_code, UShort{}),
                            wire::field("event_id", &B::event_id, Byte{}),
                            wire::optional(0, "confirmed_rate_hz", &B::confirmed_rate_hz, kServiceRate),
-                           wire::field("response_code", &B::response_code, Byte{}));
+                           wire::field("response_code", &B::response_code, kEventResponse));
   }
 };
 

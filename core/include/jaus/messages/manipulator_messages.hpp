@@ -94,6 +94,9 @@ struct EndEffectorPoseBody {
   }
 };
 
+inline constexpr auto kCoordinateSystem =
+    wire::enum_of<std::uint8_t>({{1, "vehicle_aligned"}, {2, "end_effector_aligned"}});
+
 struct EndEffectorVelocityStateBody {
   std::uint8_t coordinate_system = 1;  // 1 vehicle-aligned, 2 end-effector-aligned
   double angular_x_rps = 0;
@@ -107,13 +110,12 @@ struct EndEffectorVelocityStateBody {
     using B = EndEffectorVelocityStateBody;
     constexpr auto angular = manipulator_int(-20 * kPi, 20 * kPi);
     constexpr auto linear = manipulator_int(-10, 10);
-    return std::make_tuple(wire::field("coordinate_system", &B::coordinate_system, Byte{}),
-                           wire::field("angular_x_rps", &B::angular_x_rps, angular),
-                           wire::field("angular_y_rps", &B::angular_y_rps, angular),
-                           wire::field("angular_z_rps", &B::angular_z_rps, angular),
-                           wire::field("linear_x_mps", &B::linear_x_mps, linear),
-                           wire::field("linear_y_mps", &B::linear_y_mps, linear),
-                           wire::field("linear_z_mps", &B::linear_z_mps, linear));
+    return std::make_tuple(
+        wire::field("coordinate_system", &B::coordinate_system, kCoordinateSystem),
+        wire::field("angular_x_rps", &B::angular_x_rps, angular),
+        wire::field("angular_y_rps", &B::angular_y_rps, angular),
+        wire::field("angular_z_rps", &B::angular_z_rps, angular), wire::field("linear_x_mps", &B::linear_x_mps, linear),
+        wire::field("linear_y_mps", &B::linear_y_mps, linear), wire::field("linear_z_mps", &B::linear_z_mps, linear));
   }
 };
 
@@ -194,6 +196,7 @@ struct EndEffectorPathMotionBody {
 inline constexpr wire::Linear<std::uint16_t> kMilli{0.001};
 
 enum class JointType : std::uint8_t { revolute = 1, prismatic = 2 };
+inline constexpr auto kJointType = wire::enum_of<std::uint8_t>({{1, "revolute"}, {2, "prismatic"}});
 
 struct ManipulatorJointSpec {
   std::uint8_t type = 1;         // JointType
@@ -206,12 +209,12 @@ struct ManipulatorJointSpec {
   bool operator==(const ManipulatorJointSpec&) const = default;
   static constexpr auto describe() {
     using B = ManipulatorJointSpec;
-    return std::make_tuple(wire::field("type", &B::type, Byte{}), wire::field("link_length_m", &B::link_length_m, kMilli),
-                           wire::field("twist_angle_rad", &B::twist_angle_rad, kMilli),
-                           wire::field("offset_rad_or_m", &B::offset_rad_or_m, kMilli),
-                           wire::field("min_rad_or_m", &B::min_rad_or_m, kMilli),
-                           wire::field("max_rad_or_m", &B::max_rad_or_m, kMilli),
-                           wire::field("max_velocity_rps_or_mps", &B::max_velocity_rps_or_mps, kMilli));
+    return std::make_tuple(
+        wire::field("type", &B::type, kJointType), wire::field("link_length_m", &B::link_length_m, kMilli),
+        wire::field("twist_angle_rad", &B::twist_angle_rad, kMilli),
+        wire::field("offset_rad_or_m", &B::offset_rad_or_m, kMilli),
+        wire::field("min_rad_or_m", &B::min_rad_or_m, kMilli), wire::field("max_rad_or_m", &B::max_rad_or_m, kMilli),
+        wire::field("max_velocity_rps_or_mps", &B::max_velocity_rps_or_mps, kMilli));
   }
 };
 
@@ -238,7 +241,7 @@ struct ManipulatorSpecificationsBody {
     using B = ManipulatorSpecificationsBody;
     return std::make_tuple(
         wire::field("joint_count", &B::joint_count, wire::Dimension<0, std::uint8_t>{1}),
-        wire::field("last_joint_type", &B::last_joint_type, Byte{}),
+        wire::field("last_joint_type", &B::last_joint_type, kJointType),
         wire::field("last_joint_offset_rad_or_m", &B::last_joint_offset_rad_or_m, kMilli),
         wire::field("last_joint_min_rad_or_m", &B::last_joint_min_rad_or_m, kMilli),
         wire::field("last_joint_max_rad_or_m", &B::last_joint_max_rad_or_m, kMilli),

@@ -47,6 +47,15 @@ struct WrenchEffortBody {
   }
 };
 
+inline constexpr auto kMainPropulsion =
+    wire::bits_of<std::uint8_t>({"power_plant_on", "main_fuel_on", "auxiliary_fuel_on", "auxiliary_devices_power_on",
+                                 "starting_device_on", "cold_start", "automatic_start", "automatic_shutdown"});
+inline constexpr auto kParkingBrakeAndHorn = wire::bits_of<std::uint8_t>({"parking_brake_set", "horn_on"});
+// Gear 1-127 (forward) and 129-255 (reverse), transfer case 0-127 (low) and
+// 129-255 (high) are ranges: those show as numbers.
+inline constexpr auto kGear = wire::enum_of<std::uint8_t>({{0, "park"}, {128, "neutral"}});
+inline constexpr auto kTransferCase = wire::enum_of<std::uint8_t>({{128, "neutral"}});
+
 struct DiscreteDevicesBody {
   // Bit fields as in Part 3: main propulsion bit 0 on, 1 main fuel, 2 auxiliary
   // fuel, 3 power to auxiliary devices, 4 starting device, 5 cold start,
@@ -60,11 +69,12 @@ struct DiscreteDevicesBody {
   bool operator==(const DiscreteDevicesBody&) const = default;
   static constexpr auto describe() {
     using B = DiscreteDevicesBody;
-    return std::make_tuple(wire::presence_vector<std::uint8_t>(),
-                           wire::optional(0, "main_propulsion", &B::main_propulsion, Byte{}),
-                           wire::optional(1, "parking_brake_and_horn", &B::parking_brake_and_horn, Byte{}),
-                           wire::optional(2, "gear", &B::gear, Byte{}),
-                           wire::optional(3, "transfer_case", &B::transfer_case, Byte{}));
+    return std::make_tuple(
+        wire::presence_vector<std::uint8_t>(),
+        wire::optional(0, "main_propulsion", &B::main_propulsion, kMainPropulsion),
+        wire::optional(1, "parking_brake_and_horn", &B::parking_brake_and_horn, kParkingBrakeAndHorn),
+        wire::optional(2, "gear", &B::gear, kGear),
+        wire::optional(3, "transfer_case", &B::transfer_case, kTransferCase));
   }
 };
 
