@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "jaus/clearpath/fields.hpp"
+#include "jaus/clearpath/packed_date_time.hpp"
 
 namespace jaus::clearpath::testing {
 
@@ -29,6 +30,12 @@ class RandomFiller {
   }
   template <class B>
   void operator()(const fields::Flag<B>& f) { f.value = coin(); }
+  template <class T>
+  void operator()(const fields::PackedDateTime<T>& f) {
+    const auto part = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); };
+    const DateTimeParts p{part(2000, 2127), part(1, 12), part(1, 31), part(0, 23), part(0, 59)};
+    f.value = *pack_date_time(p);
+  }
   template <class W, class V>
   void operator()(const fields::NumberList<W, V>& f) {
     f.values.resize(std::uniform_int_distribution<std::size_t>(0, 6)(rng_));

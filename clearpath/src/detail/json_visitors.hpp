@@ -4,12 +4,14 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "detail/field_path.hpp"
 #include "detail/wire_number.hpp"
 #include "jaus/clearpath/fields.hpp"
+#include "jaus/clearpath/packed_date_time.hpp"
 #include "jaus/base/expected.hpp"
 
 namespace jaus::clearpath::detail {
@@ -19,7 +21,23 @@ class JsonWriter {
   explicit JsonWriter(nlohmann::json& out) : out_(out) { out_ = nlohmann::json::object(); }
 
   template <class W, class T>
-  void operator()(const fields::Number<W, T>& f) { out_[std::string(f.name)] = f.value; }
+  void operator()(const fields::Number<W, T>& f) {
+    if constexpr (std::is_integral_v<std::remove_const_t<T>>) {
+      for (const auto& n : f.names)
+        if (std::cmp_equal(n.value, f.value)) {
+          out_[std::string(f.name)] = std::string(n.name);
+          return;
+        }
+    }
+    out_[std::string(f.name)] = f.value;
+  }
+  template <class T>
+  void operator()(const fields::PackedDateTime<T>& f) {
+    if (const auto parts = unpack_date_time(f.value))
+      out_[std::string(f.name)] = format_date_time(*parts);
+    else
+      out_[std::string(f.name)] = f.value;
+  }
   template <class S, class B>
   void operator()(const fields::LengthPrefixedText<S, B>& f) {
     out_[std::string(f.name)] = f.value;
@@ -68,7 +86,32 @@ class JsonReader {
   void operator()(const fields::Number<W, T>& f) {
     const auto* j = require(f.name);
     if (j == nullptr) return;
+    if (j->is_string() && !f.names.empty()) {
+      const auto name = j->template get<std::string>();
+      for (const auto& n : f.names)
+        if (n.name == name) {
+          f.value = static_cast<T>(n.value);
+          return;
+        }
+      return fail(path_.at(f.name),
+                  "unknown name '" + name + "' (expected one of: " + names_of(f.names) + ", or a number)");
+    }
     read_number<W>(*j, f.value, f.scale, path_.at(f.name));
+  }
+  // "YYYY-MM-DDTHH:MM" or the raw number.
+  template <class T>
+  void operator()(const fields::PackedDateTime<T>& f) {
+    const auto* j = require(f.name);
+    if (j == nullptr) return;
+    if (j->is_string()) {
+      const auto text = j->template get<std::string>();
+      const auto parts = parse_date_time(text);
+      if (!parts)
+        return fail(path_.at(f.name), "'" + text + "' is not a date-time \"YYYY-MM-DDTHH:MM\" (year 2000-2127)");
+      f.value = *pack_date_time(*parts);
+      return;
+    }
+    read_number<std::uint32_t>(*j, f.value, 1.0, path_.at(f.name));
   }
   template <class S, class B>
   void operator()(const fields::LengthPrefixedText<S, B>& f) {
@@ -159,6 +202,11 @@ class JsonReader {
       }
       value = static_cast<T>(j.template get<std::int64_t>());
     }
+  }
+  static std::string names_of(std::span<const fields::NamedValue> names) {
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + std::string(n.name);
+    return out;
   }
   void fail(std::string where, std::string detail) {
     if (!error) error = Error{ErrorCode::json, 0, std::move(where), std::move(detail)};

@@ -30,6 +30,11 @@ class PayloadReader {
     f.value = from_wire<T>(raw, f.scale);
   }
 
+  template <class T>
+  void operator()(const fields::PackedDateTime<T>& f) {
+    get(f.value, f.name);  // any value decodes; JSON shows an invalid one as its number
+  }
+
   template <class S, class B>
   void operator()(const fields::LengthPrefixedText<S, B>& f) {
     std::uint8_t length = 0;

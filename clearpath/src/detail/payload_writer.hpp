@@ -28,6 +28,11 @@ class PayloadWriter {
     put<W>(*raw);
   }
 
+  template <class T>
+  void operator()(const fields::PackedDateTime<T>& f) {
+    if (!error) put<std::uint32_t>(f.value);
+  }
+
   template <class S, class B>
   void operator()(const fields::LengthPrefixedText<S, B>& f) {
     if (error) return;

@@ -7,6 +7,7 @@
 #include "detail/field_path.hpp"
 #include "detail/wire_number.hpp"
 #include "jaus/clearpath/fields.hpp"
+#include "jaus/clearpath/packed_date_time.hpp"
 #include "jaus/base/expected.hpp"
 
 namespace jaus::clearpath::detail {
@@ -18,6 +19,15 @@ class RangeChecker {
   template <class W, class T>
   void operator()(const fields::Number<W, T>& f) {
     if (!error && !within(f.value, f.scale, f.min, f.max)) fail(f.name, f.min, f.max, static_cast<double>(f.value));
+  }
+  // The document's part ranges (a received value out of them still decodes).
+  template <class T>
+  void operator()(const fields::PackedDateTime<T>& f) {
+    if (!error && !unpack_date_time(f.value))
+      error = Error{ErrorCode::out_of_range, 0, path_.at(f.name),
+                    std::to_string(f.value) +
+                        " is not a packed date-time (minute 0-59, hour 0-23, day 1-31, "
+                        "month 1-12, year 2000-2127, bits 28-31 zero)"};
   }
   template <class S, class B>
   void operator()(const fields::LengthPrefixedText<S, B>& f) {

@@ -108,7 +108,7 @@ struct ChangeGear {
     using namespace fields;
     v(flag("with_flags", s.with_flags));
     if (s.with_flags) v(integer<std::uint8_t>("flags", s.flags));
-    v(integer<std::int8_t>("gear", s.gear));
+    v(enumerated<std::int8_t>("gear", s.gear, kGearNames));
   }
   static void prepare_decode(ChangeGear& m, std::size_t payload_size) { m.with_flags = payload_size == 2; }
   bool operator==(const ChangeGear&) const = default;

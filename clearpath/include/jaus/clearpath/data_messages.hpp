@@ -49,7 +49,7 @@ struct PlatformName {
 };
 
 // write_time packs minute (bits 0-5), hour (6-10), day 1-31 (11-16),
-// month 1-12 (17-20) and year - 2000 (21-27); see firmware_write_time.hpp.
+// month 1-12 (17-20) and year - 2000 (21-27); see packed_date_time.hpp.
 struct FirmwareInfo {
   static constexpr std::uint16_t kType = 0x8003;
   static constexpr std::string_view kName = "firmware_info";
@@ -63,7 +63,7 @@ struct FirmwareInfo {
     v(integer<std::uint8_t>("firmware_minor", s.firmware_minor));
     v(integer<std::uint8_t>("protocol_major", s.protocol_major));
     v(integer<std::uint8_t>("protocol_minor", s.protocol_minor));
-    v(integer<std::uint32_t>("write_time", s.write_time));
+    v(packed_date_time("write_time", s.write_time));
   }
   bool operator==(const FirmwareInfo&) const = default;
 };
@@ -172,7 +172,7 @@ struct GearData {
   static void describe(Self& s, V& v) {
     using namespace fields;
     v(integer<std::uint8_t>("flags", s.flags, 0, 3));
-    v(integer<std::int8_t>("gear", s.gear));
+    v(enumerated<std::int8_t>("gear", s.gear, kGearNames));
   }
   bool operator==(const GearData&) const = default;
 };

@@ -11,13 +11,24 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <string_view>
 #include <type_traits>
 
 namespace jaus::clearpath::fields {
 
+// A value of an enumerated integer field and its name (JSON shows the name).
+// Signed: the gear is a signed byte with -1 = park.
+struct NamedValue {
+  std::int32_t value;
+  std::string_view name;
+};
+
 // A number on the wire as the integer Wire; in memory as T (double for scaled
 // quantities in engineering units, an integer type otherwise). raw = value * scale.
+// An integer field may name some of its values (`names`, from enumerated()):
+// only its JSON changes (the name when the value has one, else the number;
+// either is read back); the binary visitors ignore the names.
 template <class Wire, class T>
 struct Number {
   std::string_view name;
@@ -26,6 +37,17 @@ struct Number {
   double min;  // documented range, engineering units
   double max;
   std::string_view unit;
+  std::span<const NamedValue> names{};
+};
+
+// A date and time to the minute packed in a u32 (0x8003's firmware write
+// time): minute bits 0-5, hour 6-10, day 11-16, month 17-20, year - 2000
+// 21-27 (packed_date_time.hpp). In memory the raw u32; JSON "YYYY-MM-DDTHH:MM"
+// when the parts are valid, else the number.
+template <class T>
+struct PackedDateTime {
+  std::string_view name;
+  T& value;  // std::uint32_t (const when encoding)
 };
 
 // A length-prefixed ASCII string (one length byte, no terminator). Some
@@ -97,6 +119,24 @@ constexpr Number<Wire, T> integer(std::string_view name, T& value,
   return {name, value, 1.0, min, max, ""};
 }
 
+// An integer whose listed values have names: enumerated<std::int8_t>("gear", s.gear, kGearNames).
+template <class Wire, class T>
+constexpr Number<Wire, T> enumerated(std::string_view name, T& value, std::span<const NamedValue> names) {
+  return {name,
+          value,
+          1.0,
+          static_cast<double>(std::numeric_limits<Wire>::min()),
+          static_cast<double>(std::numeric_limits<Wire>::max()),
+          "",
+          names};
+}
+
+template <class T>
+constexpr PackedDateTime<T> packed_date_time(std::string_view name, T& value) {
+  static_assert(std::is_same_v<std::remove_const_t<T>, std::uint32_t>, "a packed date-time is a u32");
+  return {name, value};
+}
+
 template <class S>
 constexpr LengthPrefixedText<S, std::conditional_t<std::is_const_v<S>, const bool, bool>> text(std::string_view name, S& value,
                                                                                   std::size_t max_length) {
@@ -135,6 +175,10 @@ template <class R>
 constexpr Group<R> group(std::string_view name, R& record) {
   return {name, record};
 }
+
+// The gear of 0x0212 Change Gear and 0x8212 Gear Setpoint Data: 0 neutral,
+// -1 park; forward (> 0) and reverse (< -1) gears are numbers.
+inline constexpr NamedValue kGearNames[] = {{-1, "park"}, {0, "neutral"}};
 
 // Ranges the document writes with pi.
 inline constexpr double kPi = std::numbers::pi;
