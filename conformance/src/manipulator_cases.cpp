@@ -11,6 +11,7 @@
 #include "case_support.hpp"
 #include "jaus/messages/manipulator_messages.hpp"
 #include "state_support.hpp"
+#include "stop_paths.hpp"
 
 namespace jaus::conform {
 
@@ -250,44 +251,89 @@ CaseOutcome non_controller_ignored(CaseContext& c) {
   return pass("Set Joint Velocities from a non-controller: no joint moved in 0.3 s");
 }
 
-// Standby while a joint moves holds every joint where it is (an arm must not
-// fall: zero effort is no stop), and Resume starts nothing again.
-CaseOutcome hold_on_stop(CaseContext& c) {
-  std::string skip_why;
-  auto found = still_arm(c, skip_why);
-  if (!found) return fail(found.error().message());
-  if (!skip_why.empty()) return skip(skip_why);
-  ControlHeld control(c);
-  if (!control.granted()) return skip("control not granted (" + control.why() + ")");
-  PositionsRestoredOnExit restore(c, found->at);
+// A still arm for the next stop path: one the last path moved back may
+// still be on its way.
+Expected<ArmFound> settled_arm(CaseContext& c, std::string& skip_why) {
+  constexpr int kTries = 5;
+  for (int attempt = 1;; ++attempt) {
+    skip_why.clear();
+    auto found = still_arm(c, skip_why);
+    if (!found || skip_why.empty() || attempt == kTries) return found;
+    c.session.run_for(kWatchTime);
+  }
+}
+
+// One stop path while joint 1 moves: every joint held where the stop found
+// it, no joint speed reported, and the way back moving none. Returns what
+// was wrong ("" when held); `not_judged` says why the path (or its way back)
+// could not be judged.
+std::string held_through(CaseContext& c, StopPath path, std::string& not_judged) {
+  auto found = settled_arm(c, not_judged);
+  if (!found) return found.error().message();
+  if (!not_judged.empty()) return {};
+  StopAlong along(c, path);
+  if (!along.why_not().empty()) {
+    not_judged = along.why_not();
+    return {};
+  }
+  PositionsRestoredOnExit restore(c, found->at);  // sent while the runner controls it again
   send(c, gentle_motion(found->spec, found->at));
   c.session.run_for(kMoveTime);
   auto moving = positions(c);
-  if (!moving) return fail(moving.error().message());
-  if (moved(found->at, *moving).empty())
-    return skip("Set Joint Velocities did not move joint 1 in 0.2 s: nothing to stop");
-  send(c, msg::Standby{});
+  if (!moving) return moving.error().message();
+  if (moved(found->at, *moving).empty()) {
+    not_judged = "Set Joint Velocities did not move joint 1 in 0.2 s: nothing to stop";
+    return {};
+  }
+  if (auto why = along.stop()) {
+    not_judged = *why;
+    return {};
+  }
+  const std::string stop = path_text(path);
   c.session.run_for(kMoveTime);  // a real arm brakes
   auto held = positions(c);
   c.session.run_for(kWatchTime);
   auto still_held = positions(c);
   auto speeds = velocities(c);
-  send(c, msg::Resume{});  // never left in Standby
+  const auto way_back_error = along.come_back();
   c.session.run_for(kWatchTime);
   auto resumed = positions(c);
-  if (!held) return fail("after Standby, " + held.error().message());
-  if (!still_held) return fail("after Standby, " + still_held.error().message());
+  if (!held) return "after " + stop + ", " + held.error().message();
+  if (!still_held) return "after " + stop + ", " + still_held.error().message();
   if (auto motion = moved(*held, *still_held); !motion.empty())
-    return fail("in Standby, " + motion + " in 0.3 s: not held");
-  if (!speeds) return fail("after Standby, " + speeds.error().message());
+    return "after " + stop + ", " + motion + " in 0.3 s: not held";
+  if (!speeds) return "after " + stop + ", " + speeds.error().message();
   for (std::size_t j = 0; j < speeds->size(); ++j)
     if (std::fabs((*speeds)[j]) > kStillTolerance)
-      return fail("in Standby, Report Joint Velocities gives joint " + std::to_string(j + 1) + " " +
-                  value_text((*speeds)[j]));
-  if (!resumed) return fail("after Resume, " + resumed.error().message());
+      return "after " + stop + ", Report Joint Velocities gives joint " + std::to_string(j + 1) + " " +
+             value_text((*speeds)[j]);
+  if (way_back_error) {
+    not_judged = "held; the way back: " + *way_back_error;
+    return {};
+  }
+  if (!resumed) return "after " + way_back_text(path) + ", " + resumed.error().message();
   if (auto motion = moved(*still_held, *resumed); !motion.empty())
-    return fail("after Resume with no new command, " + motion + ": the stopped motion resumed");
-  return pass("joint 1 moving; Standby held every joint, Resume moved none");
+    return stop + ", then " + way_back_text(path) + " with no new command: " + motion + ", the stopped motion resumed";
+  return {};
+}
+
+// Every stop while a joint moves (Standby, Set Emergency, Reset, the release
+// of control, a takeover) holds every joint where it is (an arm must not
+// fall: zero effort is no stop), and the way back starts nothing again.
+CaseOutcome hold_on_stop(CaseContext& c) {
+  std::string judged, not_judged;
+  for (const StopPath path : kStopPaths) {
+    std::string why_not;
+    if (auto wrong = held_through(c, path, why_not); !wrong.empty()) return fail(wrong);
+    if (!why_not.empty()) {
+      not_judged += (not_judged.empty() ? "" : "; ") + path_text(path) + ": " + why_not;
+      continue;
+    }
+    judged += (judged.empty() ? "" : ", ") + path_text(path);
+  }
+  if (judged.empty()) return skip(not_judged);
+  return pass("joint 1 moving; " + judged + ": each held every joint, and the way back moved none" +
+              (not_judged.empty() ? "" : " (not judged: " + not_judged + ")"));
 }
 
 const std::vector<ConformanceCase>& cases() {
@@ -304,9 +350,12 @@ const std::vector<ConformanceCase>& cases() {
        "Part 3, Code 000Dh Request Component Control (commands are the controller's), Code 4602h Report Joint "
        "Positions",
        unless_moved_by_velocities, non_controller_ignored},
-      {"manipulator.hold_on_stop", "Standby holds every joint where it is; Resume moves none",
-       "Part 3, Code 0003h Standby (cease internal functions), Code 0004h Resume; docs/components.md Primitive "
-       "Manipulator safety",
+      {"manipulator.hold_on_stop",
+       "Standby, Set Emergency, Reset, the release of control and a takeover each hold every joint; the way back "
+       "moves none",
+       "Part 3, Code 0003h Standby (cease internal functions), Code 0006h Set Emergency, Code 0005h Reset, Code "
+       "000Eh Release Component Control, Code 000Dh Request Component Control, Code 0004h Resume, Code 0007h Clear "
+       "Emergency; docs/components.md Primitive Manipulator safety",
        unless_moved_by_velocities, hold_on_stop},
   };
   return list;

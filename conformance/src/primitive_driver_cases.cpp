@@ -11,6 +11,7 @@
 #include "case_support.hpp"
 #include "jaus/messages/platform_messages.hpp"
 #include "state_support.hpp"
+#include "stop_paths.hpp"
 
 namespace jaus::conform {
 
@@ -147,34 +148,9 @@ CaseOutcome non_controller_ignored(CaseContext& c) {
   return pass("Set Wrench Effort from a non-controller: still " + percent_text(*after));
 }
 
-enum class StopPath { standby, emergency, release };
-
-std::string path_text(StopPath path) {
-  switch (path) {
-    case StopPath::standby:
-      return "Standby";
-    case StopPath::emergency:
-      return "Set Emergency";
-    case StopPath::release:
-      return "Release Component Control";
-  }
-  return "?";
-}
-
-std::string way_back_text(StopPath path) {
-  switch (path) {
-    case StopPath::standby:
-      return "Resume";
-    case StopPath::emergency:
-      return "Clear Emergency";
-    case StopPath::release:
-      return "control granted again";
-  }
-  return "?";
-}
-
 // What the driver reported along one stop path: driving at 5 %, stopped,
-// and back (Resume, Clear Emergency, control granted again) with no new effort.
+// and back (Resume, Clear Emergency, re-initialised, control granted again)
+// with no new effort.
 struct StopObserved {
   std::string skip;   // the path could not be judged: why
   std::string error;  // it stopped answering: what was seen
@@ -185,12 +161,12 @@ struct StopObserved {
 
 StopObserved through(CaseContext& c, StopPath path) {
   StopObserved seen;
-  ControlHeld control(c);
-  if (!control.granted()) {
-    seen.skip = "control not granted (" + control.why() + ")";
+  StopAlong along(c, path);
+  if (!along.why_not().empty()) {
+    seen.skip = along.why_not();
     return seen;
   }
-  ZeroEffortOnExit zero(c);
+  ZeroEffortOnExit zero(c);  // sent while the runner still controls it, if the way back gave control again
   send(c, effort_forward(kSmallEffortPercent));
   auto driving = reported_forward_effort(c);
   if (!driving || !near(*driving, kSmallEffortPercent)) {
@@ -199,39 +175,18 @@ StopObserved through(CaseContext& c, StopPath path) {
     return seen;
   }
   seen.driving = *driving;
-  Expected<double> stopped = 0.0;
-  if (path == StopPath::standby) {
-    send(c, msg::Standby{});
-    stopped = reported_forward_effort(c);
-    send(c, msg::Resume{});
-  } else if (path == StopPath::emergency) {
-    send(c, msg::SetEmergency{{1}}, priority::kSafetyCritical);
-    stopped = reported_forward_effort(c);
-    send(c, msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // never left set
-    // The RA 3.3 implementation's Clear Emergency always goes to Standby (wire notes).
-    if (c.profile == Profile::openjaus) send(c, msg::Resume{});
-  } else {
-    control.release();
-    stopped = reported_forward_effort(c);
+  if (auto why = along.stop()) {
+    seen.skip = *why;
+    return seen;
   }
+  auto stopped = reported_forward_effort(c);
   if (!stopped) {
     seen.error = "after " + path_text(path) + ", " + stopped.error().message();
     return seen;
   }
   seen.stopped = *stopped;
-  if (path == StopPath::release) {
-    ControlHeld again(c);
-    if (!again.granted()) {
-      seen.skip = "control not granted again after its release (" + again.why() + ")";
-      return seen;
-    }
-    auto back = reported_forward_effort(c);
-    send(c, zero_effort());  // while the runner controls it again
-    if (!back) {
-      seen.error = "after " + way_back_text(path) + ", " + back.error().message();
-      return seen;
-    }
-    seen.back = *back;
+  if (auto why = along.come_back()) {
+    seen.skip = *why;
     return seen;
   }
   auto back = reported_forward_effort(c);
@@ -243,40 +198,52 @@ StopObserved through(CaseContext& c, StopPath path) {
   return seen;
 }
 
-constexpr StopPath kStopPaths[] = {StopPath::standby, StopPath::emergency, StopPath::release};
-
-// Every stop path zeroes the effort at once: Standby, Set Emergency, the
-// release of control.
-CaseOutcome stop_zeroes_effort(CaseContext& c) {
+// Runs every stop path and judges each with `judge` (empty: as it should
+// be; else what was wrong). A path that cannot be judged is named in the
+// verdict; the case is skipped only when no path could be judged.
+template <class Judge>
+CaseOutcome along_every_stop_path(CaseContext& c, Judge judge, const std::string& passed) {
   if (auto not_ready = unless_ready(c)) return *not_ready;
-  std::string seen;
+  std::string judged, not_judged;
   for (const StopPath path : kStopPaths) {
     const StopObserved observed = through(c, path);
-    if (!observed.skip.empty()) return skip(path_text(path) + ": " + observed.skip);
     if (!observed.error.empty()) return fail(observed.error);
-    if (!near(observed.stopped, 0))
-      return fail(path_text(path) + " while driving at " + percent_text(observed.driving) +
-                  " left propulsive linear X at " + percent_text(observed.stopped));
-    seen += (seen.empty() ? "" : ", ") + path_text(path);
+    if (!observed.skip.empty()) {
+      not_judged += (not_judged.empty() ? "" : "; ") + path_text(path) + ": " + observed.skip;
+      continue;
+    }
+    if (auto wrong = judge(path, observed); !wrong.empty()) return fail(wrong);
+    judged += (judged.empty() ? "" : ", ") + path_text(path);
   }
-  return pass(seen + ": each zeroed " + percent_text(kSmallEffortPercent));
+  if (judged.empty()) return skip(not_judged);
+  return pass(judged + ": " + passed + (not_judged.empty() ? "" : " (not judged: " + not_judged + ")"));
 }
 
-// After a stop, the way back (Resume, Clear Emergency, control granted
-// again) resumes nothing: the effort stays zero until a new Set Wrench Effort.
+// Every stop path zeroes the effort at once: Standby, Set Emergency, Reset,
+// the release of control, a takeover.
+CaseOutcome stop_zeroes_effort(CaseContext& c) {
+  return along_every_stop_path(
+      c,
+      [](StopPath path, const StopObserved& observed) -> std::string {
+        if (near(observed.stopped, 0)) return {};
+        return path_text(path) + " while driving at " + percent_text(observed.driving) +
+               " left propulsive linear X at " + percent_text(observed.stopped);
+      },
+      "each zeroed " + percent_text(kSmallEffortPercent));
+}
+
+// After a stop, the way back (Resume, Clear Emergency, the end of
+// re-initialisation, control granted again) resumes nothing: the effort stays
+// zero until a new Set Wrench Effort.
 CaseOutcome no_resume_after_stop(CaseContext& c) {
-  if (auto not_ready = unless_ready(c)) return *not_ready;
-  std::string seen;
-  for (const StopPath path : kStopPaths) {
-    const StopObserved observed = through(c, path);
-    if (!observed.skip.empty()) return skip(path_text(path) + ": " + observed.skip);
-    if (!observed.error.empty()) return fail(observed.error);
-    if (!near(observed.back, 0))
-      return fail(path_text(path) + " then " + way_back_text(path) +
-                  " resumed the latched effort: " + percent_text(observed.back));
-    seen += (seen.empty() ? "" : ", ") + way_back_text(path);
-  }
-  return pass("after " + seen + ": still zero");
+  return along_every_stop_path(
+      c,
+      [](StopPath path, const StopObserved& observed) -> std::string {
+        if (near(observed.back, 0)) return {};
+        return path_text(path) + " then " + way_back_text(path) +
+               " resumed the latched effort: " + percent_text(observed.back);
+      },
+      "still zero after the way back");
 }
 
 const std::vector<ConformanceCase>& cases() {
@@ -288,12 +255,16 @@ const std::vector<ConformanceCase>& cases() {
        "Part 3, Code 000Dh Request Component Control (commands are the controller's), Code 4405h Report Wrench "
        "Effort",
        unless_driver, non_controller_ignored},
-      {"driver.stop_zeroes_effort", "Standby, Set Emergency and the release of control zero the effort",
+      {"driver.stop_zeroes_effort",
+       "Standby, Set Emergency, Reset, the release of control and a takeover each zero the effort",
        "Part 3, Code 0003h Standby (cease internal functions), Code 0006h Set Emergency (the Stop condition), Code "
-       "000Eh Release Component Control; docs/components.md Primitive Driver safety rules",
+       "0005h Reset, Code 000Eh Release Component Control, Code 000Dh Request Component Control (a higher "
+       "authority takes over); docs/components.md Primitive Driver safety rules",
        unless_driver, stop_zeroes_effort},
-      {"driver.no_resume_after_stop", "Resume, Clear Emergency or a new grant of control resume no latched effort",
-       "Part 3, Code 0004h Resume, Code 0007h Clear Emergency; docs/components.md Primitive Driver safety rules",
+      {"driver.no_resume_after_stop",
+       "Resume, Clear Emergency, the end of a Reset or a new grant of control resume no latched effort",
+       "Part 3, Code 0004h Resume, Code 0007h Clear Emergency, Code 0005h Reset; docs/components.md Primitive Driver "
+       "safety rules",
        unless_driver, no_resume_after_stop},
   };
   return list;

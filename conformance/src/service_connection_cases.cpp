@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "case_support.hpp"
 #include "jaus/messages/core_messages.hpp"
@@ -196,6 +198,100 @@ CaseOutcome suspend_stops_reports(CaseContext& c) {
   return pass("no report after Suspend; terminated");
 }
 
+// The slowest rate the limit case asks for: well above the RA's 0.0166 Hz
+// (one wire step), so that no rounding makes it invalid, and slow enough
+// that a few hundred connections send little.
+constexpr double kSlowRateHz = 0.05;
+// Instance IDs are one byte: a provider runs out of them at 256 connections
+// of one report, so it must refuse by then.
+constexpr std::size_t kMostInstances = 256;
+
+// The `index`-th subset of `available`'s bits (the bits of `index` spread
+// over those of `available`), as a presence vector.
+std::uint32_t subset_of(std::uint32_t available, std::size_t index) {
+  std::uint32_t presence = 0;
+  for (std::uint32_t bit = 1; bit != 0 && index != 0; bit <<= 1) {
+    if ((available & bit) == 0) continue;
+    if (index & 1u) presence |= bit;
+    index >>= 1;
+  }
+  return presence;
+}
+
+// Connections of one report, each with a presence vector of its own (so no
+// two may share an instance), until the provider refuses: it must refuse
+// with 4 ("refused due to internal component restrictions") by the time its
+// instance IDs run out, and give every connection it creates an instance ID
+// of its own.
+CaseOutcome too_many_refused(CaseContext& c) {
+  const auto [code, available] = chosen_report(c.component);
+  const std::size_t subsets =
+      std::popcount(available) >= 9 ? kMostInstances + 1 : std::size_t{1} << std::popcount(available);
+  std::vector<Created> created;
+  std::map<std::uint8_t, std::uint32_t> presence_of_instance;
+  std::optional<CaseOutcome> outcome;
+  for (std::size_t i = 0; i < subsets && !outcome; ++i) {
+    const std::uint32_t presence = subset_of(available, i);
+    auto made = create(c, code, kSlowRateHz, presence);
+    if (!made) {
+      outcome = fail("connection " + std::to_string(i + 1) + ": " + made.error().message());
+      break;
+    }
+    const auto& confirm = made->confirm;
+    if (confirm.response_code == msg::sc_response::kCreated) {
+      created.push_back(*made);
+      const auto [at, fresh] = presence_of_instance.emplace(confirm.instance_id, presence);
+      if (!fresh)
+        outcome = fail("instance " + std::to_string(confirm.instance_id) + " given to presence 0x" +
+                       wire::detail::hex_u32(at->second) + " and to 0x" + wire::detail::hex_u32(presence) +
+                       " (Part 3: one instance per code and presence vector)");
+    } else if (confirm.response_code == msg::sc_response::kRefused) {
+      outcome = pass(std::to_string(created.size()) + " connections of " + ocu::code_text(code) +
+                     ", each its own instance, then refused with 4");
+    } else {
+      outcome = fail("connection " + std::to_string(i + 1) + " refused with " +
+                     ocu::service_connection_response_text(confirm.response_code) + ", not 4");
+    }
+  }
+  for (const auto& made : created) terminate(c, made);
+  if (outcome) return *outcome;
+  if (created.size() >= kMostInstances)
+    return fail(std::to_string(created.size()) + " connections of " + ocu::code_text(code) +
+                " created: more than one-byte instance IDs can tell apart");
+  return skip(std::to_string(created.size()) + " connections created, each its own instance, with every presence " +
+              "vector of its report: no limit reached");
+}
+
+// Activate Service Connection "has no effect if sent by Inform requesters"
+// (Part 3): an inform connection its creator suspended stays suspended.
+// (Activate of a command connection is not tried: it would make the runner a
+// commander whose silence stops the platform.)
+CaseOutcome activate_from_inform_requester_ignored(CaseContext& c) {
+  const auto [code, available] = chosen_report(c.component);
+  auto created = create_accepted(c, code, 10, available);
+  if (!created) return fail(created.error().message());
+  if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
+    terminate(c, *created);
+    return fail("no report in 0.3 s at 10 Hz");
+  }
+  const msg::ServiceConnectionRefBody id{code, created->confirm.instance_id};
+  send(c, msg::SuspendServiceConnection{id});
+  c.session.run_for(std::chrono::milliseconds(200));  // reports already on their way
+  const auto suspended = collect_reports(c, code, std::chrono::milliseconds(300));
+  if (!suspended.empty()) {
+    terminate(c, *created);
+    return skip("reports went on after Suspend (sc.suspend judges that): Activate cannot be told apart");
+  }
+  send(c, msg::ActivateServiceConnection{id});
+  const auto after = collect_reports(c, code, std::chrono::milliseconds(500));
+  terminate(c, *created);
+  std::size_t on_sc = 0;
+  for (const auto& r : after) on_sc += r.header.service_connection;
+  if (on_sc > 0)
+    return fail(std::to_string(on_sc) + " reports in the half second after Activate from the inform requester");
+  return pass("suspended, and still suspended after Activate from the inform requester; terminated");
+}
+
 // What cannot be served is answered with the RA's response codes: a report
 // it does not provide (6), a rate below the RA's slowest (5).
 CaseOutcome refusals(CaseContext& c) {
@@ -238,6 +334,13 @@ const std::vector<ConformanceCase>& cases() {
        "Part 3, Code 000Bh Suspend Service Connection", unless_it_provides_reports, suspend_stops_reports},
       {"sc.refusals", "an unprovided report is refused with 6, a rate below 0.0166 Hz with 5",
        "Part 3, Code 0009h Confirm Service Connection (response codes)", unless_it_provides_reports, refusals},
+      {"sc.too_many", "connections beyond what it can serve are refused with 4; each gets an instance of its own",
+       "Part 3, Code 0009h Confirm Service Connection (instance ID, response code 4)", unless_it_provides_reports,
+       too_many_refused},
+      {"sc.activate_by_inform_requester",
+       "Activate from the creator of an inform connection has no effect: a suspended one stays suspended",
+       "Part 3, Code 000Ah Activate Service Connection", unless_it_provides_reports,
+       activate_from_inform_requester_ignored},
   };
   return list;
 }

@@ -47,8 +47,33 @@ inline Expected<Address> current_controller(CaseContext& c) {
 class ControlHeld {
  public:
   explicit ControlHeld(CaseContext& c, std::uint8_t authority = 255) : ControlHeld(c, authority, c.session) {}
-  ControlHeld(CaseContext& c, std::uint8_t authority, ocu::OcuSession& by) : c_(c), by_(by) {
-    send_from(c_, by_, c_.target(), msg::RequestComponentControl{{authority}});
+  ControlHeld(CaseContext& c, std::uint8_t authority, ocu::OcuSession& by) : c_(c), by_(by), authority_(authority) {
+    request();
+  }
+  ~ControlHeld() { release(); }
+  // Releases control now (a case that checks what a release does).
+  void release() {
+    if (granted_) send_from(c_, by_, c_.target(), msg::ReleaseComponentControl{});
+    granted_ = false;
+  }
+  ControlHeld(const ControlHeld&) = delete;
+  ControlHeld& operator=(const ControlHeld&) = delete;
+
+  // Asks again at the same authority, with no release first (a controller
+  // asking again keeps control): after something that may have ended it.
+  bool ask_again() {
+    request();
+    return granted_;
+  }
+
+  bool granted() const { return granted_; }
+  const std::string& why() const { return why_; }
+
+ private:
+  void request() {
+    granted_ = false;
+    why_.clear();
+    send_from(c_, by_, c_.target(), msg::RequestComponentControl{{authority_}});
     auto reply = await_at(c_, by_, {msg::ConfirmComponentControl::code, msg::RejectComponentControl::code});
     if (!reply) {
       why_ = reply.error().message();
@@ -66,21 +91,10 @@ class ControlHeld {
     granted_ = confirm->response_code == msg::control_response::kAccepted;
     if (!granted_) why_ = "Confirm Component Control response " + std::to_string(confirm->response_code);
   }
-  ~ControlHeld() { release(); }
-  // Releases control now (a case that checks what a release does).
-  void release() {
-    if (granted_) send_from(c_, by_, c_.target(), msg::ReleaseComponentControl{});
-    granted_ = false;
-  }
-  ControlHeld(const ControlHeld&) = delete;
-  ControlHeld& operator=(const ControlHeld&) = delete;
 
-  bool granted() const { return granted_; }
-  const std::string& why() const { return why_; }
-
- private:
   CaseContext& c_;
   ocu::OcuSession& by_;
+  std::uint8_t authority_;
   bool granted_ = false;
   std::string why_;
 };

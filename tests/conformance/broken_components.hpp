@@ -7,6 +7,8 @@
 //            silent requester);
 //   3.1.67.1 .. 3.1.70.1 keep control by hand, each with one flaw (ControlFlaw);
 //   3.1.71.1 leaves Emergency on the first holder's Clear Emergency;
+//   3.1.72.1 serves its service connections by hand and takes Activate from
+//            an inform connection's creator;
 //   3.1.53.1 .. 3.1.66.1 drivers, sensors, cameras and arms broken for the
 //   per-kind cases (broken_kind_components.hpp).
 #pragma once
@@ -33,6 +35,7 @@ inline const Address kNeverTakenOver{3, 1, 68, 1};
 inline const Address kAnyoneReleases{3, 1, 69, 1};
 inline const Address kKeepsSilentController{3, 1, 70, 1};
 inline const Address kFirstClearEnds{3, 1, 71, 1};
+inline const Address kActivatesInform{3, 1, 72, 1};
 
 class ObeysAnyone final : public rt::Component {
  public:
@@ -101,6 +104,62 @@ class EchoesPresence final : public rt::Component {
 
   std::optional<Address> requester_;
   std::uint32_t presence_ = 0;
+  std::uint16_t sequence_ = 0;
+  rt::TimerId timer_ = rt::kNoTimer;
+};
+
+// Serves inform service connections of Report Global Pose by hand, one
+// instance per presence vector, at 10 Hz; Suspend pauses one, Terminate ends
+// it, and (the broken part) Activate from its creator starts it again,
+// where Part 3 gives Activate no effect from an inform requester.
+class ActivatesInform final : public rt::Component {
+ public:
+  ActivatesInform(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    provide<msg::ReportGlobalPose>(jausctl::test::PoseSensor::kAvailable,
+                                   [] { return jausctl::test::PoseSensor::pose(); });
+    handle<msg::CreateServiceConnection>(Access::anyone, false,
+                                         [this](const Header& h, const msg::CreateServiceConnection& m) {
+                                           requester_ = h.source;
+                                           active_ = true;
+                                           msg::ConfirmServiceConnection confirm;
+                                           confirm.command_code = m.command_code;
+                                           confirm.confirmed_rate_hz = 10;
+                                           send(h.source, confirm);
+                                           report_in(std::chrono::milliseconds(1));
+                                         });
+    handle<msg::SuspendServiceConnection>(
+        Access::anyone, false, [this](const Header&, const msg::SuspendServiceConnection&) { active_ = false; });
+    handle<msg::ActivateServiceConnection>(
+        Access::anyone, false, [this](const Header&, const msg::ActivateServiceConnection&) { active_ = true; });
+    handle<msg::TerminateServiceConnection>(
+        Access::anyone, false, [this](const Header&, const msg::TerminateServiceConnection&) { requester_.reset(); });
+  }
+  ~ActivatesInform() override { env().scheduler.cancel(timer_); }
+
+ private:
+  void report_in(rt::Duration delay) {
+    env().scheduler.cancel(timer_);
+    timer_ = env().scheduler.call_at(env().clock.now() + delay, [this] {
+      if (!requester_) return;
+      if (active_) {
+        const msg::ReportGlobalPose report = jausctl::test::PoseSensor::pose();
+        std::vector<std::uint8_t> payload(kMaxPayloadSize);
+        const auto size = wire::encode_payload(report, payload);
+        Header h;
+        h.command_code = msg::ReportGlobalPose::code;
+        h.source = address();
+        h.destination = *requester_;
+        h.service_connection = true;
+        h.sequence = sequence_++;
+        h.data_size = static_cast<std::uint16_t>(size ? *size : 0);
+        env().outbox.send(h, std::span(payload).first(size ? *size : 0));
+      }
+      report_in(std::chrono::milliseconds(100));
+    });
+  }
+
+  std::optional<Address> requester_;
+  bool active_ = false;
   std::uint16_t sequence_ = 0;
   rt::TimerId timer_ = rt::kNoTimer;
 };
@@ -188,6 +247,7 @@ class BrokenNode {
     add<HandMadeControl>("anyone releases", kAnyoneReleases, ControlFlaw::anyone_releases);
     add<HandMadeControl>("keeps silent controller", kKeepsSilentController, ControlFlaw::keeps_silent_controller);
     host_->emplace<FirstClearEnds>(host_->component_config("first clear ends", kFirstClearEnds.component));
+    host_->emplace<ActivatesInform>(host_->component_config("activates inform", kActivatesInform.component));
     add<BrokenDriver>("driver obeys anyone", kDriverObeysAnyone, DriverFlaw::obeys_anyone);
     add<BrokenDriver>("driver forgets effort", kDriverForgetsEffort, DriverFlaw::forgets_effort);
     add<BrokenDriver>("driver keeps effort", kDriverKeepsEffortOnStop, DriverFlaw::keeps_effort_on_stop);
@@ -202,6 +262,10 @@ class BrokenNode {
     add<BrokenArm>("arm obeys anyone", kArmObeysAnyone, ArmFlaw::obeys_anyone);
     add<BrokenArm>("arm keeps moving", kArmKeepsMovingOnStop, ArmFlaw::keeps_moving_on_stop);
     add<BrokenArm>("arm miscounts joints", kArmMiscountsJoints, ArmFlaw::miscounts_joints);
+    add<BrokenDriver>("driver keeps effort on reset", kDriverKeepsEffortOnReset, DriverFlaw::keeps_effort_on_reset);
+    add<BrokenDriver>("driver keeps effort on takeover", kDriverKeepsEffortOnTakeover,
+                      DriverFlaw::keeps_effort_on_takeover);
+    add<BrokenArm>("arm keeps moving on release", kArmKeepsMovingOnRelease, ArmFlaw::keeps_moving_on_release);
   }
   transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
   host::NodeHost& host() { return *host_; }

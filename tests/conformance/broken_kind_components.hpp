@@ -16,9 +16,13 @@
 //   3.1.64.1 manipulator that takes Set Joint Velocities from anyone
 //   3.1.65.1 manipulator that keeps moving through a stop
 //   3.1.66.1 manipulator whose Report Joint Velocities lists one joint too many
+//   3.1.73.1 driver that keeps its effort through a Reset
+//   3.1.74.1 driver that keeps its effort when a higher authority takes control over
+//   3.1.75.1 manipulator that keeps moving when its controller releases control
 #pragma once
 
 #include <cmath>
+#include <string_view>
 #include <vector>
 
 #include "jaus/messages/all.hpp"
@@ -40,8 +44,24 @@ inline const Address kArmExecutesPartly{3, 1, 63, 1};
 inline const Address kArmObeysAnyone{3, 1, 64, 1};
 inline const Address kArmKeepsMovingOnStop{3, 1, 65, 1};
 inline const Address kArmMiscountsJoints{3, 1, 66, 1};
+inline const Address kDriverKeepsEffortOnReset{3, 1, 73, 1};
+inline const Address kDriverKeepsEffortOnTakeover{3, 1, 74, 1};
+inline const Address kArmKeepsMovingOnRelease{3, 1, 75, 1};
 
-enum class DriverFlaw { obeys_anyone, forgets_effort, keeps_effort_on_stop, resumes_latched_effort };
+// The reason the runtime gives command_stop() when control changes hands or
+// is released (component.cpp): the flaws below that keep going on one stop
+// path alone tell the paths apart by it.
+inline constexpr std::string_view kTakeoverStop = "control changed hands";
+inline constexpr std::string_view kReleaseStop = "control released";
+
+enum class DriverFlaw {
+  obeys_anyone,
+  forgets_effort,
+  keeps_effort_on_stop,
+  resumes_latched_effort,
+  keeps_effort_on_reset,
+  keeps_effort_on_takeover
+};
 
 class BrokenDriver final : public rt::Component {
  public:
@@ -63,8 +83,11 @@ class BrokenDriver final : public rt::Component {
   }
 
  protected:
-  void command_stop(std::string_view) override {
-    if (flaw_ != DriverFlaw::keeps_effort_on_stop) effort_ = 0;
+  void command_stop(std::string_view why) override {
+    if (flaw_ == DriverFlaw::keeps_effort_on_stop) return;
+    if (flaw_ == DriverFlaw::keeps_effort_on_reset && state() == rt::PrimaryStatus::initialize) return;
+    if (flaw_ == DriverFlaw::keeps_effort_on_takeover && why == kTakeoverStop) return;
+    effort_ = 0;
   }
   void state_changed(rt::PrimaryStatus, rt::PrimaryStatus after) override {
     if (flaw_ == DriverFlaw::resumes_latched_effort && after == rt::PrimaryStatus::ready) effort_ = latched_;
@@ -168,7 +191,7 @@ class BrokenCameras final : public rt::Component {
   std::uint8_t selected_ = 1;
 };
 
-enum class ArmFlaw { executes_partly, obeys_anyone, keeps_moving_on_stop, miscounts_joints };
+enum class ArmFlaw { executes_partly, obeys_anyone, keeps_moving_on_stop, miscounts_joints, keeps_moving_on_release };
 
 // Three revolute joints, 1 rad/s each, moved by velocity; positions advance
 // with the node's clock when asked for.
@@ -211,9 +234,11 @@ class BrokenArm final : public rt::Component {
   }
 
  protected:
-  void command_stop(std::string_view) override {
+  void command_stop(std::string_view why) override {
     advance();
-    if (flaw_ != ArmFlaw::keeps_moving_on_stop) velocities_.assign(kJoints, 0.0);
+    if (flaw_ == ArmFlaw::keeps_moving_on_stop) return;
+    if (flaw_ == ArmFlaw::keeps_moving_on_release && why == kReleaseStop) return;
+    velocities_.assign(kJoints, 0.0);
   }
 
  private:

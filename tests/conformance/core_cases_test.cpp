@@ -136,6 +136,30 @@ TEST_F(Conformance, ASensorThatEchoesThePresenceVectorFailsThePresenceCase) {
   EXPECT_NE(results[0].outcome.detail.find("presence vector 0x"), std::string::npos) << results[0].outcome.detail;
 }
 
+// A provider that gives every connection instance 0 fails the limit case
+// at its second connection; one that takes Activate from an inform
+// connection's creator fails the Activate case. Our pose sensor refuses
+// with 4 past its limit.
+TEST_F(Conformance, TheConnectionLimitAndActivateCasesCatchWhatTheyLookFor) {
+  auto results = run(test::kEchoesPresence, "sc.too_many");
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find("instance 0 given to presence 0x0 and to 0x1"), std::string::npos)
+      << results[0].outcome.detail;
+
+  results = run(test::kActivatesInform, "sc.activate_by_inform_requester");
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find("reports in the half second after Activate from the inform requester"),
+            std::string::npos)
+      << results[0].outcome.detail;
+
+  results = run(kPoseSensor, "sc.too_many");
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::pass) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find("64 connections of 0x4402"), std::string::npos) << results[0].outcome.detail;
+}
+
 TEST_F(Conformance, CasesThatDoNotApplyAreSkippedWithWhy) {
   // The communicator provides Report Component Status only; a component
   // whose services are unknown gets no service connection case.
