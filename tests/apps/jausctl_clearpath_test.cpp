@@ -97,3 +97,37 @@ TEST(JausctlClearpath, ListNamesEveryType) {
   EXPECT_NE(r.out.find("0x9022  data  end_effector_pose"), std::string::npos);
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 109);
 }
+
+TEST(JausctlClearpath, FirmwareWriteTimeAndGearByNameBothWays) {
+  // 0x8003 with write time 2024-03-05 14:07 (0x03062B87), as the platform sends it.
+  const auto encoded = run({"clearpath", "encode"}, R"({"name":"firmware_info","fields":{"firmware_major":1,
+      "firmware_minor":2,"protocol_major":3,"protocol_minor":4,"write_time":"2024-03-05T14:07"}})");
+  ASSERT_EQ(encoded.exit_code, jausctl::kExitOk) << encoded.err;
+  EXPECT_EQ(encoded.out, "AA13EC00000000000003805501020304872B0603E4D1\n");
+  const auto decoded = run({"clearpath", "decode", "AA13EC00000000000003805501020304872B0603E4D1"});
+  ASSERT_EQ(decoded.exit_code, jausctl::kExitOk) << decoded.err;
+  EXPECT_EQ(nlohmann::json::parse(decoded.out)["fields"]["write_time"], "2024-03-05T14:07");
+
+  const auto gear = run({"clearpath", "encode"}, R"({"name":"change_gear","fields":{"gear":"park"}})");
+  ASSERT_EQ(gear.exit_code, jausctl::kExitOk) << gear.err;
+  const auto gear_json = run({"clearpath", "decode", gear.out.substr(0, gear.out.size() - 1)});
+  ASSERT_EQ(gear_json.exit_code, jausctl::kExitOk) << gear_json.err;
+  EXPECT_EQ(nlohmann::json::parse(gear_json.out)["fields"]["gear"], "park");
+
+  // A packed value out of the document's ranges is encoded only when asked to.
+  const std::string raw = R"({"name":"firmware_info","fields":{"firmware_major":1,"firmware_minor":2,
+      "protocol_major":3,"protocol_minor":4,"write_time":4294967295}})";
+  const auto refused = run({"clearpath", "encode"}, raw);
+  EXPECT_EQ(refused.exit_code, jausctl::kExitBadInput);
+  EXPECT_NE(refused.err.find("write_time"), std::string::npos) << refused.err;
+  const auto allowed = run({"clearpath", "encode", "--allow-out-of-range"}, raw);
+  ASSERT_EQ(allowed.exit_code, jausctl::kExitOk) << allowed.err;
+  const auto shown = run({"clearpath", "decode", allowed.out.substr(0, allowed.out.size() - 1)});
+  ASSERT_EQ(shown.exit_code, jausctl::kExitOk) << shown.err;
+  EXPECT_EQ(nlohmann::json::parse(shown.out)["fields"]["write_time"], 4294967295u);
+
+  const auto bad = run({"clearpath", "encode"}, R"({"name":"change_gear","fields":{"gear":"drive"}})");
+  EXPECT_EQ(bad.exit_code, jausctl::kExitBadInput);
+  EXPECT_NE(bad.err.find("unknown name 'drive' (expected one of: park, neutral, or a number)"), std::string::npos)
+      << bad.err;
+}

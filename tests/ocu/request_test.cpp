@@ -22,7 +22,7 @@ TEST_F(OcuTest, StatusPrintsTheComponentStatusAsJson) {
   ASSERT_EQ(ocu::run_status(*ocu, kCommunicator, 1s, io()), kExitOk) << err.str();
   const auto j = nlohmann::json::parse(out.str());
   EXPECT_EQ(j["component"], "1.1.35.1");
-  EXPECT_EQ(j["primary_status"], "Ready");
+  EXPECT_EQ(j["primary_status"], "ready");
   EXPECT_EQ(j["primary_status_code"], 1);
   EXPECT_EQ(j["emergency"], false);
 }
@@ -110,7 +110,7 @@ TEST_F(OcuTest, SendPrintsTheReplyWhenOneComes) {
   ASSERT_EQ(ocu::run_send(*ocu, kPoseSensor, create, 1s, io()), kExitOk);
   const auto confirm = nlohmann::json::parse(out_lines().at(0));
   EXPECT_EQ(confirm["name"], "Confirm Service Connection");
-  EXPECT_EQ(confirm["fields"]["response_code"], 0);
+  EXPECT_EQ(confirm["fields"]["response_code"], "created");
 }
 
 TEST_F(OcuTest, EmergencySetAndClearShowTheResultingState) {

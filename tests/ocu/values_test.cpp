@@ -117,7 +117,7 @@ TEST(MessageJson, ReceivedMessagesInTheDecodeForm) {
   auto j = message_json(r, jaus::wire::Dialect::ra);
   ASSERT_TRUE(j) << j.error().message();
   EXPECT_EQ(json_line(*j).rfind(R"({"code":"0x4002","name":"Report Component Status","header":{)", 0), 0u);
-  EXPECT_EQ((*j)["fields"]["primary_status"], 1);
+  EXPECT_EQ((*j)["fields"]["primary_status"], "ready");
 
   r.payload = {0x01};
   EXPECT_FALSE(message_json(r, jaus::wire::Dialect::ra));

@@ -39,9 +39,12 @@ bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
 int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Duration timeout, CommandIo io) {
   auto report = query_status(session, target, timeout);
   if (!report) return fail(io, "status", report.error());
+  // The state by the name Report Component Status's JSON uses ("ready"), its number when it has none.
+  const unsigned code = report->primary_status & 0x0F;
+  const std::string_view name = jaus::wire::name_of(jaus::msg::kComponentStates, code);
   const Json out{{"component", target.to_string()},
-                 {"primary_status", primary_status_text(report->primary_status)},
-                 {"primary_status_code", report->primary_status & 0x0F},
+                 {"primary_status", name.empty() ? Json(code) : Json(std::string(name))},
+                 {"primary_status_code", code},
                  {"secondary_status", report->secondary_status},
                  {"emergency", is_emergency(*report)}};
   io.out << json_line(out) << "\n";
