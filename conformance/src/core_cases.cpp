@@ -172,6 +172,63 @@ CaseOutcome refused_without_control(CaseContext& c) {
   return pass("Resume, Reset and Shutdown from a non-controller: still " + state_text(*before));
 }
 
+// Every core query it accepts answered, decoding whole (the decoder checks
+// the size and presence vector) with the report's code: "" when all were,
+// else the first that was not.
+std::string core_queries_unanswered(CaseContext& c, std::string& asked) {
+  asked.clear();
+  std::string wrong;
+  const auto check = [&](std::string_view what, auto reply) {
+    if (!wrong.empty()) return;
+    asked += (asked.empty() ? "" : ", ") + std::string(what);
+    if (!reply) wrong = std::string(what) + ": " + reply.error().message();
+  };
+  check("Identification",
+        ask<msg::ReportIdentification>(c, msg::QueryIdentification{{msg::identification::kComponent}}));
+  check("Component Status", ask<msg::ReportComponentStatus>(c, msg::QueryComponentStatus{}));
+  check("Component Authority", ask<msg::ReportComponentAuthority>(c, msg::QueryComponentAuthority{}));
+  check("Component Control", ask<msg::ReportComponentControl>(c, msg::QueryComponentControl{}));
+  check("Heartbeat Pulse", ask<msg::ReportHeartbeatPulse>(c, msg::QueryHeartbeatPulse{}));
+  check("Services", ask<msg::ReportServices>(c, msg::QueryServices{}));
+  if (c.component.accepts(msg::QueryTime::code)) check("Time", ask<msg::ReportTime>(c, msg::QueryTime{{0x03}}));
+  return wrong;
+}
+
+// The core queries are answered in every state but Shutdown: here in Ready,
+// in Standby (its controller's) and in Emergency, the states an OCU can put
+// it in. Initialize and Failure cannot be reached from outside on purpose.
+CaseOutcome queries_in_every_state(CaseContext& c) {
+  auto before = primary_status(c);
+  if (!before) return fail(before.error().message());
+  if (*before != msg::PrimaryStatus::ready) return skip("in " + state_text(*before) + ", not Ready");
+  std::string asked;
+  if (auto wrong = core_queries_unanswered(c, asked); !wrong.empty()) return fail("in Ready, " + wrong);
+  std::string states = "Ready";
+  {
+    ControlHeld control(c);
+    if (control.granted()) {
+      send(c, msg::Standby{});
+      auto state = primary_status(c);
+      std::string wrong;
+      if (state && *state == msg::PrimaryStatus::standby) wrong = core_queries_unanswered(c, asked);
+      send(c, msg::Resume{});
+      if (!state) return fail("after Standby, " + state.error().message());
+      if (!wrong.empty()) return fail("in Standby, " + wrong);
+      if (*state == msg::PrimaryStatus::standby) states += ", Standby";
+    }
+  }
+  send(c, msg::SetEmergency{{1}}, priority::kSafetyCritical);
+  auto state = primary_status(c);
+  std::string wrong;
+  if (state && *state == msg::PrimaryStatus::emergency) wrong = core_queries_unanswered(c, asked);
+  send(c, msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // never left set
+  if (c.profile == Profile::openjaus) send(c, msg::Resume{});    // its Clear Emergency goes to Standby (wire notes)
+  if (!state) return fail("after Set Emergency, " + state.error().message());
+  if (!wrong.empty()) return fail("in Emergency, " + wrong);
+  if (*state == msg::PrimaryStatus::emergency) states += ", Emergency";
+  return pass(asked + " answered in " + states);
+}
+
 const std::vector<ConformanceCase>& cases() {
   static const std::vector<ConformanceCase> list{
       {"core.identification", "answers Query Identification (component) with Report Identification type 4",
@@ -192,6 +249,10 @@ const std::vector<ConformanceCase>& cases() {
        emergency_two_holders},
       {"core.standby_resume", "its controller's Standby and Resume move it Ready -> Standby -> Ready",
        "Part 3, Code 0003h Standby, Code 0004h Resume", nullptr, standby_and_resume},
+      {"core.queries_in_every_state", "the core queries are answered, whole, in Ready, Standby and Emergency",
+       "Part 3, Codes 2001h, 2002h, 2011h (\"All components must be able to respond to this message in any "
+       "state\"); the other core queries (2B00h, 200Dh, 2202h, 2B03h) alike",
+       nullptr, queries_in_every_state},
       {"core.refused_without_control", "Resume, Reset and Shutdown from a non-controller change nothing",
        "Part 3, Code 000Dh Request Component Control (commands are the controller's)", nullptr,
        refused_without_control},

@@ -9,6 +9,12 @@
 //   3.1.71.1 leaves Emergency on the first holder's Clear Emergency;
 //   3.1.72.1 serves its service connections by hand and takes Activate from
 //            an inform connection's creator;
+//   3.1.76.1 does not answer Query Component Authority in Standby;
+//   3.1.77.1 .. 3.1.79.1 keep control by hand, each with one more ControlFlaw;
+//   3.1.80.1 .. 3.1.82.1 serve service connections by hand, each with one more
+//            ConnectionFlaw;
+//   3.1.83.1 ignores Standby; 3.1.84.1 answers Query Component Authority
+//            with an empty report and Query Heartbeat Pulse not at all;
 //   3.1.53.1 .. 3.1.66.1 drivers, sensors, cameras and arms broken for the
 //   per-kind cases (broken_kind_components.hpp).
 #pragma once
@@ -36,6 +42,30 @@ inline const Address kAnyoneReleases{3, 1, 69, 1};
 inline const Address kKeepsSilentController{3, 1, 70, 1};
 inline const Address kFirstClearEnds{3, 1, 71, 1};
 inline const Address kActivatesInform{3, 1, 72, 1};
+inline const Address kSilentInStandby{3, 1, 76, 1};
+inline const Address kGrantsBelowOwnAuthority{3, 1, 77, 1};
+inline const Address kIgnoresRelease{3, 1, 78, 1};
+inline const Address kRefusesRenewal{3, 1, 79, 1};
+inline const Address kSlowReports{3, 1, 80, 1};
+inline const Address kIgnoresTerminate{3, 1, 81, 1};
+inline const Address kAcceptsAnyConnection{3, 1, 82, 1};
+inline const Address kIgnoresStandby{3, 1, 83, 1};
+inline const Address kAnswersWrongly{3, 1, 84, 1};
+// The authority of kGrantsBelowOwnAuthority: a request at 4 must be refused.
+inline constexpr std::uint8_t kOwnAuthority = 5;
+
+// Answers Query Component Authority in every state but Standby (Part 3: "in
+// any state").
+class SilentInStandby final : public rt::Component {
+ public:
+  SilentInStandby(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    handle<msg::QueryComponentAuthority>(Access::anyone, false,
+                                         [this](const Header& h, const msg::QueryComponentAuthority&) {
+                                           if (state() != rt::PrimaryStatus::standby)
+                                             send(h.source, msg::ReportComponentAuthority{{0}});
+                                         });
+  }
+};
 
 class ObeysAnyone final : public rt::Component {
  public:
@@ -108,33 +138,49 @@ class EchoesPresence final : public rt::Component {
   rt::TimerId timer_ = rt::kNoTimer;
 };
 
-// Serves inform service connections of Report Global Pose by hand, one
-// instance per presence vector, at 10 Hz; Suspend pauses one, Terminate ends
-// it, and (the broken part) Activate from its creator starts it again,
-// where Part 3 gives Activate no effect from an inform requester.
-class ActivatesInform final : public rt::Component {
+// Inform service connections of Report Global Pose served by hand, one at a
+// time at 10 Hz, as the RA says but for one flaw.
+enum class ConnectionFlaw {
+  activates_inform,   // Activate from the creator of an inform connection starts it again
+  slow_reports,       // confirms the rate asked for, sends at 2 Hz
+  ignores_terminate,  // Terminate changes nothing
+  accepts_anything,   // creates connections for reports it does not provide, at any rate
+};
+
+class HandMadeConnections final : public rt::Component {
  public:
-  ActivatesInform(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+  HandMadeConnections(rt::ComponentConfig config, rt::Environment env, ConnectionFlaw flaw)
+      : Component(std::move(config), std::move(env)), flaw_(flaw) {
     provide<msg::ReportGlobalPose>(jausctl::test::PoseSensor::kAvailable,
                                    [] { return jausctl::test::PoseSensor::pose(); });
-    handle<msg::CreateServiceConnection>(Access::anyone, false,
-                                         [this](const Header& h, const msg::CreateServiceConnection& m) {
-                                           requester_ = h.source;
-                                           active_ = true;
-                                           msg::ConfirmServiceConnection confirm;
-                                           confirm.command_code = m.command_code;
-                                           confirm.confirmed_rate_hz = 10;
-                                           send(h.source, confirm);
-                                           report_in(std::chrono::milliseconds(1));
-                                         });
+    handle<msg::CreateServiceConnection>(
+        Access::anyone, false, [this](const Header& h, const msg::CreateServiceConnection& m) {
+          msg::ConfirmServiceConnection confirm;
+          confirm.command_code = m.command_code;
+          if (flaw_ != ConnectionFlaw::accepts_anything && m.command_code != msg::ReportGlobalPose::code) {
+            confirm.response_code = msg::sc_response::kCommandNotSupported;
+          } else if (flaw_ != ConnectionFlaw::accepts_anything && !(m.periodic_rate_hz >= 0.0166)) {
+            confirm.response_code = msg::sc_response::kInvalidParameters;
+          } else {
+            confirm.confirmed_rate_hz = flaw_ == ConnectionFlaw::slow_reports ? m.periodic_rate_hz : 10;
+            requester_ = h.source;
+            active_ = true;
+            report_in(std::chrono::milliseconds(1));
+          }
+          send(h.source, confirm);
+        });
     handle<msg::SuspendServiceConnection>(
         Access::anyone, false, [this](const Header&, const msg::SuspendServiceConnection&) { active_ = false; });
-    handle<msg::ActivateServiceConnection>(
-        Access::anyone, false, [this](const Header&, const msg::ActivateServiceConnection&) { active_ = true; });
-    handle<msg::TerminateServiceConnection>(
-        Access::anyone, false, [this](const Header&, const msg::TerminateServiceConnection&) { requester_.reset(); });
+    handle<msg::ActivateServiceConnection>(Access::anyone, false,
+                                           [this](const Header&, const msg::ActivateServiceConnection&) {
+                                             if (flaw_ == ConnectionFlaw::activates_inform) active_ = true;
+                                           });
+    handle<msg::TerminateServiceConnection>(Access::anyone, false,
+                                            [this](const Header&, const msg::TerminateServiceConnection&) {
+                                              if (flaw_ != ConnectionFlaw::ignores_terminate) requester_.reset();
+                                            });
   }
-  ~ActivatesInform() override { env().scheduler.cancel(timer_); }
+  ~HandMadeConnections() override { env().scheduler.cancel(timer_); }
 
  private:
   void report_in(rt::Duration delay) {
@@ -154,14 +200,41 @@ class ActivatesInform final : public rt::Component {
         h.data_size = static_cast<std::uint16_t>(size ? *size : 0);
         env().outbox.send(h, std::span(payload).first(size ? *size : 0));
       }
-      report_in(std::chrono::milliseconds(100));
+      report_in(flaw_ == ConnectionFlaw::slow_reports ? std::chrono::milliseconds(500)
+                                                      : std::chrono::milliseconds(100));
     });
   }
 
+  ConnectionFlaw flaw_;
   std::optional<Address> requester_;
   bool active_ = false;
   std::uint16_t sequence_ = 0;
   rt::TimerId timer_ = rt::kNoTimer;
+};
+
+// Standby from its controller changes nothing.
+class IgnoresStandby final : public rt::Component {
+ public:
+  IgnoresStandby(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    handle<msg::Standby>(Access::controller, false, [](const Header&, const msg::Standby&) {});
+  }
+};
+
+// Query Component Authority answered with an empty report (one byte short),
+// Query Heartbeat Pulse not at all.
+class AnswersWrongly final : public rt::Component {
+ public:
+  AnswersWrongly(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
+    handle<msg::QueryComponentAuthority>(Access::anyone, false,
+                                         [this](const Header& h, const msg::QueryComponentAuthority&) {
+                                           Header out;
+                                           out.command_code = msg::ReportComponentAuthority::code;
+                                           out.source = address();
+                                           out.destination = h.source;
+                                           this->env().outbox.send(out, {});
+                                         });
+    handle<msg::QueryHeartbeatPulse>(Access::anyone, false, [](const Header&, const msg::QueryHeartbeatPulse&) {});
+  }
 };
 
 // Control kept by hand (the runtime's arbiter is private to Component), as
@@ -172,6 +245,9 @@ enum class ControlFlaw {
   never_taken_over,         // a higher authority from another requester is refused
   anyone_releases,          // a Release from anyone ends control
   keeps_silent_controller,  // only the missing liveness check
+  ignores_own_authority,    // grants control below its own authority (configured above 0)
+  ignores_release,          // its controller's Release changes nothing
+  refuses_renewal,          // its controller asking again is refused
 };
 
 class HandMadeControl final : public rt::Component {
@@ -183,7 +259,8 @@ class HandMadeControl final : public rt::Component {
           const bool taken_over = controller_ && *controller_ != h.source &&
                                   (flaw_ == ControlFlaw::anyone_takes_over ||
                                    (flaw_ != ControlFlaw::never_taken_over && m.authority > authority_));
-          const bool granted = !controller_ || *controller_ == h.source || taken_over;
+          const bool renewal = controller_ && *controller_ == h.source;
+          const bool granted = !controller_ || (renewal && flaw_ != ControlFlaw::refuses_renewal) || taken_over;
           if (taken_over) send(*controller_, msg::RejectComponentControl{});
           if (granted) {
             controller_ = h.source;
@@ -194,6 +271,7 @@ class HandMadeControl final : public rt::Component {
         });
     handle<msg::ReleaseComponentControl>(Access::anyone, false,
                                          [this](const Header& h, const msg::ReleaseComponentControl&) {
+                                           if (flaw_ == ControlFlaw::ignores_release) return;
                                            if (controller_ == h.source || flaw_ == ControlFlaw::anyone_releases)
                                              controller_.reset();
                                          });
@@ -247,7 +325,18 @@ class BrokenNode {
     add<HandMadeControl>("anyone releases", kAnyoneReleases, ControlFlaw::anyone_releases);
     add<HandMadeControl>("keeps silent controller", kKeepsSilentController, ControlFlaw::keeps_silent_controller);
     host_->emplace<FirstClearEnds>(host_->component_config("first clear ends", kFirstClearEnds.component));
-    host_->emplace<ActivatesInform>(host_->component_config("activates inform", kActivatesInform.component));
+    add<HandMadeConnections>("activates inform", kActivatesInform, ConnectionFlaw::activates_inform);
+    add<HandMadeConnections>("slow reports", kSlowReports, ConnectionFlaw::slow_reports);
+    add<HandMadeConnections>("ignores terminate", kIgnoresTerminate, ConnectionFlaw::ignores_terminate);
+    add<HandMadeConnections>("accepts any connection", kAcceptsAnyConnection, ConnectionFlaw::accepts_anything);
+    auto own_authority = host_->component_config("grants below own authority", kGrantsBelowOwnAuthority.component);
+    own_authority.authority = kOwnAuthority;
+    host_->emplace<HandMadeControl>(std::move(own_authority), ControlFlaw::ignores_own_authority);
+    add<HandMadeControl>("ignores release", kIgnoresRelease, ControlFlaw::ignores_release);
+    add<HandMadeControl>("refuses renewal", kRefusesRenewal, ControlFlaw::refuses_renewal);
+    host_->emplace<IgnoresStandby>(host_->component_config("ignores standby", kIgnoresStandby.component));
+    host_->emplace<AnswersWrongly>(host_->component_config("answers wrongly", kAnswersWrongly.component));
+    host_->emplace<SilentInStandby>(host_->component_config("silent in standby", kSilentInStandby.component));
     add<BrokenDriver>("driver obeys anyone", kDriverObeysAnyone, DriverFlaw::obeys_anyone);
     add<BrokenDriver>("driver forgets effort", kDriverForgetsEffort, DriverFlaw::forgets_effort);
     add<BrokenDriver>("driver keeps effort", kDriverKeepsEffortOnStop, DriverFlaw::keeps_effort_on_stop);

@@ -136,6 +136,18 @@ TEST_F(Conformance, ASensorThatEchoesThePresenceVectorFailsThePresenceCase) {
   EXPECT_NE(results[0].outcome.detail.find("presence vector 0x"), std::string::npos) << results[0].outcome.detail;
 }
 
+TEST_F(Conformance, AComponentSilentInStandbyFailsTheQueriesInEveryStateCase) {
+  const auto results = run(test::kSilentInStandby, "core.queries_in_every_state");
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find("in Standby, Component Authority: no reply from"), std::string::npos)
+      << results[0].outcome.detail;
+  // Left as found: Ready, nobody in control.
+  const auto status = run(test::kSilentInStandby, "core.status");
+  ASSERT_EQ(status.size(), 1u);
+  EXPECT_NE(status[0].outcome.detail.find("Ready"), std::string::npos) << status[0].outcome.detail;
+}
+
 // A provider that gives every connection instance 0 fails the limit case
 // at its second connection; one that takes Activate from an inform
 // connection's creator fails the Activate case. Our pose sensor refuses

@@ -1,0 +1,94 @@
+// The core, control and service connection cases that the other suites see
+// failing only against a silent address or a component that never confirms:
+// here each fails, with its reason, against a component broken the one way it
+// looks for (broken_components.hpp).
+#include <gtest/gtest.h>
+
+#include "broken_components.hpp"
+#include "case_results.hpp"
+#include "jaus/conform/runner.hpp"
+
+namespace jaus::conform {
+namespace {
+
+using namespace std::chrono_literals;
+using test::describe;
+
+struct Flawed {
+  const char* name;
+  Address address;
+  std::string_view case_id;
+  std::string_view says;
+  // Another OCU controls it when the case runs (the case judges what a
+  // non-controller's message does to a controlled component).
+  bool controlled_by_another = false;
+};
+
+void PrintTo(const Flawed& f, std::ostream* out) { *out << f.name; }
+
+class FlawedComponentsFail : public ::testing::TestWithParam<Flawed> {
+ protected:
+  void SetUp() override {
+    broken = std::make_unique<test::BrokenNode>(io);
+    session = open(Address{254, 1, 40, 1});
+  }
+
+  std::unique_ptr<ocu::OcuSession> open(const Address& self) {
+    ocu::SessionOptions options;
+    options.self = self;
+    options.to = {broken->endpoint()};
+    options.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
+    auto opened = ocu::OcuSession::open(options, &io);
+    if (!opened) throw std::runtime_error(opened.error().message());
+    return std::move(*opened);
+  }
+
+  boost::asio::io_context io;
+  std::unique_ptr<test::BrokenNode> broken;
+  std::unique_ptr<ocu::OcuSession> session;
+};
+
+TEST_P(FlawedComponentsFail, TheCaseThatLooksForTheFlawFailsSayingWhy) {
+  const Flawed& flawed = GetParam();
+  std::unique_ptr<ocu::OcuSession> other;
+  if (flawed.controlled_by_another) {
+    other = open(Address{254, 7, 40, 1});
+    other->send(flawed.address, msg::RequestComponentControl{{255}});
+    auto confirm = other->await_reply(flawed.address, {msg::ConfirmComponentControl::code}, 2s);
+    ASSERT_TRUE(confirm) << confirm.error().message();
+  }
+  auto component = learn_component(*session, flawed.address, nullptr, 1s);
+  ASSERT_TRUE(component) << component.error().message();
+  RunOptions options;
+  options.only = std::string(flawed.case_id);
+  const auto results = run_cases(*session, *component, all_cases(), options);
+  ASSERT_EQ(results.size(), 1u) << describe(results);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find(flawed.says), std::string::npos) << results[0].outcome.detail;
+  EXPECT_FALSE(results[0].exchange.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Flaws, FlawedComponentsFail,
+    ::testing::Values(
+        Flawed{"GrantsBelowOwnAuthority", test::kGrantsBelowOwnAuthority, "control.lower_authority_refused",
+               "granted to authority 4 below its own 5"},
+        Flawed{"IgnoresRelease", test::kIgnoresRelease, "control.round_trip",
+               "still reports the runner as controller after Release Component Control"},
+        Flawed{"RefusesRenewal", test::kRefusesRenewal, "control.controller_asks_again",
+               "the controller asked again and got response 2"},
+        Flawed{"AnyoneReleases", test::kAnyoneReleases, "control.release_by_non_controller",
+               "a Release from a non-controller moved its controller from 254.7.40.1 to 0.0.0.0", true},
+        Flawed{"SlowReports", test::kSlowReports, "sc.rate", "reports in 1 s at a confirmed 20"},
+        Flawed{"IgnoresTerminate", test::kIgnoresTerminate, "sc.terminate", "reports in the half second after Terminate"},
+        Flawed{"AcceptsAnyConnection", test::kAcceptsAnyConnection, "sc.refusals",
+               "created a service connection for 0x4FFE"},
+        Flawed{"IgnoresStandby", test::kIgnoresStandby, "core.standby_resume",
+               "Standby from its controller left it in Ready"},
+        Flawed{"AnswersAuthorityEmpty", test::kAnswersWrongly, "core.authority",
+               "Report Component Authority does not decode"},
+        Flawed{"NeverAnswersHeartbeat", test::kAnswersWrongly, "core.heartbeat", "no reply from 3.1.84.1"}),
+    [](const ::testing::TestParamInfo<Flawed>& p) { return std::string(p.param.name); });
+
+}  // namespace
+}  // namespace jaus::conform
