@@ -1,12 +1,14 @@
-// The core, control and service connection cases that the other suites see
-// failing only against a silent address or a component that never confirms:
-// here each fails, with its reason, against a component broken the one way it
-// looks for (broken_components.hpp).
+// The core, control, service connection and robustness cases that the other
+// suites see failing only against a silent address or a component that never
+// confirms: here each fails, with its reason, against a component broken the
+// one way it looks for (broken_components.hpp; for the robustness cases a
+// component that never checks a payload, lenient_peer.hpp).
 #include <gtest/gtest.h>
 
 #include "broken_components.hpp"
 #include "case_results.hpp"
 #include "jaus/conform/runner.hpp"
+#include "lenient_peer.hpp"
 
 namespace jaus::conform {
 namespace {
@@ -89,6 +91,35 @@ INSTANTIATE_TEST_SUITE_P(
                "Report Component Authority does not decode"},
         Flawed{"NeverAnswersHeartbeat", test::kAnswersWrongly, "core.heartbeat", "no reply from 3.1.84.1"}),
     [](const ::testing::TestParamInfo<Flawed>& p) { return std::string(p.param.name); });
+
+// The robustness cases, against a component that answers an unknown code,
+// a Query Identification cut short, and acts on an overlong Set Emergency.
+TEST(RobustnessCases, EachFailsAgainstAComponentThatNeverChecksAPayload) {
+  boost::asio::io_context io;
+  test::LenientPeer lenient(io);
+  ocu::SessionOptions options;
+  options.to = {lenient.endpoint()};
+  options.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
+  auto session = ocu::OcuSession::open(options, &io);
+  ASSERT_TRUE(session) << session.error().message();
+  auto component = learn_component(**session, test::LenientPeer::kAddress, nullptr, 1s);
+  ASSERT_TRUE(component) << component.error().message();
+  RunOptions run;
+  run.only = "robust.";
+  const auto results = run_cases(**session, *component, all_cases(), run);
+  ASSERT_EQ(results.size(), robustness_cases().size()) << describe(results);
+  const std::pair<std::string_view, std::string_view> expected[] = {
+      {"robust.unknown_code", "answered an unknown code with 0x4002"},
+      {"robust.truncated", "answered a Query Identification without its query type with Report Identification"},
+      {"robust.overlong", "acted on a Set Emergency with two bytes too many: Ready -> Emergency"},
+  };
+  for (const auto& [id, says] : expected) {
+    const CaseResult* result = test::result_of(results, id);
+    ASSERT_NE(result, nullptr) << id;
+    EXPECT_EQ(result->outcome.verdict, Verdict::fail) << describe(results);
+    EXPECT_NE(result->outcome.detail.find(says), std::string::npos) << result->outcome.detail;
+  }
+}
 
 }  // namespace
 }  // namespace jaus::conform
