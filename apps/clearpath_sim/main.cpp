@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "jaus/base/version.hpp"
 #include "jaus/clearpath/sim/sim_server.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 
@@ -16,26 +17,29 @@ namespace sim = jaus::clearpath::sim;
 
 int main(int argc, char** argv) {
   CLI::App app{"clearpath-sim: simulated Clearpath platform"};
+  app.set_version_flag("--version", "clearpath-sim " + std::string(jaus::kVersion));
   std::string udp, serial, drive = "differential", log_level = "info";
   bool pty = false;
   sim::FaultConfig faults;
   double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5, status_every_s = 0;
-  auto* udp_opt = app.add_option("--udp", udp, "Serve UDP on HOST:PORT");
-  auto* serial_opt = app.add_option("--serial", serial, "Serve on a serial device (115200 8N1)");
+  auto* udp_opt = app.add_option("--udp", udp, "Serve UDP on HOST:PORT")->type_name("HOST:PORT");
+  auto* serial_opt = app.add_option("--serial", serial, "Serve on a serial device (115200 8N1)")->type_name("DEVICE");
   auto* pty_opt = app.add_flag("--pty", pty, "Open a PTY and serve on it; prints `pty: PATH` first");
   udp_opt->excludes(serial_opt, pty_opt);
   serial_opt->excludes(pty_opt);
-  app.add_option("--drive", drive, "Drivetrain")->check(CLI::IsMember({"differential", "ackermann"}));
+  app.add_option("--drive", drive, "Drivetrain: differential (default) or ackermann")
+      ->check(CLI::IsMember({"differential", "ackermann"}));
   app.add_option("--corrupt-rate", faults.corrupt_rate, "Probability a frame gets a flipped bit")->check(CLI::Range(0.0, 1.0));
   app.add_option("--drop-rate", faults.drop_rate, "Probability an outgoing frame is dropped")->check(CLI::Range(0.0, 1.0));
-  app.add_option("--latency-ms", latency_ms, "Delay added to every outgoing frame")->check(CLI::NonNegativeNumber);
+  app.add_option("--latency-ms", latency_ms, "Delay added to every outgoing frame, in milliseconds")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--disconnect-every", disconnect_every_s, "Go silent every N seconds (0 = never)")->check(CLI::NonNegativeNumber);
   app.add_option("--disconnect-for", disconnect_for_s, "Seconds each silence lasts")->check(CLI::NonNegativeNumber);
-  app.add_option("--seed", faults.seed, "Seed of the fault injector");
+  app.add_option("--seed", faults.seed, "Seed of the fault injector (the same seed, the same faults)");
   app.add_option("--status-every", status_every_s,
                  "Print the vehicle's true state as a JSON line every N seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
+  app.add_option("--log-level", log_level, "Log level: trace, debug, info (default), warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   try {
     app.parse(argc, argv);

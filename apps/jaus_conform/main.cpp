@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "jaus/base/version.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
 #include "jaus/ocu/discover.hpp"
@@ -140,21 +141,32 @@ int main(int argc, char** argv) {
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "jaus-conform: " + std::string(e.what()) + " (--help for usage)\n";
   });
+  app.set_version_flag("--version", "jaus-conform " + std::string(jaus::kVersion));
   Options o;
-  app.add_option("--to", o.to, "the node to test: A.B.C.D[:PORT] (port 3794 when left out)")->required();
-  app.add_option("--component", o.components, "test only this component, S.N.C.I (repeatable)");
+  app.add_option("--to", o.to, "the node to test: A.B.C.D[:PORT] (port 3794 when left out)")
+      ->type_name("ADDR[:PORT]")
+      ->required();
+  app.add_option("--component", o.components, "test only this component, S.N.C.I (repeatable)")->type_name("S.N.C.I");
   app.add_option("--profile", o.profile,
                  "ra (the RA as written) or openjaus (the common RA 3.3 implementation's "
                  "documented quirks accepted)")
+      ->type_name("ra|openjaus")
       ->capture_default_str();
-  app.add_option("--junit", o.junit, "write JUnit XML to FILE");
-  app.add_option("--report", o.report, "write a readable Markdown report to FILE");
-  app.add_option("--only", o.only, "run only the cases whose id contains PATTERN (e.g. control. or sc.rate)");
-  app.add_option("--skip", o.skip, "leave out the cases whose id contains PATTERN (e.g. control.silent_requester)");
-  app.add_option("--timeout", o.timeout_s, "seconds to wait for each reply")->capture_default_str();
-  app.add_option("--wait", o.wait_s, "seconds of discovery before the cases")->capture_default_str();
+  app.add_option("--junit", o.junit, "write JUnit XML to FILE")->type_name("FILE");
+  app.add_option("--report", o.report, "write a readable Markdown report to FILE")->type_name("FILE");
+  app.add_option("--only", o.only, "run only the cases whose id contains PATTERN (e.g. control. or sc.rate)")
+      ->type_name("PATTERN");
+  app.add_option("--skip", o.skip, "leave out the cases whose id contains PATTERN (e.g. control.silent_requester)")
+      ->type_name("PATTERN");
+  app.add_option("--timeout", o.timeout_s, "seconds to wait for each reply")
+      ->type_name("SECONDS")
+      ->capture_default_str();
+  app.add_option("--wait", o.wait_s, "seconds of discovery before the cases")
+      ->type_name("SECONDS")
+      ->capture_default_str();
   app.add_option("--bind", o.bind,
-                 "the runner's own address A.B.C.D[:PORT] (peers that answer to IP:3794 need it bound to port 3794)");
+                 "the runner's own address A.B.C.D[:PORT] (peers that answer to IP:3794 need it bound to port 3794)")
+      ->type_name("ADDR[:PORT]");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -2,9 +2,11 @@
 // clearpath) and an operator control unit (discover, status, query, send,
 // control, subscribe, emergency).
 #include "commands.hpp"
+#include "jaus/base/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"jausctl: JAUS node command-line tool"};
+  app.set_version_flag("--version", "jausctl " + std::string(jaus::kVersion));
   app.require_subcommand(1);
   // Bad command lines are one line on stderr (exit 2), like every other bad input.
   app.failure_message([](const CLI::App*, const CLI::Error& e) {

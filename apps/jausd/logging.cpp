@@ -1,13 +1,63 @@
 #include "logging.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <future>
 #include <thread>
 
 #include <spdlog/async.h>
+#include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace jausd {
+
+namespace {
+
+// Under systemd, stderr is the journal when JOURNAL_STREAM names it
+// ("device:inode", systemd.exec(5)); not when stderr was redirected elsewhere.
+bool stderr_is_journal() {
+  const char* stream = std::getenv("JOURNAL_STREAM");
+  if (stream == nullptr) return false;
+  unsigned long long device = 0, inode = 0;
+  if (std::sscanf(stream, "%llu:%llu", &device, &inode) != 2) return false;
+  struct stat st {};
+  if (fstat(STDERR_FILENO, &st) != 0) return false;
+  return static_cast<unsigned long long>(st.st_dev) == device && static_cast<unsigned long long>(st.st_ino) == inode;
+}
+
+// "<N>" in front of a line is its syslog priority to journald (sd-daemon(3)):
+// journalctl -p warning, colours and forwarding to syslog then know the level.
+class SyslogPriority final : public spdlog::custom_flag_formatter {
+ public:
+  void format(const spdlog::details::log_msg& msg, const std::tm&, spdlog::memory_buf_t& dest) override {
+    char priority = '6';  // info
+    switch (msg.level) {
+      case spdlog::level::trace:
+      case spdlog::level::debug:
+        priority = '7';
+        break;
+      case spdlog::level::warn:
+        priority = '4';
+        break;
+      case spdlog::level::err:
+        priority = '3';
+        break;
+      case spdlog::level::critical:
+        priority = '2';
+        break;
+      default:
+        break;
+    }
+    const char prefix[] = {'<', priority, '>'};
+    dest.append(prefix, prefix + sizeof prefix);
+  }
+  std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<SyslogPriority>(); }
+};
+
+}  // namespace
 
 std::shared_ptr<spdlog::logger> make_logger(std::string_view level) {
   // The event loop never waits on stderr: lines go through a queue to a
@@ -17,8 +67,15 @@ std::shared_ptr<spdlog::logger> make_logger(std::string_view level) {
   constexpr std::size_t kQueuedLines = 8192;
   spdlog::init_thread_pool(kQueuedLines, 1);
   auto logger = spdlog::create_async_nb<spdlog::sinks::stderr_color_sink_mt>("jausd");
-  // 2026-11-21 11:42:07.123 info    node 1.1: hosts communicator 1.1.35.1
-  logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %-7l %v");
+  if (stderr_is_journal()) {
+    // The journal stamps every line itself: <6>info    node 1.1: hosts communicator 1.1.35.1
+    auto formatter = std::make_unique<spdlog::pattern_formatter>();
+    formatter->add_flag<SyslogPriority>('*').set_pattern("%*%-7l %v");
+    logger->set_formatter(std::move(formatter));
+  } else {
+    // 2026-11-21 11:42:07.123 info    node 1.1: hosts communicator 1.1.35.1
+    logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %-7l %v");
+  }
   logger->set_level(spdlog::level::from_str(std::string(level == "warn" ? "warning" : level)));
   logger->flush_on(spdlog::level::info);
   return logger;

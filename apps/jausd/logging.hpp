@@ -1,5 +1,6 @@
 // jausd's log: one readable line per event on stderr (spdlog), and the
-// runtime's LogFn feeding it.
+// runtime's LogFn feeding it. Under systemd (stderr is the journal) lines
+// carry their syslog priority and no time stamp of their own.
 #pragma once
 
 #include <chrono>

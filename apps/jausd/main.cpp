@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "host_config.hpp"
+#include "jaus/base/version.hpp"
 #include "logging.hpp"
 
 namespace {
@@ -46,16 +47,26 @@ std::optional<std::string> apply_overrides(jausd::JausdConfig& config, const Com
 
 int main(int argc, char** argv) {
   CLI::App app{"jausd: JAUS RA 3.x node daemon"};
+  app.set_version_flag("--version", "jausd " + std::string(jaus::kVersion));
   CommandLine cl;
-  app.add_option("-c,--config", cl.config_path, "YAML configuration (default: built-in defaults, as config/jausd.yaml)")
+  app.add_option("-c,--config", cl.config_path,
+                 "YAML configuration (default: built-in defaults, as config/jausd.yaml; the service reads "
+                 "/etc/jaus/jausd.yaml)")
+      ->type_name("FILE")
       ->check(CLI::ExistingFile);
-  app.add_option("--bind", cl.bind, "UDP address[:port] to bind, overrides transport.bind");
+  app.add_option("--bind", cl.bind, "UDP address[:port] to bind (port 3794 when left out), overrides transport.bind")
+      ->type_name("ADDR[:PORT]");
   app.add_option("--subsystem", cl.subsystem, "subsystem ID, overrides identification.subsystem")
+      ->type_name("1..254")
       ->check(CLI::Range(1, 254));
-  app.add_option("--node", cl.node, "node ID, overrides identification.node")->check(CLI::Range(1, 254));
+  app.add_option("--node", cl.node, "node ID, overrides identification.node")
+      ->type_name("1..254")
+      ->check(CLI::Range(1, 254));
   app.add_option("--log-level", cl.log_level, "debug | info | warn | error, overrides logging.level")
+      ->type_name("LEVEL")
       ->check(CLI::IsMember({"debug", "info", "warn", "error"}));
-  app.add_flag("--check-config", cl.check_config, "validate the configuration and exit");
+  app.add_flag("--check-config", cl.check_config,
+               "validate the configuration and exit: 0 when good, 2 with 'file:line: what is wrong'");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
