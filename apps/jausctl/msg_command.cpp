@@ -1,6 +1,9 @@
-// `jausctl msg decode HEX | encode | list`: the JAUS message codec on the
-// command line. Output is JSON (decode) or hex (encode); errors are one line
-// on stderr naming the offset or field, with exit code 2.
+// `jausctl msg decode HEX | encode | list | doc | wireshark`: the JAUS message
+// codec on the command line. Output is JSON (decode) or hex (encode); errors
+// are one line on stderr naming the offset or field, with exit code 2.
+// `wireshark` writes the Lua dissector generated from the descriptions (JAUS
+// and Clearpath: only an app may combine them, docs/architecture.md).
+#include <fstream>
 #include <iostream>
 #include <iterator>
 #include <string>
@@ -9,7 +12,9 @@
 
 #include "commands.hpp"
 #include "jaus/base/hex.hpp"
+#include "jaus/clearpath/wireshark_lua.hpp"
 #include "jaus/messages/catalogue.hpp"
+#include "jaus/messages/wireshark_lua.hpp"
 
 namespace jausctl {
 
@@ -62,10 +67,25 @@ int list() {
   return kExitOk;
 }
 
+int wireshark(const std::string& output) {
+  const std::string plugin = jaus::msg::wireshark_lua() + jaus::clearpath::wireshark_lua();
+  if (output.empty() || output == "-") {
+    std::cout << plugin;
+    return kExitOk;
+  }
+  std::ofstream out(output, std::ios::binary);
+  out << plugin;
+  if (!out.flush()) {
+    std::cerr << "jausctl msg wireshark: cannot write " << output << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_msg_commands(CLI::App& app, int& exit_code) {
-  auto* msg = app.add_subcommand("msg", "JAUS message codec: decode, encode, list");
+  auto* msg = app.add_subcommand("msg", "JAUS message codec: decode, encode, list, doc, wireshark");
   msg->require_subcommand(1);
 
   auto dialect = std::make_shared<std::string>("ra");
@@ -90,6 +110,12 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
     std::cout << jaus::msg::messages_markdown();
     exit_code = kExitOk;
   });
+
+  auto output = std::make_shared<std::string>();
+  auto* wireshark_cmd = msg->add_subcommand(
+      "wireshark", "Print the Wireshark Lua dissector (JAUS and Clearpath over UDP) generated from the descriptions");
+  wireshark_cmd->add_option("-o,--output", *output, "write it to this file instead of stdout");
+  wireshark_cmd->callback([&exit_code, output] { exit_code = wireshark(*output); });
 
   auto* list_cmd = msg->add_subcommand("list", "List every supported message: code, name, subgroup, class");
   list_cmd->callback([&exit_code] { exit_code = list(); });
