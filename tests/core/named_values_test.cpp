@@ -169,6 +169,37 @@ TEST(NamedValues, CameraControlsAndPoseModesByName) {
   EXPECT_EQ(encode_hex(pose), encode_hex(pose_number));
 }
 
+TEST(NamedValues, EventTypesBoundariesAndLimitTypesByName) {
+  const Json create{{"code", "0x01F0"},
+                    {"fields",
+                     {{"request_id", 1},
+                      {"report_code", 0x4402},
+                      {"event_type", "every_change"},
+                      {"event_boundary", "outside_inclusive"},
+                      {"limit_data_field", 1},
+                      {"lower_limit", {{"type", "unsigned_short"}, {"bits", 300}}},
+                      {"query_message", "0100"}}}};
+  const Json numbers{{"code", "0x01F0"},
+                     {"fields",
+                      {{"request_id", 1},
+                       {"report_code", 0x4402},
+                       {"event_type", 1},
+                       {"event_boundary", 4},
+                       {"limit_data_field", 1},
+                       {"lower_limit", {{"type", 4}, {"bits", 300}}},
+                       {"query_message", "0100"}}}};
+  EXPECT_EQ(encode_hex(create), encode_hex(numbers));
+  const Json fields = decode_fields(encode_hex(numbers));
+  EXPECT_EQ(fields["event_type"], "every_change");
+  EXPECT_EQ(fields["event_boundary"], "outside_inclusive");
+  EXPECT_EQ(fields["lower_limit"], Json::parse(R"({"type":"unsigned_short","bits":300})"));
+
+  Json bad = create;
+  bad["fields"]["lower_limit"]["type"] = "short";
+  const std::string why = encode_error(bad);
+  EXPECT_NE(why.find("'lower_limit': unknown event limit type 'short'"), std::string::npos) << why;
+}
+
 // A wider bit field, with and without value names, through the codec itself.
 inline constexpr std::array<wire::NamedValue, 2> kModes{{{0, "off"}, {3, "auto"}}};
 inline constexpr auto kWide =

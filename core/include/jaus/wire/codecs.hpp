@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <concepts>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -496,11 +497,20 @@ struct EventLimit {
     constexpr std::size_t sizes[] = {1, 2, 4, 8, 2, 4, 8, 4, 8, 3};
     return type < 10 ? sizes[type] : 0;
   }
+  // The type's name in JSON, by its number (the Type enumerators).
+  static constexpr std::string_view kTypeNames[] = {
+      "byte",          "short_integer", "integer", "long_integer", "unsigned_short", "unsigned_integer",
+      "unsigned_long", "float32",       "float64", "rgb"};
 };
 
 struct EventLimitCodec {
   using value_type = EventLimit;
-  std::string doc() const { return "event limit: u8 type + value"; }
+  std::string doc() const {
+    std::string types;
+    for (std::size_t i = 0; i < std::size(EventLimit::kTypeNames); ++i)
+      types += (i == 0 ? "" : ", ") + std::to_string(i) + " " + std::string(EventLimit::kTypeNames[i]);
+    return "event limit: u8 type (" + types + ") + value";
+  }
   void encode(const EventLimit& v, ByteWriter& w, auto&) const {
     const std::size_t n = EventLimit::size_of(v.type);
     if (n == 0) {
@@ -525,16 +535,34 @@ struct EventLimitCodec {
     std::copy(bytes.begin(), bytes.end(), raw.begin());
     v.bits = jaus::detail::from_little_endian<std::uint64_t>(raw.data());
   }
+  // The type by name ("unsigned_short"); read back by name or number.
   template <class Json>
-  Json to_json(const EventLimit& v) const { return Json{{"type", v.type}, {"bits", v.bits}}; }
+  Json to_json(const EventLimit& v) const {
+    if (EventLimit::size_of(v.type) == 0) return Json{{"type", v.type}, {"bits", v.bits}};
+    return Json{{"type", std::string(EventLimit::kTypeNames[v.type])}, {"bits", v.bits}};
+  }
   template <class Json>
   bool from_json(const Json& j, EventLimit& v, std::string& why) const {
     if (!j.is_object() || !j.contains("type") || !j.contains("bits")) {
       why = "expected {type, bits}";
       return false;
     }
-    if (!detail::integer_from_json(j.at("type"), v.type, why) || !detail::integer_from_json(j.at("bits"), v.bits, why))
+    const auto& type = j.at("type");
+    if (type.is_string()) {
+      const auto name = type.template get<std::string>();
+      const auto* names = std::begin(EventLimit::kTypeNames);
+      const auto* found = std::find(names, std::end(EventLimit::kTypeNames), name);
+      if (found == std::end(EventLimit::kTypeNames)) {
+        why = "unknown event limit type '" + name +
+              "' (expected one of: byte, short_integer, integer, long_integer, "
+              "unsigned_short, unsigned_integer, unsigned_long, float32, float64, rgb, or 0-9)";
+        return false;
+      }
+      v.type = static_cast<std::uint8_t>(found - names);
+    } else if (!detail::integer_from_json(type, v.type, why)) {
       return false;
+    }
+    if (!detail::integer_from_json(j.at("bits"), v.bits, why)) return false;
     if (EventLimit::size_of(v.type) == 0) {
       why = "unknown event limit type";
       return false;
