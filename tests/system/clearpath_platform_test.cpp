@@ -106,7 +106,7 @@ class ClearpathPlatform : public ::testing::TestWithParam<Simulator::Line> {
     jausd = std::make_unique<DefaultJausd>("clearpath", 7, kNode, *platform);
     ASSERT_TRUE(jausd->started());
     // Up, and the driver Ready: the platform answers (longer under sanitizers).
-    ASSERT_TRUE(poll_status(kDriver, "Ready", 30s)) << jausd->output();
+    ASSERT_TRUE(poll_status(kDriver, "ready", 30s)) << jausd->output();
   }
   void TearDown() override {
     jausd.reset();
@@ -228,11 +228,11 @@ TEST_F(ClearpathPlatformUdp, AnUnpluggedPlatformIsFailureThenReadyAndNothingMove
   }
   sim->process().signal(SIGKILL);
   sim->process().wait(5s);
-  EXPECT_TRUE(poll_status(kDriver, "Failure", 15s)) << jausd->output();
+  EXPECT_TRUE(poll_status(kDriver, "failure", 15s)) << jausd->output();
   // Plugged back: a fresh simulator on the same port, at rest.
   sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, "sim-again");
   ASSERT_TRUE(sim->started());
-  EXPECT_TRUE(poll_status(kDriver, "Ready", 20s)) << jausd->output();
+  EXPECT_TRUE(poll_status(kDriver, "ready", 20s)) << jausd->output();
   std::this_thread::sleep_for(1s);
   for (const auto& s : sim->states()) EXPECT_TRUE(stopped(s)) << s.dump();
   // And it moves again when commanded.
