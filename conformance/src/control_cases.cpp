@@ -179,6 +179,42 @@ CaseOutcome higher_authority_takes_over(CaseContext& c) {
               ", which got Reject Component Control");
 }
 
+// The controller asking again at a lower authority (still at or above the
+// component's own) keeps control at that authority: Report Component Control
+// gives it, and another requester above it but not above the old one now
+// takes over ("must always accept the control of the highest authority").
+CaseOutcome controller_lowers_authority(CaseContext& c) {
+  if (c.profile == Profile::openjaus)
+    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (wire notes)");
+  auto own = own_authority(c);
+  if (!own) return fail(own.error().message());
+  if (*own >= 253) return skip("its authority is " + std::to_string(*own) + ": no three authorities from it up");
+  const auto low = static_cast<std::uint8_t>(*own + 1);
+  const auto high = static_cast<std::uint8_t>(*own + 2);
+  ControlHeld control(c, high);
+  if (!control.granted())
+    return skip("control not granted at authority " + std::to_string(high) + " (" + control.why() + ")");
+  std::string seen;
+  if (!runner_granted(c, low, seen))
+    return fail("the controller asked again at authority " + std::to_string(low) + " (from " + std::to_string(high) +
+                ") and was refused (" + seen + ")");
+  auto report = ask<msg::ReportComponentControl>(c, msg::QueryComponentControl{});
+  if (!report) return fail("after asking again lower, " + report.error().message());
+  if (report->controller != c.session.self())
+    return fail("after asking again lower, Report Component Control names " + report->controller.to_string());
+  if (report->authority != low)
+    return fail("the controller asked again at authority " + std::to_string(low) + ", Report Component Control gives " +
+                std::to_string(report->authority));
+  auto second = c.second();
+  if (!second) return fail(second.error().message());
+  ControlHeld by_second(c, high, **second);
+  if (!by_second.granted())
+    return fail("authority " + std::to_string(high) + " from another requester refused (" + by_second.why() +
+                ") while the controller held " + std::to_string(low));
+  return pass("asked again at " + std::to_string(low) + " from " + std::to_string(high) + ": kept, reported at " +
+              std::to_string(low) + ", then taken over at " + std::to_string(high));
+}
+
 // Controlled by another requester: the runner's Release moves nothing; the
 // controller's own Release ends control.
 CaseOutcome release_by_other_requester(CaseContext& c) {
@@ -322,6 +358,11 @@ const std::vector<ConformanceCase>& cases() {
        "a higher authority from another requester takes control; the controller gets Reject Component Control",
        "Part 3, Code 000Dh Request Component Control, Code 0010h Reject Component Control", nullptr,
        higher_authority_takes_over},
+      {"control.controller_lowers_authority",
+       "the controller asking again at a lower authority keeps control at it; a higher requester then takes over",
+       "Part 3, Code 000Dh Request Component Control (the highest authority requesting is always accepted), Code "
+       "400Dh Report Component Control",
+       nullptr, controller_lowers_authority},
       {"control.release_by_other_requester",
        "controlled, a Release from another requester moves nothing; the controller's Release ends control",
        "Part 3, Code 000Eh Release Component Control", nullptr, release_by_other_requester},

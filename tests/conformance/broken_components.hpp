@@ -13,6 +13,7 @@
 //   3.1.77.1 .. 3.1.79.1 keep control by hand, each with one more ControlFlaw;
 //   3.1.80.1 .. 3.1.82.1 serve service connections by hand, each with one more
 //            ConnectionFlaw;
+//   3.1.85.1 keeps control by hand, its controller's first authority kept;
 //   3.1.83.1 ignores Standby; 3.1.84.1 answers Query Component Authority
 //            with an empty report and Query Heartbeat Pulse not at all;
 //   3.1.53.1 .. 3.1.66.1 drivers, sensors, cameras and arms broken for the
@@ -51,6 +52,7 @@ inline const Address kIgnoresTerminate{3, 1, 81, 1};
 inline const Address kAcceptsAnyConnection{3, 1, 82, 1};
 inline const Address kIgnoresStandby{3, 1, 83, 1};
 inline const Address kAnswersWrongly{3, 1, 84, 1};
+inline const Address kKeepsFirstAuthority{3, 1, 85, 1};
 // The authority of kGrantsBelowOwnAuthority: a request at 4 must be refused.
 inline constexpr std::uint8_t kOwnAuthority = 5;
 
@@ -248,6 +250,7 @@ enum class ControlFlaw {
   ignores_own_authority,    // grants control below its own authority (configured above 0)
   ignores_release,          // its controller's Release changes nothing
   refuses_renewal,          // its controller asking again is refused
+  keeps_first_authority,    // its controller asking again at another authority keeps the first
 };
 
 class HandMadeControl final : public rt::Component {
@@ -264,7 +267,7 @@ class HandMadeControl final : public rt::Component {
           if (taken_over) send(*controller_, msg::RejectComponentControl{});
           if (granted) {
             controller_ = h.source;
-            authority_ = m.authority;
+            if (!(renewal && flaw_ == ControlFlaw::keeps_first_authority)) authority_ = m.authority;
           }
           send(h.source, msg::ConfirmComponentControl{
                              {granted ? msg::control_response::kAccepted : msg::control_response::kNotAccepted}});
@@ -334,6 +337,7 @@ class BrokenNode {
     host_->emplace<HandMadeControl>(std::move(own_authority), ControlFlaw::ignores_own_authority);
     add<HandMadeControl>("ignores release", kIgnoresRelease, ControlFlaw::ignores_release);
     add<HandMadeControl>("refuses renewal", kRefusesRenewal, ControlFlaw::refuses_renewal);
+    add<HandMadeControl>("keeps first authority", kKeepsFirstAuthority, ControlFlaw::keeps_first_authority);
     host_->emplace<IgnoresStandby>(host_->component_config("ignores standby", kIgnoresStandby.component));
     host_->emplace<AnswersWrongly>(host_->component_config("answers wrongly", kAnswersWrongly.component));
     host_->emplace<SilentInStandby>(host_->component_config("silent in standby", kSilentInStandby.component));

@@ -73,7 +73,7 @@ class MultiRequester : public ::testing::Test {
 
 constexpr std::string_view kNewCases[] = {
     "core.emergency_two_holders",         "control.other_requester_refused", "control.higher_authority_takes_over",
-    "control.release_by_other_requester", "control.silent_requester",
+    "control.release_by_other_requester", "control.silent_requester",        "control.controller_lowers_authority",
 };
 
 // One (component, case) per test, so that ctest runs the slow silent ones
