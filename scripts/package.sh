@@ -10,7 +10,10 @@ cd "$(dirname "$0")/.."
 ./scripts/setup.sh
 
 dir=build/package
-cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DJAUS_BUILD_TESTS=OFF -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
+# Prefix /usr at configure time too, so GNUInstallDirs picks Debian's
+# multiarch libdir (lib/<triplet>) and /etc, as the package installs there.
+cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr -DJAUS_BUILD_TESTS=OFF \
+  -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$dir" -j "$(nproc)"
 (cd "$dir" && cpack -G DEB >/dev/null)
 deb=$(ls "$dir"/jaus-node_*.deb)

@@ -15,6 +15,7 @@ packages=(
   libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev
   libbenchmark-dev
+  groff-base            # tests/package renders the generated man pages (groff -ww: no warning)
 )
 
 missing=()
