@@ -2,8 +2,9 @@
 # ctest package_install_and_build_component: `cmake --install` of the built
 # tree into a temporary prefix puts the programs, libraries, headers, CMake
 # package, configuration, man pages and docs where GNUInstallDirs says; then
-# example_component (a component of its own on jaus::runtime) is configured
-# with find_package(jaus) against that prefix only, built and run.
+# example_component (a component of its own on jaus::runtime, and a program
+# on jaus::conform, the top of the library graph) is configured with
+# find_package(jaus) against that prefix only, built and run.
 # Usage: install_and_build_component.sh BUILD_DIR EXAMPLE_SOURCE_DIR VERSION
 set -euo pipefail
 build=$1 example=$2 version=$3
@@ -42,4 +43,5 @@ cmake -S "$example" -B "$work/example" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMA
   > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "configuring example_component against $prefix"; }
 cmake --build "$work/example" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "building example_component"; }
 "$work/example/example_component" || fail "example_component"
+"$work/example/count_conformance_cases" || fail "count_conformance_cases (jaus::conform from the installed tree)"
 echo "PASS"
