@@ -7,6 +7,7 @@
 // jausctl uses: one packet cannot carry it).
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <map>
 
 #include "../system/default_jausd.hpp"
@@ -101,6 +102,9 @@ TEST(TsharkJausdExchange, EveryMessageShowsWhatJausctlDecodes) {
     for (const auto& problem : compare_fields(expected, shown, prefix)) ADD_FAILURE() << "reassembled: " << problem;
     reassembled = true;
   }
+  std::string summary;
+  for (const auto& [name, count] : seen) summary += " " + name + " x" + std::to_string(count) + ";";
+  std::cout << "checked" << summary << (reassembled ? " and a reassembled large data set" : "") << "\n";
   EXPECT_GE(seen["Report Global Pose"], 1);
   EXPECT_GE(seen["Report Services"], 1);
   EXPECT_GE(seen["Report Configuration"], 1);

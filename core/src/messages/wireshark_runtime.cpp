@@ -590,9 +590,10 @@ end
 
 local OPC = "JAUS01.0"
 
+-- The framing by its prefix (a short message after it is reported, not skipped).
 local function framing_of(tvb)
-  if tvb:len() >= 8 + 16 and tvb(0, 8):string() == OPC then return "OPC" end
-  if tvb:len() >= 5 + 16 and tvb(0, 1):uint() == 1 and tvb(1, 2):uint() == 0 then return "JUDP" end
+  if tvb:len() >= 8 and tvb(0, 8):string() == OPC then return "OPC" end
+  if tvb:len() >= 5 and tvb(0, 1):uint() == 1 and tvb(1, 2):uint() == 0 then return "JUDP" end
   return nil
 end
 
@@ -622,8 +623,10 @@ function jaus.dissector(tvb, pinfo, tree)
   return tvb:len()
 end
 
+-- On other ports: a prefix and at least a header after it.
 local function heuristic(tvb, pinfo, tree)
-  if framing_of(tvb) == nil then return false end
+  local framing = framing_of(tvb)
+  if framing == nil or tvb:len() < (framing == "OPC" and 8 or 5) + 16 then return false end
   jaus.dissector(tvb, pinfo, tree)
   return true
 end
