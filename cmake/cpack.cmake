@@ -5,14 +5,20 @@
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME jaus-node)
 set(CPACK_PACKAGE_VENDOR "jaus-node")
-set(CPACK_PACKAGE_CONTACT "jaus-node maintainers <jaus-node@localhost>")
+# The Maintainer field: set it to whoever publishes the package (lintian's
+# bogus-mail-host until then).
+set(JAUS_PACKAGE_MAINTAINER "jaus-node maintainers <jaus-node@localhost>" CACHE STRING "Maintainer of the .deb")
+set(CPACK_PACKAGE_CONTACT "${JAUS_PACKAGE_MAINTAINER}")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "JAUS RA 3.x node daemon (jausd), OCU tool (jausctl) and C++20 framework")
-set(CPACK_PACKAGE_DESCRIPTION
-    "jausd hosts JAUS RA 3.x components (node manager, communicator, primitive driver, pose and velocity sensors, \
-visual sensor, manipulator) on UDP and drives a Clearpath platform over its serial protocol; it runs as the \
-systemd service jausd.service with /etc/jaus/jausd.yaml. jausctl talks to nodes as an OCU, jaus-conform tests \
-any node's conformance and clearpath-sim simulates a Clearpath platform. The static libraries, headers and \
-CMake package (find_package(jaus)) build components of your own.")
+# The control file's extended description: lines under 80 columns.
+string(JOIN "\n" CPACK_PACKAGE_DESCRIPTION
+       "jausd hosts JAUS RA 3.x components (node manager, communicator, primitive"
+       "driver, pose and velocity sensors, visual sensor, manipulator) on UDP and"
+       "drives a Clearpath platform over its serial protocol; it runs as the systemd"
+       "service jausd.service with /etc/jaus/jausd.yaml. jausctl talks to nodes as an"
+       "OCU, jaus-conform tests any node's conformance and clearpath-sim simulates a"
+       "Clearpath platform. The static libraries, headers and CMake package"
+       "(find_package(jaus)) build components of your own.")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 # Executables only (never the static libraries' symbol tables).

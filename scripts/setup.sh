@@ -16,6 +16,7 @@ packages=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   groff-base            # tests/package renders the generated man pages (groff -ww: no warning)
+  lintian               # tests/package checks the jaus-node .deb with Debian's package checker
   tshark                # tests/wireshark runs the generated Wireshark dissector in tshark
 )
 

@@ -3,7 +3,7 @@
 #   - control: name, version, computed dependencies (dpkg-shlibdeps) and adduser,
 #     conffiles (/etc/jaus/jausd.yaml), maintainer scripts that parse (sh -n);
 #   - contents: programs, man pages (gzipped), the unit, configuration, docs;
-#   - jausd.service passes systemd-analyze verify (where the tool exists);
+#   - jausd.service passes systemd-analyze verify, the package lintian (where installed);
 #   - dpkg -x into a throwaway root: that jausd, started with that
 #     /etc/jaus/jausd.yaml on 127.0.0.50, answers that jausctl's Query
 #     Identification, and exits 0 on SIGTERM.
@@ -68,6 +68,22 @@ for path in ./usr/bin/jausd ./usr/bin/jausctl ./usr/bin/clearpath-sim ./usr/bin/
 done
 grep -q '^\./usr/lib/.*cmake/jaus/jausConfig\.cmake$' "$work/contents" || fail "no CMake package in the .deb"
 if grep -q '^\./usr/share/man/man1/.*\.1$' "$work/contents"; then fail "man pages must be gzipped"; fi
+
+# lintian (Debian's package checker), where installed: no error or warning
+# but three that need the project's decision, not the packaging's: a license
+# (the copyright file), a published maintainer address (JAUS_PACKAGE_MAINTAINER)
+# and a Debian changelog.
+if command -v lintian > /dev/null; then
+  known='no-copyright-file|no-changelog|bogus-mail-host'
+  lintian_status=0
+  lintian --allow-root --fail-on none "$deb" > "$work/lintian.log" 2>&1 || lintian_status=$?
+  if [ "$lintian_status" -ne 0 ] || grep -E '^[EW]: ' "$work/lintian.log" | grep -Ev "^[EW]: jaus-node: ($known)( |$)"; then
+    cat "$work/lintian.log"; fail "lintian (exit $lintian_status)"
+  fi
+  echo "lintian: $(grep -cE '^[EW]: ' "$work/lintian.log") known tags ($known), nothing else"
+else
+  echo "lintian not found: package not linted"
+fi
 
 # The extracted tree.
 root=$work/root
