@@ -343,7 +343,11 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto action = std::make_shared<std::string>();
   auto* emergency = app.add_subcommand("emergency", "Set or clear the emergency (Stop) condition of ADDR");
   emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->type_name("S.N.C.I")->required();
-  emergency->add_option("ACTION", *action, "set | clear")->type_name("set|clear")->required();
+  emergency
+      ->add_option("ACTION", *action,
+                   "set: Set Emergency (ADDR stops, in Emergency); clear: Clear Emergency (this OCU's hold; others' stay)")
+      ->type_name("set|clear")
+      ->required();
   add_common_options(emergency, *common);
   emergency->callback([&exit_code, checked_common, target, action] {
     auto c = checked_common("emergency", exit_code);
