@@ -345,7 +345,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->type_name("S.N.C.I")->required();
   emergency
       ->add_option("ACTION", *action,
-                   "set: Set Emergency (ADDR stops, in Emergency); clear: Clear Emergency (this OCU's hold; others' stay)")
+                   "set: Set Emergency (ADDR stops); clear: Clear Emergency (this OCU's hold; others' stay)")
       ->type_name("set|clear")
       ->required();
   add_common_options(emergency, *common);
