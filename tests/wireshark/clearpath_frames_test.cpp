@@ -6,9 +6,9 @@
 
 #include <fstream>
 
+#include "clearpath_frame_check.hpp"
 #include "jaus/base/hex.hpp"
 #include "pcap_writer.hpp"
-#include "tshark_session.hpp"
 
 namespace jaus::test {
 namespace {
@@ -58,18 +58,8 @@ TEST(TsharkClearpathFrames, EveryReferenceFrameShowsWhatJausctlDecodes) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     SCOPED_TRACE("frame " + frames[i].type + " (packet " + std::to_string(i + 1) + ")");
     ASSERT_FALSE(layers[i].is_null()) << "not Clearpath to tshark";
-    const Json decoded = session.jausctl_json(
-        {"clearpath", "decode", jaus::to_hex(frames[i].bytes), "--from", frames[i].from_platform ? "platform" : "host"},
-        failure);
-    ASSERT_FALSE(decoded.is_null()) << failure;
-    FieldValues expected, shown;
-    for (const char* key : {"type", "name", "kind", "timestamp", "flags", "version", "acknowledges", "result_text"})
-      if (decoded.contains(key)) expected[std::string("clearpath.") + key] = {decoded[key]};
-    const std::string prefix = "clearpath." + decoded["name"].get<std::string>();
-    flatten_decoded(decoded["fields"], prefix, expected);
-    flatten_tshark(layers[i], "", shown);
-    for (const auto& problem : compare_fields(expected, shown, prefix)) ADD_FAILURE() << problem;
-    EXPECT_EQ(shown.count("clearpath.bad_crc"), 0u);
+    for (const auto& problem : check_clearpath_frame(session, layers[i], frames[i].bytes, frames[i].from_platform))
+      ADD_FAILURE() << problem;
   }
   FieldValues bad;
   flatten_tshark(layers.back(), "", bad);
