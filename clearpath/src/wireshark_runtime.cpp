@@ -14,6 +14,12 @@ namespace jaus::clearpath::wireshark {
 
 std::string_view clearpath_lua_runtime() {
   return R"lua(
+-- Lua 5.2 (Wireshark 3.x/4.0) has bit32; later Lua has operators instead (kept in a string: 5.2 cannot parse them).
+local bit32 = bit32 or load([[return {
+  band = function(a, b) return a & b end, bxor = function(a, b) return a ~ b end,
+  bnot = function(a) return ~a & 0xFFFFFFFF end, btest = function(a, b) return a & b ~= 0 end,
+  lshift = function(a, n) return (a << n) & 0xFFFFFFFF end, rshift = function(a, n) return (a & 0xFFFFFFFF) >> n end,
+  extract = function(a, f, w) return (a >> f) & ((1 << (w or 1)) - 1) end}]])()
 local cp = Proto("clearpath", "Clearpath platform protocol")
 cp.prefs.port = Pref.uint("UDP port", 0, "UDP port of a Clearpath platform (0: found by the frame's shape alone)")
 cp.prefs.platform_port = Pref.uint("Platform UDP port", 0,

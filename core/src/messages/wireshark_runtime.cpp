@@ -13,6 +13,12 @@ namespace jaus::msg::wireshark {
 
 std::string_view jaus_lua_runtime() {
   return R"lua(
+-- Lua 5.2 (Wireshark 3.x/4.0) has bit32; later Lua has operators instead (kept in a string: 5.2 cannot parse them).
+local bit32 = bit32 or load([[return {
+  band = function(a, b) return a & b end, bxor = function(a, b) return a ~ b end,
+  bnot = function(a) return ~a & 0xFFFFFFFF end, btest = function(a, b) return a & b ~= 0 end,
+  lshift = function(a, n) return (a << n) & 0xFFFFFFFF end, rshift = function(a, n) return (a & 0xFFFFFFFF) >> n end,
+  extract = function(a, f, w) return (a >> f) & ((1 << (w or 1)) - 1) end}]])()
 local jaus = Proto("jaus", "JAUS RA 3.x")
 local OPENJAUS = 1
 jaus.prefs.dialect = Pref.enum("Dialect", 0,
