@@ -29,9 +29,10 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 # Shared libraries the programs link: computed by dpkg-shlibdeps; adduser for postinst.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "adduser")
-# Building a component against the installed libraries needs their headers' dependencies.
+# Building a component against the installed libraries needs their headers' dependencies;
+# the Wireshark plugin needs a Wireshark.
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
-    "cmake, g++, pkg-config, libboost-dev, nlohmann-json3-dev, libpng-dev, libjpeg-dev, libgeographiclib-dev")
+    "wireshark | tshark, cmake, g++, pkg-config, libboost-dev, nlohmann-json3-dev, libpng-dev, libjpeg-dev, libgeographiclib-dev")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
     ${PROJECT_SOURCE_DIR}/packaging/debian/postinst ${PROJECT_SOURCE_DIR}/packaging/debian/prerm
     ${PROJECT_SOURCE_DIR}/packaging/debian/postrm ${PROJECT_SOURCE_DIR}/packaging/debian/conffiles)

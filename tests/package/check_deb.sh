@@ -67,6 +67,8 @@ for path in ./usr/bin/jausd ./usr/bin/jausctl ./usr/bin/clearpath-sim ./usr/bin/
   grep -qx "$path" "$work/contents" || fail "not in the package: $path"
 done
 grep -q '^\./usr/lib/.*cmake/jaus/jausConfig\.cmake$' "$work/contents" || fail "no CMake package in the .deb"
+# The Wireshark plugin, where Debian's Wireshark loads global Lua plugins (docs/wireshark.md).
+grep -Eq '^\./usr/lib/([^/]+/)?wireshark/plugins/jaus\.lua$' "$work/contents" || fail "no Wireshark plugin in the .deb"
 if grep -q '^\./usr/share/man/man1/.*\.1$' "$work/contents"; then fail "man pages must be gzipped"; fi
 
 # lintian (Debian's package checker), where installed: no error or warning
