@@ -87,6 +87,18 @@ std::vector<ocu::Received> collect_reports(CaseContext& c, std::uint16_t code, r
   return reports;
 }
 
+// A connection at 10 Hz that has sent a report (the cases that then see
+// what ends or pauses the reports); terminated again when it has not.
+Expected<Created> created_and_reporting(CaseContext& c, std::uint16_t code, std::uint32_t presence) {
+  auto created = create_accepted(c, code, 10, presence);
+  if (!created) return created;
+  if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
+    terminate(c, *created);
+    return unexpected(make_error(ErrorCode::timeout, "no report in 0.3 s at 10 Hz"));
+  }
+  return created;
+}
+
 CaseOutcome create_and_confirm(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
   auto created = create(c, code, 2, available);
@@ -160,12 +172,8 @@ CaseOutcome rate(CaseContext& c) {
 // After Terminate Service Connection, reports stop.
 CaseOutcome terminate_stops_reports(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
-  auto created = create_accepted(c, code, 10, available);
+  auto created = created_and_reporting(c, code, available);
   if (!created) return fail(created.error().message());
-  if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
-    terminate(c, *created);
-    return fail("no report in 0.3 s at 10 Hz");
-  }
   terminate(c, *created);
   c.session.run_for(std::chrono::milliseconds(200));  // reports already on their way
   const auto after = collect_reports(c, code, std::chrono::milliseconds(500));
@@ -182,12 +190,8 @@ CaseOutcome terminate_stops_reports(CaseContext& c) {
 // silence stops the platform.
 CaseOutcome suspend_stops_reports(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
-  auto created = create_accepted(c, code, 10, available);
+  auto created = created_and_reporting(c, code, available);
   if (!created) return fail(created.error().message());
-  if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
-    terminate(c, *created);
-    return fail("no report in 0.3 s at 10 Hz");
-  }
   send(c, msg::SuspendServiceConnection{{code, created->confirm.instance_id}});
   c.session.run_for(std::chrono::milliseconds(200));  // reports already on their way
   const auto after = collect_reports(c, code, std::chrono::milliseconds(500));
@@ -268,12 +272,8 @@ CaseOutcome too_many_refused(CaseContext& c) {
 // commander whose silence stops the platform.)
 CaseOutcome activate_from_inform_requester_ignored(CaseContext& c) {
   const auto [code, available] = chosen_report(c.component);
-  auto created = create_accepted(c, code, 10, available);
+  auto created = created_and_reporting(c, code, available);
   if (!created) return fail(created.error().message());
-  if (collect_reports(c, code, std::chrono::milliseconds(300)).empty()) {
-    terminate(c, *created);
-    return fail("no report in 0.3 s at 10 Hz");
-  }
   const msg::ServiceConnectionRefBody id{code, created->confirm.instance_id};
   send(c, msg::SuspendServiceConnection{id});
   c.session.run_for(std::chrono::milliseconds(200));  // reports already on their way

@@ -69,6 +69,23 @@ class SilentInStandby final : public rt::Component {
   }
 };
 
+// Sends `report` as a hand-made service connection's provider does: the SC
+// flag and the connection's sequence number.
+template <class M>
+void send_on_connection(rt::Outbox& outbox, const Address& from, const Address& to, std::uint16_t sequence,
+                        const M& report) {
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  const auto size = wire::encode_payload(report, payload);
+  Header h;
+  h.command_code = M::code;
+  h.source = from;
+  h.destination = to;
+  h.service_connection = true;
+  h.sequence = sequence;
+  h.data_size = static_cast<std::uint16_t>(size ? *size : 0);
+  outbox.send(h, std::span(payload).first(size ? *size : 0));
+}
+
 class ObeysAnyone final : public rt::Component {
  public:
   ObeysAnyone(rt::ComponentConfig config, rt::Environment env) : Component(std::move(config), std::move(env)) {
@@ -120,16 +137,7 @@ class EchoesPresence final : public rt::Component {
       report.attitude_rms_rad = 0.1;
       report.time_stamp = TimeStamp{1, 2, 3, 4, 5};
       wire::mask_presence(report, presence_);  // the broken part: not AND the available fields
-      std::vector<std::uint8_t> payload(kMaxPayloadSize);
-      const auto size = wire::encode_payload(report, payload);
-      Header h;
-      h.command_code = msg::ReportGlobalPose::code;
-      h.source = address();
-      h.destination = *requester_;
-      h.service_connection = true;
-      h.sequence = sequence_++;
-      h.data_size = static_cast<std::uint16_t>(size ? *size : 0);
-      env().outbox.send(h, std::span(payload).first(size ? *size : 0));
+      send_on_connection(env().outbox, address(), *requester_, sequence_++, report);
       report_in(std::chrono::milliseconds(100));
     });
   }
@@ -190,17 +198,7 @@ class HandMadeConnections final : public rt::Component {
     timer_ = env().scheduler.call_at(env().clock.now() + delay, [this] {
       if (!requester_) return;
       if (active_) {
-        const msg::ReportGlobalPose report = jausctl::test::PoseSensor::pose();
-        std::vector<std::uint8_t> payload(kMaxPayloadSize);
-        const auto size = wire::encode_payload(report, payload);
-        Header h;
-        h.command_code = msg::ReportGlobalPose::code;
-        h.source = address();
-        h.destination = *requester_;
-        h.service_connection = true;
-        h.sequence = sequence_++;
-        h.data_size = static_cast<std::uint16_t>(size ? *size : 0);
-        env().outbox.send(h, std::span(payload).first(size ? *size : 0));
+        send_on_connection(env().outbox, address(), *requester_, sequence_++, jausctl::test::PoseSensor::pose());
       }
       report_in(flaw_ == ConnectionFlaw::slow_reports ? std::chrono::milliseconds(500)
                                                       : std::chrono::milliseconds(100));
