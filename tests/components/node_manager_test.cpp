@@ -135,7 +135,7 @@ TEST_F(NodeManagerTest, ConfigurationEventsOnEveryChange) {
   deliver(kOcuA, create);
   const auto confirm = outbox.to<msg::ConfirmEventRequest>(kOcuA).at(0);
   EXPECT_EQ(confirm.request_id, 9);
-  EXPECT_EQ(confirm.response_code, components::event_response::kSuccessful);
+  EXPECT_EQ(confirm.response_code, msg::event_response::kSuccessful);
   EXPECT_EQ(manager->event_subscriptions(), 1u);
 
   directory.components = {manager.get()};  // the driver went away
@@ -168,7 +168,7 @@ TEST_F(NodeManagerTest, SubsystemListEventsOnEveryChangeAtABoundedRate) {
   deliver(kOcuA, create);
   const auto confirm = outbox.to<msg::ConfirmEventRequest>(kOcuA).at(0);
   EXPECT_EQ(confirm.message_code, msg::ReportSubsystemList::code);
-  EXPECT_EQ(confirm.response_code, components::event_response::kSuccessful);
+  EXPECT_EQ(confirm.response_code, msg::event_response::kSuccessful);
 
   const auto subsystems_in = [](const msg::Event& event) {
     EXPECT_EQ(event.report_code, msg::ReportSubsystemList::code);
@@ -214,8 +214,7 @@ TEST_F(NodeManagerTest, PeriodicConfigurationEventsAndRefusals) {
   msg::CreateEvent other = periodic;
   other.report_code = msg::ReportGlobalPose::code;
   deliver(kOcuB, other);
-  EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code,
-            components::event_response::kMessageNotSupported);
+  EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code, msg::event_response::kMessageNotSupported);
 }
 
 // Events are bounded like service connections: a capped rate, a few per
@@ -232,15 +231,15 @@ TEST_F(NodeManagerTest, EventsAreCappedPerRequesterAndEndWithTheirRequester) {
   const auto confirms = outbox.to<msg::ConfirmEventRequest>(kOcuA);
   ASSERT_EQ(confirms.size(), 6u);
   for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_EQ(confirms[i].response_code, components::event_response::kSuccessful);
+    EXPECT_EQ(confirms[i].response_code, msg::event_response::kSuccessful);
     ASSERT_TRUE(confirms[i].confirmed_rate_hz);
     EXPECT_NEAR(*confirms[i].confirmed_rate_hz, 10, 0.01);  // NodeManagerConfig::max_event_rate_hz
   }
-  EXPECT_EQ(confirms[4].response_code, components::event_response::kRefused);
-  EXPECT_EQ(confirms[5].response_code, components::event_response::kRefused);
+  EXPECT_EQ(confirms[4].response_code, msg::event_response::kRefused);
+  EXPECT_EQ(confirms[5].response_code, msg::event_response::kRefused);
   periodic.request_id = 7;
   deliver(kOcuB, periodic);  // another requester still gets one
-  EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code, components::event_response::kSuccessful);
+  EXPECT_EQ(outbox.to<msg::ConfirmEventRequest>(kOcuB).at(0).response_code, msg::event_response::kSuccessful);
   EXPECT_EQ(manager->event_subscriptions(), 5u);
 
   manager->peer_lost(kOcuA);

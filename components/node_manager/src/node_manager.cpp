@@ -118,25 +118,26 @@ void NodeManager::confirm_event(const Address& to, std::uint8_t request_id, std:
 
 void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
   if (!supports_events(m.report_code))
-    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kMessageNotSupported);
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt,
+                         msg::event_response::kMessageNotSupported);
   const bool periodic = m.event_type == 0;
   if (!periodic && m.event_type != 1)
-    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kInvalidSetup);
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, msg::event_response::kInvalidSetup);
   const double requested = m.requested_rate_hz.value_or(0);
   if (periodic && !(requested > 0))
-    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kInvalidSetup);
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, msg::event_response::kInvalidSetup);
   const double rate = std::min(requested, nm_.max_event_rate_hz);
   const auto held = std::count_if(events_.begin(), events_.end(),
                                   [&](const auto& entry) { return entry.second.requester == h.source; });
   if (static_cast<std::size_t>(held) >= nm_.max_events_per_requester)
-    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kRefused);
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, msg::event_response::kRefused);
   std::uint8_t query_field = msg::identification::kSubsystem;
   if (m.query_message && !m.query_message->empty()) query_field = m.query_message->front();
 
   std::uint8_t id = 0;
   while (events_.contains(id) && id < 255) ++id;
   if (events_.contains(id))
-    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, event_response::kRefused);
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, msg::event_response::kRefused);
   EventSubscription& e = events_[id];
   e.requester = h.source;
   e.report_code = m.report_code;
@@ -152,7 +153,7 @@ void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
            h.source.to_string();
   });
   confirm_event(h.source, m.request_id, m.report_code, id, periodic ? std::optional<double>(rate) : std::nullopt,
-                event_response::kSuccessful);
+                msg::event_response::kSuccessful);
   if (periodic) send_event(e);
 }
 
@@ -177,7 +178,7 @@ void NodeManager::on_cancel_event(const Header& h, const msg::CancelEvent& m) {
     if (it->second.requester == h.source && same_id) {
       if (it->second.timer != kNoTimer) env().scheduler.cancel(it->second.timer);
       confirm_event(h.source, m.request_id, it->second.report_code, it->first, std::nullopt,
-                    event_response::kSuccessful);
+                    msg::event_response::kSuccessful);
       events_.erase(it);
       return;
     }

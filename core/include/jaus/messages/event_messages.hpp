@@ -99,13 +99,24 @@ struct CancelEventBody {
 
 // Confirm Event Request response codes, as the RA 3.3 peers (and our node
 // manager) send them; Part 3 defines only 0.
-inline constexpr auto kEventResponse = wire::enum_of<std::uint8_t>({{0, "successful"},
-                                                                    {1, "periodic_not_supported"},
-                                                                    {2, "change_based_not_supported"},
-                                                                    {3, "connection_refused"},
-                                                                    {4, "invalid_event_setup"},
-                                                                    {5, "message_not_supported"},
-                                                                    {6, "invalid_event_id_for_update"}});
+namespace event_response {
+inline constexpr std::uint8_t kSuccessful = 0;
+inline constexpr std::uint8_t kPeriodicNotSupported = 1;
+inline constexpr std::uint8_t kChangeNotSupported = 2;
+inline constexpr std::uint8_t kRefused = 3;
+inline constexpr std::uint8_t kInvalidSetup = 4;
+inline constexpr std::uint8_t kMessageNotSupported = 5;
+inline constexpr std::uint8_t kInvalidEventIdForUpdate = 6;
+}  // namespace event_response
+
+inline constexpr auto kEventResponse =
+    wire::enum_of<std::uint8_t>({{event_response::kSuccessful, "successful"},
+                                 {event_response::kPeriodicNotSupported, "periodic_not_supported"},
+                                 {event_response::kChangeNotSupported, "change_based_not_supported"},
+                                 {event_response::kRefused, "connection_refused"},
+                                 {event_response::kInvalidSetup, "invalid_event_setup"},
+                                 {event_response::kMessageNotSupported, "message_not_supported"},
+                                 {event_response::kInvalidEventIdForUpdate, "invalid_event_id_for_update"}});
 
 struct ConfirmEventRequestBody {
   std::uint8_t request_id = 0;

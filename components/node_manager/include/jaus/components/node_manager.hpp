@@ -34,16 +34,6 @@ struct NodeManagerConfig {
   std::size_t max_events_per_requester = 4;
 };
 
-// Event response codes (Confirm Event Request).
-namespace event_response {
-inline constexpr std::uint8_t kSuccessful = 0;
-inline constexpr std::uint8_t kPeriodicNotSupported = 1;
-inline constexpr std::uint8_t kChangeNotSupported = 2;
-inline constexpr std::uint8_t kRefused = 3;
-inline constexpr std::uint8_t kInvalidSetup = 4;
-inline constexpr std::uint8_t kMessageNotSupported = 5;
-}  // namespace event_response
-
 class NodeManager final : public rt::Component, public rt::ConfigurationObserver {
  public:
   NodeManager(rt::ComponentConfig config, rt::Environment env, const rt::NodeDirectory& directory, NodeManagerConfig nm);
