@@ -91,20 +91,21 @@ TEST(JausConformUsage, AComponentThatDoesNotAnswerFailsAndTheOthersAreStillTeste
 
 // A node that is not there: exit 2 and one line saying so.
 TEST(JausConformUsage, NoNodeIsExit2AndOneLine) {
-  ChildProcess conform(
-      {JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--wait", "0.5"},
-      (std::filesystem::temp_directory_path() / ("jaus-conform-none-" + std::to_string(::getpid()) + ".log")).string());
+  const auto log =
+      std::filesystem::temp_directory_path() / ("jaus-conform-none-" + std::to_string(::getpid()) + ".log");
+  ChildProcess conform({JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--wait", "0.5"}, log.string());
   EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
   EXPECT_TRUE(conform.output_contains("jaus-conform: no JAUS node heard at 127.0.0.42:3794 within 0.5 s"))
       << conform.output();
+  if (!HasFailure()) std::filesystem::remove(log);  // kept when it failed, to look at
 }
 
 TEST(JausConformUsage, BadArgumentsAreExit2AndOneLine) {
-  ChildProcess conform(
-      {JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--profile", "nasa"},
-      (std::filesystem::temp_directory_path() / ("jaus-conform-bad-" + std::to_string(::getpid()) + ".log")).string());
+  const auto log = std::filesystem::temp_directory_path() / ("jaus-conform-bad-" + std::to_string(::getpid()) + ".log");
+  ChildProcess conform({JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--profile", "nasa"}, log.string());
   EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
   EXPECT_TRUE(conform.output_contains("jaus-conform: --profile nasa: expected ra or openjaus")) << conform.output();
+  if (!HasFailure()) std::filesystem::remove(log);  // kept when it failed, to look at
 }
 
 }  // namespace
