@@ -51,10 +51,11 @@ class ControlHeld {
     request();
   }
   ~ControlHeld() { release(); }
-  // Releases control now (a case that checks what a release does).
+  // Releases control now (a case that checks what a release does). Also
+  // after an ask_again() that went unanswered: control may still be held.
   void release() {
-    if (granted_) send_from(c_, by_, c_.target(), msg::ReleaseComponentControl{});
-    granted_ = false;
+    if (may_hold_) send_from(c_, by_, c_.target(), msg::ReleaseComponentControl{});
+    granted_ = may_hold_ = false;
   }
   ControlHeld(const ControlHeld&) = delete;
   ControlHeld& operator=(const ControlHeld&) = delete;
@@ -89,6 +90,7 @@ class ControlHeld {
       return;
     }
     granted_ = confirm->response_code == msg::control_response::kAccepted;
+    may_hold_ = may_hold_ || granted_;
     if (!granted_) why_ = "Confirm Component Control response " + std::to_string(confirm->response_code);
   }
 
@@ -96,6 +98,7 @@ class ControlHeld {
   ocu::OcuSession& by_;
   std::uint8_t authority_;
   bool granted_ = false;
+  bool may_hold_ = false;  // granted since the last release
   std::string why_;
 };
 
