@@ -32,17 +32,9 @@ class FlawedComponentsFail : public ::testing::TestWithParam<Flawed> {
  protected:
   void SetUp() override {
     broken = std::make_unique<test::BrokenNode>(io);
-    session = open(Address{254, 1, 40, 1});
-  }
-
-  std::unique_ptr<ocu::OcuSession> open(const Address& self) {
-    ocu::SessionOptions options;
-    options.self = self;
-    options.to = {broken->endpoint()};
-    options.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
-    auto opened = ocu::OcuSession::open(options, &io);
-    if (!opened) throw std::runtime_error(opened.error().message());
-    return std::move(*opened);
+    auto opened = test::open_session(io, {broken->endpoint()});
+    ASSERT_TRUE(opened) << opened.error().message();
+    session = std::move(*opened);
   }
 
   boost::asio::io_context io;
@@ -54,16 +46,16 @@ TEST_P(FlawedComponentsFail, TheCaseThatLooksForTheFlawFailsSayingWhy) {
   const Flawed& flawed = GetParam();
   std::unique_ptr<ocu::OcuSession> other;
   if (flawed.controlled_by_another) {
-    other = open(Address{254, 7, 40, 1});
+    auto opened = test::open_session(io, {broken->endpoint()}, Address{254, 7, 40, 1});
+    ASSERT_TRUE(opened) << opened.error().message();
+    other = std::move(*opened);
     other->send(flawed.address, msg::RequestComponentControl{{255}});
     auto confirm = other->await_reply(flawed.address, {msg::ConfirmComponentControl::code}, 2s);
     ASSERT_TRUE(confirm) << confirm.error().message();
   }
-  auto component = learn_component(*session, flawed.address, nullptr, 1s);
-  ASSERT_TRUE(component) << component.error().message();
   RunOptions options;
   options.only = std::string(flawed.case_id);
-  const auto results = run_cases(*session, *component, all_cases(), options);
+  const auto results = test::run_on(*session, flawed.address, options);
   ASSERT_EQ(results.size(), 1u) << describe(results);
   EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
   EXPECT_NE(results[0].outcome.detail.find(flawed.says), std::string::npos) << results[0].outcome.detail;
@@ -100,16 +92,11 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(RobustnessCases, EachFailsAgainstAComponentThatNeverChecksAPayload) {
   boost::asio::io_context io;
   test::LenientPeer lenient(io);
-  ocu::SessionOptions options;
-  options.to = {lenient.endpoint()};
-  options.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
-  auto session = ocu::OcuSession::open(options, &io);
+  auto session = test::open_session(io, {lenient.endpoint()});
   ASSERT_TRUE(session) << session.error().message();
-  auto component = learn_component(**session, test::LenientPeer::kAddress, nullptr, 1s);
-  ASSERT_TRUE(component) << component.error().message();
   RunOptions run;
   run.only = "robust.";
-  const auto results = run_cases(**session, *component, all_cases(), run);
+  const auto results = test::run_on(**session, test::LenientPeer::kAddress, run);
   ASSERT_EQ(results.size(), robustness_cases().size()) << describe(results);
   const std::pair<std::string_view, std::string_view> expected[] = {
       {"robust.unknown_code", "answered an unknown code with 0x4002"},

@@ -31,27 +31,19 @@ class Conformance : public ::testing::Test {
   void SetUp() override {
     target = std::make_unique<jausctl::test::TargetNode>(io);
     broken = std::make_unique<test::BrokenNode>(io);
-    ocu::SessionOptions options;
-    options.to = {target->endpoint(), broken->endpoint()};
-    options.bind = transport::Ipv4Endpoint{kLoopback, 0};
-    auto opened = ocu::OcuSession::open(options, &io);
+    auto opened = test::open_session(io, {target->endpoint(), broken->endpoint()});
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
 
   std::vector<CaseResult> run(const Address& address, std::string only = {}) {
-    auto component = learn_component(*session, address, nullptr, 1s);
-    if (!component) {
-      ADD_FAILURE() << address.to_string() << ": " << component.error().message();
-      return {};
-    }
     RunOptions options;
     options.only = std::move(only);
     // The silent-requester case takes some 6 s a component (a controller
     // timeout and a liveness timeout on the real clock): it runs on three
     // components in multi_requester_cases_test.cpp, not again here.
     options.skip = "control.silent_requester";
-    return run_cases(*session, *component, all_cases(), options);
+    return test::run_on(*session, address, options);
   }
 
   boost::asio::io_context io;

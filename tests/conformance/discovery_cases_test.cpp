@@ -64,14 +64,12 @@ class DiscoveryCases : public ::testing::Test {
     options.peers = {peer.endpoint()};
     target = std::make_unique<jausctl::test::TargetNode>(io, options);
     peer.heartbeat_to({target->endpoint()});
-    ocu::SessionOptions session_options;
-    session_options.to = {target->endpoint()};  // the peer only through our node
+    std::vector<transport::Ipv4Endpoint> to{target->endpoint()};  // the peer only through our node
     for (const auto flaw : kFlaws) {
       broken.push_back(std::make_unique<test::BrokenDiscoveryNode>(io, flaw));
-      session_options.to.push_back(broken.back()->endpoint());
+      to.push_back(broken.back()->endpoint());
     }
-    session_options.bind = transport::Ipv4Endpoint{kLoopback, 0};
-    auto opened = ocu::OcuSession::open(session_options, &io);
+    auto opened = test::open_session(io, std::move(to));
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
     ASSERT_TRUE(session->run_until(
@@ -80,15 +78,10 @@ class DiscoveryCases : public ::testing::Test {
   }
 
   std::vector<CaseResult> run(const Address& address, std::string only, Profile profile = Profile::ra) {
-    auto component = learn_component(*session, address, nullptr, 1s);
-    if (!component) {
-      ADD_FAILURE() << address.to_string() << ": " << component.error().message();
-      return {};
-    }
     RunOptions options;
     options.only = std::move(only);
     options.profile = profile;
-    return run_cases(*session, *component, all_cases(), options);
+    return test::run_on(*session, address, options);
   }
 
   // The one case `id` against the node manager broken with `flaw`: it fails.

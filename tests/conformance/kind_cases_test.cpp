@@ -26,27 +26,19 @@ class KindConformance : public ::testing::Test {
   void SetUp() override {
     ours = std::make_unique<KindNode>(io);
     broken = std::make_unique<BrokenNode>(io);
-    ocu::SessionOptions options;
-    options.to = {ours->endpoint(), broken->endpoint()};
-    options.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
-    auto opened = ocu::OcuSession::open(options, &io);
+    auto opened = open_session(io, {ours->endpoint(), broken->endpoint()});
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
 
   std::vector<CaseResult> run(const Address& address, std::string only = {}) {
-    auto component = learn_component(*session, address, nullptr, 1s);
-    if (!component) {
-      ADD_FAILURE() << address.to_string() << ": " << component.error().message();
-      return {};
-    }
     RunOptions options;
     options.only = std::move(only);
     // The silent-requester case takes some 6 s a component (a controller
     // timeout and a liveness timeout on the real clock): it runs on three
     // components in multi_requester_cases_test.cpp, not again here.
     options.skip = "control.silent_requester";
-    return run_cases(*session, *component, all_cases(), options);
+    return run_on(*session, address, options);
   }
 
   // Nobody controls `component` within a generous deadline: the runner's

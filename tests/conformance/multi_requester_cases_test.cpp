@@ -34,25 +34,17 @@ class MultiRequester : public ::testing::Test {
   void SetUp() override {
     target = std::make_unique<jausctl::test::TargetNode>(io);
     broken = std::make_unique<test::BrokenNode>(io);
-    ocu::SessionOptions options;
-    options.to = {target->endpoint(), broken->endpoint()};
-    options.bind = transport::Ipv4Endpoint{kLoopback, 0};
-    auto opened = ocu::OcuSession::open(options, &io);
+    auto opened = test::open_session(io, {target->endpoint(), broken->endpoint()});
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
 
   // Runs the one case `id` against `address`.
   CaseResult run_one(const Address& address, std::string_view id, Profile profile = Profile::ra) {
-    auto component = learn_component(*session, address, nullptr, 1s);
-    if (!component) {
-      ADD_FAILURE() << address.to_string() << ": " << component.error().message();
-      return {};
-    }
     RunOptions options;
     options.profile = profile;
     options.only = std::string(id);
-    auto results = run_cases(*session, *component, all_cases(), options);
+    auto results = test::run_on(*session, address, options);
     EXPECT_EQ(results.size(), 1u) << describe(results);
     if (results.empty()) return {};
     EXPECT_EQ(results[0].test_case->id, id);
