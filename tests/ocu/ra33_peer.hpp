@@ -14,36 +14,23 @@
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
-#include <boost/asio/ip/udp.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <array>
 #include <map>
 #include <vector>
 
-#include "jaus/messages/all.hpp"
-#include "jaus/transport/framing.hpp"
-#include "jaus/transport/ipv4.hpp"
+#include "scripted_udp_peer.hpp"
 
 namespace jausctl::test {
 
-class Ra33Peer {
+class Ra33Peer final : public ScriptedUdpPeer {
  public:
   static constexpr std::uint8_t kSubsystem = 1;
   static constexpr jaus::Address kManager{kSubsystem, 1, 1, 1};
   static constexpr jaus::Address kCommunicator{kSubsystem, 1, 35, 1};
   static constexpr const char* kName = "ra33-vehicle";
 
-  explicit Ra33Peer(boost::asio::io_context& io) : socket_(io), timer_(io) {
-    namespace ip = boost::asio::ip;
-    socket_.open(ip::udp::v4());
-    socket_.bind(ip::udp::endpoint(ip::make_address_v4("127.0.0.1"), 0));
-    receive();
-  }
+  explicit Ra33Peer(boost::asio::io_context& io) : ScriptedUdpPeer(io), timer_(io) {}
 
-  jaus::transport::Ipv4Endpoint endpoint() const {
-    const auto e = socket_.local_endpoint();
-    return jaus::transport::Ipv4Endpoint{e.address().to_v4().to_uint(), e.port()};
-  }
   // Starts the 1 Hz heartbeats to `to` (its configured peers).
   void heartbeat_to(std::vector<jaus::transport::Ipv4Endpoint> to) {
     heartbeat_to_ = std::move(to);
@@ -52,8 +39,7 @@ class Ra33Peer {
   // Gone without a word (power cut): nothing in or out.
   void go_silent() {
     timer_.cancel();
-    boost::system::error_code ignored;
-    socket_.close(ignored);
+    close();
   }
 
   // What it accepted and what it dropped (addressed to another subsystem).
@@ -61,21 +47,7 @@ class Ra33Peer {
   std::vector<jaus::Header> dropped;
 
  private:
-  using Endpoint = boost::asio::ip::udp::endpoint;
-
-  void receive() {
-    socket_.async_receive_from(boost::asio::buffer(buffer_), from_,
-                               [this](const boost::system::error_code& ec, std::size_t size) {
-                                 if (ec == boost::asio::error::operation_aborted || !socket_.is_open()) return;
-                                 if (!ec) on_datagram(std::span(buffer_).first(size));
-                                 receive();
-                               });
-  }
-
-  void on_datagram(std::span<const std::uint8_t> datagram) {
-    const auto unframed = jaus::transport::unframe(datagram);
-    if (!unframed) return;
-    const jaus::Header& h = unframed->packet.header;
+  void on_packet(const jaus::Header& h, std::span<const std::uint8_t> payload) override {
     const auto to = h.destination;
     if (to.subsystem != kSubsystem && to.subsystem != jaus::Address::kBroadcast) {
       dropped.push_back(h);
@@ -84,7 +56,7 @@ class Ra33Peer {
     accepted.push_back(h);
     heard_[h.source.subsystem] = h.source;
     for (const jaus::Address self : {kManager, kCommunicator})
-      if (to.matches(self)) answer(self, h, unframed->packet.payload);
+      if (to.matches(self)) answer(self, h, payload);
   }
 
   void answer(const jaus::Address& self, const jaus::Header& h, std::span<const std::uint8_t> payload) {
@@ -120,30 +92,6 @@ class Ra33Peer {
     }
   }
 
-  template <class M>
-  void reply(const jaus::Address& from, const jaus::Address& to, const M& message) {
-    send(from, to, message, from_);
-  }
-
-  template <class M>
-  void send(const jaus::Address& from, const jaus::Address& to, const M& message, const Endpoint& endpoint) {
-    std::vector<std::uint8_t> packet(jaus::kHeaderSize + jaus::kMaxPayloadSize);
-    const auto size = jaus::wire::encode_payload(message, std::span(packet).subspan(jaus::kHeaderSize));
-    if (!size) return;
-    jaus::Header h;
-    h.command_code = M::code;
-    h.source = from;
-    h.destination = to;
-    h.data_size = static_cast<std::uint16_t>(*size);
-    jaus::encode_header_unchecked(h, std::span(packet).first<jaus::kHeaderSize>());
-    packet.resize(jaus::kHeaderSize + *size);
-    const auto prefix = jaus::transport::frame_prefix(jaus::transport::Framing::opc, packet.size());
-    std::vector<std::uint8_t> datagram(prefix.view().begin(), prefix.view().end());
-    datagram.insert(datagram.end(), packet.begin(), packet.end());
-    boost::system::error_code ignored;
-    socket_.send_to(boost::asio::buffer(datagram), endpoint, 0, ignored);
-  }
-
   void heartbeat() {
     for (const auto& peer : heartbeat_to_) {
       const Endpoint endpoint(boost::asio::ip::address_v4(peer.address), peer.port);
@@ -156,10 +104,7 @@ class Ra33Peer {
     });
   }
 
-  boost::asio::ip::udp::socket socket_;
   boost::asio::steady_timer timer_;
-  Endpoint from_;
-  std::array<std::uint8_t, 9000> buffer_{};
   std::vector<jaus::transport::Ipv4Endpoint> heartbeat_to_;
   std::map<std::uint8_t, jaus::Address> heard_;  // by subsystem: who spoke for it
 };
