@@ -27,6 +27,8 @@ inline std::string outcome_text(const cp::CommandOutcome& o) {
     case cp::CommandError::no_ack: return "no answer after " + std::to_string(o.attempts) + " attempts";
     case cp::CommandError::link_down: return "link down";
     case cp::CommandError::not_encodable: return "not encodable";
+    case cp::CommandError::superseded: return "superseded by a newer command";
+    case cp::CommandError::queue_full: return "refused: too many commands waiting";
   }
   return "failed";
 }

@@ -29,13 +29,109 @@ std::uint32_t ClientCore::next_timestamp(rt::TimePoint now) {
   return last_timestamp_;
 }
 
+namespace {
+
+// Every id of `older` is among those of `newer` (channels, joints).
+template <class Record, class Id>
+bool ids_covered(const std::vector<Record>& newer, const std::vector<Record>& older, Id Record::*id) {
+  return std::all_of(older.begin(), older.end(), [&](const Record& o) {
+    return std::any_of(newer.begin(), newer.end(), [&](const Record& n) { return n.*id == o.*id; });
+  });
+}
+
+// Whether `newer` makes `older` (same type and selector) pointless to write:
+// everything `older` would set, `newer` sets too.
+bool covers(const AnyMessage& newer, const AnyMessage& older) {
+  if (const auto* n = newer.get_if<SetGpioOutput>()) return (older.get<SetGpioOutput>().mask & ~n->mask) == 0;
+  if (const auto* n = newer.get_if<SetGpioDirection>()) return (older.get<SetGpioDirection>().mask & ~n->mask) == 0;
+  if (const auto* n = newer.get_if<SetAnalogOutputs>())
+    return ids_covered(n->channels, older.get<SetAnalogOutputs>().channels, &AnalogOutputChannel::channel);
+  if (const auto* n = newer.get_if<SetAbsoluteJoints>())
+    return ids_covered(n->joints, older.get<SetAbsoluteJoints>().joints, &AbsoluteJointTarget::joint);
+  if (newer.get_if<SetRelativeJoints>() != nullptr) return false;  // deltas add up: each one counts
+  // Requests: a single reply (0) leaves the subscription alone (spec,
+  // "Subscriptions"), so it neither replaces a rate or cancel nor is
+  // answered by one.
+  std::optional<bool> newer_once, older_once;
+  visit([&](const auto& m) { if constexpr (requires { m.subscription; }) newer_once = m.subscription == 0; }, newer);
+  visit([&](const auto& m) { if constexpr (requires { m.subscription; }) older_once = m.subscription == 0; }, older);
+  return newer_once == older_once;
+}
+
+}  // namespace
+
+ClientCore::Kind ClientCore::kind_of_message(std::uint16_t type, const AnyMessage& message) {
+  Kind kind{type, 0};
+  visit(
+      [&](const auto& m) {
+        if constexpr (requires { m.mount; }) kind.selector = m.mount;
+        if constexpr (requires { m.joint; }) kind.selector = m.joint;
+      },
+      message);
+  return kind;
+}
+
 void ClientCore::send(AnyMessage message, CommandCallback done) {
   const auto type = type_of(message);
   if (!type || kind_of(*type) == MessageKind::data) {
     if (done) done(CommandOutcome{CommandError::not_encodable, 0, 0});
     return;
   }
-  queue_.push_back(Pending{std::move(message), *type, std::move(done), 0, std::nullopt});
+  const Kind kind = kind_of_message(*type, message);
+  // Safety: the safety word is never refused; it replaces its own waiting
+  // one, so it cannot grow the queue.
+  enqueue(Pending(std::move(message), kind, std::move(done)), *type != SetSafetySystem::kType);
+}
+
+bool ClientCore::enqueue(Pending pending, bool bounded) {
+  const auto replaces = [&](const Pending& waiting) {
+    return waiting.kind == pending.kind && covers(pending.message, waiting.message);
+  };
+  const auto replaced = static_cast<std::size_t>(std::count_if(queue_.begin(), queue_.end(), replaces));
+  if (bounded && waiting_commands() - replaced >= config_.max_waiting_commands) {
+    ++counters_.commands_refused_full;
+    finish(pending, CommandOutcome{CommandError::queue_full, 0, 0});
+    return false;
+  }
+  // Latest wins; the newer one goes to the back, keeping the order in which
+  // commands were sent. Callbacks run last, on a consistent queue (one may send).
+  std::vector<Pending> older;
+  for (auto it = queue_.begin(); it != queue_.end();) {
+    if (!replaces(*it)) {
+      ++it;
+      continue;
+    }
+    older.push_back(std::move(*it));
+    it = queue_.erase(it);
+  }
+  queue_.push_back(std::move(pending));
+  for (auto& o : older) supersede(o);
+  return true;
+}
+
+void ClientCore::supersede(Pending& pending) {
+  ++counters_.commands_superseded;
+  finish(pending, CommandOutcome{CommandError::superseded, 0, pending.attempts});
+}
+
+void ClientCore::supersede_for_setpoint(const AnyMessage& setpoint, std::uint16_t type) {
+  const Kind kind = kind_of_message(type, setpoint);
+  // Safety: a setpoint is written before any waiting command, so an older
+  // command of its kind sent with ACK would land after it (a stale motion
+  // after a zero). Waiting ones are dropped; one in flight was written
+  // before the setpoint, so it may be answered, but it is never retried.
+  for (auto& [key, pending] : in_flight_)
+    if (pending.kind == kind && covers(setpoint, pending.message)) pending.stale = true;
+  std::vector<Pending> older;
+  for (auto it = queue_.begin(); it != queue_.end();) {
+    if (it->kind != kind || !covers(setpoint, it->message)) {
+      ++it;
+      continue;
+    }
+    older.push_back(std::move(*it));
+    it = queue_.erase(it);
+  }
+  for (auto& o : older) supersede(o);
 }
 
 void ClientCore::subscribe(AnyMessage request, CommandCallback done) {
@@ -44,15 +140,12 @@ void ClientCore::subscribe(AnyMessage request, CommandCallback done) {
     if (done) done(CommandOutcome{CommandError::not_encodable, 0, 0});
     return;
   }
-  std::uint8_t selector = 0;
-  visit(
-      [&](const auto& m) {
-        if constexpr (requires { m.mount; }) selector = m.mount;
-        if constexpr (requires { m.joint; }) selector = m.joint;
-      },
-      request);
-  subscriptions_[{*type, selector}] = request;
-  send(std::move(request), std::move(done));
+  const Kind kind = kind_of_message(*type, request);
+  AnyMessage kept = request;
+  // Refused when full: then it is not kept either, or a reconnect would
+  // subscribe to what the application was told failed.
+  if (enqueue(Pending(std::move(request), kind, std::move(done)), true))
+    subscriptions_[{kind.type, kind.selector}] = std::move(kept);
 }
 
 void ClientCore::unsubscribe(std::uint16_t request_type, std::uint8_t selector) {
@@ -65,12 +158,15 @@ void ClientCore::unsubscribe(std::uint16_t request_type, std::uint8_t selector) 
       },
       cancel);
   subscriptions_.erase(it);
-  send(std::move(cancel));
+  // Never refused: a subscription the application gave up must end, and the
+  // cancel replaces any waiting request of its kind.
+  enqueue(Pending(std::move(cancel), Kind{request_type, selector}), false);
 }
 
 void ClientCore::set_setpoint(AnyMessage command, rt::TimePoint now) {
   const auto type = type_of(command);
   if (!type || kind_of(*type) != MessageKind::command) return;
+  supersede_for_setpoint(command, *type);
   auto [it, inserted] = setpoints_.try_emplace(*type, Setpoint{command, now});
   if (!inserted) {
     if (it->second.fresh) ++counters_.setpoints_replaced;  // the older one never went out
@@ -81,6 +177,7 @@ void ClientCore::set_setpoint(AnyMessage command, rt::TimePoint now) {
 void ClientCore::stop_setpoint(AnyMessage stop, rt::TimePoint now) {
   const auto type = type_of(stop);
   if (!type || kind_of(*type) != MessageKind::command) return;
+  supersede_for_setpoint(stop, *type);
   Setpoint setpoint{std::move(stop), now};
   setpoint.stop_once = true;
   setpoints_.insert_or_assign(*type, std::move(setpoint));
@@ -121,28 +218,67 @@ std::vector<std::uint8_t> ClientCore::take_frame(rt::TimePoint now) {
     ++counters_.frames_sent;
     return frame;
   }
-  if (!raw_.empty()) {
+  // The safety word before the cancels of a reconnect and every other command.
+  auto next = next_waiting();
+  if (!raw_.empty() && (next == queue_.end() || next->kind.type != SetSafetySystem::kType)) {
     frame = std::move(raw_.front());
     raw_.pop_front();
     ++counters_.frames_sent;
     return frame;
   }
-  while (!queue_.empty()) {
-    Pending pending = std::move(queue_.front());
-    queue_.pop_front();
+  for (; next != queue_.end(); next = next_waiting()) {
+    Pending pending = std::move(*next);
+    queue_.erase(next);
     const std::uint32_t ts = next_timestamp(now);
-    if (!append_encoded(frame, Envelope{{config_.version, ts, 0, pending.type}, pending.message})) {
+    if (!append_encoded(frame, Envelope{{config_.version, ts, 0, pending.kind.type}, pending.message})) {
       finish(pending, CommandOutcome{CommandError::not_encodable, 0, pending.attempts});
       frame.clear();
       continue;
     }
     ++pending.attempts;
     pending.deadline = now + config_.ack_timeout;
-    in_flight_.emplace(Key{pending.type, ts}, std::move(pending));
+    in_flight_.emplace(AckKey{pending.kind.type, ts}, std::move(pending));
     ++counters_.frames_sent;
     return frame;
   }
   return frame;
+}
+
+bool ClientCore::in_flight(const Kind& kind) const {
+  return std::any_of(in_flight_.begin(), in_flight_.end(), [&](const auto& entry) { return entry.second.kind == kind; });
+}
+
+std::deque<ClientCore::Pending>::iterator ClientCore::next_waiting() {
+  // Safety: Set Safety System first (retries too); otherwise the oldest whose
+  // kind has nothing in flight.
+  const auto safety = std::find_if(queue_.begin(), queue_.end(), [&](const Pending& p) {
+    return p.kind.type == SetSafetySystem::kType && !in_flight(p.kind);
+  });
+  if (safety != queue_.end()) return safety;
+  return std::find_if(queue_.begin(), queue_.end(), [&](const Pending& p) { return !in_flight(p.kind); });
+}
+
+bool ClientCore::retry_or_finish(Pending pending, std::uint16_t result) {
+  // A newer command of its kind waits (or a setpoint of its kind went out):
+  // resending the older one would land after it, so it ends here.
+  const bool newer = std::any_of(queue_.begin(), queue_.end(), [&](const Pending& waiting) {
+    return waiting.kind == pending.kind && covers(waiting.message, pending.message);
+  });
+  if (pending.stale || newer) {
+    supersede(pending);
+    return true;
+  }
+  if (pending.attempts >= config_.max_attempts) {
+    finish(pending, CommandOutcome{CommandError::no_ack, result, pending.attempts});
+    return false;
+  }
+  ++counters_.retries;
+  set_state(ConnectionState::retrying);
+  pending.deadline.reset();
+  // At the front: it is older than everything waiting, and a newer one of its
+  // kind that does not cover it waits behind it (one in flight per kind).
+  queue_.push_front(std::move(pending));  // goes out again with a new timestamp
+  return true;
 }
 
 void ClientCore::finish(Pending& pending, CommandOutcome outcome) {
@@ -156,23 +292,24 @@ void ClientCore::finish(Pending& pending, CommandOutcome outcome) {
 
 void ClientCore::tick(rt::TimePoint now) {
   if (state_ != ConnectionState::connected && state_ != ConnectionState::retrying) return;
+  // Taken out first: the callbacks that retry_or_finish runs may send.
+  std::vector<Pending> expired;
   for (auto it = in_flight_.begin(); it != in_flight_.end();) {
     if (!it->second.deadline || *it->second.deadline > now) {
       ++it;
       continue;
     }
-    Pending pending = std::move(it->second);
+    expired.push_back(std::move(it->second));
     it = in_flight_.erase(it);
+  }
+  bool exhausted = false;
+  for (auto& pending : expired) {
     ++counters_.timeouts;
-    if (pending.attempts < config_.max_attempts) {
-      ++counters_.retries;
-      set_state(ConnectionState::retrying);
-      queue_.push_front(std::move(pending));  // goes out again with a new timestamp
-    } else {
-      finish(pending, CommandOutcome{CommandError::no_ack, 0, pending.attempts});
-      mark_down(now);  // nothing got through: reconnect
-      return;
-    }
+    if (!retry_or_finish(std::move(pending), 0)) exhausted = true;
+  }
+  if (exhausted) {
+    mark_down(now);  // nothing got through: reconnect
+    return;
   }
   // Data expected but none for too long: the link is dead.
   if (!subscriptions_.empty() && now - last_rx_ > config_.data_silence) mark_down(now);
@@ -199,7 +336,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
     if (on_data_) on_data_(*envelope);
     return;
   }
-  const auto it = in_flight_.find(Key{frame.header.type, frame.header.timestamp});
+  const auto it = in_flight_.find(AckKey{frame.header.type, frame.header.timestamp});
   if (it == in_flight_.end()) {
     ++counters_.acks_unmatched;
     return;
@@ -215,14 +352,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
   if ((ack->result & kAckBadChecksum) != 0) {
     // The platform did not get it: resend with a new timestamp.
     ++counters_.bad_checksum_acks;
-    if (pending.attempts < config_.max_attempts) {
-      ++counters_.retries;
-      set_state(ConnectionState::retrying);
-      pending.deadline.reset();
-      queue_.push_front(std::move(pending));
-    } else {
-      finish(pending, CommandOutcome{CommandError::no_ack, ack->result, pending.attempts});
-    }
+    retry_or_finish(std::move(pending), ack->result);
     return;
   }
   ++counters_.acks_refused;  // a definite refusal: report, do not retry
@@ -230,11 +360,14 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
 }
 
 void ClientCore::fail_all(CommandError error) {
-  for (auto& [key, pending] : in_flight_) finish(pending, CommandOutcome{error, 0, pending.attempts});
+  // Moved out before any callback runs: a callback may send again.
+  auto in_flight = std::move(in_flight_);
+  auto queue = std::move(queue_);
   in_flight_.clear();
-  for (auto& pending : queue_) finish(pending, CommandOutcome{error, 0, pending.attempts});
   queue_.clear();
   raw_.clear();
+  for (auto& [key, pending] : in_flight) finish(pending, CommandOutcome{error, 0, pending.attempts});
+  for (auto& pending : queue) finish(pending, CommandOutcome{error, 0, pending.attempts});
 }
 
 void ClientCore::resubscribe() {
@@ -253,8 +386,14 @@ void ClientCore::resubscribe() {
     if (append_encoded(frame, Envelope{{config_.version, next_timestamp(last_rx_), kFlagSuppressAck, info.type}, *cancel}))
       raw_.push_back(std::move(frame));
   }
-  for (const auto& [key, request] : subscriptions_)
-    queue_.push_back(Pending{request, key.first, nullptr, 0, std::nullopt});
+  // Never refused (the queue is empty after a disconnection). A request of
+  // its kind already waiting (the application's own, sent before the link
+  // came up) asks for it already: it is not replaced.
+  for (const auto& [key, request] : subscriptions_) {
+    const Kind kind{key.first, key.second};
+    const bool waiting = std::any_of(queue_.begin(), queue_.end(), [&](const Pending& p) { return p.kind == kind; });
+    if (!waiting) enqueue(Pending(request, kind), false);
+  }
 }
 
 void ClientCore::on_connected(rt::TimePoint now) {

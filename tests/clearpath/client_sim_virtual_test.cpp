@@ -84,6 +84,7 @@ TEST(ClearpathClientSim, RefusalsAreTypedAndNotRetried) {
   std::vector<cp::CommandOutcome> outcomes;
   auto record = [&](const cp::CommandOutcome& o) { outcomes.push_back(o); };
   link.client.send(velocity(0.5, 0), record);
+  link.run_for(20ms);  // answered before the next velocity, which would otherwise replace it (latest wins)
   cp::SetVelocity bad = velocity(0.5, 0);
   bad.acceleration = -1;  // encodable, but out of the documented range
   link.client.send(bad, record);
@@ -145,6 +146,7 @@ TEST(ClearpathClientSim, SubscriptionLimitsAnswerTheRightBits) {
   cp::RequestEncoders too_fast;
   too_fast.subscription = 500;
   link.client.subscribe(too_fast, record);
+  link.run_for(20ms);  // answered before `c` (the same request type), which would otherwise replace it
   cp::RequestSystemStatus a;
   a.subscription = 100;
   cp::RequestPowerStatus b;
@@ -176,13 +178,22 @@ TEST(ClearpathClientSim, RetriesUnderInjectedCorruption) {
   cp::ClientConfig client;
   client.max_attempts = 10;
   VirtualLink link({}, faults, client);
-  int ok = 0;
+  int ok = 0, superseded = 0;
+  bool last_ok = false;
   for (int i = 0; i < 50; ++i) {
-    link.client.send(velocity(0.01 * i, 0), [&](const cp::CommandOutcome& o) { ok += o.ok(); });
+    link.client.send(velocity(0.01 * i, 0), [&, i](const cp::CommandOutcome& o) {
+      ok += o.ok();
+      superseded += o.error == cp::CommandError::superseded;
+      if (i == 49) last_ok = o.ok();
+    });
     link.run_for(100ms);
   }
   link.run_for(5s);  // let the last retries finish
-  EXPECT_EQ(ok, 50);
+  // One still being retried when the next velocity is sent is not retried
+  // again (latest wins); every other one gets through.
+  EXPECT_EQ(ok + superseded, 50);
+  EXPECT_TRUE(last_ok);
+  EXPECT_EQ(link.client.counters().commands_superseded, static_cast<std::uint64_t>(superseded));
   EXPECT_NE(link.client.state(), cp::ConnectionState::down);
   EXPECT_GT(link.client.counters().retries, 0u);
   EXPECT_GT(link.client.counters().bad_checksum_acks + link.client.counters().timeouts, 0u);

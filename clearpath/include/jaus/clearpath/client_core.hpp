@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -33,6 +34,14 @@ struct ClientConfig {
   std::chrono::milliseconds backoff_initial{100};
   std::chrono::milliseconds backoff_max{2000};
   std::uint8_t version = kDefaultVersion;
+  // Commands and requests sent with ACK that are not finished yet (waiting to
+  // be written, or written and waiting for their ACK). A send() or subscribe()
+  // beyond it finishes at once with CommandError::queue_full, so an
+  // application that commands faster than the link cannot grow memory without
+  // end. Set Safety System, cancels (unsubscribe) and the re-requests of a
+  // reconnect are never refused: each replaces its own waiting one, so they
+  // cannot pile up.
+  std::size_t max_waiting_commands = 64;
 };
 
 enum class ConnectionState { down, connecting, connected, retrying };
@@ -44,6 +53,8 @@ enum class CommandError {
   no_ack,       // every attempt timed out or came back "bad checksum"
   link_down,    // the link went down before an answer
   not_encodable,
+  superseded,   // a newer command of its kind (or a setpoint of its type) replaced it
+  queue_full,   // refused at once: max_waiting_commands are waiting already
 };
 
 struct CommandOutcome {
@@ -61,6 +72,8 @@ struct ClientCounters {
   std::uint64_t reconnects = 0, setpoints_sent = 0, setpoints_replaced = 0;
   std::uint64_t setpoints_expired = 0;  // older than setpoint_max_age: no longer sent
   std::uint64_t setpoints_dropped = 0;  // the link went down: a reconnect never re-arms them
+  std::uint64_t commands_superseded = 0;    // finished superseded (never written, or not retried)
+  std::uint64_t commands_refused_full = 0;  // finished queue_full
 };
 
 class ClientCore {
@@ -90,20 +103,46 @@ class ClientCore {
   // ---- from the application ---------------------------------------------------
   // A command or request sent with ACK, retried with a new timestamp on
   // timeout or "bad checksum"; done(outcome) runs once.
+  //
+  // Ordering, per kind: a kind is the message type plus, where the type
+  // addresses one of several things, its mount (0x0400) or joint (0x1012,
+  // 0x1013, and the requests that carry one), as subscriptions are keyed.
+  // - One in flight per kind: a newer command of a kind waits until the
+  //   older one is answered, so a retry can never land after a newer command
+  //   of its kind (a stale safety word or GPIO value would win otherwise).
+  // - Latest wins: a newer command replaces a waiting one of its kind that it
+  //   covers (the older one finishes `superseded`), and an in-flight one that
+  //   times out is not retried when a newer one of its kind waits. Partial
+  //   commands replace only what they cover: Set GPIO Output/Direction a
+  //   subset of their mask, Set Analog Outputs / Set Absolute Joints a subset
+  //   of their channels or joints; Set Relative Joints never (deltas add up);
+  //   a single-reply request only a single-reply request, a subscription
+  //   setting (rate or cancel) only a subscription setting (a single reply
+  //   leaves the subscription alone).
+  // - Set Safety System goes before every other waiting command (only
+  //   setpoints and stops go earlier), retries included.
+  // - Otherwise commands go out in the order they were sent; one waiting for
+  //   its own kind does not hold back those of other kinds.
+  // - At most max_waiting_commands unfinished, else queue_full at once.
   void send(AnyMessage message, CommandCallback done = {});
-  // Keep a subscription (request with subscription N Hz) alive across reconnects.
+  // Keep a subscription (request with subscription N Hz) alive across
+  // reconnects. Refused (queue_full, not kept) like send() when full.
   void subscribe(AnyMessage request, CommandCallback done = {});
   void unsubscribe(std::uint16_t request_type, std::uint8_t selector = 0);
   // Latest-wins stream, one slot per message type (velocity, outputs...),
   // resent every setpoint_period while younger than setpoint_max_age (from
   // `now`, when it was set). The application renews it as long as it wants
   // motion; when it stops renewing, the stream ends and the platform's own
-  // watchdog stops the platform.
+  // watchdog stops the platform. A setpoint supersedes the send() commands of
+  // its kind that it covers: waiting ones finish `superseded` at once, one in
+  // flight is never retried (so no older command of its type sent with ACK
+  // reaches the platform after it).
   void set_setpoint(AnyMessage command, rt::TimePoint now);
   void clear_setpoint(std::uint16_t type);
   // Safety: replaces the stream of this type with `stop` (a zero setpoint),
   // written once, first, at the next frame, and then the stream ends: nothing
-  // of that type is re-sent until set_setpoint() is called again.
+  // of that type is re-sent until set_setpoint() is called again. Supersedes
+  // send() commands of its kind as set_setpoint() does.
   void stop_setpoint(AnyMessage stop, rt::TimePoint now);
   void on_data(DataCallback callback) { on_data_ = std::move(callback); }
   // Every change of state() (down, connecting, connected, retrying).
@@ -113,19 +152,30 @@ class ClientCore {
   const ClientCounters& counters() const { return counters_; }
   const ParserCounters& parser_counters() const { return parser_.counters(); }
   std::uint32_t last_timestamp() const { return last_timestamp_; }
+  // Commands sent with ACK and not finished (what max_waiting_commands bounds).
+  std::size_t waiting_commands() const { return queue_.size() + in_flight_.size(); }
 
  private:
-  struct Pending {
-    AnyMessage message;
+  // What a command addresses: its type, and the mount or joint if it has one.
+  struct Kind {
     std::uint16_t type;
+    std::uint8_t selector;
+    auto operator<=>(const Kind&) const = default;
+  };
+  struct Pending {
+    Pending(AnyMessage m, Kind k, CommandCallback d = {}) : message(std::move(m)), kind(k), done(std::move(d)) {}
+    AnyMessage message;
+    Kind kind;
     CommandCallback done;
     int attempts = 0;
     std::optional<rt::TimePoint> deadline;  // unset: waiting in the queue
+    bool stale = false;  // a setpoint of its kind was written after it: never retried
   };
-  struct Key {
+  // An ACK names the (type, timestamp) it answers.
+  struct AckKey {
     std::uint16_t type;
     std::uint32_t timestamp;
-    auto operator<=>(const Key&) const = default;
+    auto operator<=>(const AckKey&) const = default;
   };
   struct Setpoint {
     AnyMessage message;
@@ -136,7 +186,13 @@ class ClientCore {
   };
 
   std::uint32_t next_timestamp(rt::TimePoint now);
-  void transmit(Pending pending, rt::TimePoint now);
+  static Kind kind_of_message(std::uint16_t type, const AnyMessage& message);
+  bool enqueue(Pending pending, bool bounded);
+  void supersede_for_setpoint(const AnyMessage& setpoint, std::uint16_t type);
+  bool in_flight(const Kind& kind) const;
+  std::deque<Pending>::iterator next_waiting();
+  bool retry_or_finish(Pending pending, std::uint16_t result);
+  void supersede(Pending& pending);
   void finish(Pending& pending, CommandOutcome outcome);
   void fail_all(CommandError error);
   void resubscribe();
@@ -150,9 +206,9 @@ class ClientCore {
   std::uint32_t last_timestamp_ = 0;
   ConnectionState state_ = ConnectionState::down;
   FrameParser parser_;
-  std::deque<Pending> queue_;                 // waiting to be written
+  std::deque<Pending> queue_;                 // waiting to be written, in the order sent
   std::deque<std::vector<std::uint8_t>> raw_; // fire-and-forget frames (cancels)
-  std::map<Key, Pending> in_flight_;
+  std::map<AckKey, Pending> in_flight_;
   std::map<std::pair<std::uint16_t, std::uint8_t>, AnyMessage> subscriptions_;
   std::map<std::uint16_t, Setpoint> setpoints_;
   rt::TimePoint last_rx_{};
