@@ -1,5 +1,11 @@
 #include "jaus/clearpath/link.hpp"
 
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
 
 namespace jaus::clearpath {
@@ -9,6 +15,29 @@ using boost::system::error_code;
 
 namespace {
 constexpr auto kTickPeriod = std::chrono::milliseconds(5);
+// flush() waits this long at most for a full kernel buffer to drain: an exit
+// must not hang on a peer that stopped reading.
+constexpr auto kFlushLimit = std::chrono::seconds(1);
+
+// One non-blocking write of `bytes` to `fd`: how many went (0: the kernel's
+// buffer is full), or an error. A socket is written with MSG_NOSIGNAL, so a
+// TCP peer that went away is an EPIPE error here, never a SIGPIPE.
+std::size_t write_now(int fd, bool socket, std::span<const std::uint8_t> bytes, error_code& ec) {
+  ec.clear();
+  for (;;) {
+    const auto n = socket ? ::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL) : ::write(fd, bytes.data(), bytes.size());
+    if (n >= 0) return static_cast<std::size_t>(n);
+    if (errno == EINTR) continue;
+    if (errno == EAGAIN || errno == EWOULDBLOCK) return 0;
+    ec = error_code(errno, boost::system::system_category());
+    return 0;
+  }
+}
+
+void set_non_blocking(int fd, error_code& ec) {
+  const int flags = ::fcntl(fd, F_GETFL, 0);
+  if (flags < 0 || ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) ec = error_code(errno, boost::system::system_category());
+}
 
 Error bad_endpoint(const std::string& text, std::string_view why) {
   return make_error(ErrorCode::invalid_argument, "'" + text + "' is not a Clearpath endpoint (" + std::string(why) +
@@ -100,7 +129,10 @@ void ClearpathLink::clear_setpoint(std::uint16_t type) { core_.clear_setpoint(ty
 void ClearpathLink::close() {
   ++generation_;
   open_ = false;
-  writing_ = false;
+  // A frame half written stays half written on the old connection (a
+  // platform's parser resynchronises); the next one starts afresh.
+  tx_.clear();
+  tx_sent_ = 0;
   error_code ignored;
   if (serial_.is_open()) serial_.close(ignored);
   if (udp_.is_open()) udp_.close(ignored);
@@ -141,7 +173,9 @@ void ClearpathLink::open() {
       const auto generation = generation_;
       tcp_.async_connect({address, endpoint_.port}, [this, alive = alive_, generation](const error_code& cec) {
         if (!*alive || generation != generation_) return;
-        if (cec) {
+        error_code nec = cec;
+        if (!nec) set_non_blocking(native_handle(), nec);
+        if (nec) {
           close();
           core_.open_failed(clock_.now());
           return;
@@ -154,6 +188,7 @@ void ClearpathLink::open() {
       return;
     }
   }
+  if (!ec) set_non_blocking(native_handle(), ec);
   if (ec) {
     close();
     core_.open_failed(now);
@@ -181,37 +216,71 @@ void ClearpathLink::start_read() {
   }
 }
 
+int ClearpathLink::native_handle() {
+  switch (endpoint_.kind) {
+    case PlatformEndpoint::Kind::serial: return serial_.native_handle();
+    case PlatformEndpoint::Kind::udp: return udp_.native_handle();
+    case PlatformEndpoint::Kind::tcp: return tcp_.native_handle();
+  }
+  return -1;
+}
+
+// Writes are ours, non-blocking and synchronous, not Asio's async_write:
+// what has gone out of the current frame (tx_sent_) is then always known on
+// this thread, so flush() can finish exactly that frame before writing its
+// own. With an async_write in flight, the bytes it has already written are
+// known only to its handler, which runs only if the io_context runs again
+// (an exit does not), and a synchronous write beside it would put another
+// frame into the middle of a half-written one. A full kernel buffer (rare:
+// 4 KiB of tty buffer is a third of a second at 115200 baud) leaves the rest
+// for the next tick.
 void ClearpathLink::pump() {
   if (!open_ || writing_) return;
-  tx_ = core_.take_frame(clock_.now());
-  if (tx_.empty()) return;
-  writing_ = true;
-  const auto generation = generation_;
-  auto handler = [this, alive = alive_, generation](const error_code& ec, std::size_t n) {
-    if (!*alive || generation != generation_) return;
-    writing_ = false;
-    if (ec) return fail(ec);
-    if (on_written_) on_written_(std::span<const std::uint8_t>(tx_).first(n));
-    pump();
-  };
-  switch (endpoint_.kind) {
-    case PlatformEndpoint::Kind::serial: asio::async_write(serial_, asio::buffer(tx_), handler); break;
-    case PlatformEndpoint::Kind::udp: udp_.async_send(asio::buffer(tx_), handler); break;
-    case PlatformEndpoint::Kind::tcp: asio::async_write(tcp_, asio::buffer(tx_), handler); break;
+  writing_ = true;  // on_written may send: that frame goes out in this loop
+  while (open_) {
+    if (tx_sent_ == tx_.size()) {
+      tx_ = core_.take_frame(clock_.now());
+      tx_sent_ = 0;
+      if (tx_.empty()) break;
+    }
+    error_code ec;
+    tx_sent_ += write_now(native_handle(), endpoint_.kind != PlatformEndpoint::Kind::serial,
+                          std::span<const std::uint8_t>(tx_).subspan(tx_sent_), ec);
+    if (ec) {
+      writing_ = false;
+      return fail(ec);
+    }
+    if (tx_sent_ < tx_.size()) break;  // the kernel's buffer is full
+    if (on_written_) on_written_(tx_);
   }
+  writing_ = false;
 }
 
 void ClearpathLink::flush() {
-  if (!open_) return;
-  error_code ignored;
-  for (auto frame = core_.take_frame(clock_.now()); !frame.empty(); frame = core_.take_frame(clock_.now())) {
-    switch (endpoint_.kind) {
-      case PlatformEndpoint::Kind::serial: asio::write(serial_, asio::buffer(frame), ignored); break;
-      case PlatformEndpoint::Kind::udp: udp_.send(asio::buffer(frame), 0, ignored); break;
-      case PlatformEndpoint::Kind::tcp: asio::write(tcp_, asio::buffer(frame), ignored); break;
+  if (!open_ || writing_) return;
+  const int fd = native_handle();
+  const bool socket = endpoint_.kind != PlatformEndpoint::Kind::serial;
+  const auto limit = std::chrono::steady_clock::now() + kFlushLimit;
+  // Waits (poll) while the kernel's buffer is full, up to kFlushLimit in all.
+  const auto write_all = [&](std::span<const std::uint8_t> bytes) {
+    while (!bytes.empty()) {
+      error_code ec;
+      const auto n = write_now(fd, socket, bytes, ec);
+      if (ec) return false;
+      bytes = bytes.subspan(n);
+      if (n > 0) continue;
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(limit - std::chrono::steady_clock::now());
+      pollfd p{fd, POLLOUT, 0};
+      if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;
     }
-    if (ignored) return;
-  }
+    return true;
+  };
+  // The rest of a frame the last pump left half written first, or the
+  // platform would get the start of one frame and then another.
+  if (!write_all(std::span<const std::uint8_t>(tx_).subspan(tx_sent_))) return;
+  tx_sent_ = tx_.size();
+  for (auto frame = core_.take_frame(clock_.now()); !frame.empty(); frame = core_.take_frame(clock_.now()))
+    if (!write_all(frame)) return;
 }
 
 void ClearpathLink::on_tick() {

@@ -2,8 +2,15 @@
 // Generous timeouts; assertions are about behaviour, not timing figures.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <poll.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cstdlib>
 #include <functional>
 #include <map>
+#include <thread>
 
 #include "jaus/clearpath/link.hpp"
 #include "jaus/clearpath/sim/sim_server.hpp"
@@ -138,6 +145,78 @@ TEST(ClearpathLink, MissingSerialPortMeansRetryingNeverExit) {
   EXPECT_EQ(link.core().state(), cp::ConnectionState::down);
   EXPECT_TRUE(link.core().wants_reconnect());
   link.stop();
+}
+
+// A serial line whose far end reads nothing until flush(): the link's
+// frames fill the kernel's buffer and one is left half written. flush() must
+// finish that frame before its own, so the far end parses every frame clean
+// and the stop's zero velocity comes last.
+TEST(ClearpathLinkPty, FlushFinishesAHalfWrittenFrameBeforeItsOwn) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const char* name = ::ptsname(master);
+  ASSERT_NE(name, nullptr);
+  termios raw{};
+  ::tcgetattr(master, &raw);
+  ::cfmakeraw(&raw);
+  ::tcsetattr(master, TCSANOW, &raw);
+
+  boost::asio::io_context io;
+  jaus::transport::AsioRuntime runtime(io);
+  cp::PlatformEndpoint target;
+  target.kind = cp::PlatformEndpoint::Kind::serial;
+  target.device = name;
+  cp::ClearpathLink link(io, runtime, runtime, target);
+  std::size_t written = 0;
+  link.on_written([&](std::span<const std::uint8_t>) { ++written; });
+  link.start();  // opens at once; the io_context never runs in this test
+  ASSERT_EQ(link.state(), cp::ConnectionState::connected);
+
+  // Big fresh setpoints, each written at once, until the buffer is full.
+  cp::SetAbsoluteJoints big;
+  for (std::uint8_t j = 0; j < 80; ++j) big.joints.push_back({j, 0.001 * j});
+  for (int i = 0; i < 4000 && link.counters().setpoints_replaced == 0; ++i) {
+    big.joints[0].angle = 0.0001 * (i % 1000);
+    link.set_setpoint(big);
+  }
+  ASSERT_GT(link.counters().setpoints_replaced, 0u) << "the PTY's buffer never filled";
+  ASSERT_GT(written, 10u);  // whole frames went first: the buffer, not the link, held the rest
+  cp::SetVelocity zero;
+  zero.acceleration = 1.0;
+  link.stop_setpoint(zero);
+
+  // The far end starts reading while flush() waits for room.
+  std::vector<std::uint8_t> received;
+  std::thread reader([&] {
+    std::this_thread::sleep_for(100ms);
+    std::array<std::uint8_t, 4096> chunk{};
+    pollfd p{master, POLLIN, 0};
+    while (::poll(&p, 1, 300) > 0) {
+      const auto n = ::read(master, chunk.data(), chunk.size());
+      if (n <= 0) break;
+      received.insert(received.end(), chunk.begin(), chunk.begin() + n);
+    }
+  });
+  link.flush();
+  reader.join();
+  link.stop();
+  ::close(master);
+
+  cp::FrameParser parser;
+  parser.feed(received);
+  std::vector<cp::Frame> frames;
+  while (auto event = parser.poll())
+    if (const auto* f = std::get_if<cp::Frame>(&*event)) frames.push_back(*f);
+  EXPECT_EQ(parser.counters().errors(), 0u);
+  EXPECT_EQ(parser.counters().garbage_bytes, 0u);
+  EXPECT_EQ(parser.pending(), 0u);
+  // After the last frame pump() finished: the one it left half written, then
+  // what flush() took from the client (the stop first, then the joints' setpoint).
+  ASSERT_GE(frames.size(), written + 2);
+  EXPECT_EQ(frames[written].header.type, cp::SetAbsoluteJoints::kType);
+  EXPECT_EQ(frames[written + 1].header.type, cp::SetVelocity::kType);
 }
 
 TEST(ClearpathLink, ParsesEndpoints) {

@@ -49,8 +49,10 @@ class ClearpathLink final : public Client {
   void stop();
   // Safety: writes at once, synchronously, every frame the client has to send
   // now (a stop's zero setpoint first), for a process that is about to exit
-  // and will not run the io_context again. Errors are ignored: the platform's
-  // watchdog is the last line.
+  // and will not run the io_context again. A frame the link left half written
+  // (kernel buffer full) is finished first, so frames never interleave; a
+  // full buffer is waited for up to a second in all. Errors are ignored: the
+  // platform's watchdog is the last line.
   void flush();
 
   // Client: on the io_context's thread, like every runtime callback.
@@ -73,6 +75,7 @@ class ClearpathLink final : public Client {
   void close();
   void start_read();
   void pump();
+  int native_handle();
   void on_tick();
   void fail(const boost::system::error_code& ec);
 
@@ -85,8 +88,9 @@ class ClearpathLink final : public Client {
   boost::asio::ip::tcp::socket tcp_;
   rt::TimerId tick_ = rt::kNoTimer;
   std::array<std::uint8_t, 2048> rx_{};
-  std::vector<std::uint8_t> tx_;
-  bool writing_ = false;
+  std::vector<std::uint8_t> tx_;  // the frame being written
+  std::size_t tx_sent_ = 0;       // of tx_, written so far
+  bool writing_ = false;          // in pump(): a callback's send() joins its loop
   bool open_ = false;
   bool running_ = false;
   std::uint64_t generation_ = 0;  // handlers of a closed connection are ignored
