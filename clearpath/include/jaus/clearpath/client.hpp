@@ -15,12 +15,17 @@ class Client {
  public:
   virtual ~Client() = default;
 
-  // A command or request with ACK, retried; done(outcome) runs once.
+  // A command or request with ACK, retried; done(outcome) runs once. One in
+  // flight per kind (type, and mount or joint), latest wins (an older one
+  // finishes `superseded`), Set Safety System first, and queue_full beyond
+  // ClientConfig::max_waiting_commands (see ClientCore::send).
   virtual void send(AnyMessage message, ClientCore::CommandCallback done = {}) = 0;
   // A subscription kept alive across reconnects.
   virtual void subscribe(AnyMessage request, ClientCore::CommandCallback done = {}) = 0;
   // Latest-wins stream resent to feed the platform's watchdog, for at most
   // ClientConfig::setpoint_max_age from now unless set again (see ClientCore).
+  // It supersedes send() commands of its type: none of them reaches the
+  // platform after it.
   virtual void set_setpoint(AnyMessage command) = 0;
   virtual void clear_setpoint(std::uint16_t type) = 0;
   // Safety: `stop` (a zero setpoint) written once, first, and the stream of
