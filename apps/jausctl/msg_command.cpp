@@ -113,7 +113,7 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
 
   auto output = std::make_shared<std::string>();
   auto* wireshark_cmd = msg->add_subcommand(
-      "wireshark", "Print the Wireshark Lua dissector (JAUS and Clearpath over UDP) generated from the descriptions");
+      "wireshark", "Print the Wireshark Lua dissector for JAUS and Clearpath over UDP, from the descriptions");
   wireshark_cmd->add_option("-o,--output", *output, "write it to this file instead of stdout");
   wireshark_cmd->callback([&exit_code, output] { exit_code = wireshark(*output); });
 

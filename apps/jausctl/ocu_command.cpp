@@ -239,12 +239,18 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   control->add_option("--for", *hold_for, "release after this many seconds")->type_name("SECONDS");
   auto repeated = std::make_shared<std::string>();
   auto repeat_rate = std::make_shared<std::string>();
+  auto resume_when_ready = std::make_shared<bool>(false);
+  // Safety: by default a stop someone else caused (Emergency, Standby, ...)
+  // ends the stream for good; only the operator starts the motion again.
   control->add_option("--send", *repeated,
-                      "while holding control, send this message (JSON as for `send`) to ADDR, repeatedly")
+                      "repeat this message (JSON as for `send`) to ADDR while it is Ready; else stop, exit 3")
       ->type_name("JSON");
   control->add_option("--rate", *repeat_rate, "how often --send sends, in Hz (default 10)")->type_name("HZ");
+  control->add_flag("--resume-when-ready", *resume_when_ready,
+                    "resume once Ready. UNSAFE: a Clear Emergency or Resume by anyone restarts the motion");
   add_common_options(control, *common);
-  control->callback([&exit_code, checked_common, target, authority, hold_for, repeated, repeat_rate] {
+  control->callback([&exit_code, checked_common, target, authority, hold_for, repeated, repeat_rate,
+                     resume_when_ready] {
     auto c = checked_common("control", exit_code);
     if (!c) return;
     ocu::ControlOptions options;
@@ -265,7 +271,10 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       options.send = std::move(*prepared);
     } else if (!repeat_rate->empty()) {
       return void(exit_code = bad_input("control", "--rate needs --send"));
+    } else if (*resume_when_ready) {
+      return void(exit_code = bad_input("control", "--resume-when-ready needs --send"));
     }
+    options.resume_when_ready = *resume_when_ready;
     if (!repeat_rate->empty()) {
       auto hz = ocu::parse_rate_hz(*repeat_rate);
       if (!hz) return void(exit_code = bad_input("control", "--rate: " + hz.error().message()));

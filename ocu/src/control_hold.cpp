@@ -11,6 +11,9 @@ namespace {
 using namespace std::chrono_literals;
 // What controlling OCUs use (jaus-wire-notes.md, "Service connections").
 constexpr double kStatusRateHz = 5;
+// The fastest rate a service connection can ask for (RA 3.3: 1092 Hz).
+constexpr double kFastestStatusRateHz = 1092;
+constexpr std::uint8_t kReady = static_cast<std::uint8_t>(jaus::msg::PrimaryStatus::ready);
 // The hold wakes this often to look at the status reports' silence.
 constexpr jaus::rt::Duration kHoldSlice = 250ms;
 }  // namespace
@@ -63,10 +66,18 @@ ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
   return r;
 }
 
+// Safety: a repeated command is stopped on the first report of another state
+// than Ready, so the reports come at least as often as the commands go.
+double ControlHold::status_rate_hz() const {
+  if (!repeated_) return kStatusRateHz;
+  const double send_rate_hz = 1.0 / std::chrono::duration<double>(repeat_period_).count();
+  return std::clamp(send_rate_hz, kStatusRateHz, kFastestStatusRateHz);
+}
+
 void ControlHold::watch_status() {
   status_heard_ = session_.clock().now();
   status_sc_ = session_.component().subscribe<jaus::msg::ReportComponentStatus>(
-      target_, kStatusRateHz, 0,
+      target_, status_rate_hz(), 0,
       [this](const jaus::Header&, const jaus::msg::ReportComponentStatus& report) {
         status_heard_ = session_.clock().now();
         const std::uint8_t state = report.primary_status & 0x0F;
@@ -83,43 +94,68 @@ void ControlHold::stop_watching_status() {
   status_sc_.reset();
 }
 
+bool ControlHold::status_refused() const {
+  if (!status_sc_) return false;
+  const auto* status = session_.component().subscription(*status_sc_);
+  return status && status->refused;
+}
+
 ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
                                    std::function<void(const std::string&)> on_state) {
   on_state_ = std::move(on_state);
   if (state_ && on_state_) on_state_(primary_status_text(*state_));  // reported before the hold began
   auto& clock = session_.clock();
   const auto until = limit ? clock.now() + *limit : jaus::rt::TimePoint::max();
-  auto next_send = clock.now();
   for (;;) {
     if (rejected_) return End::rejected;
     if (session_.interrupted()) return End::interrupted;
+    if (repeated_ && status_refused()) return End::unwatched;
+    if (repeated_ && state_ && *state_ != kReady && when_not_ready_ == WhenNotReady::end_hold) return End::not_ready;
     const auto now = clock.now();
     if (now >= until) return End::time_up;
     auto slice = std::min<jaus::rt::Duration>(until - now, kHoldSlice);
-    if (repeated_) {
-      if (now >= next_send) {
-        jaus::Header header = repeated_->header;
-        header.destination = target_;
-        session_.send_raw(header, repeated_->payload);
-        ++sent_while_held_;
-        // From the ideal times, so a late wake-up does not slow the rate down.
-        next_send += repeat_period_;
-        if (next_send < now) next_send = now + repeat_period_;
-      }
-      slice = std::min<jaus::rt::Duration>(slice, next_send - now);
-    }
+    if (repeated_) slice = std::min<jaus::rt::Duration>(slice, repeat(now) - now);
     // Only reports that came can stop: a component that does not provide its
     // status (refused, or a peer without service connections) is held without
     // this check. (The connection's own `confirmed` is reset while the client
     // re-creates it after a silence, so it cannot tell.)
     if (state_ && now - status_heard_ > status_silence_) return End::silent;
-    session_.run_until([this] { return rejected_; }, slice);
+    // A new state wakes the loop at once: it decides before the next command goes.
+    session_.run_until([this, seen = state_] { return rejected_ || state_ != seen; }, slice);
   }
 }
 
-void ControlHold::send_while_held(PreparedMessage message, jaus::rt::Duration period) {
+jaus::rt::TimePoint ControlHold::repeat(jaus::rt::TimePoint now) {
+  const bool ready = state_ == kReady;
+  if (ready != sending_) {
+    sending_ = ready;
+    next_send_ = now;  // at once when Ready (again)
+    if (on_sending_) on_sending_(ready);
+  }
+  if (!ready) return now + kHoldSlice;  // a state report wakes the hold sooner
+  if (now >= next_send_) {
+    jaus::Header header = repeated_->header;
+    header.destination = target_;
+    session_.send_raw(header, repeated_->payload);
+    ++sent_while_held_;
+    // From the ideal times, so a late wake-up does not slow the rate down.
+    next_send_ += repeat_period_;
+    if (next_send_ < now) next_send_ = now + repeat_period_;
+  }
+  return next_send_;
+}
+
+void ControlHold::send_while_held(PreparedMessage message, jaus::rt::Duration period, WhenNotReady when_not_ready,
+                                  std::function<void(bool sending)> on_sending) {
   repeated_ = std::move(message);
   repeat_period_ = std::max<jaus::rt::Duration>(period, 1ms);
+  when_not_ready_ = when_not_ready;
+  on_sending_ = std::move(on_sending);
+  // Already watching (control granted): again, at the rate the commands need.
+  if (status_sc_) {
+    stop_watching_status();
+    watch_status();
+  }
 }
 
 void ControlHold::release() {

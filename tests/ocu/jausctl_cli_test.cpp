@@ -168,7 +168,23 @@ INSTANTIATE_TEST_SUITE_P(
                  "jausctl status: --as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"},
         BadInput{{"status", "1.1.35.1", "--framing", "udp"},
                  "jausctl status: --framing: bad framing 'udp': expected opc or judp"},
+        BadInput{{"control", "1.1.35.1", "--authority", "5", "--resume-when-ready"},
+                 "jausctl control: --resume-when-ready needs --send"},
         BadInput{{"control", "1.1.35.1"}, "jausctl: --authority is required (--help for usage)"}));
+
+// The man page is made of these lines (one per option), and a terminal shows them unwrapped.
+TEST(JausctlCli, EveryHelpLineFitsIn120Columns) {
+  const std::vector<std::vector<std::string>> commands = {
+      {},          {"discover"},  {"status"},    {"query"},           {"send"},         {"control"},
+      {"subscribe"}, {"emergency"}, {"msg"},     {"clearpath"}};
+  for (auto args : commands) {
+    args.push_back("--help");
+    const auto r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << args.front();
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) EXPECT_LE(line.size(), 120u) << line;
+  }
+}
 
 TEST(JausctlCli, SilenceExitsOneWithTheTimeoutLine) {
   SilentPeer peer;
@@ -189,7 +205,9 @@ TEST(JausctlCli, ABusyBindPortIsOneLine) {
 class JausctlEndToEnd : public ::testing::Test {
  protected:
   void SetUp() override {
-    target = std::make_unique<TargetNode>(context, TargetOptions{kControllerTimeout, false});
+    TargetOptions options{kControllerTimeout, false};
+    options.primitive_driver = true;
+    target = std::make_unique<TargetNode>(context, options);
     thread = std::thread([this] { context.run(); });
   }
   void TearDown() override {
@@ -266,6 +284,23 @@ TEST_F(JausctlEndToEnd, ControlHeldUntilSigintThenReleased) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("control of 1.1.35.1 released after "), std::string::npos) << r.out;
   EXPECT_TRUE(eventually([&] { return !target->communicator().control().controller().has_value(); }));
+}
+
+// What an operator sees: streaming a command, the driver set in Emergency by
+// someone else: jausctl stops sending, says why, releases control, exits 3.
+TEST_F(JausctlEndToEnd, ControlSendStopsForGoodWhenTheDriverEntersEmergency) {
+  Jausctl control({"control", "1.1.33.1", "--authority", "9", "--rate", "20", "--to", to(), "--send",
+                   R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":60}})"});
+  ASSERT_TRUE(control.wait_for_output("1.1.33.1: state Ready\n"));
+  ASSERT_TRUE(eventually([&] { return target->driver().driver_counters().efforts_applied >= 3; }));
+  const auto emergency = run({"emergency", "1.1.33.1", "set", "--as", "254.2.40.1", "--to", to(), "--timeout", "5"});
+  EXPECT_EQ(emergency.exit_code, 0) << emergency.err;
+  const auto r = control.finish();
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(r.err,
+            "jausctl control: 1.1.33.1 entered Emergency: stopped sending Set Wrench Effort; not resuming "
+            "(see --resume-when-ready)\n");
+  EXPECT_TRUE(eventually([&] { return !target->driver().control().controller().has_value(); }));
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ class ScriptedUdpPeer {
     h.source = from;
     h.destination = to;
     h.data_size = static_cast<std::uint16_t>(*size);
-    jaus::encode_header_unchecked(h, std::span(packet).first<jaus::kHeaderSize>());
+    jaus::encode_header_unchecked(h, std::span(packet).template first<jaus::kHeaderSize>());
     packet.resize(jaus::kHeaderSize + *size);
     const auto prefix = jaus::transport::frame_prefix(jaus::transport::Framing::opc, packet.size());
     std::vector<std::uint8_t> datagram(prefix.view().begin(), prefix.view().end());

@@ -1,7 +1,8 @@
 // A JAUS node for jausctl's OCU to talk to, in-process, on a node host: node
 // manager 1.1.1.1, communicator 1.1.35.1 (controllable) and a pose sensor 1.1.38.1 that
 // answers Query Global Pose and provides Report Global Pose on service
-// connections, behind a UDP link on 127.0.0.1 and an ephemeral port.
+// connections, behind a UDP link on 127.0.0.1 and an ephemeral port; on
+// request a primitive driver 1.1.33.1 on the host's simulated vehicle.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -13,6 +14,7 @@
 #include <stdexcept>
 
 #include "jaus/components/communicator.hpp"
+#include "jaus/components/primitive_driver.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
 
@@ -24,6 +26,7 @@ inline constexpr std::uint32_t kLoopback = 0x7F000001;
 inline const jaus::Address kTargetManager{1, 1, 1, 1};
 inline const jaus::Address kCommunicator{1, 1, 35, 1};
 inline const jaus::Address kPoseSensor{1, 1, 38, 1};
+inline const jaus::Address kDriver{1, 1, 33, 1};  // with TargetOptions::primitive_driver
 inline const jaus::Address kNobody{1, 1, 42, 1};  // no such component on the target
 
 class PoseSensor final : public jaus::rt::Component {
@@ -60,6 +63,7 @@ struct TargetOptions {
   std::uint8_t subsystem = 1;  // the component addresses above are those of subsystem 1
   std::vector<jaus::transport::Ipv4Endpoint> peers = {};  // static peers
   jaus::rt::Duration subsystem_timeout = 5s;              // a silent node or subsystem is lost after this
+  bool primitive_driver = false;                          // host kDriver too
 };
 
 class TargetNode {
@@ -80,6 +84,9 @@ class TargetNode {
     config.settings.identity.node_name = "test-node";
     config.components = {jaus::host::ComponentSpec{"node_manager", kTargetManager.component, 1, 0, "node manager", {}, 0, {}},
                          jaus::host::ComponentSpec{"communicator", kCommunicator.component, 1, 0, "communicator", {}, 0, {}}};
+    if (options.primitive_driver)
+      config.components.push_back(
+          jaus::host::ComponentSpec{"primitive_driver", kDriver.component, 1, 0, "primitive driver", {}, 0, {}});
     auto host = jaus::host::NodeHost::open(config, io);
     if (!host) throw std::runtime_error(host.error().message());
     host_ = std::move(*host);
@@ -87,6 +94,11 @@ class TargetNode {
         host_->node().find(jaus::Address{options.subsystem, 1, kCommunicator.component, 1}));
     if (!communicator_) throw std::runtime_error("the target hosts no communicator");
     pose_ = &host_->emplace<PoseSensor>(host_->component_config("pose sensor", kPoseSensor.component));
+    if (options.primitive_driver) {
+      driver_ = dynamic_cast<jaus::components::PrimitiveDriver*>(
+          host_->node().find(jaus::Address{options.subsystem, 1, kDriver.component, 1}));
+      if (!driver_) throw std::runtime_error("the target hosts no primitive driver");
+    }
   }
 
   jaus::transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
@@ -96,12 +108,20 @@ class TargetNode {
   jaus::transport::UdpLink& link() { return host_->link(); }
   jaus::components::Communicator& communicator() { return *communicator_; }
   PoseSensor& pose_sensor() { return *pose_; }
+  jaus::components::PrimitiveDriver& driver() { return *driver_; }
+  // Set Wrench Efforts that reached the driver: applied, or refused (outside
+  // Ready, or not from the controller) when it is the only command sent to it.
+  std::uint64_t efforts_arrived() const {
+    const auto& refused = driver_->counters();
+    return driver_->driver_counters().efforts_applied + refused.refused_wrong_state + refused.refused_not_controller;
+  }
   jaus::transport::AsioRuntime& runtime() { return host_->runtime(); }
 
  private:
   std::unique_ptr<jaus::host::NodeHost> host_;
   jaus::components::Communicator* communicator_ = nullptr;
   PoseSensor* pose_ = nullptr;
+  jaus::components::PrimitiveDriver* driver_ = nullptr;
 };
 
 }  // namespace jausctl::test

@@ -1,7 +1,12 @@
 // `jausctl control ADDR --authority N`: request control, hold it until
 // SIGINT/SIGTERM or --for, release it; report the component's state while
-// held, and a loss when it happens.
+// held, and a loss when it happens. With --send, repeat a command while the
+// component is Ready; when it is not, stop for good (or pause, with
+// --resume-when-ready): a Clear Emergency or Resume by someone else must not
+// restart the motion by itself.
+#include "jaus/messages/catalogue.hpp"
 #include "jaus/ocu/control_hold.hpp"
+#include "jaus/ocu/names.hpp"
 #include "ocu_commands.hpp"
 
 namespace jausctl::ocu {
@@ -36,6 +41,12 @@ std::string controller_text(const std::optional<jaus::msg::ReportComponentContro
   if (!report->controller.is_valid()) return "; it has no controller now";
   return "; taken over by " + report->controller.to_string() + " (authority " + std::to_string(report->authority) + ")";
 }
+
+// "Set Wrench Effort", or the code of a message the catalogue does not name.
+std::string message_text(const PreparedMessage& message) {
+  const auto* info = jaus::msg::find_message(message.header.command_code);
+  return info ? std::string(info->name) : code_text(message.header.command_code);
+}
 }  // namespace
 
 int run_control(OcuSession& session, const ControlOptions& options, CommandIo io) {
@@ -48,9 +59,23 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
     return kExitFailure;
   }
   io.out << requested_text << "\n" << std::flush;
-  if (options.send)
-    control.send_while_held(*options.send, std::chrono::duration_cast<jaus::rt::Duration>(
-                                               std::chrono::duration<double>(1.0 / options.send_rate_hz)));
+  const std::string sent = options.send ? message_text(*options.send) : "";
+  bool started = false;  // sending began (the component was Ready)
+  if (options.send) {
+    const auto period = std::chrono::duration_cast<jaus::rt::Duration>(
+        std::chrono::duration<double>(1.0 / options.send_rate_hz));
+    const auto when_not_ready = options.resume_when_ready ? ControlHold::WhenNotReady::pause
+                                                          : ControlHold::WhenNotReady::end_hold;
+    control.send_while_held(*options.send, period, when_not_ready, [&](bool sending) {
+      started = started || sending;
+      if (!options.resume_when_ready) return;
+      if (sending)
+        io.out << target << ": Ready: sending " << sent << "\n" << std::flush;
+      else
+        io.out << target << ": not Ready: paused " << sent << " until it is Ready again (--resume-when-ready)\n"
+               << std::flush;
+    });
+  }
 
   const auto start = session.clock().now();
   const auto end = control.hold(options.hold_for, [&](const std::string& state) {
@@ -68,6 +93,24 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
     io.err << "jausctl control: control of " << target << " lost after " << held
            << ": no Report Component Status from it for " << seconds_text(options.status_silence)
            << " (stopped, or unreachable)\n";
+    return kExitFailure;
+  }
+  if (end == ControlHold::End::not_ready) {
+    control.release();
+    const std::string state = control.state() ? primary_status_text(*control.state()) : "?";
+    if (started)
+      io.err << "jausctl control: " << target << " entered " << state << ": stopped sending " << sent
+             << "; not resuming (see --resume-when-ready)\n";
+    else
+      io.err << "jausctl control: " << target << " is in " << state << ", not Ready: sent no " << sent
+             << "; not starting (see --resume-when-ready)\n";
+    return kExitLeftReady;
+  }
+  if (end == ControlHold::End::unwatched) {
+    control.release();
+    io.err << "jausctl control: " << target
+           << " refused its Report Component Status service connection: its state is unknown, so no " << sent
+           << " was sent\n";
     return kExitFailure;
   }
   control.release();

@@ -55,8 +55,12 @@ struct ControlOptions {
   // No Report Component Status (5 Hz service connection) for this long: control is lost.
   jaus::rt::Duration status_silence = std::chrono::seconds(5);
   // A command sent to the target at `send_rate_hz` while control is held (--send, --rate).
+  // Sent only while the component is Ready: by default the first other state
+  // stops it for good (control released, kExitLeftReady); --resume-when-ready
+  // pauses it instead and sends again once the component is Ready.
   std::optional<PreparedMessage> send;
   double send_rate_hz = 10;
+  bool resume_when_ready = false;
 };
 int run_control(OcuSession& session, const ControlOptions& options, CommandIo io);
 // What run_control says of a request: "control of 1.1.35.1 granted (authority 5)",

@@ -5,9 +5,10 @@
 // the OCU component, being an rt::Component, answers those by itself; the
 // OCU's node manager heartbeats keep its node alive on the other side.
 // Like other OCUs (jaus-wire-notes.md), the hold watches the component's
-// Report Component Status on a 5 Hz service connection: it shows state
-// changes, and silence means the component (or its node) is gone. Control
-// also ends with Reject Component Control (taken over, or dropped).
+// Report Component Status on a 5 Hz service connection (at the send rate
+// when faster, see send_while_held): it shows state changes, and silence
+// means the component (or its node) is gone. Control also ends with Reject
+// Component Control (taken over, or dropped).
 #pragma once
 
 #include <cstdint>
@@ -30,7 +31,15 @@ class ControlHold {
     std::uint8_t response_code = 0;  // of Confirm Component Control (refused)
     std::optional<jaus::Error> error;  // no_reply (timeout), interrupted, or a confirmation that does not decode
   };
-  enum class End { time_up, interrupted, rejected, silent };
+  // not_ready: a command was being repeated (send_while_held, WhenNotReady::end_hold)
+  // and the component reported a state other than Ready. unwatched: it refused
+  // the status service connection, so nothing may be repeated to it.
+  enum class End { time_up, interrupted, rejected, silent, not_ready, unwatched };
+  // What repeating a command does while the component is not Ready.
+  enum class WhenNotReady {
+    end_hold,  // the hold ends (End::not_ready): whoever clears the state does not restart the motion
+    pause,     // the hold goes on; sending starts again when the component is Ready (unsafe for motion)
+  };
 
   // Silence of the status reports that ends a hold (when the component provides them).
   static constexpr jaus::rt::Duration kStatusSilence = std::chrono::seconds(5);
@@ -50,12 +59,22 @@ class ControlHold {
   // "Ready -> Emergency").
   End hold(std::optional<jaus::rt::Duration> limit, std::function<void(const std::string&)> on_state = {});
   // While held, sends `message` (header code and payload; the destination is
-  // the target) every `period`, the first at the start of hold(): a driving
+  // the target) every `period` while the component reports Ready: a driving
   // OCU repeats its Set Wrench Effort so that the driver's command timeout
-  // never stops it while the operator holds the stick. Nothing is sent after
-  // the hold ends.
-  void send_while_held(PreparedMessage message, jaus::rt::Duration period);
+  // never stops it while the operator holds the stick. Safety: nothing is
+  // sent before the component has reported Ready, nor once it has reported
+  // any other state (Emergency, Standby, Failure, ...): the hold ends then, or
+  // with WhenNotReady::pause waits for Ready again. A component that refuses
+  // the status service connection gets nothing (End::unwatched). The status
+  // comes at least as often as the commands go, so a state is acted on within
+  // a period. Nothing is sent after the hold ends.
+  // `on_sending` hears when sending starts (true) and pauses (false).
+  void send_while_held(PreparedMessage message, jaus::rt::Duration period,
+                       WhenNotReady when_not_ready = WhenNotReady::end_hold,
+                       std::function<void(bool sending)> on_sending = {});
   std::uint64_t sent_while_held() const { return sent_while_held_; }
+  // The primary status last reported (bits 0-3), none before the first report.
+  std::optional<std::uint8_t> state() const { return state_; }
 
   // Release Component Control (fire and forget: the RA has no reply to it)
   // and end the status service connection.
@@ -71,6 +90,11 @@ class ControlHold {
  private:
   void watch_status();
   void stop_watching_status();
+  bool status_refused() const;
+  double status_rate_hz() const;
+  // Sends the repeated command when it is due and the component is Ready;
+  // returns when to look again.
+  jaus::rt::TimePoint repeat(jaus::rt::TimePoint now);
 
   OcuSession& session_;
   jaus::Address target_;
@@ -85,6 +109,10 @@ class ControlHold {
   std::function<void(const std::string&)> on_state_;
   std::optional<PreparedMessage> repeated_;
   jaus::rt::Duration repeat_period_{};
+  WhenNotReady when_not_ready_ = WhenNotReady::end_hold;
+  std::function<void(bool)> on_sending_;
+  bool sending_ = false;
+  jaus::rt::TimePoint next_send_{};
   std::uint64_t sent_while_held_ = 0;
 };
 
