@@ -450,14 +450,29 @@ TEST_F(PoseSensorTest, NeverReadyWhileStale) {
   }
 }
 
-TEST_F(PoseSensorTest, WithoutAnySampleTheSensorFailsAndRecoversOnTheFirst) {
+// The RA's Initialize lasts until the source's first fresh sample: never
+// Ready -> Failure -> Ready at start.
+TEST_F(PoseSensorTest, WithoutAnySampleTheSensorWaitsInInitializeUntilTheFirst) {
   source.current.reset();
   make_pose();
-  // Initialisation succeeds (a Failure it leaves by itself, not one awaiting a Reset); the first check fails it.
-  EXPECT_EQ(pose->state(), PrimaryStatus::failure);
-  EXPECT_TRUE(logged("pose source stale: no sample yet"));
+  EXPECT_EQ(pose->state(), PrimaryStatus::initialize);
+  EXPECT_TRUE(logged("initialising: waiting for a fresh sample from its pose source"));
+  time.advance(2s);
+  EXPECT_EQ(pose->state(), PrimaryStatus::initialize);  // not a failure: it never was Ready
   source.current = full_sample();
   time.advance(250ms);
+  EXPECT_EQ(pose->state(), PrimaryStatus::ready);
+}
+
+TEST_F(PoseSensorTest, TheFirstSampleDuringAnEmergencyEndsTheWaitOnceItClears) {
+  source.current.reset();
+  make_pose();
+  deliver(*pose, kOcuA, msg::SetEmergency{});
+  ASSERT_EQ(pose->state(), PrimaryStatus::emergency);
+  source.current = full_sample();
+  time.advance(250ms);
+  EXPECT_EQ(pose->state(), PrimaryStatus::emergency);
+  deliver(*pose, kOcuA, msg::ClearEmergency{});
   EXPECT_EQ(pose->state(), PrimaryStatus::ready);
 }
 
@@ -473,10 +488,8 @@ TEST_F(PoseSensorTest, TheStaleAfterOptionSetsTheLimit) {
   EXPECT_EQ(velocity->state(), PrimaryStatus::ready);
 }
 
-// The lifecycle leaves a declared failure to Ready only; a sensor moves
-// nothing, so returning to Ready from a failure that interrupted Standby is
-// safe, and an operator who wants Standby sends it again.
-TEST_F(PoseSensorTest, StandbyThenStaleThenFreshIsReady) {
+// A fault returns to the state it interrupted: a Standby survives a stale source.
+TEST_F(PoseSensorTest, StandbyThenStaleThenFreshIsStandbyAgain) {
   make_pose();
   deliver(*pose, kOcuA, msg::Standby{});
   ASSERT_EQ(pose->state(), PrimaryStatus::standby);
@@ -486,7 +499,7 @@ TEST_F(PoseSensorTest, StandbyThenStaleThenFreshIsReady) {
   EXPECT_EQ(pose->state(), PrimaryStatus::failure);
   refresh();
   time.advance(250ms);
-  EXPECT_EQ(pose->state(), PrimaryStatus::ready);
+  EXPECT_EQ(pose->state(), PrimaryStatus::standby);
 }
 
 TEST_F(PoseSensorTest, AnEmergencyWhileStaleDoesNotGetStuck) {
@@ -520,8 +533,8 @@ TEST_F(PoseSensorTest, AResetRestartsTheWatch) {
   time.advance(1s);
   ASSERT_EQ(pose->state(), PrimaryStatus::failure);
   deliver(*pose, kOcuA, msg::RequestComponentControl{{255}});
-  deliver(*pose, kOcuA, msg::Reset{});  // Initialize -> Ready, then the first check: still stale
-  EXPECT_EQ(pose->state(), PrimaryStatus::failure);
+  deliver(*pose, kOcuA, msg::Reset{});  // Initialize, waiting for a fresh sample
+  EXPECT_EQ(pose->state(), PrimaryStatus::initialize);
   refresh();
   time.advance(250ms);
   EXPECT_EQ(pose->state(), PrimaryStatus::ready);

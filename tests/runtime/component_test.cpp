@@ -69,18 +69,34 @@ TEST_F(ComponentTest, AFloodOfEmergencyHoldersIsBoundedAndNeverReleasesTheHardwa
   for (int i = 0; i < 1000; ++i)
     deliver(Address{static_cast<std::uint8_t>(10 + i % 200), static_cast<std::uint8_t>(1 + i / 200), 40, 1},
             msg::SetEmergency{});
-  EXPECT_EQ(driver->emergency().holders().size(), rt::EmergencyLatch::kMaxHolders);  // the hardware and 15 more
-  EXPECT_EQ(driver->emergency().unrecorded(), 1000u - (rt::EmergencyLatch::kMaxHolders - 1));
+  EXPECT_EQ(driver->emergency().holders().size(), rt::EmergencyLatch::kMaxHolders);
+  EXPECT_EQ(driver->emergency().unrecorded(), 1000u - rt::EmergencyLatch::kMaxHolders);
+  EXPECT_TRUE(driver->emergency().overflowed());
   for (int i = 0; i < 1000; ++i)
     deliver(Address{static_cast<std::uint8_t>(10 + i % 200), static_cast<std::uint8_t>(1 + i / 200), 40, 1},
             msg::ClearEmergency{});
-  EXPECT_EQ(driver->state(), S::emergency);  // the hardware still holds it
-  EXPECT_EQ(driver->emergency().holders().size(), 1u);
+  EXPECT_EQ(driver->state(), S::emergency);  // the hardware still holds it, and so do the unrecorded
+  EXPECT_TRUE(driver->emergency().holders().empty());
   std::size_t lines = 0;
   for (const auto& l : logs) lines += l.find("emergency") != std::string::npos || l.find("Emergency") != std::string::npos;
   EXPECT_LT(lines, 10u);  // one line a second per reason, not 2000
-  driver->release_hardware_emergency("e-stop released");
-  EXPECT_EQ(driver->state(), S::ready);
+  driver->release_hardware_emergency("e-stop pressed");
+  EXPECT_EQ(driver->state(), S::emergency);  // holders beyond the recorded ones were not forgotten
+}
+
+// Issue 27, failure 3: twenty operators set Emergency and nineteen clear; the
+// one left still holds it, however many there were.
+TEST_F(ComponentTest, NoEmergencyHolderIsForgottenBeyondTheRecordedOnes) {
+  const auto operator_at = [](int i) { return Address{static_cast<std::uint8_t>(10 + i), 1, 40, 1}; };
+  const int operators = static_cast<int>(rt::EmergencyLatch::kMaxHolders) + 4;
+  for (int i = 0; i < operators; ++i) deliver(operator_at(i), msg::SetEmergency{});
+  for (int i = 0; i + 1 < operators; ++i) deliver(operator_at(i), msg::ClearEmergency{});
+  EXPECT_EQ(driver->state(), S::emergency);
+  deliver(operator_at(operators - 1), msg::ClearEmergency{});
+  // The last operator was beyond the recorded ones: its own clear cannot be
+  // matched to it, so the latch stays (fail safe) until the local clear.
+  EXPECT_EQ(driver->state(), S::emergency);
+  EXPECT_TRUE(driver->emergency().overflowed());
 }
 
 TEST_F(ComponentTest, EmergencyReturnsToStandbyWhenItInterruptedStandby) {

@@ -94,5 +94,29 @@ TEST(Lifecycle, EmergencyReturnsToTheStateItInterrupted) {
   }
 }
 
+// Issue 27, failure 5: Standby, then the platform link drops and returns:
+// Standby again, never Ready (a streaming controller would drive on).
+TEST(Lifecycle, AFaultReturnsToTheStateItInterrupted) {
+  for (S interrupted : {S::ready, S::standby}) {
+    Lifecycle l;
+    reach(l, interrupted);
+    ASSERT_TRUE(l.process(E::failure_detected));
+    ASSERT_EQ(l.state(), S::failure);
+    ASSERT_TRUE(l.process(E::failure_cleared));
+    EXPECT_EQ(l.state(), interrupted) << to_string(interrupted);
+  }
+}
+
+TEST(Lifecycle, AFaultInterruptedByAnEmergencyStillReturnsToItsStandby) {
+  Lifecycle l;
+  reach(l, S::standby);
+  ASSERT_TRUE(l.process(E::failure_detected));
+  ASSERT_TRUE(l.process(E::emergency_set));
+  ASSERT_TRUE(l.process(E::emergency_cleared));
+  ASSERT_EQ(l.state(), S::failure);
+  ASSERT_TRUE(l.process(E::failure_cleared));
+  EXPECT_EQ(l.state(), S::standby);
+}
+
 }  // namespace
 }  // namespace jaus::rt

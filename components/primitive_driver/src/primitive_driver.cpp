@@ -60,12 +60,16 @@ PrimitiveDriver::PrimitiveDriver(ComponentConfig config, Environment env, Drive&
                                          [this] { return operational_data_report(); });
 
   // A drive fault is a Failure of the driver (the drive stops), and its end a recovery.
+  // Before the drive's first data (a platform not heard from yet), the
+  // driver waits in Initialize (initialize()); its end is the first clear.
   drive_.on_fault([this](const std::optional<std::string>& fault) {
     drive_fault_ = fault;
-    if (fault)
+    if (fault) {
       declare_failure("drive fault: " + *fault);
-    else
-      clear_failure("drive fault cleared");
+      return;
+    }
+    hardware_ready();
+    clear_failure("drive fault cleared");
   });
 
   // Report Services: the fields each command acts on and each query can get.
@@ -80,6 +84,13 @@ PrimitiveDriver::PrimitiveDriver(ComponentConfig config, Environment env, Drive&
 PrimitiveDriver::~PrimitiveDriver() {
   drive_.on_fault({});
   cancel_command_timeout();
+}
+
+// The RA's Initialize lasts until the drive can be commanded: a platform not
+// heard from yet is not a Ready driver that fails a moment later.
+bool PrimitiveDriver::initialize() {
+  if (drive_fault_) wait_for_hardware("the drive (" + *drive_fault_ + ")");
+  return true;
 }
 
 // A fault that arrived while the driver could not enter Failure (in
@@ -131,6 +142,7 @@ void PrimitiveDriver::on_set_wrench_effort(const Header& h, const msg::SetWrench
   const WrenchEffort asked = to_wrench_effort(m);
   const WrenchEffort applied = drive_.apply_effort(asked);
   ++driver_counters_.efforts_applied;
+  propelling_ = propels(applied);
   if (applied != asked)
     log_repeated("Set Wrench Effort limited by the drive", LogLevel::debug,
                  [&] { return "Set Wrench Effort from " + h.source.to_string() + " limited by the drive"; });
@@ -167,7 +179,10 @@ void PrimitiveDriver::wait_for_command_deadline() {
   command_timer_ = env().scheduler.call_at(command_deadline_, [this] {
     command_timer_ = kNoTimer;
     if (env().clock.now() < command_deadline_) return wait_for_command_deadline();  // a newer command
-    if (!propels(drive_.applied_effort())) return;  // nothing to stop
+    // The driver's own record, not the drive's report: a backend may already
+    // report zero for a setpoint it stopped renewing (the Clearpath bridge
+    // after setpoint_max_age) while the platform still acts on it.
+    if (!propelling_) return;  // the last command asked for no motion: nothing to stop
     ++driver_counters_.command_timeouts;
     stop_platform("no Set Wrench Effort for " + seconds_text(options_.command_timeout));
   });
@@ -183,6 +198,7 @@ void PrimitiveDriver::cancel_command_timeout() {
 // of the last effort is kept, so nothing resumes it.
 void PrimitiveDriver::command_stop(std::string_view why) {
   cancel_command_timeout();
+  propelling_ = false;
   drive_.stop(options_.stop_brake_percent);
   log(LogLevel::info, "drive stopped: " + std::string(why));
 }

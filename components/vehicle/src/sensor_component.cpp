@@ -40,10 +40,17 @@ SensorComponent::~SensorComponent() {
 }
 
 bool SensorComponent::initialize() {
-  // Initialisation succeeds without a fresh sample: a source that has none yet
-  // (a receiver without a fix) is a Failure the watch clears by itself, where
-  // a failed initialisation would wait for an operator's Reset. The watch
-  // starts on entering Ready (state_changed).
+  // Without a fresh sample yet (a receiver without a fix, a platform not
+  // heard from) the sensor waits in Initialize, the RA's state for it, and
+  // the watch ends the wait at the first fresh sample; never a failed
+  // initialisation, which would wait for an operator's Reset. Once Ready the
+  // watch goes on from state_changed.
+  const auto sample = source_.sample();
+  const rt::TimePoint now = env().clock.now();
+  if (!sample || now - sample->taken_at >= options_.stale_after) {
+    wait_for_hardware("a fresh sample from its pose source");
+    arm_watch(now + check_period());
+  }
   return true;
 }
 
@@ -77,6 +84,11 @@ void SensorComponent::check_source() {
   const auto sample = source_.sample();
   const rt::Duration age = sample ? now - sample->taken_at : rt::Duration::max();
   stale_ = age >= options_.stale_after;
+  if (waiting_for_hardware()) {
+    if (stale_) arm_watch(now + check_period());
+    else hardware_ready();  // -> Ready, whose state_changed looks at the source again
+    return;
+  }
   if (stale_) {
     // A no-op unless Ready or Standby (already failed, or in Emergency: checked again next period).
     declare_failure(sample ? "pose source stale: last sample " + seconds_text(age) + " s old"

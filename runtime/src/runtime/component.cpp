@@ -37,10 +37,19 @@ Component::Component(ComponentConfig config, Environment env)
       repeated_lines_(env_.clock, env_.scheduler,
                       [this](LogLevel level, const std::string& text) { log(level, text); }) {
   register_core_handlers();
+  emergency_membership_ = emergency_->join([this] { follow_emergency(); });
 }
 
 Component::~Component() {
+  // Lifetimes: a shared latch outlives its members; nothing keeps a pointer here after this.
+  emergency_->leave(emergency_membership_);
   if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
+}
+
+void Component::share_emergency(EmergencyLatch& latch) {
+  emergency_->leave(emergency_membership_);
+  emergency_ = &latch;
+  emergency_membership_ = emergency_->join([this] { follow_emergency(); });
 }
 
 void Component::log(LogLevel level, const std::string& text) const {
@@ -50,10 +59,42 @@ void Component::log(LogLevel level, const std::string& text) const {
 void Component::start() { run_initialisation(); }
 
 void Component::run_initialisation() {
+  waiting_for_hardware_ = false;
   const bool ok = initialize();
-  transition(ok ? LifecycleEvent::init_succeeded : LifecycleEvent::init_failed, config_.address);
-  // An emergency latched before a reset still holds after it.
-  if (emergency_.active()) transition(LifecycleEvent::emergency_set, config_.address);
+  if (!ok) transition(LifecycleEvent::init_failed, config_.address);
+  else if (waiting_for_hardware_) log(LogLevel::info, "initialising: waiting for " + waiting_for_);
+  else transition(LifecycleEvent::init_succeeded, config_.address);
+  // An emergency latched before a reset (or restored at start) still holds after it.
+  follow_emergency();
+}
+
+void Component::wait_for_hardware(std::string why) {
+  waiting_for_hardware_ = true;
+  waiting_for_ = std::move(why);
+}
+
+void Component::hardware_ready() {
+  if (!waiting_for_hardware_) return;
+  waiting_for_hardware_ = false;
+  log(LogLevel::info, "hardware ready: initialised");
+  // In Emergency the wait ends when the emergency returns to Initialize (follow_emergency).
+  if (lifecycle_.state() == PrimaryStatus::initialize) transition(LifecycleEvent::init_succeeded, config_.address);
+}
+
+// Safety: the one place a component enters or leaves Emergency, following its
+// latch. Idempotent: a shared latch calls every member on every change.
+void Component::follow_emergency() {
+  const PrimaryStatus state = lifecycle_.state();
+  if (state == PrimaryStatus::shutdown) return;
+  const Address by = emergency_->last_changed_by().is_valid() ? emergency_->last_changed_by() : config_.address;
+  if (emergency_->active() && state != PrimaryStatus::emergency) {
+    transition(LifecycleEvent::emergency_set, by);
+  } else if (!emergency_->active() && state == PrimaryStatus::emergency) {
+    transition(LifecycleEvent::emergency_cleared, by);
+    // The hardware spoke while the emergency interrupted the wait for it.
+    if (lifecycle_.state() == PrimaryStatus::initialize && !waiting_for_hardware_)
+      transition(LifecycleEvent::init_succeeded, config_.address);
+  }
 }
 
 void Component::transition(LifecycleEvent event, const Address& by) {
@@ -83,22 +124,19 @@ void Component::transition(LifecycleEvent event, const Address& by) {
   if (state_listener_) state_listener_(before, after);
 }
 
-void Component::hold_hardware_emergency(std::string_view why) {
-  if (!emergency_.set(config_.address, /*always=*/true) && lifecycle_.state() == PrimaryStatus::emergency)
-    return;  // already held
-  log(LogLevel::warn, "emergency Stop from the hardware: " + std::string(why));
-  if (lifecycle_.state() != PrimaryStatus::emergency) transition(LifecycleEvent::emergency_set, config_.address);
+void Component::hold_hardware_emergency(std::string_view cause) {
+  if (emergency_->hold_local(cause)) log(LogLevel::warn, "emergency Stop from the hardware: " + std::string(cause));
 }
 
-void Component::release_hardware_emergency(std::string_view why) {
-  switch (emergency_.clear(config_.address)) {
+void Component::release_hardware_emergency(std::string_view cause) {
+  switch (emergency_->release_local(cause)) {
     case EmergencyLatch::ClearResult::not_a_holder: return;
     case EmergencyLatch::ClearResult::still_held:
-      log(LogLevel::info, "hardware emergency cleared (" + std::string(why) + "); still held by a JAUS Set Emergency");
+      log(LogLevel::info, "hardware emergency cleared (" + std::string(cause) + "); still held by " +
+                              emergency_->describe_holders());
       return;
     case EmergencyLatch::ClearResult::released_last:
-      log(LogLevel::info, "hardware emergency cleared: " + std::string(why));
-      transition(LifecycleEvent::emergency_cleared, config_.address);
+      log(LogLevel::info, "hardware emergency cleared: " + std::string(cause));
       return;
   }
 }
@@ -221,7 +259,7 @@ msg::ReportComponentStatus Component::status_report() const {
   msg::ReportComponentStatus report;
   report.primary_status = static_cast<std::uint8_t>(lifecycle_.state());
   // Bit 0 of the emergency secondary status: the Stop condition is set.
-  report.secondary_status = (emergency_.active() ? 1u : 0u) | (component_status_bits() & 0xFFFF0000u);
+  report.secondary_status = (emergency_->active() ? 1u : 0u) | (component_status_bits() & 0xFFFF0000u);
   return report;
 }
 
@@ -337,17 +375,18 @@ void Component::on_set_emergency(const Header& h, const msg::SetEmergency& m) {
                  [&] { return "Set Emergency from " + h.source.to_string() + " without the Stop bit ignored"; });
     return;
   }
-  emergency_.set(h.source);
-  if (lifecycle_.state() != PrimaryStatus::emergency) {
+  const bool first = emergency_->set(h.source);  // every member follows (follow_emergency)
+  if (first) {
     log_repeated({"emergency Stop set", kNoteworthyBurst}, LogLevel::warn,
                  [&] { return "emergency Stop set by " + h.source.to_string(); });
-    transition(LifecycleEvent::emergency_set, h.source);
     return;
   }
-  // Already in Emergency: the platform is already stopped; nothing changes,
-  // and a flood of repeats is one line and a count per window.
-  log_repeated("repeated Set Emergency", LogLevel::warn,
-               [&] { return "emergency Stop set by " + h.source.to_string() + " (already in Emergency)"; });
+  // Already held: the platform is already stopped; nothing changes, and a
+  // flood of repeats is one line and a count per window.
+  log_repeated("repeated Set Emergency", LogLevel::warn, [&] {
+    return "emergency Stop set by " + h.source.to_string() + " (already in Emergency" +
+           (emergency_->overflowed() ? "; holders beyond the recorded ones hold it until cleared locally" : "") + ")";
+  });
 }
 
 void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m) {
@@ -356,7 +395,7 @@ void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m
                  [&] { return "Clear Emergency from " + h.source.to_string() + " without the Stop bit ignored"; });
     return;
   }
-  switch (emergency_.clear(h.source)) {
+  switch (emergency_->clear(h.source)) {  // on the last one, every member follows
     case EmergencyLatch::ClearResult::not_a_holder:
       ++counters_.refused_clears;
       log_repeated("Clear Emergency from a non-holder refused", LogLevel::warn,
@@ -365,14 +404,11 @@ void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m
     case EmergencyLatch::ClearResult::still_held: {
       ++counters_.refused_clears;
       log_repeated("Clear Emergency while others hold it", LogLevel::warn, [&] {
-        std::string holders;
-        for (const auto& a : emergency_.holders()) holders += (holders.empty() ? "" : ", ") + a.to_string();
-        return "emergency cleared by " + h.source.to_string() + "; still held by " + holders;
+        return "emergency cleared by " + h.source.to_string() + "; still held by " + emergency_->describe_holders();
       });
       return;
     }
     case EmergencyLatch::ClearResult::released_last:
-      transition(LifecycleEvent::emergency_cleared, h.source);
       return;
   }
 }

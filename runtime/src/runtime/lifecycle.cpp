@@ -1,7 +1,7 @@
 // Boost.MSM's transition tables are Boost.MPL vectors; this table has more
 // rows than MPL's default limit of 20.
 #define BOOST_MPL_CFG_NO_PREPROCESSED_HEADERS
-#define BOOST_MPL_LIMIT_VECTOR_SIZE 30  // 25 rows
+#define BOOST_MPL_LIMIT_VECTOR_SIZE 30  // 26 rows
 #define BOOST_MPL_LIMIT_MAP_SIZE 30
 
 #include "jaus/runtime/lifecycle.hpp"
@@ -53,6 +53,21 @@ struct LifecycleDef : msmf::state_machine_def<LifecycleDef> {
       fsm.interrupted = fsm.current;
     }
   };
+  // Likewise the state a fault of the component's own interrupted (Ready or
+  // Standby): its recovery returns there, so a Standby survives a fault.
+  struct RememberFaultInterrupted {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) {
+      fsm.fault_interrupted = fsm.current;
+    }
+  };
+  template <PrimaryStatus S>
+  struct FaultInterrupted {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) {
+      return fsm.fault_interrupted == S;
+    }
+  };
   template <PrimaryStatus S>
   struct Interrupted {
     template <class Event, class Fsm, class Source, class Target>
@@ -83,9 +98,10 @@ struct LifecycleDef : msmf::state_machine_def<LifecycleDef> {
       Row<Ready,      ResetRequested,   Initialize>,
       Row<Standby,    ResetRequested,   Initialize>,
       Row<Failure,    ResetRequested,   Initialize>,
-      Row<Ready,      FailureDetected,  Failure>,
-      Row<Standby,    FailureDetected,  Failure>,
-      Row<Failure,    FailureCleared,   Ready>,
+      Row<Ready,      FailureDetected,  Failure,   RememberFaultInterrupted>,
+      Row<Standby,    FailureDetected,  Failure,   RememberFaultInterrupted>,
+      Row<Failure,    FailureCleared,   Ready,      none, FaultInterrupted<PrimaryStatus::ready>>,
+      Row<Failure,    FailureCleared,   Standby,    none, FaultInterrupted<PrimaryStatus::standby>>,
       Row<Emergency,  ResetRequested,   Initialize>,
       Row<Initialize, ShutdownRequested, Shutdown>,
       Row<Ready,      ShutdownRequested, Shutdown>,
@@ -102,6 +118,7 @@ struct LifecycleDef : msmf::state_machine_def<LifecycleDef> {
 
   PrimaryStatus current = PrimaryStatus::initialize;
   PrimaryStatus interrupted = PrimaryStatus::ready;
+  PrimaryStatus fault_interrupted = PrimaryStatus::ready;
   bool refused = false;
 };
 

@@ -66,7 +66,8 @@ class Component {
   Component(const Component&) = delete;
   Component& operator=(const Component&) = delete;
 
-  // Runs initialisation: Initialize -> Ready, or Failure.
+  // Runs initialisation: Initialize -> Ready, or Failure; or stays in
+  // Initialize while the component waits for its hardware (wait_for_hardware).
   void start();
   // Local shutdown (the node is stopping): as a Shutdown message would, it
   // stops the platform, drops control and ends every service connection.
@@ -80,7 +81,7 @@ class Component {
   const std::string& name() const { return config_.name; }
   PrimaryStatus state() const { return lifecycle_.state(); }
   const ControlArbiter& control() const { return control_; }
-  const EmergencyLatch& emergency() const { return emergency_; }
+  const EmergencyLatch& emergency() const { return *emergency_; }
   const ComponentCounters& counters() const { return counters_; }
   const ServiceConnectionProvider& service_connections() const { return services_; }
 
@@ -122,11 +123,16 @@ class Component {
   msg::ServiceEntry service_entry() const;
 
   // Emergency from the hardware itself (a platform's e-stop button or pause):
-  // held under the component's own address, so it is in Emergency until the
-  // hardware clears it, whatever JAUS Clear Emergency says; JAUS holders
+  // a local hold named `cause`, so the component is in Emergency until the
+  // same cause is released, whatever JAUS Clear Emergency says; JAUS holders
   // still hold their own. Idempotent.
-  void hold_hardware_emergency(std::string_view why);
-  void release_hardware_emergency(std::string_view why);
+  void hold_hardware_emergency(std::string_view cause);
+  void release_hardware_emergency(std::string_view cause);
+  // Shares `latch` (owned by the caller, outliving this component) instead of
+  // the component's own: a Set Emergency to any member holds them all
+  // (emergency_scope: vehicle), and each holder clears its own hold from any.
+  // Call before start().
+  void share_emergency(EmergencyLatch& latch);
   // Hears every lifecycle transition, after the component has acted on it
   // (a host mirrors Emergency onto a platform's e-stop this way).
   using StateListener = std::function<void(PrimaryStatus before, PrimaryStatus after)>;
@@ -240,6 +246,15 @@ class Component {
   void clear_failure(std::string_view why);
   bool failure_declared() const { return failure_declared_; }
 
+  // Initialisation that waits for the hardware's first data (RA: the
+  // component stays in Initialize): initialize() calls wait_for_hardware(),
+  // and hardware_ready() ends the wait (Initialize -> Ready, or when an
+  // Emergency interrupted the wait, Ready once it is cleared). No-ops when
+  // not waiting.
+  void wait_for_hardware(std::string why);
+  void hardware_ready();
+  bool waiting_for_hardware() const { return waiting_for_hardware_; }
+
   // Hooks for derived components.
   virtual bool initialize() { return true; }
   // Bring the hardware to rest (drive: zero effort; arm: hold). Idempotent.
@@ -294,7 +309,8 @@ class Component {
   void arm_controller_watch();
   void check_controller();
 
-  // Emergency.
+  // Emergency: the component follows its latch (its own, or the vehicle's).
+  void follow_emergency();
   void on_set_emergency(const Header& header, const msg::SetEmergency& message);
   void on_clear_emergency(const Header& header, const msg::ClearEmergency& message);
 
@@ -306,7 +322,9 @@ class Component {
   Environment env_;
   Lifecycle lifecycle_;
   ControlArbiter control_;
-  EmergencyLatch emergency_;
+  EmergencyLatch own_emergency_;
+  EmergencyLatch* emergency_ = &own_emergency_;
+  EmergencyLatch::MemberId emergency_membership_ = 0;
   StateListener state_listener_;
   ComponentCounters counters_;
   std::unordered_map<std::uint16_t, Handler> handlers_;
@@ -320,6 +338,8 @@ class Component {
   RepeatedLines repeated_lines_;
   std::vector<std::uint8_t> send_buffer_;
   bool failure_declared_ = false;  // Failure entered by declare_failure(), not by initialisation
+  bool waiting_for_hardware_ = false;
+  std::string waiting_for_;
   std::map<std::uint16_t, std::uint32_t> input_presence_;  // Report Services' input presence vectors
 };
 

@@ -1,16 +1,37 @@
-// Who holds the component in Emergency. Part 3: "all conditions that have
-// been set must be specifically cleared". Our rule: every sender that set the
-// Stop condition holds it until that same sender clears it; the component
-// leaves Emergency only when nobody holds it. A clear from someone who holds
-// nothing is refused (and logged by the caller). The latch survives Reset.
-// At most kMaxHolders are remembered, so forged senders cannot grow it without
-// bound; a holder beyond them is not recorded, and the component stays in
-// Emergency, held by the others (the safe side: a flood can keep a vehicle
-// stopped, never move it).
+// Who holds a component (or a whole vehicle) in Emergency. Part 3: "all
+// conditions that have been set must be specifically cleared". Our rule:
+// every sender that set the Stop condition holds it until that same sender
+// clears it; the latch is clear only when nobody holds it. A clear from
+// someone who holds nothing is refused (and logged by the caller).
+//
+// Two kinds of holds:
+//   - JAUS holders (Set Emergency), one per source address, cleared only by
+//     the same address (Clear Emergency) or by a local command on the vehicle
+//     (clear_jaus_holders: `jausd --clear-emergency-holds`, logged);
+//   - local holds by name (the platform's e-stop or pause, the platform's
+//     emergency flag not yet confirmed clear), held and released by the host.
+//
+// Safety, bounded without forgetting anyone: at most kMaxHolders JAUS holders
+// are recorded by address. A holder beyond them cannot be recorded, so it
+// could never clear its own hold by address; instead the latch becomes
+// `overflowed`, which holds it like a holder that never clears (a flood of
+// forged senders can keep a vehicle stopped, never move it). An overflowed
+// latch is cleared only by the local command. Nothing is ever dropped.
+//
+// A latch may be shared by several components (emergency_scope: vehicle):
+// each component is a member and follows active(). Observers hear every
+// change (the host persists the holders and mirrors them onto the platform)
+// before the members follow it, so an observer may add a local hold in
+// response and the members never leave Emergency in between.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <set>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "jaus/core/address.hpp"
@@ -19,34 +40,62 @@ namespace jaus::rt {
 
 class EmergencyLatch {
  public:
-  static constexpr std::size_t kMaxHolders = 16;
+  static constexpr std::size_t kMaxHolders = 64;
 
-  // Returns true when this is the first holder (the component enters Emergency).
-  // `always`: the component's own hold (its hardware e-stop), recorded even
-  // when kMaxHolders others hold it, so that forged clears can never release it.
-  bool set(const Address& holder, bool always = false) {
-    const bool was_clear = holders_.empty();
-    if (always || holders_.size() < kMaxHolders || holders_.contains(holder))
-      holders_.insert(holder);
-    else
-      ++unrecorded_;
-    return was_clear;
-  }
-  // Holders not recorded because kMaxHolders others held the latch.
-  std::uint64_t unrecorded() const { return unrecorded_; }
+  // What a member is told: follow active() now (enter or leave Emergency).
+  using Member = std::function<void()>;
+  using MemberId = std::uint64_t;
+  // Hears every change of the holders, local holds or overflow.
+  using Observer = std::function<void(const EmergencyLatch&)>;
 
+  EmergencyLatch() = default;
+  EmergencyLatch(const EmergencyLatch&) = delete;
+  EmergencyLatch& operator=(const EmergencyLatch&) = delete;
+
+  // A JAUS holder sets the Stop condition. Returns true when this made the
+  // latch active (it was clear before).
+  bool set(const Address& holder);
   enum class ClearResult { released_last, still_held, not_a_holder };
-  ClearResult clear(const Address& holder) {
-    if (holders_.erase(holder) == 0) return ClearResult::not_a_holder;
-    return holders_.empty() ? ClearResult::released_last : ClearResult::still_held;
-  }
+  ClearResult clear(const Address& holder);
 
-  bool active() const { return !holders_.empty(); }
+  // A local hold by name; returns true when it is new.
+  bool hold_local(std::string_view cause);
+  ClearResult release_local(std::string_view cause);
+
+  // The local command for holders gone for good: every JAUS holder and the
+  // overflow are cleared (local holds stay). Returns how many were held.
+  std::size_t clear_jaus_holders();
+  // Holders restored from a persisted state (before any member joins).
+  void restore(const std::vector<Address>& holders, bool overflowed);
+
+  bool active() const { return held_by_jaus() || !local_.empty(); }
+  // Held by Set Emergency (recorded or not): what the platform's emergency flag mirrors.
+  bool held_by_jaus() const { return !holders_.empty() || overflowed_; }
+  bool overflowed() const { return overflowed_; }
   std::vector<Address> holders() const { return {holders_.begin(), holders_.end()}; }
+  std::vector<std::string> local_holds() const { return {local_.begin(), local_.end()}; }
+  // Set Emergency from senders that could not be recorded (counted, never forgotten).
+  std::uint64_t unrecorded() const { return unrecorded_; }
+  // "3.1.40.1, 4.1.40.1, the platform's e-stop", for log lines.
+  std::string describe_holders() const;
+  // The JAUS holder of the last set or clear (invalid after a local change), for log lines.
+  const Address& last_changed_by() const { return last_by_; }
+
+  MemberId join(Member member);
+  void leave(MemberId id);
+  void observe(Observer observer) { observers_.push_back(std::move(observer)); }
 
  private:
+  void changed();
+
   std::set<Address> holders_;
+  std::set<std::string, std::less<>> local_;
+  bool overflowed_ = false;
   std::uint64_t unrecorded_ = 0;
+  Address last_by_{};
+  std::map<MemberId, Member> members_;
+  MemberId next_member_ = 1;
+  std::vector<Observer> observers_;
 };
 
 }  // namespace jaus::rt

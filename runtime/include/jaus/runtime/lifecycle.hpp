@@ -11,8 +11,9 @@
 //    interrupted: Ready, Standby, Initialize or Failure)
 //   any state but Shutdown --- reset --> Initialize
 //   any state but Shutdown --- shutdown --> Shutdown (final)
-//   Ready or Standby --- failure detected --> Failure --- failure cleared --> Ready
-//   (a component's own fault, a stale sensor say, and its recovery; a failed
+//   Ready or Standby --- failure detected --> Failure --- failure cleared --> the state it interrupted
+//   (a component's own fault, a stale sensor or a lost platform link, and its
+//    recovery: a Standby stays a Standby through a fault; a failed
 //    initialisation leaves Failure only by Reset)
 //
 // Written with Boost.MSM; the machine itself lives in lifecycle.cpp so that

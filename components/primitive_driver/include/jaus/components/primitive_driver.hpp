@@ -11,7 +11,9 @@
 // (rt::Component::enforce_stop); and here, when no Set Wrench Effort has
 // arrived within the command timeout. A fault of the drive (Drive::on_fault:
 // a lost link to the platform) is a Failure, so it stops the drive too, and
-// the driver is Ready again only once the fault has cleared. The driver keeps no effort to resume:
+// the driver is Ready again only once the fault has cleared (or back in
+// Standby, when a fault interrupted Standby). Until the drive's first data it
+// stays in Initialize. The driver keeps no effort to resume:
 // after Resume or Clear Emergency the drive stays stopped until the
 // controller sends a new Set Wrench Effort.
 #pragma once
@@ -52,6 +54,7 @@ class PrimitiveDriver final : public rt::Component {
   msg::ReportPlatformOperationalData operational_data_report();
 
  protected:
+  bool initialize() override;
   void command_stop(std::string_view why) override;
   void state_changed(rt::PrimaryStatus before, rt::PrimaryStatus after) override;
 
@@ -69,6 +72,7 @@ class PrimitiveDriver final : public rt::Component {
   rt::TimerId command_timer_ = rt::kNoTimer;
   rt::TimePoint command_deadline_{};
   std::optional<std::string> drive_fault_;  // as the drive last reported it
+  bool propelling_ = false;  // the last effort applied moves the platform (until a stop)
 };
 
 // The conversions between Part 3's message bodies and the Drive's terms

@@ -7,11 +7,10 @@
 // AND that the component provides AND that the current sample has. A field the
 // source lacks is absent, never filled in; the query's vector is never echoed.
 //
-// Staleness: when the newest sample is stale_after old or older (or there is
-// none), the component declares a failure (Ready or Standby -> Failure); once a
-// fresh sample arrives it clears it (Failure -> Ready, the lifecycle's only way
-// out of a declared failure; a sensor moves nothing, so Ready is safe even if
-// Standby was what the failure interrupted). While fresh, the watch wakes at
+// Staleness: until the first fresh sample the component stays in Initialize.
+// Afterwards, when the newest sample is stale_after old or older, the
+// component declares a failure (Ready or Standby -> Failure); once a fresh
+// sample arrives it clears it (Failure -> the Ready or Standby it interrupted). While fresh, the watch wakes at
 // the moment the newest sample would turn stale, so detection is exact; while
 // stale, or while a declared failure waits to be cleared, it polls every
 // stale_after / 4 (at least 10 ms). Every entry into Ready or Standby (end of
