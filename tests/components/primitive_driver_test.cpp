@@ -58,13 +58,22 @@ class RecordingDrive final : public components::Drive {
     return d;
   }
 
-  void on_fault(FaultListener listener) override { fault_listener = std::move(listener); }
+  // As the Clearpath bridge does: a fault present when the listener arrives is told at once.
+  void on_fault(FaultListener listener) override {
+    fault_listener = std::move(listener);
+    if (fault_listener && current_fault) fault_listener(current_fault);
+  }
   void fault(std::optional<std::string> what) {
+    current_fault = what;
     if (fault_listener) fault_listener(what);
   }
   FaultListener fault_listener;
+  std::optional<std::string> current_fault;
 
   bool propelling() const { return applied.propulsive_linear != Axes{} || applied.propulsive_rotational != Axes{}; }
+  // As the Clearpath bridge does once setpoint_max_age has passed: the report
+  // says zero while the platform may still act on the last setpoint.
+  void forget_applied() { applied = {}; }
 
   WrenchEffort applied;
   DiscreteDevices state{true, false, false, 1};
@@ -317,6 +326,41 @@ TEST_F(PrimitiveDriverTest, CommandTimeoutRunsFromTheLastEffort) {
   EXPECT_TRUE(driver->control().is_controller(kOcuA));  // control is kept: the next effort drives again
   effort(kOcuA, 40);
   EXPECT_TRUE(drive.propelling());
+}
+
+// Issue 27, failure 2: the drive's report already says zero when the timeout
+// fires; the stop (with the brake) is written all the same.
+TEST_F(PrimitiveDriverTest, CommandTimeoutStopsADriveThatAlreadyReportsZero) {
+  take_control(kOcuA);
+  effort(kOcuA, 60);
+  time.advance(450ms);
+  drive.forget_applied();
+  time.advance(100ms);
+  ASSERT_EQ(drive.stops.size(), 1u);
+  EXPECT_EQ(drive.stops.back(), 100);  // stop_brake_percent
+}
+
+TEST_F(PrimitiveDriverTest, ADriveNotHeardFromYetKeepsTheDriverInInitialize) {
+  drive.fault("no data from the platform yet");
+  make();
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::initialize);
+  deliver(kOcuA, msg::RequestComponentControl{{5}});
+  effort(kOcuA, 50);
+  EXPECT_TRUE(drive.efforts.empty());  // nothing moves in Initialize
+  drive.fault(std::nullopt);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
+  EXPECT_TRUE(drive.efforts.empty());  // and nothing resumes by itself
+}
+
+TEST_F(PrimitiveDriverTest, StandbySurvivesADriveFault) {
+  take_control(kOcuA);
+  deliver(kOcuB, msg::Standby{});
+  drive.fault("link to the platform lost");
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::failure);
+  drive.fault(std::nullopt);
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::standby);
+  effort(kOcuA, 50);
+  EXPECT_TRUE(drive.efforts.empty());
 }
 
 TEST_F(PrimitiveDriverTest, CommandServiceConnectionDeadmanStopsTheDrive) {
