@@ -1,25 +1,31 @@
 // clearpath-sim: a simulated Clearpath platform on UDP, a serial device or a
 // PTY it opens itself (`pty: /dev/pts/N` is then its first line of output).
+// Standard input takes the platform's physical inputs (`estop on`, `pause off`,
+// see console_lines.hpp); standard output carries JSON lines.
 #include <csignal>
 #include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <variant>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "console_lines.hpp"
 #include "jaus/base/version.hpp"
 #include "jaus/clearpath/sim/sim_server.hpp"
 #include "jaus/transport/asio_runtime.hpp"
+#include "stdin_lines.hpp"
 
 namespace sim = jaus::clearpath::sim;
+namespace console = jaus::clearpath::sim::console;
 
 int main(int argc, char** argv) {
   CLI::App app{"clearpath-sim: simulated Clearpath platform"};
   app.set_version_flag("--version", "clearpath-sim " + std::string(jaus::kVersion));
   std::string udp, serial, drive = "differential", log_level = "info";
-  bool pty = false;
+  bool pty = false, events = false;
   sim::FaultConfig faults;
   double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5, status_every_s = 0;
   auto* udp_opt = app.add_option("--udp", udp, "Serve UDP on HOST:PORT")->type_name("HOST:PORT");
@@ -39,6 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("--status-every", status_every_s,
                  "Print the vehicle's true state as a JSON line every N seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--events", events,
+               "Print events as JSON lines with steady_ns (steady clock, ns): zero_command, wheels_stopped, "
+               "safety (its flags changed), input (estop/pause set or released)");
   app.add_option("--log-level", log_level, "Log level: trace, debug, info (default), warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   try {
@@ -93,18 +102,25 @@ int main(int argc, char** argv) {
                endpoint.kind == sim::ServerEndpoint::Kind::udp ? udp : (pty ? server.pty_path() : serial));
   // The platform's true state, for an operator or a test watching what the
   // wheels really do (what its client is told is another matter).
+  const auto print_status_now = [&] { std::cout << console::status_line(server.platform()) << std::endl; };
   std::function<void()> print_status = [&] {
-    const auto& v = server.platform().vehicle();
-    const auto& c = server.platform().counters();
-    std::cout << fmt::format(
-                     "{{\"status\":{{\"left_mps\":{:.3f},\"right_mps\":{:.3f},\"speed_mps\":{:.3f},"
-                     "\"yaw_rate_rps\":{:.3f},\"yaw_rad\":{:.3f},\"x_m\":{:.3f},\"y_m\":{:.3f},"
-                     "\"watchdog_expired\":{},\"safety_flags\":{},\"commands_applied\":{},\"frames_rejected\":{}}}}}",
-                     v.left().speed, v.right().speed, v.linear_speed(), v.yaw_rate(), v.yaw(), v.x(), v.y(),
-                     v.watchdog_expired(), v.safety_flags(), c.commands_applied, server.platform().parser_counters().errors())
-              << std::endl;
+    print_status_now();
     runtime.call_at(runtime.now() + std::chrono::milliseconds(static_cast<long>(status_every_s * 1000)), print_status);
   };
+  // The platform's time is AsioRuntime's, the steady clock: steady_ns is comparable across processes.
+  if (events) server.on_event([](const sim::PlatformEvent& e) { std::cout << console::event_line(e) << std::endl; });
+  sim::StdinLines input(io, [&](const std::string& text) {
+    const auto line = console::parse_line(text);
+    if (const auto* press = std::get_if<console::Press>(&line)) {
+      server.press(press->input, press->on);
+      std::cout << console::press_answer(*press, server.platform().vehicle().safety_flags()) << std::endl;
+    } else if (std::holds_alternative<console::StatusNow>(line)) {
+      print_status_now();
+    } else if (const auto* unknown = std::get_if<console::Unknown>(&line)) {
+      std::cout << console::error_line(*unknown) << std::endl;
+    }
+  });
+  if (!input.start()) spdlog::warn("clearpath-sim: standard input is closed; no estop/pause lines");
   if (status_every_s > 0) print_status();
   boost::asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](const boost::system::error_code&, int) {

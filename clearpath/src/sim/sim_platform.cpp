@@ -25,6 +25,16 @@ bool ackermann_only(std::uint16_t type) {
   }
 }
 
+// nullopt: not a motion command; else whether it asks for motion.
+std::optional<bool> asks_for_motion(const AnyMessage& m) {
+  if (const auto* c = m.get_if<SetDifferentialSpeeds>()) return c->left_speed != 0 || c->right_speed != 0;
+  if (const auto* c = m.get_if<SetDifferentialOutput>()) return c->left != 0 || c->right != 0;
+  if (const auto* c = m.get_if<SetAckermannOutput>()) return c->throttle != 0 && c->brake < 100;
+  if (const auto* c = m.get_if<SetVelocity>()) return c->translational != 0 || c->rotational != 0;
+  if (const auto* c = m.get_if<SetTurn>()) return c->translational != 0;
+  return std::nullopt;
+}
+
 // Yaw of the left-handed messages (0x8600/0x8601): positive towards east / right turn.
 double left_handed(double right_handed) { return -right_handed; }
 
@@ -36,6 +46,39 @@ SimPlatform::SimPlatform(PlatformConfig config, rt::TimePoint start)
   diff_left_ = diff_right_ = ack_speed_ = ack_heading_ = MotorControlConstants{1.0, 0.1, 0, 0.5, 2.0, 20.0};
   factory_ = current_settings();
   stored_ = factory_;
+  reported_safety_ = vehicle_.safety_flags();
+}
+
+void SimPlatform::emit(PlatformEvent event) const {
+  if (on_event_) on_event_(event);
+}
+
+void SimPlatform::note_motion_command(const AnyMessage& command, rt::TimePoint now) {
+  const auto motion = asks_for_motion(command);
+  if (!motion) return;
+  if (!*motion && last_motion_nonzero_) emit({PlatformEvent::Kind::zero_command, now});
+  last_motion_nonzero_ = *motion;
+}
+
+// Events from the vehicle's state: the safety word and the wheels coming to rest.
+void SimPlatform::note_state(rt::TimePoint at) {
+  if (const auto flags = vehicle_.safety_flags(); flags != reported_safety_) {
+    reported_safety_ = flags;
+    emit({PlatformEvent::Kind::safety, at, flags});
+  }
+  if (vehicle_.left().speed != 0 || vehicle_.right().speed != 0) {
+    wheels_moving_ = true;
+  } else if (wheels_moving_) {
+    wheels_moving_ = false;
+    emit({PlatformEvent::Kind::wheels_stopped, at});
+  }
+}
+
+void SimPlatform::press(HardwareInput input, bool on, rt::TimePoint now) {
+  advance(now);
+  vehicle_.set_hardware_input(input, on);
+  emit({PlatformEvent::Kind::input, now, 0, input, on});
+  note_state(now);
 }
 
 double SimPlatform::seconds(rt::TimePoint now) const {
@@ -104,14 +147,21 @@ void SimPlatform::handle(const Frame& frame, rt::TimePoint now, std::vector<std:
   if (kind == MessageKind::command) {
     const std::uint16_t result = apply_command(*decoded, now);
     acknowledge(result);
+    if (result == 0) note_motion_command(*decoded, now);
     if (result == 0 && decoded->holds<ResetProcessor>()) {
-      // A reset loses subscriptions and restarts the platform clock.
+      // A reset loses subscriptions and restarts the platform clock; a button
+      // still pressed stays pressed.
       subscriptions_.clear();
+      const auto inputs = vehicle_.hardware_inputs();
       vehicle_ = VehicleModel(config_.vehicle);
+      for (const auto input : {HardwareInput::estop, HardwareInput::pause})
+        vehicle_.set_hardware_input(input, (inputs & static_cast<std::uint16_t>(input)) != 0);
       start_ = now;
       simulated_until_ = now;
       clock_offset_ms_ = 0;
+      last_motion_nonzero_ = false;
     }
+    note_state(now);
     return;
   }
   bool reply_now = false;
@@ -271,6 +321,7 @@ void SimPlatform::advance(rt::TimePoint now) {
   while (simulated_until_ + kPhysicsStep <= now) {
     simulated_until_ += kPhysicsStep;
     vehicle_.step(std::chrono::duration<double>(kPhysicsStep).count(), seconds(simulated_until_));
+    note_state(simulated_until_);
   }
 }
 

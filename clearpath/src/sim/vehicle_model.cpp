@@ -26,9 +26,34 @@ VehicleModel::VehicleModel(VehicleConfig config)
     : config_(config), mounts_(config.mounts), joints_(config.joints), analog_out_(config.analog_outputs, 0) {}
 
 void VehicleModel::touch_watchdog(MotionMode mode, double now) {
-  mode_ = mode;
+  // A command feeds the watchdog even under a stop (the link is alive), but it
+  // does not move the wheels then, nor wait to move them once the stop clears.
   last_command_ = now;
   watchdog_expired_ = false;
+  if (stop_engaged()) drop_motion();
+  else mode_ = mode;
+}
+
+// Releasing a stop must never start motion by itself: forget the setpoint,
+// so only a command that arrives after the release moves the wheels again.
+void VehicleModel::drop_motion() {
+  mode_ = MotionMode::none;
+  diff_setpoint_ = {};
+  output_setpoint_ = {};
+  velocity_setpoint_ = {};
+  turn_setpoint_ = {};
+  ackermann_setpoint_ = {};
+}
+
+void VehicleModel::set_safety(std::uint16_t flags) {
+  commanded_safety_ = flags;
+  if (stop_engaged()) drop_motion();
+}
+
+void VehicleModel::set_hardware_input(HardwareInput input, bool on) {
+  const auto bit = static_cast<std::uint16_t>(input);
+  hardware_inputs_ = static_cast<std::uint16_t>(on ? hardware_inputs_ | bit : hardware_inputs_ & ~bit);
+  if (stop_engaged()) drop_motion();
 }
 
 void VehicleModel::command_differential_speeds(double left, double right, double left_accel, double right_accel,
@@ -106,7 +131,7 @@ void VehicleModel::set_gpio_output(std::uint32_t mask, std::uint32_t value) {
 }
 
 std::uint16_t VehicleModel::safety_flags() const {
-  return static_cast<std::uint16_t>(commanded_safety_ | (watchdog_expired_ ? kSafetyTimeout : 0));
+  return static_cast<std::uint16_t>(commanded_safety_ | hardware_inputs_ | (watchdog_expired_ ? kSafetyTimeout : 0));
 }
 
 void VehicleModel::wheel_targets(double& left, double& right, double& left_accel, double& right_accel) const {
@@ -157,9 +182,10 @@ void VehicleModel::step(double dt, double now) {
     watchdog_expired_ = true;
     mode_ = MotionMode::none;
   }
-  double left_target = 0, right_target = 0, left_accel = 0, right_accel = 0;
-  const bool stopped = (safety_flags() & (kSafetyEmergencyStop | kSafetyPause | kSafetyLockout)) != 0;
-  if (!stopped) wheel_targets(left_target, right_target, left_accel, right_accel);
+  double left_target = 0, right_target = 0, left_accel = max_accel_fwd_, right_accel = max_accel_fwd_;
+  // A stop brakes to zero at the platform's acceleration limit (with no rate,
+  // the wheels would keep their speed under a stop).
+  if (!stop_engaged()) wheel_targets(left_target, right_target, left_accel, right_accel);
   left_target = std::clamp(left_target, -max_speed_rev_, max_speed_fwd_);
   right_target = std::clamp(right_target, -max_speed_rev_, max_speed_fwd_);
 

@@ -53,6 +53,7 @@ class LoopbackClient final : public Client {
   ClientCore& core() { return core_; }
   const ClientCore& core() const { return core_; }
   const SimPlatform& platform() const { return platform_; }
+  SimPlatform& platform() { return platform_; }  // e.g. press its e-stop or pause input
 
  private:
   void step();

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -43,12 +44,32 @@ struct PlatformCounters {
   std::uint64_t parse_errors = 0;
 };
 
+// What happened on the platform, for measuring stops (clearpath-sim --events).
+// `at` is the platform's time: when the frame or input came in, or the physics
+// step at which the wheels reached zero or the watchdog fired.
+struct PlatformEvent {
+  enum class Kind {
+    zero_command,    // a zero motion command after a non-zero one
+    wheels_stopped,  // both wheel speeds reached zero after moving
+    safety,          // the word Safety Status (0x8010) reports changed; see flags
+    input,           // a hardware input was set or released; see input and on
+  } kind;
+  rt::TimePoint at;
+  std::uint16_t flags = 0;  // safety: the new word
+  HardwareInput input = HardwareInput::estop;
+  bool on = false;
+};
+
 class SimPlatform {
  public:
   explicit SimPlatform(PlatformConfig config, rt::TimePoint start);
 
   std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, rt::TimePoint now);
   std::vector<std::uint8_t> tick(rt::TimePoint now);
+  // A physical input set (on) or released; the vehicle first advances to now.
+  void press(HardwareInput input, bool on, rt::TimePoint now);
+  // Called synchronously, from receive(), tick() and press(), for every event.
+  void on_event(std::function<void(const PlatformEvent&)> callback) { on_event_ = std::move(callback); }
 
   const VehicleModel& vehicle() const { return vehicle_; }
   const PlatformCounters& counters() const { return counters_; }
@@ -86,6 +107,9 @@ class SimPlatform {
   Settings current_settings() const;
   void apply_settings(const Settings& s);
   double seconds(rt::TimePoint now) const;
+  void note_motion_command(const AnyMessage& command, rt::TimePoint now);
+  void note_state(rt::TimePoint at);
+  void emit(PlatformEvent event) const;
 
   PlatformConfig config_;
   rt::TimePoint start_;
@@ -99,6 +123,10 @@ class SimPlatform {
   Settings stored_;
   Settings factory_;
   PlatformCounters counters_;
+  std::function<void(const PlatformEvent&)> on_event_;
+  std::uint16_t reported_safety_ = 0;   // the word last reported as an event
+  bool wheels_moving_ = false;
+  bool last_motion_nonzero_ = false;    // the last motion command asked for motion
 };
 
 }  // namespace jaus::clearpath::sim

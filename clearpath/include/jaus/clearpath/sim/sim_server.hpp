@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,6 +45,10 @@ class SimServer {
   const std::string& pty_path() const { return pty_path_; }
   std::uint16_t udp_port() const { return bound_port_; }
   const SimPlatform& platform() const { return platform_; }
+  // The platform's physical e-stop button or pause input, now.
+  void press(HardwareInput input, bool on) { platform_.press(input, on, clock_.now()); }
+  // The platform's events (SimPlatform::on_event), each with the clock's time.
+  void on_event(std::function<void(const PlatformEvent&)> callback) { platform_.on_event(std::move(callback)); }
 
  private:
   void start_read();

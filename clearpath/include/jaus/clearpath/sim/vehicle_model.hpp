@@ -21,6 +21,12 @@ inline constexpr std::uint16_t kSafetyTimeout = 0x01;
 inline constexpr std::uint16_t kSafetyLockout = 0x02;
 inline constexpr std::uint16_t kSafetyEmergencyStop = 0x08;
 inline constexpr std::uint16_t kSafetyPause = 0x10;
+// The bits that stop the wheels, wherever they come from.
+inline constexpr std::uint16_t kSafetyStopBits = kSafetyEmergencyStop | kSafetyLockout | kSafetyPause;
+
+// Physical inputs of the platform (the e-stop button, the pause/remote-stop
+// input), each reported as its own safety bit. Set Safety System cannot clear them.
+enum class HardwareInput : std::uint16_t { estop = kSafetyEmergencyStop, pause = kSafetyPause };
 
 struct VehicleConfig {
   Drive drive = Drive::differential;
@@ -69,7 +75,10 @@ class VehicleModel {
   void command_turn(double translational, double radius, double accel, double now);
   void command_ackermann_output(double steering_pct, double throttle_pct, double brake_pct, double now);
   void set_gear(std::int8_t gear);
-  void set_safety(std::uint16_t flags) { commanded_safety_ = flags; }
+  // The software word of Set Safety System (0x0010): replaced whole, never
+  // touching the hardware inputs. Setting a stop bit drops the motion setpoint.
+  void set_safety(std::uint16_t flags);
+  void set_hardware_input(HardwareInput input, bool on);
   void set_max_speed(double forward, double reverse) { max_speed_fwd_ = forward; max_speed_rev_ = reverse; }
   void set_max_accel(double forward, double reverse) { max_accel_fwd_ = forward; max_accel_rev_ = reverse; }
   void set_pan_tilt_zoom(std::size_t mount, double pan, double tilt, double zoom);
@@ -94,7 +103,12 @@ class VehicleModel {
   double x() const { return x_; }
   double y() const { return y_; }
   double longitudinal_accel() const { return accel_; }
+  // What Safety Status (0x8010) reports: commanded | hardware inputs | watchdog timeout.
   std::uint16_t safety_flags() const;
+  std::uint16_t commanded_safety() const { return commanded_safety_; }
+  std::uint16_t hardware_inputs() const { return hardware_inputs_; }
+  // A stop bit is set (commanded or hardware): the wheels decelerate to zero.
+  bool stop_engaged() const { return ((commanded_safety_ | hardware_inputs_) & kSafetyStopBits) != 0; }
   bool watchdog_expired() const { return watchdog_expired_; }
   double battery_charge() const { return charge_; }  // %
   double battery_voltage() const { return 24.0 + 4.0 * charge_ / 100.0 - 0.1 * std::abs(current_); }
@@ -126,6 +140,7 @@ class VehicleModel {
 
  private:
   void touch_watchdog(MotionMode mode, double now);
+  void drop_motion();
   void wheel_targets(double& left, double& right, double& left_accel, double& right_accel) const;
 
   VehicleConfig config_;
@@ -137,6 +152,7 @@ class VehicleModel {
   double last_command_ = -1e9;
   bool watchdog_expired_ = true;
   std::uint16_t commanded_safety_ = 0;
+  std::uint16_t hardware_inputs_ = 0;
   std::array<double, 4> diff_setpoint_{};
   std::array<double, 2> output_setpoint_{};
   std::array<double, 3> velocity_setpoint_{};
