@@ -40,6 +40,7 @@ jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
   b.max_encoder_step_m = o.max_encoder_step_m;
   b.emergency_flags = o.emergency_flags;
   b.platform_stop_flags = o.platform_stop_flags;
+  b.platform_status_flags = o.platform_status_flags;
   b.max_speed_mps = v.max_speed_mps;
   b.max_yaw_rate_rps = v.max_yaw_rate_rps;
   b.max_acceleration_mps2 = v.max_acceleration_mps2;
@@ -112,6 +113,8 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.cameras = config.cameras;
   h.arm = config.manipulator;
   h.platform = platform_settings(config);
+  h.emergency.scope = config.emergency_scope;
+  h.emergency.state_directory = config.state_directory;
   return h;
 }
 

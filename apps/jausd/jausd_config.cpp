@@ -61,6 +61,7 @@ constexpr std::size_t kMaxPeersLimit = 65535;
 constexpr std::array<std::string_view, 4> kLogLevels{"debug", "info", "warn", "error"};
 constexpr std::array<std::string_view, 2> kDialects{"ra", "openjaus"};
 constexpr std::array<std::string_view, 2> kFramings{"opc", "judp"};
+constexpr std::array<std::string_view, 2> kEmergencyScopes{"vehicle", "component"};
 
 constexpr NumberRange kHeartbeatRange{0, false, 100, "a number > 0 and <= 100"};
 // The simulated vehicle: each range is what the reports can encode or what keeps the model sane.
@@ -544,6 +545,12 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
             lines.peers.push_back(p.line);
           }
         }},
+       {"emergency_scope",
+        [&](const Entry& e) {
+          c.emergency_scope = choice(e, kEmergencyScopes) == "component" ? jaus::host::EmergencyScope::component
+                                                                          : jaus::host::EmergencyScope::vehicle;
+        }},
+       {"state_directory", [&](const Entry& e) { c.state_directory = e.scalar("a directory jausd may write"); }},
        {"vehicle", [&](const Entry& s) { read_vehicle(s, c.vehicle); }},
        {"platform",
         [&](const Entry& s) {

@@ -20,6 +20,7 @@
 #include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/emergency_holds.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
 
@@ -80,6 +81,11 @@ struct JausdConfig {
   jaus::components::ArmConfig manipulator = default_arm();           // the primitive manipulator's arm
   std::vector<ComponentSpec> components = default_components();
   std::string log_level = "info";      // debug, info, warn, error
+  // Set Emergency to one moving component holds them all (vehicle) or only it (component).
+  jaus::host::EmergencyScope emergency_scope = jaus::host::EmergencyScope::vehicle;
+  // Where Set Emergency holds persist across restarts; empty: $STATE_DIRECTORY
+  // (systemd's StateDirectory=), else not persisted (a warning at start).
+  std::string state_directory;
 
   // node_manager 1.1, communicator 35.1, primitive_driver 33.1, global_pose_sensor 38.1,
   // velocity_state_sensor 42.1, visual_sensor 37.1, primitive_manipulator 49.1

@@ -193,6 +193,8 @@ void read_clearpath(const Entry& section, ClearpathOptions& o) {
             {"emergency_flags", [&](const Entry& e) { o.emergency_flags = static_cast<std::uint16_t>(bits(e, 0, 0xFFFF)); }},
             {"platform_stop_flags",
              [&](const Entry& e) { o.platform_stop_flags = static_cast<std::uint16_t>(bits(e, 0, 0xFFFF)); }},
+            {"platform_status_flags",
+             [&](const Entry& e) { o.platform_status_flags = static_cast<std::uint16_t>(bits(e, 0, 0xFFFF)); }},
             {"mounts",
              [&](const Entry& e) {
                o.mounts.emplace();

@@ -38,6 +38,7 @@ struct ClearpathOptions {
   double max_encoder_step_m = 2.0;
   std::uint16_t emergency_flags = 0;             // JAUS Emergency also sets these safety flags
   std::uint16_t platform_stop_flags = 0x08 | 0x10;  // the platform's own e-stop / pause bits
+  std::uint16_t platform_status_flags = 0x01 | 0x20 | 0x40;  // 0x8010 bits about itself, never written
   // Unset: every camera with a movable pan or tilt on the next mount (0, 1, ...).
   std::optional<std::vector<jaus::bridge::ClearpathMountConfig>> mounts;
   // Unset: manipulator joint n on Clearpath joint n - 1, same sign, no offset

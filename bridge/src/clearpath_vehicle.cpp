@@ -1,6 +1,7 @@
 #include "jaus/bridge/clearpath_vehicle.hpp"
 
 #include "command_stream.hpp"
+#include "safety_word.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,8 +50,19 @@ cp::AnyMessage request_at(std::uint16_t rate_hz) {
 
 }  // namespace
 
+std::uint16_t owned_safety_bits(const ClearpathVehicleConfig& c) {
+  std::uint32_t bits = c.emergency_flags;
+  for (const auto* out : {&c.main_power, &c.parking_brake, &c.horn})
+    if (out->kind == DeviceOutput::Kind::safety_flag) bits |= out->bits;
+  return static_cast<std::uint16_t>(bits);
+}
+
 struct ClearpathVehicle::State {
-  State(PlatformConnection& p, ClearpathVehicleConfig c) : platform(p), config(std::move(c)), frame(config.datum) {}
+  State(PlatformConnection& p, ClearpathVehicleConfig c)
+      : platform(p),
+        config(std::move(c)),
+        frame(config.datum),
+        safety({owned_safety_bits(config), config.platform_stop_flags, config.platform_status_flags}) {}
 
   PlatformConnection& platform;
   ClearpathVehicleConfig config;
@@ -62,13 +74,15 @@ struct ClearpathVehicle::State {
   WrenchEffort applied;
   rt::TimePoint applied_at{};
   bool stopped = true;
+  double steering_percent = 0;  // Ackermann: the last steering commanded, held through stops
 
   // Devices as commanded (Clearpath reports neither of them back, except the gear).
   DiscreteDevices devices;
-  std::uint32_t safety_flags = 0;   // the word 0x0010 carries (devices and emergency)
+  std::uint32_t safety_flags = 0;   // the discrete devices' bits of the safety word
   bool emergency_commanded = false;
+  detail::SafetyWord safety;        // the word 0x0010 carries, owned bit by bit
   EmergencyListener emergency_listener;
-  std::optional<std::string> platform_emergency;  // the platform's own e-stop, while on
+  std::optional<std::string> platform_emergency;  // the platform's own stop, while on
   std::uint32_t gpio_outputs = 0;   // the pins 0x0302 drives
   bool gpio_configured = false;
   std::optional<std::int8_t> reported_gear;
@@ -179,36 +193,45 @@ struct ClearpathVehicle::State {
            config.horn.kind == DeviceOutput::Kind::safety_flag || config.emergency_flags != 0;
   }
 
-  std::uint16_t safety_word() const {
+  // ---- the safety word (safety_word.hpp has the rule) ----------------------
+
+  std::uint16_t wanted_safety_bits() const {
     std::uint32_t word = safety_flags;
     if (emergency_commanded) word |= config.emergency_flags;
     return static_cast<std::uint16_t>(word);
   }
 
-  void write_safety_flags(const char* why) {
-    cp::SetSafetySystem m;
-    m.flags = safety_word();
-    send(m, why);
-  }
-
-  // 0x8010: the platform's own stop bits, not counting the ones we set.
-  void on_safety(const cp::SafetyStatus& status) {
-    const std::uint16_t own = status.flags & config.platform_stop_flags & static_cast<std::uint16_t>(~safety_word());
-    std::optional<std::string> now_on;
-    if (own != 0) {
-      char text[64];
-      std::snprintf(text, sizeof text, "Clearpath platform e-stop or pause (safety flags 0x%04X)", own);
-      now_on = text;
+  // After anything that changes what is wanted or known: write what is due,
+  // and tell the host when the platform's own stop appears or clears.
+  void update_safety() {
+    if (uses_safety_flags()) {
+      safety.want(wanted_safety_bits());
+      if (const auto word = safety.take_write()) {
+        cp::SetSafetySystem m;
+        m.flags = *word;
+        platform.client().send(m, [this](const cp::CommandOutcome& outcome) {
+          safety.write_done(outcome.ok());
+          if (!outcome.ok()) {
+            ++counters.command_failures;
+            platform.log(rt::LogLevel::warn,
+                         "Clearpath platform: safety flags not applied (" + detail::outcome_text(outcome) + ")");
+          }
+          update_safety();
+        });
+      }
     }
-    if (now_on.has_value() == platform_emergency.has_value()) return;
+    const auto now_on = safety.platform_stop();
+    if (now_on == platform_emergency) return;
+    const bool edge = now_on.has_value() != platform_emergency.has_value();
     platform_emergency = now_on;
+    if (!edge) return;  // the same stop, described anew (the e-stop took over from an unconfirmed clear)
     platform.log(now_on ? rt::LogLevel::warn : rt::LogLevel::info,
-                 now_on ? *now_on : std::string("Clearpath platform e-stop cleared"));
+                 now_on ? *now_on : std::string("Clearpath platform stop cleared"));
     if (emergency_listener) emergency_listener(now_on);
   }
 
   void write_devices() {
-    if (uses_safety_flags()) write_safety_flags("safety flags (discrete devices)");
+    update_safety();
     std::uint32_t gpio_mask = 0;
     for (const auto* out : {&config.main_power, &config.parking_brake, &config.horn})
       if (out->kind == DeviceOutput::Kind::gpio) gpio_mask |= out->bits;
@@ -312,7 +335,15 @@ struct ClearpathVehicle::State {
     client.subscribe(request_at<cp::RequestPowerStatus>(1));
     client.subscribe(request_at<cp::RequestMaxSpeed>(1));
     if (config.gear) client.subscribe(request_at<cp::RequestGear>(2));
-    if (config.platform_stop_flags != 0) client.subscribe(request_at<cp::RequestSafetyStatus>(5));
+    // The platform's stops, and the foreign bits of the safety word jausd keeps.
+    if (config.platform_stop_flags != 0 || uses_safety_flags())
+      client.subscribe(request_at<cp::RequestSafetyStatus>(config.safety_status_rate_hz), [this](const cp::CommandOutcome& o) {
+        if (o.error != cp::CommandError::refused) return;
+        platform.log(rt::LogLevel::warn, "Clearpath platform: no safety status (0x8010, " + detail::outcome_text(o) +
+                                             "): its own e-stop is not watched, and jausd writes only its own safety bits");
+        safety.status_unavailable();
+        update_safety();
+      });
   }
 
   void listen() {
@@ -351,7 +382,10 @@ struct ClearpathVehicle::State {
       if (const auto* m = e.message.get_if<cp::GearData>()) reported_gear = m->gear;
     });
     platform.on_data(cp::SafetyStatus::kType, [this](const cp::Envelope& e) {
-      if (const auto* m = e.message.get_if<cp::SafetyStatus>()) on_safety(*m);
+      if (const auto* m = e.message.get_if<cp::SafetyStatus>()) {
+        safety.status(m->flags);
+        update_safety();
+      }
     });
     platform.on_alive([this](bool alive) {
       if (alive) {
@@ -362,6 +396,9 @@ struct ClearpathVehicle::State {
         // setpoint); the driver goes to Failure and moves nothing until it is back.
         stopped = true;
         applied = WrenchEffort{};
+        // The platform's word is unknown until it speaks again (it may have
+        // restarted without our bits); a stop it reported stays held meanwhile.
+        safety.link_lost();
         fault("link to the Clearpath platform lost");
       }
     });
@@ -426,6 +463,7 @@ WrenchEffort ClearpathVehicle::apply_effort(const WrenchEffort& effort) {
   auto [command, told] = s.command_for(effort);
   s.platform.client().set_setpoint(std::move(command));
   ++s.counters.setpoints;
+  s.steering_percent = told.propulsive_rotational.z;
   s.applied = told;
   s.applied_at = s.now();
   s.stopped = false;
@@ -467,11 +505,15 @@ void ClearpathVehicle::stop(double brake_percent) {
   // once, first in the link's queue; then the stream ends, so nothing older
   // can reach the platform. If it is lost, the platform's watchdog stops the
   // platform as the stream has ended.
+  // An Ackermann platform keeps its steering angle: a stop is no reason to
+  // swing the actuator to centre (during an e-stop least of all).
+  const bool ackermann = s.config.drive == DriveMode::ackermann;
   WrenchEffort zero;
   zero.resistive_linear.x = clamp_percent(brake_percent, 0, 100);
+  if (ackermann) zero.propulsive_rotational.z = s.steering_percent;
   auto [command, told] = s.command_for(zero);
   told.propulsive_linear = {};
-  told.propulsive_rotational = {};
+  if (!ackermann) told.propulsive_rotational = {};
   s.platform.client().stop_setpoint(std::move(command));
   ++s.counters.stops;
   s.applied = told;
@@ -517,7 +559,15 @@ void ClearpathVehicle::command_emergency(bool active) {
   auto& s = *state_;
   if (s.config.emergency_flags == 0 || s.emergency_commanded == active) return;
   s.emergency_commanded = active;
-  s.write_safety_flags(active ? "emergency stop flag" : "emergency stop flag cleared");
+  s.platform.log(rt::LogLevel::info, active ? "Clearpath platform: setting its emergency flag"
+                                            : "Clearpath platform: clearing its emergency flag");
+  s.update_safety();
+}
+
+void ClearpathVehicle::reclaim_safety_bits() {
+  auto& s = *state_;
+  s.safety.adopt_owned_bits_seen();
+  s.update_safety();
 }
 
 const ClearpathVehicleConfig& ClearpathVehicle::config() const { return state_->config; }

@@ -1,6 +1,7 @@
 #include "jaus/host/node_host.hpp"
 
 #include <boost/asio/signal_set.hpp>
+#include <algorithm>
 #include <csignal>
 
 #include "jaus/clearpath/link.hpp"
@@ -64,20 +65,119 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
       }
     }
   }
-  std::vector<std::pair<const ComponentSpec*, rt::Component*>> on_vehicle;
+  h->restore_emergency_holds();
   for (const auto& spec : h->config_.components) {
     auto component = make_component(spec, h->config_.settings, *h->node_, backends);
     if (!component) return unexpected(component.error());
-    rt::Component& added = h->node_->add(std::move(*component));
     const Hardware hardware = hardware_of(spec.kind);
-    // Every component on the Clearpath platform shares its e-stop.
-    if (hardware == Hardware::vehicle || (hardware == Hardware::cameras && h->clearpath_cameras_) ||
-        (hardware == Hardware::arm && h->clearpath_arm_))
-      on_vehicle.emplace_back(&spec, &added);
+    if (hardware != Hardware::none) {
+      // Before it starts: a hold restored from the file puts it in Emergency at once.
+      rt::EmergencyLatch& latch = h->latch_for(spec);
+      (*component)->share_emergency(latch);
+      if (spec.kind == "primitive_driver") h->driver_latch_ = &latch;
+      // Every component on the Clearpath platform is held by its e-stop.
+      const bool on_platform = (hardware == Hardware::vehicle && h->clearpath_vehicle_) ||
+                               (hardware == Hardware::cameras && h->clearpath_cameras_) ||
+                               (hardware == Hardware::arm && h->clearpath_arm_);
+      if (on_platform && std::find(h->platform_latches_.begin(), h->platform_latches_.end(), &latch) ==
+                             h->platform_latches_.end())
+        h->platform_latches_.push_back(&latch);
+    }
+    h->node_->add(std::move(*component));
   }
-  if (h->clearpath_vehicle_) h->mirror_emergencies(on_vehicle);
+  h->persist_emergency_holds();
+  if (h->clearpath_vehicle_)
+    h->platform_emergency_ = std::make_unique<bridge::PlatformEmergencyMirror>(
+        *h->clearpath_vehicle_, h->platform_latches_, h->driver_latch_);
   h->link_->start();
   return h;
+}
+
+// ---- emergency holds (emergency_holds.hpp) -------------------------------------
+
+void NodeHost::restore_emergency_holds() {
+  holds_file_ = emergency_holds_file(config_.emergency);
+  if (!holds_file_) {
+    log_(rt::LogLevel::warn, "emergency holds are not persisted (no state_directory): a restart forgets them");
+    return;
+  }
+  auto holds = read_emergency_holds(*holds_file_);
+  if (!holds) {
+    // Fail safe: who held what is unknown, so everything is held until the local clear.
+    holds_unreadable_ = true;
+    log_(rt::LogLevel::error, "emergency holds unreadable (" + holds.error().message() +
+                                  "): every component with hardware is held in Emergency until SIGUSR1 clears it");
+    return;
+  }
+  restored_holds_ = std::move(*holds);
+  for (const auto& [latch, hold] : restored_holds_) {
+    std::string who;
+    for (const auto& a : hold.holders) who += (who.empty() ? "" : ", ") + a.to_string();
+    if (hold.overflowed) who += std::string(who.empty() ? "" : ", ") + "senders beyond the recorded ones";
+    log_(rt::LogLevel::warn, "emergency held since before the restart (" + latch + "): " + who);
+  }
+}
+
+rt::EmergencyLatch& NodeHost::latch_for(const ComponentSpec& spec) {
+  const bool moving = spec.kind == "primitive_driver" || spec.kind == "primitive_manipulator" ||
+                      spec.kind == "visual_sensor";
+  const std::string name =
+      config_.emergency.scope == EmergencyScope::vehicle && moving
+          ? std::string("vehicle")
+          : Address{config_.node.subsystem, config_.node.node, spec.id, spec.instance}.to_string();
+  auto& latch = latches_[name];
+  if (latch) return *latch;
+  latch = std::make_unique<rt::EmergencyLatch>();
+  if (holds_unreadable_) latch->restore({}, /*overflowed=*/true);
+  // A hold of a latch this configuration no longer has (the scope changed)
+  // holds every latch: nobody is forgotten.
+  for (const auto& [held, hold] : restored_holds_)
+    if (held == name || !latch_configured(held)) latch->restore(hold.holders, hold.overflowed);
+  // Written before the change goes further (the members follow after the observers).
+  latch->observe([this](const rt::EmergencyLatch&) { persist_emergency_holds(); });
+  return *latch;
+}
+
+bool NodeHost::latch_configured(const std::string& name) const {
+  if (name == "vehicle") return config_.emergency.scope == EmergencyScope::vehicle;
+  for (const auto& c : config_.components)
+    if (hardware_of(c.kind) != Hardware::none &&
+        Address{config_.node.subsystem, config_.node.node, c.id, c.instance}.to_string() == name)
+      return true;
+  return false;
+}
+
+void NodeHost::persist_emergency_holds() {
+  if (!holds_file_) return;
+  PersistedHolds holds;
+  for (const auto& [name, latch] : latches_)
+    if (latch->held_by_jaus()) holds[name] = PersistedHold{latch->holders(), latch->overflowed()};
+  if (holds == written_holds_) return;  // a local hold changed, or nothing did
+  if (auto error = write_emergency_holds(*holds_file_, holds)) {
+    log_(rt::LogLevel::error, "emergency holds not persisted: " + error->message());
+    return;
+  }
+  written_holds_ = std::move(holds);
+}
+
+std::size_t NodeHost::clear_emergency_holds_locally(const std::string& why) {
+  std::size_t cleared = 0;
+  for (const auto& [name, latch] : latches_) {
+    if (!latch->held_by_jaus()) continue;
+    const std::string held = latch->describe_holders();
+    const std::size_t n = latch->clear_jaus_holders();
+    cleared += n;
+    log_(rt::LogLevel::warn, "emergency holds cleared locally (" + why + "), " + name + ": " + held);
+  }
+  // What an earlier run left on the platform is ours to clear too; a hardware stop stays.
+  if (clearpath_vehicle_) clearpath_vehicle_->reclaim_safety_bits();
+  if (cleared == 0) log_(rt::LogLevel::info, "local clear of emergency holds (" + why + "): none held");
+  return cleared;
+}
+
+const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) const {
+  const auto it = latches_.find(name);
+  return it == latches_.end() ? nullptr : it->second.get();
 }
 
 // The Clearpath platform's client: a link that reopens with backoff and never
@@ -100,28 +200,6 @@ void NodeHost::open_platform(boost::asio::io_context& io) {
     platform_client_ = std::move(link);
   }
   platform_ = std::make_unique<bridge::PlatformConnection>(*platform_client_, runtime_, log_);
-}
-
-// Safety, both ways between JAUS and the platform's own e-stop: the
-// platform's e-stop or pause puts every component on the vehicle in Emergency
-// until it clears; the primitive driver's Emergency sets the platform's
-// emergency flag when `emergency_flags` is configured.
-void NodeHost::mirror_emergencies(const std::vector<std::pair<const ComponentSpec*, rt::Component*>>& on_vehicle) {
-  std::vector<rt::Component*> components;
-  for (const auto& [spec, component] : on_vehicle) components.push_back(component);
-  clearpath_vehicle_->on_platform_emergency([components](const std::optional<std::string>& why) {
-    for (auto* c : components) {
-      if (why) c->hold_hardware_emergency(*why);
-      else c->release_hardware_emergency("the platform's e-stop cleared");
-    }
-  });
-  for (const auto& [spec, component] : on_vehicle) {
-    if (spec->kind != "primitive_driver") continue;
-    component->on_state_change([vehicle = clearpath_vehicle_.get()](rt::PrimaryStatus before, rt::PrimaryStatus after) {
-      if (after == rt::PrimaryStatus::emergency) vehicle->command_emergency(true);
-      else if (before == rt::PrimaryStatus::emergency) vehicle->command_emergency(false);
-    });
-  }
 }
 
 NodeHost::~NodeHost() { stop("host destroyed"); }
@@ -148,6 +226,16 @@ std::optional<std::string> NodeHost::run(boost::asio::io_context& io) {
     stop(signal_name(signal));
     io.stop();
   });
+  // The local clear of emergency holds: only someone on the vehicle can send it.
+  boost::asio::signal_set local_clear(io, SIGUSR1);
+  std::function<void()> wait_for_local_clear = [&] {
+    local_clear.async_wait([&](const boost::system::error_code& ec, int) {
+      if (ec || stopped_) return;
+      clear_emergency_holds_locally("SIGUSR1");
+      wait_for_local_clear();
+    });
+  };
+  wait_for_local_clear();
   std::optional<std::string> failure;
   try {
     io.run();
@@ -177,8 +265,6 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
-  // The components are gone: the platform's e-stop has nobody left to hold.
-  if (clearpath_vehicle_) clearpath_vehicle_->on_platform_emergency({});
   // ...and the stop's zero setpoint goes out now, before a process exits
   // without running its io_context again.
   if (platform_link_ != nullptr) platform_link_->flush();

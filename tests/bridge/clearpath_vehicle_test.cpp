@@ -289,7 +289,9 @@ TEST(ClearpathVehicle, OperationalDataAndSpecificationsComeFromThePlatform) {
 }
 
 // The platform's own e-stop or pause (0x8010) is reported, and so is its end;
-// the emergency flag the bridge sets itself for JAUS is not taken for one.
+// the emergency flag the bridge sets itself for JAUS is not taken for one, and
+// its clear is reported held until the platform shows it clear (the flag is
+// the e-stop's bit: until then the platform may still be stopped).
 TEST(ClearpathVehicle, ThePlatformsEstopIsHeardAndOurOwnFlagIsNot) {
   bridge::ClearpathVehicleConfig config;
   config.emergency_flags = 0x08;
@@ -302,18 +304,21 @@ TEST(ClearpathVehicle, ThePlatformsEstopIsHeardAndOurOwnFlagIsNot) {
   EXPECT_TRUE(rig.model().safety_flags() & sim::kSafetyEmergencyStop);
   EXPECT_TRUE(heard.empty());
   rig.vehicle.command_emergency(false);
+  ASSERT_EQ(heard.size(), 1u);  // at once, before anything could leave Emergency
+  ASSERT_TRUE(heard[0]);
+  EXPECT_EQ(*heard[0], "waiting for the Clearpath platform to report its emergency flag 0x0008 clear");
   rig.time.advance(500ms);
   EXPECT_FALSE(rig.model().safety_flags() & sim::kSafetyEmergencyStop);
-
-  cp::SetSafetySystem pause;
-  pause.flags = sim::kSafetyPause;  // pressed on the platform, not by the bridge
-  rig.loopback.send(pause);
-  rig.time.advance(500ms);
-  ASSERT_EQ(heard.size(), 1u);
-  ASSERT_TRUE(heard[0]);
-  EXPECT_EQ(*heard[0], "Clearpath platform e-stop or pause (safety flags 0x0010)");
-  rig.loopback.send(cp::SetSafetySystem{});
-  rig.time.advance(500ms);
   ASSERT_EQ(heard.size(), 2u);
   EXPECT_FALSE(heard[1]);
+
+  rig.loopback.platform().press(sim::HardwareInput::pause, true, rig.time.now());  // on the platform, not by the bridge
+  rig.time.advance(500ms);
+  ASSERT_EQ(heard.size(), 3u);
+  ASSERT_TRUE(heard[2]);
+  EXPECT_EQ(*heard[2], "Clearpath platform e-stop or pause (safety flags 0x0010)");
+  rig.loopback.platform().press(sim::HardwareInput::pause, false, rig.time.now());
+  rig.time.advance(500ms);
+  ASSERT_EQ(heard.size(), 4u);
+  EXPECT_FALSE(heard[3]);
 }

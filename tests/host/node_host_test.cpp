@@ -13,7 +13,11 @@
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <stdexcept>
 
@@ -223,28 +227,129 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   };
   ASSERT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready && pose->state() == rt::PrimaryStatus::ready; }));
 
-  // Someone presses the platform's e-stop (a safety flag the bridge did not set).
-  clearpath::SetSafetySystem pressed;
-  pressed.flags = 0x08;
-  h.platform_client()->send(pressed);
+  // Someone presses the platform's e-stop.
+  auto* platform = dynamic_cast<clearpath::sim::LoopbackClient*>(h.platform_client());
+  ASSERT_NE(platform, nullptr);
+  const auto press = [&](bool on) { platform->platform().press(clearpath::sim::HardwareInput::estop, on, h.runtime().now()); };
+  press(true);
   EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::emergency && pose->state() == rt::PrimaryStatus::emergency; }));
-  clearpath::SetSafetySystem released;
-  h.platform_client()->send(released);
+  press(false);
   EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready && pose->state() == rt::PrimaryStatus::ready; }));
 
   // JAUS Emergency on the driver: the platform's flag is set, and is not taken for its own e-stop.
   // Waited for on the platform itself, then a while for its safety status to
   // come back (that it is not taken for an e-stop is also asserted under
   // virtual time, tests/bridge/clearpath_vehicle_test.cpp).
-  const auto* platform = dynamic_cast<clearpath::sim::LoopbackClient*>(h.platform_client());
-  ASSERT_NE(platform, nullptr);
-  driver->hold_hardware_emergency("test");  // any way into Emergency mirrors it
-  EXPECT_TRUE(run_until([&] { return (platform->platform().vehicle().safety_flags() & 0x08) != 0; }));
+  const auto emergency = [&](auto message) {
+    std::vector<std::uint8_t> payload(kMaxPayloadSize);
+    const auto size = wire::encode_payload(message, payload);
+    ASSERT_TRUE(size);
+    Header header;
+    header.command_code = decltype(message)::code;
+    header.source = Address{9, 1, 40, 1};
+    header.destination = driver->address();
+    header.data_size = static_cast<std::uint16_t>(*size);
+    driver->receive(header, std::span(payload).first(*size));
+  };
+  emergency(msg::SetEmergency{});
+  EXPECT_TRUE(run_until([&] { return (platform->platform().vehicle().commanded_safety() & 0x08) != 0; }));
   io.run_for(std::chrono::milliseconds(300));
-  EXPECT_EQ(pose->state(), rt::PrimaryStatus::ready);
-  driver->release_hardware_emergency("test");
+  EXPECT_EQ(pose->state(), rt::PrimaryStatus::ready);  // a sensor is not a moving component
+  EXPECT_EQ(driver->state(), rt::PrimaryStatus::emergency);
+  emergency(msg::ClearEmergency{});
   EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready; }));
+  EXPECT_EQ(platform->platform().vehicle().commanded_safety() & 0x08, 0);
   h.stop("test");
+}
+
+// A Set Emergency or Clear Emergency from `from`, as the node hands it to `to`.
+template <class M>
+void deliver(rt::Component& to, const Address& from, const M& message) {
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  const auto size = wire::encode_payload(message, payload);
+  ASSERT_TRUE(size);
+  Header header;
+  header.command_code = M::code;
+  header.source = from;
+  header.destination = to.address();
+  header.data_size = static_cast<std::uint16_t>(*size);
+  to.receive(header, std::span(payload).first(*size));
+}
+
+class EmergencyHolds : public ::testing::Test {
+ protected:
+  EmergencyHolds() {
+    dir = std::filesystem::temp_directory_path() / ("jaus-holds-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+  }
+  ~EmergencyHolds() override { std::filesystem::remove_all(dir); }
+  HostConfig config(EmergencyScope scope = EmergencyScope::vehicle) const {
+    HostConfig c = loopback_config();
+    c.emergency.state_directory = dir.string();
+    c.emergency.scope = scope;
+    return c;
+  }
+  static rt::PrimaryStatus state_of(NodeHost& h, std::uint8_t id) { return h.node().find(Address{1, 1, id, 1})->state(); }
+
+  std::filesystem::path dir;
+  boost::asio::io_context io;
+};
+
+constexpr std::uint8_t kDriverId = 33, kArmId = 49, kCamerasId = 37, kPoseId = 38;
+const Address kOperator{9, 1, 40, 1};
+
+// Vehicle scope: Set Emergency to the driver holds the arm and the cameras'
+// mounts too; the holder clears it from any of them.
+TEST_F(EmergencyHolds, SetEmergencyToOneMovingComponentHoldsTheVehicle) {
+  auto host = NodeHost::open(config(), io);
+  ASSERT_TRUE(host) << host.error().message();
+  NodeHost& h = **host;
+  deliver(*h.node().find(Address{1, 1, kDriverId, 1}), kOperator, msg::SetEmergency{});
+  for (auto id : {kDriverId, kArmId, kCamerasId}) EXPECT_EQ(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+  EXPECT_NE(state_of(h, kPoseId), rt::PrimaryStatus::emergency);  // a sensor moves nothing
+  deliver(*h.node().find(Address{1, 1, kArmId, 1}), kOperator, msg::ClearEmergency{});
+  for (auto id : {kDriverId, kArmId, kCamerasId}) EXPECT_NE(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+}
+
+TEST_F(EmergencyHolds, ComponentScopeHoldsOnlyTheComponentAsked) {
+  auto host = NodeHost::open(config(EmergencyScope::component), io);
+  ASSERT_TRUE(host) << host.error().message();
+  deliver(*(*host)->node().find(Address{1, 1, kDriverId, 1}), kOperator, msg::SetEmergency{});
+  EXPECT_EQ(state_of(**host, kDriverId), rt::PrimaryStatus::emergency);
+  EXPECT_NE(state_of(**host, kArmId), rt::PrimaryStatus::emergency);
+}
+
+// Holds survive a restart; SIGUSR1's local clear releases holders gone for good.
+TEST_F(EmergencyHolds, HoldsSurviveARestartAndTheLocalClearReleasesThem) {
+  {
+    auto host = NodeHost::open(config(), io);
+    ASSERT_TRUE(host) << host.error().message();
+    deliver(*(*host)->node().find(Address{1, 1, kArmId, 1}), kOperator, msg::SetEmergency{});
+    (*host)->stop("test");
+  }
+  auto host = NodeHost::open(config(), io);
+  ASSERT_TRUE(host) << host.error().message();
+  NodeHost& h = **host;
+  for (auto id : {kDriverId, kArmId, kCamerasId}) EXPECT_EQ(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+  ASSERT_NE(h.emergency_latch("vehicle"), nullptr);
+  EXPECT_EQ(h.emergency_latch("vehicle")->holders(), std::vector<Address>{kOperator});
+  EXPECT_EQ(h.clear_emergency_holds_locally("test"), 1u);
+  for (auto id : {kDriverId, kArmId, kCamerasId}) EXPECT_NE(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+  h.stop("test");
+  // ...and the clear is persisted too.
+  auto again = NodeHost::open(config(), io);
+  ASSERT_TRUE(again);
+  EXPECT_NE(state_of(**again, kDriverId), rt::PrimaryStatus::emergency);
+}
+
+TEST_F(EmergencyHolds, AnUnreadableHoldsFileHoldsEverythingUntilTheLocalClear) {
+  std::ofstream(dir / "emergency-holds") << "vehicle not-an-address\n";
+  auto host = NodeHost::open(config(), io);
+  ASSERT_TRUE(host) << host.error().message();
+  NodeHost& h = **host;
+  for (auto id : {kDriverId, kArmId, kCamerasId, kPoseId}) EXPECT_EQ(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+  EXPECT_GE(h.clear_emergency_holds_locally("test"), 1u);
+  EXPECT_NE(state_of(h, kDriverId), rt::PrimaryStatus::emergency);
 }
 
 }  // namespace

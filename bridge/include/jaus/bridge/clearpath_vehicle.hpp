@@ -88,11 +88,17 @@ struct ClearpathVehicleConfig {
   double nominal_battery_v = 24.0;   // Platform Operational Data's battery voltage percent
 
   // Hardware e-stop, both ways (Husky flags: 0x08 emergency stop, 0x10 pause).
-  // JAUS Emergency also sets these bits of the safety flags (0x0010); 0: it does not.
+  // JAUS Emergency (held by Set Emergency) also sets these bits of the safety
+  // flags (0x0010); 0: it does not. jausd owns only these and the devices'
+  // safety bits; bridge/src/safety_word.hpp has the rule for the rest.
   std::uint16_t emergency_flags = 0;
   // These bits seen in the platform's safety status (0x8010), other than the
   // ones we set ourselves, mean its own e-stop or pause is on; 0: not watched.
   std::uint16_t platform_stop_flags = 0x08 | 0x10;
+  // Bits of 0x8010 the platform reports about itself (Husky: 0x01 timeout,
+  // 0x20 no battery, 0x40 current limit): never written back.
+  std::uint16_t platform_status_flags = 0x01 | 0x20 | 0x40;
+  std::uint16_t safety_status_rate_hz = 10;  // 0x8010 subscription: how soon a platform stop is seen
 };
 
 struct ClearpathVehicleCounters {
@@ -124,13 +130,21 @@ class ClearpathVehicle final : public components::Drive, public components::Pose
   std::optional<components::PoseSample> sample() override;
   double update_rate_hz() const override;
 
-  // The platform's own e-stop or pause (platform_stop_flags): `why` when it
-  // appears, nullopt when it clears. The host puts the components in Emergency.
+  // The platform's own e-stop or pause (platform_stop_flags bits jausd did
+  // not set), or jausd's emergency flag written clear but not yet reported
+  // clear: `why` when it appears, nullopt when the platform reports it clear.
+  // The host holds the components in Emergency meanwhile. Called at once,
+  // from command_emergency(false) too, so the hold is in place before the
+  // components could leave Emergency.
   using EmergencyListener = std::function<void(const std::optional<std::string>& why)>;
   void on_platform_emergency(EmergencyListener listener);
-  // JAUS Emergency entered (true) or left: sets or clears emergency_flags on
-  // the platform. Does nothing when emergency_flags is 0.
+  // Set Emergency holds the vehicle (true) or no longer does: sets or clears
+  // emergency_flags on the platform. Does nothing when emergency_flags is 0.
   void command_emergency(bool active);
+  // The local command for holds whose holder is gone (jausd's SIGUSR1): the
+  // owned safety bits the platform shows are taken as jausd's own, and those
+  // not wanted are cleared (safety_word.hpp). Never undoes a hardware stop.
+  void reclaim_safety_bits();
 
   const ClearpathVehicleConfig& config() const;
   const ClearpathVehicleCounters& counters() const;

@@ -15,12 +15,14 @@
 
 #include "jaus/bridge/clearpath_vehicle.hpp"
 #include "jaus/bridge/platform_connection.hpp"
+#include "jaus/bridge/platform_emergency.hpp"
 #include "jaus/clearpath/client.hpp"
 #include "jaus/clearpath/link.hpp"
 #include "jaus/components/simulated_arm.hpp"
 #include "jaus/components/simulated_cameras.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/emergency_holds.hpp"
 #include "jaus/host/platform.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
@@ -43,6 +45,8 @@ struct HostConfig {
   // What carries the vehicle: the simulated vehicle above (model), or a
   // Clearpath platform through the bridge.
   PlatformSettings platform;
+  // How far Set Emergency reaches, and where its holds persist (emergency_holds.hpp).
+  EmergencySettings emergency;
 };
 
 class NodeHost {
@@ -77,8 +81,18 @@ class NodeHost {
   void stop(const std::string& why);
   bool stopped() const { return stopped_; }
 
+  // The local clear of emergency holds (SIGUSR1 in run()): every Set
+  // Emergency holder of every latch is cleared, logged with what each held,
+  // and the platform's emergency flag left by an earlier run is reclaimed.
+  // The platform's own stops stay until it reports them clear. Returns how
+  // many holds were cleared.
+  std::size_t clear_emergency_holds_locally(const std::string& why);
+  // The latch a component with hardware follows (nullptr for the others).
+  const rt::EmergencyLatch* emergency_latch(const std::string& name) const;
+
   // Runs `io` (the one the host was opened on) until a stop signal (SIGINT,
-  // SIGTERM, SIGHUP, SIGQUIT), io.stop() or an exception escaping a handler.
+  // SIGTERM, SIGHUP, SIGQUIT), io.stop() or an exception escaping a handler;
+  // SIGUSR1 is the local clear of emergency holds.
   // Safety: whatever ends the loop, stop() runs before this returns, so every
   // component's stop path (platform commanded to stop) has run. Returns the
   // exception's message when one ended the loop.
@@ -107,11 +121,25 @@ class NodeHost {
  private:
   NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
   void open_platform(boost::asio::io_context& io);
-  void mirror_emergencies(const std::vector<std::pair<const ComponentSpec*, rt::Component*>>& on_vehicle);
+  void restore_emergency_holds();
+  rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
+  bool latch_configured(const std::string& name) const;  // a latch this configuration makes
+  void persist_emergency_holds();
 
   HostConfig config_;
   transport::AsioRuntime runtime_;
   rt::LogFn log_;
+  // Lifetimes: the emergency latches of the components with hardware are the
+  // host's, made before and destroyed after every component and backend, so
+  // nothing that outlives a component (the platform's e-stop, the holds
+  // file) keeps a pointer to one. By name: "vehicle" or an address.
+  std::map<std::string, std::unique_ptr<rt::EmergencyLatch>> latches_;
+  std::vector<rt::EmergencyLatch*> platform_latches_;  // of components on the Clearpath platform
+  rt::EmergencyLatch* driver_latch_ = nullptr;         // the platform's emergency flag mirrors it
+  std::optional<std::filesystem::path> holds_file_;
+  PersistedHolds restored_holds_;
+  bool holds_unreadable_ = false;
+  PersistedHolds written_holds_;
   std::unique_ptr<transport::UdpLink> link_;
   // Declared before the node: components refer to them, so they outlive them.
   std::unique_ptr<components::SimulatedVehicle> vehicle_;
@@ -123,6 +151,7 @@ class NodeHost {
   std::unique_ptr<bridge::ClearpathVehicle> clearpath_vehicle_;
   std::unique_ptr<bridge::ClearpathCameras> clearpath_cameras_;
   std::unique_ptr<bridge::ClearpathArm> clearpath_arm_;
+  std::unique_ptr<bridge::PlatformEmergencyMirror> platform_emergency_;  // the platform's stops <-> the latches
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;
