@@ -14,6 +14,7 @@ constexpr double kStatusRateHz = 5;
 // The fastest rate a service connection can ask for (RA 3.3: 1092 Hz).
 constexpr double kFastestStatusRateHz = 1092;
 constexpr std::uint8_t kReady = static_cast<std::uint8_t>(jaus::msg::PrimaryStatus::ready);
+constexpr std::uint8_t kInitialize = static_cast<std::uint8_t>(jaus::msg::PrimaryStatus::initialize);
 // The hold wakes this often to look at the status reports' silence.
 constexpr jaus::rt::Duration kHoldSlice = 250ms;
 }  // namespace
@@ -110,7 +111,7 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
     if (rejected_) return End::rejected;
     if (session_.interrupted()) return End::interrupted;
     if (repeated_ && status_refused()) return End::unwatched;
-    if (repeated_ && state_ && *state_ != kReady && when_not_ready_ == WhenNotReady::end_hold) return End::not_ready;
+    if (repeated_ && when_not_ready_ == WhenNotReady::end_hold && left_ready()) return End::not_ready;
     const auto now = clock.now();
     if (now >= until) return End::time_up;
     auto slice = std::min<jaus::rt::Duration>(until - now, kHoldSlice);
@@ -125,10 +126,19 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
   }
 }
 
+// A component still starting (Initialize before it was ever Ready: a node
+// just started, its hardware not heard yet) is waited for; every other state
+// is a stop someone or something asked for.
+bool ControlHold::left_ready() const {
+  if (!state_ || *state_ == kReady) return false;
+  return been_ready_ || *state_ != kInitialize;
+}
+
 jaus::rt::TimePoint ControlHold::repeat(jaus::rt::TimePoint now) {
   const bool ready = state_ == kReady;
   if (ready != sending_) {
     sending_ = ready;
+    been_ready_ = been_ready_ || ready;
     next_send_ = now;  // at once when Ready (again)
     if (on_sending_) on_sending_(ready);
   }

@@ -64,7 +64,9 @@ class ControlHold {
   // never stops it while the operator holds the stick. Safety: nothing is
   // sent before the component has reported Ready, nor once it has reported
   // any other state (Emergency, Standby, Failure, ...): the hold ends then, or
-  // with WhenNotReady::pause waits for Ready again. A component that refuses
+  // with WhenNotReady::pause waits for Ready again. (Only Initialize before
+  // the first Ready, a component still starting, is waited for either way.)
+  // A component that refuses
   // the status service connection gets nothing (End::unwatched). The status
   // comes at least as often as the commands go, so a state is acted on within
   // a period. Nothing is sent after the hold ends.
@@ -91,6 +93,7 @@ class ControlHold {
   void watch_status();
   void stop_watching_status();
   bool status_refused() const;
+  bool left_ready() const;
   double status_rate_hz() const;
   // Sends the repeated command when it is due and the component is Ready;
   // returns when to look again.
@@ -112,6 +115,7 @@ class ControlHold {
   WhenNotReady when_not_ready_ = WhenNotReady::end_hold;
   std::function<void(bool)> on_sending_;
   bool sending_ = false;
+  bool been_ready_ = false;  // since send_while_held()
   jaus::rt::TimePoint next_send_{};
   std::uint64_t sent_while_held_ = 0;
 };
