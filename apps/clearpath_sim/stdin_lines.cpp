@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <csignal>
 #include <istream>
 
 namespace jaus::clearpath::sim {
@@ -9,6 +10,10 @@ namespace jaus::clearpath::sim {
 StdinLines::StdinLines(boost::asio::io_context& io, LineHandler on_line) : in_(io), on_line_(std::move(on_line)) {}
 
 bool StdinLines::start() {
+  // Started in the background of a shell (`clearpath-sim ... &`), reading the
+  // terminal would stop the whole simulator (SIGTTIN); ignored, the read fails
+  // with EIO instead and only the reading stops.
+  std::signal(SIGTTIN, SIG_IGN);
   // A duplicate, so closing the descriptor at exit leaves fd 0 alone.
   const int fd = ::dup(STDIN_FILENO);
   if (fd < 0) return false;

@@ -1,17 +1,21 @@
 // A program started for a test (jausd, jausctl), its stderr and stdout in a
-// file, stopped with a signal and waited for with a deadline.
+// file, stopped with a signal and waited for with a deadline. Its stdin is the
+// test's, or with Stdin::pipe a pipe the test writes to (write_stdin).
 #pragma once
 
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -21,9 +25,20 @@ namespace jaus::test {
 
 class ChildProcess {
  public:
-  ChildProcess(const std::vector<std::string>& argv, std::string output_file) : output_(std::move(output_file)) {
+  enum class Stdin { inherit, pipe };
+
+  ChildProcess(const std::vector<std::string>& argv, std::string output_file, Stdin in = Stdin::inherit)
+      : output_(std::move(output_file)) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
+    int pipe_fds[2] = {-1, -1};
+    // Close-on-exec: only the dup2'd copy (fd 0) reaches the child, and no later child holds the write end.
+    if (in == Stdin::pipe && ::pipe2(pipe_fds, O_CLOEXEC) == 0) {
+      // A child that exited must not kill the test with SIGPIPE: write_stdin() returns false instead.
+      ::signal(SIGPIPE, SIG_IGN);
+      posix_spawn_file_actions_adddup2(&actions, pipe_fds[0], 0);
+      stdin_fd_ = pipe_fds[1];
+    }
     posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
     std::vector<char*> args;
@@ -31,8 +46,10 @@ class ChildProcess {
     args.push_back(nullptr);
     if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = 0;
     posix_spawn_file_actions_destroy(&actions);
+    if (pipe_fds[0] >= 0) ::close(pipe_fds[0]);
   }
   ~ChildProcess() {
+    close_stdin();
     if (running()) {
       signal(SIGKILL);
       wait(std::chrono::seconds(5));
@@ -61,6 +78,22 @@ class ChildProcess {
     }
     return exit_code_;
   }
+  // Writes all of text to the child's stdin (Stdin::pipe only); false if it
+  // has no pipe or the child no longer reads (exited, closed its stdin).
+  bool write_stdin(std::string_view text) {
+    while (!text.empty() && stdin_fd_ >= 0) {
+      const ssize_t n = ::write(stdin_fd_, text.data(), text.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return false;
+      text.remove_prefix(static_cast<std::size_t>(n));
+    }
+    return text.empty();
+  }
+  // End of input for the child (it reads EOF).
+  void close_stdin() {
+    if (stdin_fd_ >= 0) ::close(stdin_fd_);
+    stdin_fd_ = -1;
+  }
   std::string output() const {
     std::ifstream in(output_);
     std::stringstream s;
@@ -73,6 +106,7 @@ class ChildProcess {
   std::string output_;
   pid_t pid_ = 0;
   std::optional<int> exit_code_;
+  int stdin_fd_ = -1;  // write end of the child's stdin pipe
 };
 
 }  // namespace jaus::test
