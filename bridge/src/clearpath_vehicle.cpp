@@ -110,7 +110,8 @@ struct ClearpathVehicle::State {
 
   void send(cp::AnyMessage message, const char* what) {
     platform.client().send(std::move(message), [this, what](const cp::CommandOutcome& outcome) {
-      if (outcome.ok()) return;
+      // A newer command of its kind replaced it: nothing failed.
+      if (outcome.ok() || outcome.error == cp::CommandError::superseded) return;
       ++counters.command_failures;
       platform.log(rt::LogLevel::warn,
                    std::string("Clearpath platform: ") + what + " not applied (" + detail::outcome_text(outcome) + ")");
@@ -211,7 +212,7 @@ struct ClearpathVehicle::State {
         m.flags = *word;
         platform.client().send(m, [this](const cp::CommandOutcome& outcome) {
           safety.write_done(outcome.ok());
-          if (!outcome.ok()) {
+          if (!outcome.ok() && outcome.error != cp::CommandError::superseded) {
             ++counters.command_failures;
             platform.log(rt::LogLevel::warn,
                          "Clearpath platform: safety flags not applied (" + detail::outcome_text(outcome) + ")");

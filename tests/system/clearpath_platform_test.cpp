@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "clearpath_simulator.hpp"
 #include "default_jausd.hpp"
 
 namespace jaus::test {
@@ -32,74 +33,16 @@ constexpr const char* kVelocitySensor = "7.1.42.1";
 constexpr const char* kForwardAndLeft =
     R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":60,"propulsive_rotational_effort_z_percent":-20}})";
 
-// clearpath-sim on UDP (a fixed loopback port) or a PTY, printing its state every 0.1 s.
-class Simulator {
- public:
-  enum class Line { udp, pty };
-  Simulator(Line line, const std::filesystem::path& dir, const std::string& name, std::vector<std::string> more = {})
-      : line_(line) {
-    std::vector<std::string> args{CLEARPATH_SIM_PATH, "--status-every", "0.1", "--log-level", "warn"};
-    if (line == Line::udp) args.insert(args.end(), {"--udp", std::string(kSimAddress) + ":7300"});
-    else args.push_back("--pty");
-    args.insert(args.end(), more.begin(), more.end());
-    process_ = std::make_unique<ChildProcess>(args, (dir / (name + ".log")).string());
-  }
-  bool started() const { return process_->started(); }
-  ChildProcess& process() { return *process_; }
-
-  // What jausd's `platform:` says to reach it (the PTY's path once it printed it).
-  std::optional<std::string> platform_config() const {
-    if (line_ == Line::udp) return std::string("platform: {udp: ") + kSimAddress + ":7300}\n";
-    const auto until = std::chrono::steady_clock::now() + 10s;
-    while (std::chrono::steady_clock::now() < until) {
-      std::istringstream lines(process_->output());
-      for (std::string l; std::getline(lines, l);)
-        if (l.rfind("pty: ", 0) == 0) return "platform: {serial: " + l.substr(5) + "}\n";
-      std::this_thread::sleep_for(50ms);
-    }
-    return std::nullopt;
-  }
-
-  // Every state line printed so far, oldest first.
-  std::vector<Json> states() const {
-    std::vector<Json> out;
-    std::istringstream lines(process_->output());
-    for (std::string l; std::getline(lines, l);) {
-      if (l.rfind("{\"status\"", 0) != 0) continue;
-      const Json j = Json::parse(l, nullptr, false);
-      if (!j.is_discarded()) out.push_back(j["status"]);
-    }
-    return out;
-  }
-  std::optional<Json> state() const {
-    auto all = states();
-    if (all.empty()) return std::nullopt;
-    return all.back();
-  }
-  // Waits until the newest state satisfies `good`.
-  bool wait_for(const std::function<bool(const Json&)>& good, std::chrono::milliseconds deadline) const {
-    const auto until = std::chrono::steady_clock::now() + deadline;
-    while (std::chrono::steady_clock::now() < until) {
-      if (const auto s = state(); s && good(*s)) return true;
-      std::this_thread::sleep_for(50ms);
-    }
-    return false;
-  }
-
- private:
-  Line line_;
-  std::unique_ptr<ChildProcess> process_;
-};
-
-bool moving(const Json& s) { return s["speed_mps"].get<double>() > 0.3; }
-bool stopped(const Json& s) { return s["left_mps"].get<double>() == 0.0 && s["right_mps"].get<double>() == 0.0; }
+using Simulator = ClearpathSimulator;
+bool moving(const Json& s) { return Simulator::moving(s); }
+bool stopped(const Json& s) { return Simulator::stopped(s); }
 
 class ClearpathPlatform : public ::testing::TestWithParam<Simulator::Line> {
  protected:
   void start(Simulator::Line line, std::vector<std::string> sim_options = {}) {
     dir = std::filesystem::temp_directory_path() / ("jaus-clearpath-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    sim = std::make_unique<Simulator>(line, dir, "sim", std::move(sim_options));
+    sim = std::make_unique<Simulator>(line, dir, "sim", kSimAddress, std::move(sim_options));
     ASSERT_TRUE(sim->started());
     const auto platform = sim->platform_config();
     ASSERT_TRUE(platform) << sim->process().output();
@@ -201,11 +144,11 @@ TEST_F(ClearpathPlatformUdp, SetEmergencyStopsTheWheels) {
   ASSERT_TRUE(sim->wait_for(moving, 15s)) << controller->output();
   auto emergency = jausctl("emergency", {"emergency", kDriver, "set", "--timeout", "5"}, "127.0.0.37:0");
   EXPECT_EQ(emergency->wait(20s), 0) << emergency->output();
-  // Although the controller keeps sending efforts.
   EXPECT_TRUE(sim->wait_for(stopped, 10s)) << sim->state()->dump();
   std::this_thread::sleep_for(1s);
   EXPECT_TRUE(stopped(*sim->state()));
-  EXPECT_TRUE(controller->running());
+  // The operator tool stops too: it stopped sending, released control and said why (exit 3).
+  EXPECT_EQ(controller->wait(20s), 3) << controller->output();
 }
 
 TEST_F(ClearpathPlatformUdp, AKilledJausdLetsThePlatformsWatchdogStopTheWheels) {
@@ -230,7 +173,7 @@ TEST_F(ClearpathPlatformUdp, AnUnpluggedPlatformIsFailureThenReadyAndNothingMove
   sim->process().wait(5s);
   EXPECT_TRUE(poll_status(kDriver, "failure", 15s)) << jausd->output();
   // Plugged back: a fresh simulator on the same port, at rest.
-  sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, "sim-again");
+  sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, "sim-again", kSimAddress);
   ASSERT_TRUE(sim->started());
   EXPECT_TRUE(poll_status(kDriver, "ready", 20s)) << jausd->output();
   std::this_thread::sleep_for(1s);

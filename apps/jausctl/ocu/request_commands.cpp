@@ -30,6 +30,10 @@ jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& sessio
   return report;
 }
 
+// After Clear Emergency: how long the component may take to leave Emergency, asked this often.
+constexpr jaus::rt::Duration kClearSettles = std::chrono::seconds(1);
+constexpr jaus::rt::Duration kClearPoll = std::chrono::milliseconds(100);
+
 bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
   return (report.primary_status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
 }
@@ -103,9 +107,18 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   const std::string state = primary_status_text(report->primary_status);
   if (set && !is_emergency(*report))
     return fail(io, "emergency", target.to_string() + " is in " + state + " after Set Emergency");
+  // A clear may need a moment: a vehicle whose platform must first report its
+  // emergency flag clear stays in Emergency until it does (docs/safety.md).
+  const auto settle_until = session.clock().now() + std::min<jaus::rt::Duration>(timeout, kClearSettles);
+  while (!set && is_emergency(*report) && session.clock().now() < settle_until) {
+    session.run_for(kClearPoll);
+    auto again = query_status(session, target, timeout);
+    if (!again) break;
+    report = std::move(again);
+  }
   if (!set && is_emergency(*report))
-    return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, or " +
-                                     session.self().to_string() + " never set it");
+    return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, " +
+                                     "the platform's own stop does, or " + session.self().to_string() + " never set it");
   io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " (state " << state << ")\n";
   return kExitOk;
 }

@@ -1,0 +1,288 @@
+// Safety of the real loop, on real processes: jausd driving a separate
+// clearpath-sim over UDP, its hardware e-stop and pause pressed on its
+// standard input, controllers as jausctl processes or raw JAUS datagrams.
+// Each test is a failure issue 27 found on real processes, or a row of
+// docs/safety.md; the checks read the simulator's true state and events.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <csignal>
+#include <filesystem>
+#include <thread>
+
+#include "../benchmarks/bench_support.hpp"
+#include "clearpath_simulator.hpp"
+#include "default_jausd.hpp"
+#include "jaus/messages/all.hpp"
+
+namespace jaus::test {
+namespace {
+
+using namespace std::chrono_literals;
+using Json = nlohmann::json;
+using Simulator = ClearpathSimulator;
+
+constexpr const char* kNode = "127.0.0.70";
+constexpr const char* kSimAddress = "127.0.0.71";
+constexpr int kSubsystem = 8;
+const Address kDriverAddress{kSubsystem, 1, 33, 1};
+constexpr const char* kDriver = "8.1.33.1";
+constexpr const char* kPoseSensor = "8.1.38.1";
+constexpr const char* kForward =
+    R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":60}})";
+
+class Safety : public ::testing::Test {
+ protected:
+  Safety() {
+    // Not jausd's own directory (DefaultJausd removes that): the holds outlive a jausd.
+    dir = std::filesystem::temp_directory_path() / ("jaus-safety-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir / "state");
+  }
+  ~Safety() override {
+    jausd.reset();
+    sim.reset();
+    std::error_code ignored;
+    std::filesystem::remove_all(dir, ignored);
+  }
+
+  void start_sim(const std::string& name = "sim") {
+    sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, name, kSimAddress);
+    ASSERT_TRUE(sim->started());
+  }
+  // jausd on the simulator, the Husky's e-stop bit as its emergency flag, holds persisted.
+  void start_jausd(bool wait_ready = true) {
+    jausd = std::make_unique<DefaultJausd>("safety", kSubsystem, kNode,
+                                           std::string("platform: {udp: ") + kSimAddress + ":7300}\n" +
+                                               "clearpath: {emergency_flags: 0x08}\n" +
+                                               "state_directory: " + (dir / "state").string() + "\n");
+    ASSERT_TRUE(jausd->started());
+    if (wait_ready) {
+      ASSERT_TRUE(poll_status(kDriver, "ready", 30s)) << jausd->output();
+    }
+  }
+  void start() {
+    start_sim();
+    start_jausd();
+  }
+
+  std::unique_ptr<ChildProcess> jausctl(const std::string& name, std::vector<std::string> args, const std::string& bind) {
+    auto child = jausd->jausctl_own_id(name, std::move(args), bind);
+    EXPECT_TRUE(child->started());
+    return child;
+  }
+  // A controller that streams 60 % forward at 10 Hz while the driver is Ready
+  // (and, with --resume-when-ready, whenever it is Ready again): the most
+  // careless operator tool, the one jausd must defend the vehicle against.
+  std::unique_ptr<ChildProcess> careless_controller() {
+    return jausctl("controller",
+                   {"control", kDriver, "--authority", "10", "--rate", "10", "--for", "60", "--send", kForward,
+                    "--resume-when-ready"},
+                   "127.0.0.72:0");
+  }
+  std::optional<std::string> status_of(const std::string& address) {
+    auto child = jausctl("status", {"status", address, "--timeout", "1"}, "127.0.0.73:0");
+    if (child->wait(20s) != 0) {
+      last_failure = child->output();
+      return std::nullopt;
+    }
+    std::istringstream lines(child->output());
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line.front() == '{') {
+        const Json j = Json::parse(line, nullptr, false);
+        if (!j.is_discarded()) return j.value("primary_status", "");
+      }
+    return std::nullopt;
+  }
+  bool poll_status(const std::string& address, const std::string& status, std::chrono::seconds deadline) {
+    const auto until = std::chrono::steady_clock::now() + deadline;
+    while (std::chrono::steady_clock::now() < until) {
+      last_status = status_of(address);
+      if (last_status == status) return true;
+      std::this_thread::sleep_for(200ms);
+    }
+    ADD_FAILURE() << address << " not " << status << " within " << deadline.count() << " s; last seen: "
+                  << last_status.value_or("(no answer: " + last_failure + ")");
+    return false;
+  }
+  std::optional<std::string> last_status;
+  std::string last_failure;
+  // Every status seen while `d` passes, polled.
+  std::vector<std::string> statuses_during(const std::string& address, std::chrono::seconds d) {
+    std::vector<std::string> seen;
+    const auto until = std::chrono::steady_clock::now() + d;
+    // One jausctl every 200 ms: each is a new peer of the node, whose table holds max_peers (256).
+    while (std::chrono::steady_clock::now() < until) {
+      if (auto s = status_of(address)) seen.push_back(*s);
+      std::this_thread::sleep_for(200ms);
+    }
+    return seen;
+  }
+  int emergency(const std::string& what, const std::string& as) {
+    auto child = jausd->jausctl("emergency-" + what, {"emergency", kDriver, what, "--timeout", "5"}, "127.0.0.74:0", as);
+    return child->wait(20s).value_or(-1);
+  }
+  bool all_stopped_since(std::size_t first_state) const {
+    const auto states = sim->states();
+    for (std::size_t i = first_state; i < states.size(); ++i)
+      if (!Simulator::stopped(states[i])) return false;
+    return true;
+  }
+
+  std::filesystem::path dir;
+  std::unique_ptr<Simulator> sim;
+  std::unique_ptr<DefaultJausd> jausd;
+};
+
+// Raw JAUS datagrams from many operator IDs at once (one socket).
+class Operators {
+ public:
+  Operators() : socket_(io_, boost::asio::ip::udp::endpoint(boost::asio::ip::make_address("127.0.0.75"), 0)) {}
+  template <class M>
+  void send(std::uint8_t operator_subsystem, const M& message) {
+    const auto bytes = bench::datagram(Address{operator_subsystem, 1, 40, 1}, kDriverAddress, message, 12);
+    socket_.send_to(boost::asio::buffer(bytes),
+                    boost::asio::ip::udp::endpoint(boost::asio::ip::make_address(kNode), 3794));
+    std::this_thread::sleep_for(2ms);  // in order, and no burst the kernel would drop
+  }
+
+ private:
+  boost::asio::io_context io_;
+  boost::asio::ip::udp::socket socket_;
+};
+
+// Issue 27, failure 1: a pause on the platform was erased by jausd's own
+// safety word and the streaming controller drove on. Now the pause holds the
+// vehicle in Emergency until the platform releases it, whatever streams.
+TEST_F(Safety, APlatformPauseHoldsTheVehicleUntilThePlatformReleasesIt) {
+  start();
+  auto controller = careless_controller();
+  ASSERT_TRUE(sim->wait_for(Simulator::moving, 15s)) << controller->output();
+  ASSERT_TRUE(sim->press("pause", true));
+  ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
+  const auto first = sim->states().size();
+  const auto seen = statuses_during(kDriver, 4s);
+  ASSERT_FALSE(seen.empty());
+  for (const auto& s : seen) EXPECT_EQ(s, "emergency");  // never Ready while paused: no flip-flop
+  EXPECT_TRUE(all_stopped_since(first));
+  const auto now = *sim->state();
+  EXPECT_EQ(now["safety_flags"].get<int>() & 0x10, 0x10) << now.dump();  // the pause is still there
+  ASSERT_TRUE(sim->press("pause", false));
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+}
+
+// Issue 27, failure 2: a controller killed mid-stream was stopped only by the
+// platform's watchdog. Now jausd's command timeout writes the zero first.
+TEST_F(Safety, AKilledControllerIsStoppedByJausdBeforeThePlatformsWatchdog) {
+  start();
+  auto controller = careless_controller();
+  ASSERT_TRUE(sim->wait_for(Simulator::moving, 15s)) << controller->output();
+  const auto events_before = sim->events().size();
+  controller->signal(SIGKILL);
+  ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
+  std::this_thread::sleep_for(1500ms);  // long enough for the watchdog too, after the zero
+  std::optional<std::int64_t> zero, watchdog;
+  const auto events = sim->events();
+  for (std::size_t i = events_before; i < events.size(); ++i) {
+    const auto& e = events[i];
+    if (e["event"] == "zero_command" && !zero) zero = e["steady_ns"].get<std::int64_t>();
+    if (e["event"] == "safety" && (e["flags"].get<int>() & 0x01) && !watchdog) watchdog = e["steady_ns"].get<std::int64_t>();
+  }
+  ASSERT_TRUE(zero) << "jausd never wrote a zero; the platform's watchdog did the stopping";
+  if (watchdog) {
+    EXPECT_LT(*zero, *watchdog);
+  }
+  EXPECT_TRUE(jausd->output_contains("no Set Wrench Effort for 0.500 s")) << jausd->output();
+}
+
+// Issue 27, failure 3: twenty operators set Emergency, nineteen cleared, and
+// the driver was Ready. Now every holder holds; beyond the recorded ones the
+// latch holds until the local clear (SIGUSR1), logged.
+TEST_F(Safety, EveryEmergencyHolderIsKeptAndTheLocalClearReleasesThoseGoneForGood) {
+  start();
+  Operators operators;
+  for (std::uint8_t i = 0; i < 20; ++i) operators.send(100 + i, msg::SetEmergency{});
+  for (std::uint8_t i = 0; i < 19; ++i) operators.send(100 + i, msg::ClearEmergency{});
+  for (const auto& s : statuses_during(kDriver, 1s)) EXPECT_EQ(s, "emergency");
+  operators.send(119, msg::ClearEmergency{});
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+  // 70 holders: more than can be recorded; the last one's own clear cannot release them.
+  for (std::uint8_t i = 0; i < 70; ++i) operators.send(100 + i, msg::SetEmergency{});
+  for (std::uint8_t i = 0; i < 70; ++i) operators.send(100 + i, msg::ClearEmergency{});
+  std::this_thread::sleep_for(500ms);
+  EXPECT_EQ(status_of(kDriver), "emergency");
+  jausd->process().signal(SIGUSR1);
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1)")) << jausd->output();
+}
+
+// Issue 27, failure 4: an OCU shut a sensor down, and the next platform
+// e-stop called into the destroyed component. jausd stays up and stops.
+TEST_F(Safety, AShutDownSensorAndThenAPlatformEstopLeaveJausdRunning) {
+  start();
+  auto shutdown = jausctl("shutdown", {"control", kPoseSensor, "--authority", "10", "--rate", "1", "--send",
+                                       R"({"name":"Shutdown"})"},
+                          "127.0.0.76:0");
+  // Shut down, the sensor drops control (Reject Component Control: the tool exits 1) and leaves the node.
+  EXPECT_TRUE(shutdown->wait(30s)) << shutdown->output();
+  ASSERT_TRUE(jausd->output_contains("global_pose_sensor 8.1.38.1: Ready -> Shutdown")) << jausd->output();
+  std::this_thread::sleep_for(500ms);
+  ASSERT_TRUE(sim->press("estop", true));
+  EXPECT_TRUE(poll_status(kDriver, "emergency", 10s)) << jausd->output();
+  ASSERT_TRUE(sim->press("estop", false));
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+  EXPECT_TRUE(jausd->process().running()) << jausd->output();
+}
+
+// Issue 27, failure 5: Standby, the platform's link lost and back, and the
+// driver was Ready (the controller drove again). Now it is Standby again.
+TEST_F(Safety, StandbySurvivesALostPlatformLink) {
+  start();
+  auto controller = careless_controller();
+  ASSERT_TRUE(sim->wait_for(Simulator::moving, 15s)) << controller->output();
+  auto standby = jausctl("standby", {"send", kDriver, R"({"name":"Standby"})"}, "127.0.0.74:0");
+  EXPECT_EQ(standby->wait(20s), 0) << standby->output();
+  ASSERT_TRUE(poll_status(kDriver, "standby", 10s));
+  sim->process().signal(SIGKILL);
+  sim->process().wait(5s);
+  EXPECT_TRUE(poll_status(kDriver, "failure", 15s)) << jausd->output();
+  start_sim("sim-again");
+  EXPECT_TRUE(poll_status(kDriver, "standby", 20s)) << jausd->output();
+  std::this_thread::sleep_for(1s);
+  for (const auto& s : sim->states()) EXPECT_TRUE(Simulator::stopped(s)) << s.dump();
+}
+
+// Holds survive a restart of jausd (state_directory), and the platform's
+// emergency flag an earlier run left is jausd's own, not a platform stop.
+TEST_F(Safety, EmergencyHoldsSurviveARestartOfJausd) {
+  start();
+  ASSERT_EQ(emergency("set", "254.74.40.9"), 0);
+  ASSERT_TRUE(poll_status(kDriver, "emergency", 10s));
+  ASSERT_TRUE(sim->wait_for([](const Json& s) { return (s["safety_flags"].get<int>() & 0x08) != 0; }, 10s));
+  jausd->process().signal(SIGTERM);
+  ASSERT_EQ(jausd->process().wait(20s), 0) << jausd->output();
+  jausd.reset();
+  // The flag stays on the platform while jausd is away; the restarted one comes up held.
+  start_jausd(/*wait_ready=*/false);
+  EXPECT_TRUE(poll_status(kDriver, "emergency", 30s)) << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("emergency held since before the restart (vehicle): 254.74.40.9"));
+  ASSERT_EQ(emergency("clear", "254.74.40.9"), 0);
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+  EXPECT_TRUE(sim->wait_for([](const Json& s) { return (s["safety_flags"].get<int>() & 0x08) == 0; }, 10s));
+}
+
+// Until the platform speaks, the vehicle's components are initialising, not
+// Ready then failed; nothing is commanded meanwhile.
+TEST_F(Safety, WithoutItsPlatformTheDriverWaitsInInitialize) {
+  start_jausd(/*wait_ready=*/false);
+  std::this_thread::sleep_for(2s);
+  EXPECT_EQ(status_of(kDriver), "initialize");
+  EXPECT_FALSE(jausd->output_contains("-> Failure")) << jausd->output();
+  start_sim();
+  EXPECT_TRUE(poll_status(kDriver, "ready", 20s)) << jausd->output();
+}
+
+}  // namespace
+}  // namespace jaus::test
