@@ -56,9 +56,10 @@ std::string status_line(const SimPlatform& platform) {
       "{{\"status\":{{\"left_mps\":{:.3f},\"right_mps\":{:.3f},\"speed_mps\":{:.3f},"
       "\"yaw_rate_rps\":{:.3f},\"yaw_rad\":{:.3f},\"x_m\":{:.3f},\"y_m\":{:.3f},"
       "\"watchdog_expired\":{},\"safety_flags\":{},\"hardware_inputs\":{},\"commands_applied\":{},"
-      "\"frames_rejected\":{}}}}}",
+      "\"frames_rejected\":{},\"steering_percent\":{:.1f}}}}}",
       v.left().speed, v.right().speed, v.linear_speed(), v.yaw_rate(), v.yaw(), v.x(), v.y(), v.watchdog_expired(),
-      v.safety_flags(), v.hardware_inputs(), c.commands_applied, platform.parser_counters().errors());
+      v.safety_flags(), v.hardware_inputs(), c.commands_applied, platform.parser_counters().errors(),
+      v.ackermann_output()[0]);
 }
 
 std::string event_line(const PlatformEvent& event) {

@@ -48,15 +48,14 @@ class Safety : public ::testing::Test {
     std::filesystem::remove_all(dir, ignored);
   }
 
-  void start_sim(const std::string& name = "sim") {
-    sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, name, kSimAddress);
+  void start_sim(const std::string& name = "sim", std::vector<std::string> options = {}) {
+    sim = std::make_unique<Simulator>(Simulator::Line::udp, dir, name, kSimAddress, std::move(options));
     ASSERT_TRUE(sim->started());
   }
   // jausd on the simulator, the Husky's e-stop bit as its emergency flag, holds persisted.
-  void start_jausd(bool wait_ready = true) {
+  void start_jausd(bool wait_ready = true, const std::string& more = "clearpath: {emergency_flags: 0x08}\n") {
     jausd = std::make_unique<DefaultJausd>("safety", kSubsystem, kNode,
-                                           std::string("platform: {udp: ") + kSimAddress + ":7300}\n" +
-                                               "clearpath: {emergency_flags: 0x08}\n" +
+                                           std::string("platform: {udp: ") + kSimAddress + ":7300}\n" + more +
                                                "state_directory: " + (dir / "state").string() + "\n");
     ASSERT_TRUE(jausd->started());
     if (wait_ready) {
@@ -254,6 +253,56 @@ TEST_F(Safety, StandbySurvivesALostPlatformLink) {
   for (const auto& s : sim->states()) EXPECT_TRUE(Simulator::stopped(s)) << s.dump();
 }
 
+// The Husky's e-stop shares jausd's emergency bit (0x08): pressed while a Set
+// Emergency holds the vehicle, the JAUS clear must not release it, nor make
+// it flip between Emergency and Ready at the status rate.
+TEST_F(Safety, AHardwareEstopOnJausdsOwnBitNeverFlipFlops) {
+  start();
+  ASSERT_EQ(emergency("set", "254.74.40.9"), 0);
+  ASSERT_TRUE(sim->wait_for([](const Json& s) { return (s["safety_flags"].get<int>() & 0x08) != 0; }, 10s));
+  ASSERT_TRUE(sim->press("estop", true));
+  std::this_thread::sleep_for(300ms);
+  EXPECT_NE(emergency("clear", "254.74.40.9"), 0);  // still in Emergency: the platform's e-stop holds it
+  for (const auto& s : statuses_during(kDriver, 3s)) EXPECT_EQ(s, "emergency");
+  const auto now = *sim->state();
+  EXPECT_EQ(now["safety_flags"].get<int>() & 0x08, 0x08) << now.dump();
+  EXPECT_EQ(now["hardware_inputs"].get<int>(), 0x08) << now.dump();
+  ASSERT_TRUE(sim->press("estop", false));
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+}
+
+// Set Emergency to the driver holds the arm and the camera mounts too
+// (emergency_scope: vehicle), and its sender clears it from any of them.
+TEST_F(Safety, SetEmergencyToTheDriverHoldsEveryMovingComponent) {
+  start();
+  ASSERT_EQ(emergency("set", "254.74.40.9"), 0);
+  EXPECT_TRUE(poll_status("8.1.49.1", "emergency", 10s));  // the manipulator
+  EXPECT_TRUE(poll_status("8.1.37.1", "emergency", 10s));  // the visual sensor's mounts
+  EXPECT_EQ(status_of(kPoseSensor), "ready");              // a sensor moves nothing
+  auto clear = jausd->jausctl("clear-arm", {"emergency", "8.1.49.1", "clear", "--timeout", "5"}, "127.0.0.74:0",
+                              "254.74.40.9");
+  EXPECT_EQ(clear->wait(20s), 0) << clear->output();
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+}
+
+// An Ackermann platform keeps its steering angle when the operator lets go.
+TEST_F(Safety, AnAckermannStopHoldsTheSteeringAngle) {
+  start_sim("sim", {"--drive", "ackermann"});
+  start_jausd(true, "vehicle: {steering: ackermann}\n");
+  auto controller = jausctl("controller",
+                            {"control", kDriver, "--authority", "10", "--rate", "10", "--for", "60", "--send",
+                             R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":40,)"
+                             R"("propulsive_rotational_effort_z_percent":-30}})"},
+                            "127.0.0.72:0");
+  ASSERT_TRUE(sim->wait_for([](const Json& s) { return s["speed_mps"].get<double>() > 0.2; }, 15s))
+      << controller->output();
+  EXPECT_NEAR(sim->state()->at("steering_percent").get<double>(), 30, 0.5);  // Clearpath's steering: positive left
+  controller->signal(SIGINT);  // released: the driver stops
+  EXPECT_EQ(controller->wait(20s), 0) << controller->output();
+  ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
+  EXPECT_NEAR(sim->state()->at("steering_percent").get<double>(), 30, 0.5) << sim->state()->dump();
+}
+
 // Holds survive a restart of jausd (state_directory), and the platform's
 // emergency flag an earlier run left is jausd's own, not a platform stop.
 TEST_F(Safety, EmergencyHoldsSurviveARestartOfJausd) {
@@ -261,9 +310,11 @@ TEST_F(Safety, EmergencyHoldsSurviveARestartOfJausd) {
   ASSERT_EQ(emergency("set", "254.74.40.9"), 0);
   ASSERT_TRUE(poll_status(kDriver, "emergency", 10s));
   ASSERT_TRUE(sim->wait_for([](const Json& s) { return (s["safety_flags"].get<int>() & 0x08) != 0; }, 10s));
-  jausd->process().signal(SIGTERM);
+  jausd->process().signal(SIGTERM);  // every component shut down while held
   ASSERT_EQ(jausd->process().wait(20s), 0) << jausd->output();
   jausd.reset();
+  std::this_thread::sleep_for(500ms);
+  EXPECT_EQ(sim->state()->at("safety_flags").get<int>() & 0x08, 0x08) << "the shutdown cleared the emergency flag";
   // The flag stays on the platform while jausd is away; the restarted one comes up held.
   start_jausd(/*wait_ready=*/false);
   EXPECT_TRUE(poll_status(kDriver, "emergency", 30s)) << jausd->output();
