@@ -197,11 +197,22 @@ TEST(JausdConfig, EmptyFileIsTheDefaultConfiguration) {
   EXPECT_EQ(validate(JausdConfig{}), std::nullopt);
 }
 
+TEST(JausdConfig, EmergencyScopeAndStateDirectory) {
+  const auto c = expect_ok("emergency_scope: component\nstate_directory: /var/lib/jaus\n");
+  EXPECT_EQ(c.emergency_scope, jaus::host::EmergencyScope::component);
+  EXPECT_EQ(c.state_directory, "/var/lib/jaus");
+  const auto host = jausd::host_config(c);
+  EXPECT_EQ(host.emergency.scope, jaus::host::EmergencyScope::component);
+  EXPECT_EQ(host.emergency.state_directory, "/var/lib/jaus");
+  EXPECT_EQ(expect_ok("{}").emergency_scope, jaus::host::EmergencyScope::vehicle);
+  expect_error("emergency_scope: subsystem\n", 1, "'emergency_scope' must be one of vehicle, component, got 'subsystem'");
+}
+
 TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 149);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 152);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -433,7 +444,8 @@ TEST(JausdConfigErrors, TheFileMustBeAMap) {
 TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
   expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
-               "service_connections, liveness, transport, vehicle, platform, clearpath, cameras, manipulator, "
+               "service_connections, liveness, transport, emergency_scope, state_directory, vehicle, platform, clearpath, "
+               "cameras, manipulator, "
                "components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
                "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
@@ -723,6 +735,7 @@ clearpath:
   max_encoder_step_m: 1
   emergency_flags: 0x08
   platform_stop_flags: 0
+  platform_status_flags: 0x01
 )");
   const auto& o = c.clearpath;
   EXPECT_EQ(o.drive, jaus::bridge::DriveMode::velocity);
@@ -738,6 +751,7 @@ clearpath:
   EXPECT_EQ(o.setpoint_max_age_s, 0.3);
   EXPECT_EQ(o.emergency_flags, 0x08);
   EXPECT_EQ(o.platform_stop_flags, 0);
+  EXPECT_EQ(o.platform_status_flags, 0x01);
 
   // What the host gets: the vehicle's figures and the mapping together.
   const auto host = jausd::host_config(c);

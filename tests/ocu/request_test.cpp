@@ -133,7 +133,8 @@ TEST_F(OcuTest, ClearingSomeoneElsesEmergencyFailsAndSaysWhy) {
   ASSERT_EQ(ocu::run_emergency(*other, kCommunicator, true, 1s, io()), kExitOk) << err.str();
   EXPECT_EQ(ocu::run_emergency(*ocu, kCommunicator, false, 1s, io()), kExitFailure);
   EXPECT_EQ(err.str(),
-            "jausctl emergency: 1.1.35.1 is still in Emergency: another sender holds it, or 254.1.40.1 never set it\n");
+            "jausctl emergency: 1.1.35.1 is still in Emergency: another sender holds it, the platform's own stop does, or "
+            "254.1.40.1 never set it\n");
   EXPECT_EQ(target->communicator().state(), PrimaryStatus::emergency);
 }
 
