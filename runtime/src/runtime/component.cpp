@@ -86,18 +86,24 @@ void Component::hardware_ready() {
 void Component::follow_emergency() {
   const PrimaryStatus state = lifecycle_.state();
   if (state == PrimaryStatus::shutdown) return;
-  const Address by = emergency_->last_changed_by().is_valid() ? emergency_->last_changed_by() : config_.address;
+  // A Set or Clear Emergency names its sender; anything else (a local hold,
+  // a restored or shared latch) says who holds it.
+  const Address& sender = emergency_->last_changed_by();
+  const Address by = sender.is_valid() ? sender : config_.address;
+  const std::string cause = sender.is_valid() ? std::string()
+                            : emergency_->active() ? "held by " + emergency_->describe_holders()
+                                                   : std::string("no longer held");
   if (emergency_->active() && state != PrimaryStatus::emergency) {
-    transition(LifecycleEvent::emergency_set, by);
+    transition(LifecycleEvent::emergency_set, by, cause);
   } else if (!emergency_->active() && state == PrimaryStatus::emergency) {
-    transition(LifecycleEvent::emergency_cleared, by);
+    transition(LifecycleEvent::emergency_cleared, by, cause);
     // The hardware spoke while the emergency interrupted the wait for it.
     if (lifecycle_.state() == PrimaryStatus::initialize && !waiting_for_hardware_)
       transition(LifecycleEvent::init_succeeded, config_.address);
   }
 }
 
-void Component::transition(LifecycleEvent event, const Address& by) {
+void Component::transition(LifecycleEvent event, const Address& by, std::string_view cause) {
   const PrimaryStatus before = lifecycle_.state();
   if (!lifecycle_.process(event)) {
     ++counters_.refused_transitions;
@@ -110,7 +116,8 @@ void Component::transition(LifecycleEvent event, const Address& by) {
   const PrimaryStatus after = lifecycle_.state();
   log_repeated({"state changes", kNoteworthyBurst}, LogLevel::info, [&] {
     return std::string(to_string(before)) + " -> " + std::string(to_string(after)) + " (" +
-           std::string(to_string(event)) + " from " + by.to_string() + ")";
+           std::string(to_string(event)) + (cause.empty() ? " from " + by.to_string() : ": " + std::string(cause)) +
+           ")";
   });
   // Safety: leaving Ready, or re-entering a non-Ready state, always stops the platform.
   if (after != PrimaryStatus::ready) enforce_stop(std::string("entered ") + std::string(to_string(after)));

@@ -295,7 +295,8 @@ class Component {
   void register_core_handlers();
   msg::ReportComponentStatus status_report() const;
   void run_initialisation();
-  void transition(LifecycleEvent event, const Address& by);
+  // `by` names who asked in the log line; `cause`, when given, says why instead (a local hold).
+  void transition(LifecycleEvent event, const Address& by, std::string_view cause = {});
   void enforce_stop(std::string_view why);
   void refuse_not_controller(const Header& header, std::string_view what);
 
