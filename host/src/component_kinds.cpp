@@ -46,6 +46,10 @@ Hardware hardware_of(std::string_view kind) {
 
 bool needs_vehicle(std::string_view kind) { return hardware_of(kind) == Hardware::vehicle; }
 
+bool moves_hardware(std::string_view kind) {
+  return kind == "primitive_driver" || kind == "primitive_manipulator" || kind == "visual_sensor";
+}
+
 Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spec, const ComponentSettings& settings,
                                                         node::Node& node, const VehicleBackends& vehicle) {
   rt::ComponentConfig c = settings.defaults;

@@ -119,10 +119,8 @@ void NodeHost::restore_emergency_holds() {
 }
 
 rt::EmergencyLatch& NodeHost::latch_for(const ComponentSpec& spec) {
-  const bool moving = spec.kind == "primitive_driver" || spec.kind == "primitive_manipulator" ||
-                      spec.kind == "visual_sensor";
   const std::string name =
-      config_.emergency.scope == EmergencyScope::vehicle && moving
+      config_.emergency.scope == EmergencyScope::vehicle && moves_hardware(spec.kind)
           ? std::string("vehicle")
           : Address{config_.node.subsystem, config_.node.node, spec.id, spec.instance}.to_string();
   auto& latch = latches_[name];

@@ -68,5 +68,8 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
 enum class Hardware { none, vehicle, cameras, arm };
 Hardware hardware_of(std::string_view kind);
 bool needs_vehicle(std::string_view kind);  // hardware_of(kind) == Hardware::vehicle
+// The kind moves hardware (a drive, an arm, camera mounts): with
+// emergency_scope vehicle, one Set Emergency holds every such component.
+bool moves_hardware(std::string_view kind);
 
 }  // namespace jaus::host
