@@ -131,8 +131,8 @@ rt::EmergencyLatch& NodeHost::latch_for(const ComponentSpec& spec) {
   // holds every latch: nobody is forgotten.
   for (const auto& [held, hold] : restored_holds_)
     if (held == name || !latch_configured(held)) latch->restore(hold.holders, hold.overflowed);
-  // Written before the change goes further (the members follow after the observers).
-  latch->observe([this](const rt::EmergencyLatch&) { persist_emergency_holds(); });
+  // Written right after the change has taken effect: the stop first, then the disk.
+  latch->observe([this](const rt::EmergencyLatch&) { schedule_persisting(); });
   return *latch;
 }
 
@@ -143,6 +143,21 @@ bool NodeHost::latch_configured(const std::string& name) const {
         Address{config_.node.subsystem, config_.node.node, c.id, c.instance}.to_string() == name)
       return true;
   return false;
+}
+
+// A file write (and its fsync) never delays a stop: the members of a latch
+// follow its change in the same call, the write comes once that handler is
+// done, and a flood of new holders in one batch is one write. Should jausd die
+// in between, the platform's emergency flag it left is held as the platform's
+// own stop by the next run (fail safe).
+void NodeHost::schedule_persisting() {
+  if (!holds_file_ || persist_posted_) return;
+  persist_posted_ = true;
+  runtime_.post([this, alive = std::weak_ptr<char>(alive_)] {
+    if (alive.expired()) return;
+    persist_posted_ = false;
+    persist_emergency_holds();
+  });
 }
 
 void NodeHost::persist_emergency_holds() {
@@ -263,6 +278,7 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
+  persist_emergency_holds();  // a change still waiting for the loop
   // ...and the stop's zero setpoint goes out now, before a process exits
   // without running its io_context again.
   if (platform_link_ != nullptr) platform_link_->flush();

@@ -9,8 +9,9 @@
 //
 // Persistence: every latch of a component with hardware is the host's, and
 // each change of its JAUS holders is written to <state directory>/
-// emergency-holds before anything else happens; at start the holders are
-// restored before any component starts, so a restarted jausd comes up in
+// emergency-holds as soon as the change has taken effect (the stop never
+// waits for the disk; NodeHost::schedule_persisting); at start the holders
+// are restored before any component starts, so a restarted jausd comes up in
 // Emergency. A file that cannot be read holds every latch, fail safe, until
 // the local clear.
 //

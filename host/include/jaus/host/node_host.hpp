@@ -124,6 +124,7 @@ class NodeHost {
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
   bool latch_configured(const std::string& name) const;  // a latch this configuration makes
+  void schedule_persisting();
   void persist_emergency_holds();
 
   HostConfig config_;
@@ -140,6 +141,8 @@ class NodeHost {
   PersistedHolds restored_holds_;
   bool holds_unreadable_ = false;
   PersistedHolds written_holds_;
+  bool persist_posted_ = false;
+  std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> link_;
   // Declared before the node: components refer to them, so they outlive them.
   std::unique_ptr<components::SimulatedVehicle> vehicle_;
