@@ -340,6 +340,49 @@ TEST_F(PrimitiveDriverTest, CommandTimeoutStopsADriveThatAlreadyReportsZero) {
   EXPECT_EQ(drive.stops.back(), 100);  // stop_brake_percent
 }
 
+// Issue 28: every stop a controller can cause in a loop (release, Standby,
+// Emergency) stops the drive every time, and writes "drive stopped" only up
+// to the burst per 10 s window, the rest counted; so do a Reset loop's
+// failure and initialisation lines.
+TEST_F(PrimitiveDriverTest, AControllerLoopingStopsWritesABoundedLogAndEveryStopStillStops) {
+  logs.clear();
+  for (int i = 0; i < 1000; ++i) {
+    take_control(kOcuA);
+    deliver(kOcuA, msg::Standby{});
+    deliver(kOcuA, msg::Resume{});
+    deliver(kOcuA, msg::SetEmergency{{1}});
+    deliver(kOcuA, msg::ClearEmergency{{1}});
+    deliver(kOcuA, msg::ReleaseComponentControl{});
+  }
+  EXPECT_GE(drive.stops.size(), 3000u);  // the limiter leaves out lines, never stops
+  EXPECT_EQ(driver->state(), msg::PrimaryStatus::ready);
+  EXPECT_TRUE(any_line_contains(logs, "drive stopped: entered Standby"));
+  EXPECT_TRUE(any_line_contains(logs, "drive stopped: entered Emergency"));
+  EXPECT_LE(logs.size(), 40u);  // 6000 messages
+  time.advance(10s);
+  EXPECT_TRUE(any_line_contains(logs, "left out in the last 10 s: "));
+  EXPECT_TRUE(any_line_contains(logs, "x drive stops"));
+
+  // A faulted drive Reset in a loop: each Reset waits for the drive again.
+  take_control(kOcuA);
+  logs.clear();
+  for (int i = 0; i < 1000; ++i) {
+    drive.fault("motor controller tripped");
+    ASSERT_EQ(driver->state(), msg::PrimaryStatus::failure);
+    deliver(kOcuA, msg::Reset{});
+    ASSERT_EQ(driver->state(), msg::PrimaryStatus::initialize);
+    drive.fault(std::nullopt);
+    ASSERT_EQ(driver->state(), msg::PrimaryStatus::ready);
+  }
+  EXPECT_TRUE(any_line_contains(logs, "failure: drive fault: motor controller tripped"));
+  EXPECT_TRUE(any_line_contains(logs, "initialising: waiting for the drive (motor controller tripped)"));
+  EXPECT_TRUE(any_line_contains(logs, "hardware ready: initialised"));
+  EXPECT_LE(logs.size(), 40u);
+  time.advance(10s);
+  for (const char* kind : {"x failures", "x initialisations waiting for the hardware", "x hardware ready"})
+    EXPECT_TRUE(any_line_contains(logs, kind)) << kind;
+}
+
 TEST_F(PrimitiveDriverTest, ADriveNotHeardFromYetKeepsTheDriverInInitialize) {
   drive.fault("no data from the platform yet");
   make();

@@ -84,6 +84,56 @@ TEST_F(ComponentTest, AFloodOfEmergencyHoldersIsBoundedAndNeverReleasesTheHardwa
   EXPECT_EQ(driver->state(), S::emergency);  // holders beyond the recorded ones were not forgotten
 }
 
+// Issue 28: a controller that loops what it may do (control, Standby and
+// Resume, emergencies, its authority) writes a few dozen lines per 10 s
+// window, not one per cycle; what was left out is counted when the window
+// ends. The stops themselves are never limited.
+TEST_F(ComponentTest, AControllerLoopingControlStateAndEmergencyWritesABoundedLog) {
+  logs.clear();
+  for (int i = 0; i < 1000; ++i) {
+    ASSERT_EQ(request_control(kOcuA, 10), 0);
+    deliver(kOcuA, msg::SetComponentAuthority{{static_cast<std::uint8_t>(1 + i % 2)}});
+    deliver(kOcuA, msg::Standby{});
+    deliver(kOcuA, msg::Resume{});
+    deliver(kOcuA, msg::SetEmergency{});
+    deliver(kOcuA, msg::ClearEmergency{});
+    deliver(kOcuA, msg::ReleaseComponentControl{});
+  }
+  EXPECT_EQ(driver->state(), S::ready);
+  EXPECT_EQ(driver->counters().control_changes, 2000u);
+  EXPECT_GE(driver->stops.size(), 3000u);  // every Standby, Emergency and release stopped the platform
+  // Each kind writes its first lines as before.
+  EXPECT_TRUE(logged("controlled by 2.1.40.1"));
+  EXPECT_TRUE(logged("authority 5 -> 1 (by 2.1.40.1)"));
+  EXPECT_TRUE(logged("released by 2.1.40.1"));
+  EXPECT_LE(logs.size(), 40u);  // 7000 messages, 8000 lines without the limiter
+  const auto before_summary = logs.size();
+  time.advance(std::chrono::seconds(10));
+  ASSERT_GT(logs.size(), before_summary);
+  const std::string& summary = logs[before_summary];
+  EXPECT_NE(summary.find("left out in the last 10 s: "), std::string::npos) << summary;
+  for (const char* kind : {"x control granted", "x control released", "x authority changes", "x state changes"})
+    EXPECT_NE(summary.find(kind), std::string::npos) << kind << " in " << summary;
+}
+
+// A controller that takes control and goes silent, in a loop: each time its
+// control is dropped (and the platform stopped), a line up to the burst.
+TEST_F(ComponentTest, AControllerLoopingTakeAndGoSilentWritesABoundedLog) {
+  make(5, std::chrono::milliseconds(100));
+  logs.clear();
+  for (int i = 0; i < 100; ++i) {
+    ASSERT_EQ(request_control(kOcuA, 10), 0);
+    time.advance(std::chrono::milliseconds(200));  // beyond the 100 ms controller timeout
+    ASSERT_FALSE(driver->control().controller());
+  }
+  time.advance(std::chrono::seconds(10));
+  std::size_t dropped = 0;
+  for (const auto& l : logs) dropped += l.find("dropped: controller silent") != std::string::npos;
+  EXPECT_GE(dropped, 1u);
+  EXPECT_LE(dropped, 3u * static_cast<std::size_t>(rt::kNoteworthyBurst));  // 20 s: 100 drops, three windows
+  EXPECT_TRUE(logged("x control dropped"));
+}
+
 // Issue 27, failure 3: twenty operators set Emergency and nineteen clear; the
 // one left still holds it, however many there were.
 TEST_F(ComponentTest, NoEmergencyHolderIsForgottenBeyondTheRecordedOnes) {

@@ -68,8 +68,10 @@ std::uint8_t Communicator::link_state(std::uint8_t link) const {
 void Communicator::set_link_state(std::uint8_t link, std::uint8_t state) {
   auto& current = links_[link];
   if (current == state) return;
-  log(LogLevel::info, "data link " + std::to_string(link) + " state " + std::to_string(current) + " -> " +
-                          std::to_string(state));
+  // The controller's Set Data Link Status: a loop of them is limited.
+  log_repeated({"data link states changed", kNoteworthyBurst}, LogLevel::info, [&] {
+    return "data link " + std::to_string(link) + " state " + std::to_string(current) + " -> " + std::to_string(state);
+  });
   current = state;
 }
 

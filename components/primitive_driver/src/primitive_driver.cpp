@@ -200,7 +200,9 @@ void PrimitiveDriver::command_stop(std::string_view why) {
   cancel_command_timeout();
   propelling_ = false;
   drive_.stop(options_.stop_brake_percent);
-  log(LogLevel::info, "drive stopped: " + std::string(why));
+  // Every Standby, Emergency, release or takeover stops the drive: a peer looping them is
+  // one line per stop up to the burst, then a count (the stop itself is never limited).
+  log_repeated({"drive stops", kNoteworthyBurst}, LogLevel::info, [&] { return "drive stopped: " + std::string(why); });
 }
 
 }  // namespace jaus::components

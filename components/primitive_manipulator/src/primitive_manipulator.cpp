@@ -99,10 +99,14 @@ PrimitiveManipulator::~PrimitiveManipulator() {
 bool PrimitiveManipulator::initialize() {
   const ArmConfig& geometry = arm_.geometry();
   if (auto ok = check_arm_config(geometry); !ok) {
-    log(LogLevel::error, "cannot run the arm: " + ok.error().message());
+    // A controller's Reset runs this again: limited like the rest of what a Reset repeats.
+    log_repeated({"arm configurations refused", kNoteworthyBurst}, LogLevel::error,
+                 [&] { return "cannot run the arm: " + ok.error().message(); });
     return false;
   }
-  for (const std::string& loss : specification_losses(geometry)) log(LogLevel::warn, loss);
+  if (!losses_written_)
+    for (const std::string& loss : specification_losses(geometry)) log(LogLevel::warn, loss);
+  losses_written_ = true;
   return true;
 }
 
@@ -111,11 +115,13 @@ void PrimitiveManipulator::state_changed(PrimaryStatus before, PrimaryStatus aft
   // stopped the arm (command_stop). Homing moves it: never under an emergency.
   if (after != PrimaryStatus::initialize || before == PrimaryStatus::initialize) return;
   if (emergency().active()) {
-    log(LogLevel::info, "reset: arm not homed (emergency latched)");
+    log_repeated({"resets of the arm", kNoteworthyBurst}, LogLevel::info,
+                 [] { return std::string("reset: arm not homed (emergency latched)"); });
     return;
   }
   arm_.home();
-  log(LogLevel::info, "reset: arm homing");
+  log_repeated({"resets of the arm", kNoteworthyBurst}, LogLevel::info,
+               [] { return std::string("reset: arm homing"); });
 }
 
 // ---- Reports ----------------------------------------------------------------
@@ -265,21 +271,29 @@ Expected<std::vector<double>> PrimitiveManipulator::twist_rates(const msg::EndEf
 }
 
 void PrimitiveManipulator::refuse(const Header& h, std::string_view what, const Problem& problem) {
+  // A controller can repeat any refusal at will: one kind per reason, so that
+  // a flood of one reason leaves the others (and the arm's holds) written.
+  Repeated kind{"arm commands refused by the arm", kNoteworthyBurst};
   switch (problem.kind) {
     case Refusal::joint_count:
       ++counters_.refused_joint_count;
+      kind = {"arm commands with a wrong joint count refused", kNoteworthyBurst};
       break;
     case Refusal::out_of_limits:
       ++counters_.refused_out_of_limits;
+      kind = {"arm commands beyond the joint limits refused", kNoteworthyBurst};
       break;
     case Refusal::unreachable:
       ++counters_.refused_unreachable;
+      kind = {"arm commands out of reach refused", kNoteworthyBurst};
       break;
     case Refusal::arm:
       ++counters_.refused_by_arm;
       break;
   }
-  log(LogLevel::warn, std::string(what) + " from " + h.source.to_string() + " refused (nothing moved): " + problem.why);
+  log_repeated(kind, LogLevel::warn, [&] {
+    return std::string(what) + " from " + h.source.to_string() + " refused (nothing moved): " + problem.why;
+  });
 }
 
 // ---- Commands ---------------------------------------------------------------
@@ -353,7 +367,7 @@ void PrimitiveManipulator::on_set_tool_point(const Header& h, const msg::SetTool
   ++counters_.commands_applied;
   std::ostringstream text;
   text << "tool point set to (" << m.x_m << ", " << m.y_m << ", " << m.z_m << ") m by " << h.source.to_string();
-  log(LogLevel::info, text.str());
+  log_repeated({"tool points set", kNoteworthyBurst}, LogLevel::info, [&] { return text.str(); });
 }
 
 void PrimitiveManipulator::on_set_end_effector_pose(const Header& h, const msg::SetEndEffectorPose& m) {
@@ -491,7 +505,9 @@ void PrimitiveManipulator::control_tick() {
     const bool last = lead >= trajectory_->duration_s();
     auto moved = arm_.move_to_positions(trajectory_->at(lead));
     if (!moved) {
-      log(LogLevel::error, "timed motion ended: the arm refused a setpoint: " + moved.error().message());
+      // A controller can start timed motions in a loop: these lines are limited.
+      log_repeated({"timed motions ended by the arm", kNoteworthyBurst}, LogLevel::error,
+                   [&] { return "timed motion ended: the arm refused a setpoint: " + moved.error().message(); });
       ++counters_.refused_by_arm;
       stop_platform("timed motion refused by the arm");
       return;
@@ -500,14 +516,16 @@ void PrimitiveManipulator::control_tick() {
       trajectory_.reset();
       ++counters_.motions_completed;
       motion_ = Motion::positions;  // holding the last pose: a position target
-      log(LogLevel::info, "timed motion sent its last pose");
+      log_repeated({"timed motions completed", kNoteworthyBurst}, LogLevel::info,
+                   [] { return std::string("timed motion sent its last pose"); });
       return;
     }
   } else if (twist_) {
     auto rates = twist_rates(*twist_, /*strict=*/false);
     auto moved = rates ? arm_.move_at_velocities(*rates) : Expected<bool>(unexpected(rates.error()));
     if (!moved) {
-      log(LogLevel::error, "end-effector velocity ended: " + moved.error().message());
+      log_repeated({"end-effector velocities ended by the arm", kNoteworthyBurst}, LogLevel::error,
+                   [&] { return "end-effector velocity ended: " + moved.error().message(); });
       ++counters_.refused_by_arm;
       stop_platform("end-effector velocity ended");
       return;
@@ -551,7 +569,9 @@ void PrimitiveManipulator::command_stop(std::string_view why) {
   ++counters_.holds;
   motion_ = Motion::holding;
   std::fill(commanded_efforts_.begin(), commanded_efforts_.end(), 0.0);
-  log(LogLevel::info, "arm holding: " + std::string(why));
+  // Every Standby, Emergency, release or takeover holds the arm: a peer looping them is
+  // one line per hold up to the burst, then a count (the hold itself is never limited).
+  log_repeated({"arm holds", kNoteworthyBurst}, LogLevel::info, [&] { return "arm holding: " + std::string(why); });
 }
 
 }  // namespace jaus::components

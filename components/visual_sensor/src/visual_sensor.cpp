@@ -113,11 +113,14 @@ VisualSensor::~VisualSensor() = default;
 bool VisualSensor::initialize() {
   const auto& configs = cameras_.configs();
   if (cameras_in_use_.empty()) {
-    log(LogLevel::error, "no camera configured (IDs 1..255)");
+    // A controller's Reset runs this again: limited like the rest of what a Reset repeats.
+    log_repeated({"camera configurations refused", kNoteworthyBurst}, LogLevel::error,
+                 [] { return std::string("no camera configured (IDs 1..255)"); });
     return false;
   }
   if (cameras_in_use_.size() != configs.size()) {
-    log(LogLevel::error, "camera IDs must be 1..255 and unique");
+    log_repeated({"camera configurations refused", kNoteworthyBurst}, LogLevel::error,
+                 [] { return std::string("camera IDs must be 1..255 and unique"); });
     return false;
   }
   return true;
@@ -211,11 +214,16 @@ std::optional<msg::ReportImage> VisualSensor::image_report() {
   if (error) {
     ++sensor_counters_.capture_errors;
     // Logged once per distinct error, not at the stream's rate.
-    if (capture_error_ != error) log(LogLevel::warn, "camera " + id_text(selected_) + ": no image: " + *error);
+    // Once per distinct error, and (a controller selecting cameras in turn repeats it) limited.
+    if (capture_error_ != error)
+      log_repeated({"cameras without images", kNoteworthyBurst}, LogLevel::warn,
+                   [&] { return "camera " + id_text(selected_) + ": no image: " + *error; });
     capture_error_ = error;
     return std::nullopt;
   }
-  if (capture_error_) log(LogLevel::info, "camera " + id_text(selected_) + ": images again");
+  if (capture_error_)
+    log_repeated({"cameras with images again", kNoteworthyBurst}, LogLevel::info,
+                 [&] { return "camera " + id_text(selected_) + ": images again"; });
   capture_error_.reset();
   msg::ReportImage report;
   report.camera_id = selected_;
@@ -306,7 +314,9 @@ void VisualSensor::on_set_format(const Header& h, const msg::SetCameraFormatOpti
 // Safety: the one place the mounts are told to hold (see the header).
 void VisualSensor::command_stop(std::string_view why) {
   for (const Camera& c : cameras_in_use_) cameras_.hold(c.config->id);
-  log(LogLevel::info, "camera mounts held: " + std::string(why));
+  // Every Standby, Emergency, release or takeover holds the mounts: limited (the hold itself is not).
+  log_repeated({"camera mounts held", kNoteworthyBurst}, LogLevel::info,
+               [&] { return "camera mounts held: " + std::string(why); });
 }
 
 }  // namespace jaus::components

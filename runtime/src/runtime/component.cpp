@@ -62,7 +62,10 @@ void Component::run_initialisation() {
   waiting_for_hardware_ = false;
   const bool ok = initialize();
   if (!ok) transition(LifecycleEvent::init_failed, config_.address);
-  else if (waiting_for_hardware_) log(LogLevel::info, "initialising: waiting for " + waiting_for_);
+  // A controller's Reset runs this again: a Reset loop is one line per window, then a count.
+  else if (waiting_for_hardware_)
+    log_repeated({"initialisations waiting for the hardware", kNoteworthyBurst}, LogLevel::info,
+                 [&] { return "initialising: waiting for " + waiting_for_; });
   else transition(LifecycleEvent::init_succeeded, config_.address);
   // An emergency latched before a reset (or restored at start) still holds after it.
   follow_emergency();
@@ -76,7 +79,7 @@ void Component::wait_for_hardware(std::string why) {
 void Component::hardware_ready() {
   if (!waiting_for_hardware_) return;
   waiting_for_hardware_ = false;
-  log(LogLevel::info, "hardware ready: initialised");
+  log_repeated({"hardware ready", kNoteworthyBurst}, LogLevel::info, [] { return std::string("hardware ready: initialised"); });
   // In Emergency the wait ends when the emergency returns to Initialize (follow_emergency).
   if (lifecycle_.state() == PrimaryStatus::initialize) transition(LifecycleEvent::init_succeeded, config_.address);
 }
@@ -132,18 +135,24 @@ void Component::transition(LifecycleEvent event, const Address& by, std::string_
 }
 
 void Component::hold_hardware_emergency(std::string_view cause) {
-  if (emergency_->hold_local(cause)) log(LogLevel::warn, "emergency Stop from the hardware: " + std::string(cause));
+  // A hardware stop can flap (or be toggled through a platform a peer reaches): limited like remote input.
+  if (emergency_->hold_local(cause))
+    log_repeated({"emergency Stops from the hardware", kNoteworthyBurst}, LogLevel::warn,
+                 [&] { return "emergency Stop from the hardware: " + std::string(cause); });
 }
 
 void Component::release_hardware_emergency(std::string_view cause) {
   switch (emergency_->release_local(cause)) {
     case EmergencyLatch::ClearResult::not_a_holder: return;
     case EmergencyLatch::ClearResult::still_held:
-      log(LogLevel::info, "hardware emergency cleared (" + std::string(cause) + "); still held by " +
-                              emergency_->describe_holders());
+      log_repeated({"hardware emergencies cleared", kNoteworthyBurst}, LogLevel::info, [&] {
+        return "hardware emergency cleared (" + std::string(cause) + "); still held by " +
+               emergency_->describe_holders();
+      });
       return;
     case EmergencyLatch::ClearResult::released_last:
-      log(LogLevel::info, "hardware emergency cleared: " + std::string(cause));
+      log_repeated({"hardware emergencies cleared", kNoteworthyBurst}, LogLevel::info,
+                   [&] { return "hardware emergency cleared: " + std::string(cause); });
       return;
   }
 }
@@ -181,7 +190,8 @@ void Component::peer_lost(const Address& peer) {
 void Component::declare_failure(std::string_view why) {
   const PrimaryStatus state = lifecycle_.state();
   if (state != PrimaryStatus::ready && state != PrimaryStatus::standby) return;
-  log(LogLevel::warn, "failure: " + std::string(why));
+  // A controller's Reset or Resume on faulted hardware declares it again: limited.
+  log_repeated({"failures", kNoteworthyBurst}, LogLevel::warn, [&] { return "failure: " + std::string(why); });
   transition(LifecycleEvent::failure_detected, config_.address);
   failure_declared_ = lifecycle_.state() == PrimaryStatus::failure;
 }
@@ -191,7 +201,8 @@ void Component::clear_failure(std::string_view why) {
   // In Emergency the failure is what the emergency interrupted: it stays
   // declared, and clears once the emergency has returned to Failure.
   if (lifecycle_.state() != PrimaryStatus::failure) return;
-  log(LogLevel::info, "failure cleared: " + std::string(why));
+  log_repeated({"failures cleared", kNoteworthyBurst}, LogLevel::info,
+               [&] { return "failure cleared: " + std::string(why); });
   failure_declared_ = false;
   transition(LifecycleEvent::failure_cleared, config_.address);
 }
@@ -330,8 +341,10 @@ void Component::register_core_handlers() {
   });
 
   handle<SetComponentAuthority>(Access::controller, false, [this](const Header& h, const SetComponentAuthority& m) {
-    log(LogLevel::info, "authority " + std::to_string(control_.own_authority()) + " -> " +
-                            std::to_string(m.authority) + " (by " + h.source.to_string() + ")");
+    log_repeated({"authority changes", kNoteworthyBurst}, LogLevel::info, [&] {
+      return "authority " + std::to_string(control_.own_authority()) + " -> " + std::to_string(m.authority) +
+             " (by " + h.source.to_string() + ")";
+    });
     control_.set_own_authority(m.authority);
   });
   handle<SetTime>(Access::controller, false, [this](const Header&, const SetTime& m) { on_set_time(m); });
@@ -475,7 +488,9 @@ void Component::take_control_away(std::string_view why) {
   controller_timer_ = kNoTimer;
   if (const auto previous = control_.drop()) {
     ++counters_.control_changes;
-    log(LogLevel::warn, "control of " + describe(*previous) + " dropped: " + std::string(why));
+    // A controller that takes control and goes silent (or away) in a loop repeats this: limited.
+    log_repeated({"control dropped", kNoteworthyBurst}, LogLevel::warn,
+                 [&] { return "control of " + describe(*previous) + " dropped: " + std::string(why); });
     send(previous->address, msg::RejectComponentControl{});
     end_stale_command_connections(why);
     enforce_stop(why);

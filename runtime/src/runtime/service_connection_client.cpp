@@ -7,7 +7,11 @@ namespace jaus::rt {
 
 ServiceConnectionClient::ServiceConnectionClient(Environment& env, Options options, SendCreate send_create,
                                                  SendTerminate send_terminate)
-    : env_(env), options_(options), send_create_(std::move(send_create)), send_terminate_(std::move(send_terminate)) {}
+    : env_(env),
+      options_(options),
+      send_create_(std::move(send_create)),
+      send_terminate_(std::move(send_terminate)),
+      lines_(env_.clock, env_.scheduler, [this](LogLevel level, const std::string& text) { env_.log(level, text); }) {}
 
 ServiceConnectionClient::~ServiceConnectionClient() {
   for (auto& [id, s] : subscriptions_)
@@ -86,8 +90,11 @@ void ServiceConnectionClient::on_confirm(const Header& h, const msg::ConfirmServ
       s.last_heard = env_.clock.now();
     } else {
       s.status.refused = m.response_code;
-      env_.log(LogLevel::warn, "service connection 0x" + wire::detail::hex_u32(s.code) + " refused by " +
-                                   h.source.to_string() + " (response " + std::to_string(m.response_code) + ")");
+      const std::uint16_t code = s.code;  // (a structured binding cannot be captured here)
+      lines_.write({"service connections refused", kNoteworthyBurst}, LogLevel::warn, [&] {
+        return "service connection 0x" + wire::detail::hex_u32(code) + " refused by " + h.source.to_string() +
+               " (response " + std::to_string(m.response_code) + ")";
+      });
     }
   }
 }

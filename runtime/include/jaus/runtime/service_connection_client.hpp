@@ -13,6 +13,7 @@
 #include "jaus/core/header.hpp"
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/runtime/environment.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
 
 namespace jaus::rt {
 
@@ -77,6 +78,8 @@ class ServiceConnectionClient {
   SendTerminate send_terminate_;
   SubscriptionId last_id_ = 0;
   std::map<SubscriptionId, Subscription> subscriptions_;
+  // A provider (or a sender forging its address) can refuse at will: limited.
+  RepeatedLines lines_;
 };
 
 }  // namespace jaus::rt

@@ -141,6 +141,9 @@ class PrimitiveManipulator final : public rt::Component {
   std::unique_ptr<kinematics::ArmKinematics> kinematics_;
   kinematics::Vec3 tool_point_;
   Motion motion_ = Motion::holding;
+  // The configuration's losses are written at the first initialisation only: a
+  // controller's Reset runs initialize() again, and would repeat them at will.
+  bool losses_written_ = false;
   std::vector<double> commanded_efforts_;  // reported when the arm does not report its efforts
   std::optional<JointTrajectory> trajectory_;
   rt::TimePoint trajectory_started_{};
