@@ -58,8 +58,9 @@ class Safety : public ::testing::Test {
                                            std::string("platform: {udp: ") + kSimAddress + ":7300}\n" + more +
                                                "state_directory: " + (dir / "state").string() + "\n");
     ASSERT_TRUE(jausd->started());
-    if (wait_ready) {
+    if (wait_ready) {  // the driver at the platform's first data, the sensors at their first fresh sample
       ASSERT_TRUE(poll_status(kDriver, "ready", 30s)) << jausd->output();
+      ASSERT_TRUE(poll_status(kPoseSensor, "ready", 10s)) << jausd->output();
     }
   }
   void start() {
