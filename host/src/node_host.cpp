@@ -167,9 +167,14 @@ void NodeHost::persist_emergency_holds() {
     if (latch->held_by_jaus()) holds[name] = PersistedHold{latch->holders(), latch->overflowed()};
   if (holds == written_holds_) return;  // a local hold changed, or nothing did
   if (auto error = write_emergency_holds(*holds_file_, holds)) {
-    log_(rt::LogLevel::error, "emergency holds not persisted: " + error->message());
+    // Once per failing streak: a peer toggling Set/Clear Emergency on a broken disk writes one line, not one a toggle.
+    if (!persisting_fails_)
+      log_(rt::LogLevel::error, "emergency holds not persisted: " + error->message() + " (retried at every change)");
+    persisting_fails_ = true;
     return;
   }
+  if (persisting_fails_) log_(rt::LogLevel::info, "emergency holds persisted again");
+  persisting_fails_ = false;
   written_holds_ = std::move(holds);
 }
 

@@ -342,6 +342,26 @@ TEST_F(EmergencyHolds, HoldsSurviveARestartAndTheLocalClearReleasesThem) {
   EXPECT_NE(state_of(**again, kDriverId), rt::PrimaryStatus::emergency);
 }
 
+// A disk that cannot take the holds is said once, however often a peer toggles them.
+TEST_F(EmergencyHolds, AFailingHoldsFileIsOneLineNotOneAToggle) {
+  HostConfig c = config();
+  c.emergency.state_directory = (dir / "missing").string();
+  std::vector<std::string> lines;
+  auto host = NodeHost::open(c, io, [&](rt::LogLevel, const std::string& l) { lines.push_back(l); });
+  ASSERT_TRUE(host) << host.error().message();
+  rt::Component& driver = *(*host)->node().find(Address{1, 1, kDriverId, 1});
+  for (int i = 0; i < 20; ++i) {
+    deliver(driver, kOperator, msg::SetEmergency{});
+    io.poll();
+    deliver(driver, kOperator, msg::ClearEmergency{});
+    io.poll();
+  }
+  EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
+                          [](const std::string& l) { return l.find("emergency holds not persisted") != std::string::npos; }),
+            1);
+  EXPECT_NE(state_of(**host, kDriverId), rt::PrimaryStatus::emergency);  // the latch itself works on
+}
+
 TEST_F(EmergencyHolds, AnUnreadableHoldsFileHoldsEverythingUntilTheLocalClear) {
   std::ofstream(dir / "emergency-holds") << "vehicle not-an-address\n";
   auto host = NodeHost::open(config(), io);

@@ -142,6 +142,7 @@ class NodeHost {
   bool holds_unreadable_ = false;
   PersistedHolds written_holds_;
   bool persist_posted_ = false;
+  bool persisting_fails_ = false;  // the last write failed (said once per streak)
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> link_;
   // Declared before the node: components refer to them, so they outlive them.
