@@ -198,6 +198,20 @@ TEST(NodeHost, AnUnknownKindInTheConfigurationIsAnError) {
   EXPECT_EQ(host.error().message(), "component kind 'warp_drive' cannot be hosted by this build");
 }
 
+// A Set Emergency or Clear Emergency from `from`, as the node hands it to `to`.
+template <class M>
+void deliver(rt::Component& to, const Address& from, const M& message) {
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  const auto size = wire::encode_payload(message, payload);
+  ASSERT_TRUE(size);
+  Header header;
+  header.command_code = M::code;
+  header.source = from;
+  header.destination = to.address();
+  header.data_size = static_cast<std::uint16_t>(*size);
+  to.receive(header, std::span(payload).first(*size));
+}
+
 // A Clearpath platform (simulated in process): the mobility components run on
 // the bridge; the platform's own e-stop holds them all in Emergency until it
 // clears, and the driver's JAUS Emergency sets the platform's emergency flag.
@@ -240,40 +254,16 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   // Waited for on the platform itself, then a while for its safety status to
   // come back (that it is not taken for an e-stop is also asserted under
   // virtual time, tests/bridge/clearpath_vehicle_test.cpp).
-  const auto emergency = [&](auto message) {
-    std::vector<std::uint8_t> payload(kMaxPayloadSize);
-    const auto size = wire::encode_payload(message, payload);
-    ASSERT_TRUE(size);
-    Header header;
-    header.command_code = decltype(message)::code;
-    header.source = Address{9, 1, 40, 1};
-    header.destination = driver->address();
-    header.data_size = static_cast<std::uint16_t>(*size);
-    driver->receive(header, std::span(payload).first(*size));
-  };
-  emergency(msg::SetEmergency{});
+  const Address kOperatorOnTheDriver{9, 1, 40, 1};
+  deliver(*driver, kOperatorOnTheDriver, msg::SetEmergency{});
   EXPECT_TRUE(run_until([&] { return (platform->platform().vehicle().commanded_safety() & 0x08) != 0; }));
   io.run_for(std::chrono::milliseconds(300));
   EXPECT_EQ(pose->state(), rt::PrimaryStatus::ready);  // a sensor is not a moving component
   EXPECT_EQ(driver->state(), rt::PrimaryStatus::emergency);
-  emergency(msg::ClearEmergency{});
+  deliver(*driver, kOperatorOnTheDriver, msg::ClearEmergency{});
   EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready; }));
   EXPECT_EQ(platform->platform().vehicle().commanded_safety() & 0x08, 0);
   h.stop("test");
-}
-
-// A Set Emergency or Clear Emergency from `from`, as the node hands it to `to`.
-template <class M>
-void deliver(rt::Component& to, const Address& from, const M& message) {
-  std::vector<std::uint8_t> payload(kMaxPayloadSize);
-  const auto size = wire::encode_payload(message, payload);
-  ASSERT_TRUE(size);
-  Header header;
-  header.command_code = M::code;
-  header.source = from;
-  header.destination = to.address();
-  header.data_size = static_cast<std::uint16_t>(*size);
-  to.receive(header, std::span(payload).first(*size));
 }
 
 class EmergencyHolds : public ::testing::Test {
