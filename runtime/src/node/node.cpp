@@ -155,7 +155,8 @@ void Node::receive_bytes(std::span<const std::uint8_t> bytes) {
   receive(*decoded);
 }
 
-void Node::receive(const PacketView& packet) {
+void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
+  (void)standing;  // issue 28: handed to the component with the message (in progress)
   ++counters_.packets_received;
   const Header& h = packet.header;
   const Address& s = h.source;

@@ -26,6 +26,7 @@
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/runtime/component.hpp"
 #include "jaus/runtime/node_directory.hpp"
+#include "jaus/runtime/sender_standing.hpp"
 
 namespace jaus::node {
 
@@ -88,8 +89,9 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   void shutdown(std::string_view why);
   rt::Component* find(const Address& address) const;
   // One packet from the network, its header already decoded and checked
-  // (version, data flag, sizes) by the transport.
-  void receive(const PacketView& packet);
+  // (version, data flag, sizes) by the transport, which also says what it
+  // knows of the sender (recorded, allowed to command).
+  void receive(const PacketView& packet, rt::SenderStanding standing = rt::SenderStanding::trusted);
   // The same from raw bytes (16-byte header + payload), for sources that have
   // not decoded the header: it is decoded and checked here once.
   void receive_bytes(std::span<const std::uint8_t> bytes);
