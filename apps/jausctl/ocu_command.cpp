@@ -7,6 +7,7 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
+#include <random>
 #include <string>
 
 #include "commands.hpp"
@@ -26,7 +27,7 @@ struct CommonOptions {
   std::vector<std::string> to{"127.0.0.1:3794"};
   std::string bind = "0.0.0.0:0";
   std::string framing = "opc";
-  std::string as = "254.1.40.1";
+  std::string as;  // empty: a fresh ID for this run (fresh_ocu_address)
   std::string timeout = "1";
   std::string dialect = "ra";
   int verbosity = 0;
@@ -39,8 +40,10 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
                   "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")->type_name("ADDR[:PORT]")
       ->capture_default_str();
   cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->type_name("opc|judp")->capture_default_str();
-  cmd->add_option("--as", c.as, "this OCU's JAUS address S.N.C.I (its node manager is S.N.1.1)")->type_name("S.N.C.I")
-      ->capture_default_str();
+  cmd->add_option("--as", c.as,
+                  "this OCU's JAUS address S.N.C.I (its node manager is S.N.1.1); default: a fresh 254.N.40.1 per "
+                  "run, shown in the output of emergency and control (give the same --as to clear or release later)")
+      ->type_name("S.N.C.I");
   cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->type_name("SECONDS")->capture_default_str();
   cmd->add_option("--dialect", c.dialect, "how payloads from the node are read: ra | openjaus")->type_name("ra|openjaus")
       ->capture_default_str();
@@ -51,6 +54,17 @@ struct Common {
   ocu::SessionOptions session;
   jaus::rt::Duration timeout{};
 };
+
+// Each run its own JAUS node ID unless --as says otherwise: an emergency
+// hold or control left by one run is not something the next user of a shared
+// default ID (or a host claiming it later) inherits (issue 28). Node 254.N
+// with N random; a collision with a live OCU is 1 in 254 and shows as that
+// node refusing the claim, and --as settles it.
+std::string fresh_ocu_address() {
+  std::random_device entropy;
+  std::uniform_int_distribution<int> node(1, 254);
+  return "254." + std::to_string(node(entropy)) + ".40.1";
+}
 
 // One line on stderr, exit code 2.
 int bad_input(std::string_view command, const std::string& why) {
@@ -83,7 +97,7 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   if (!bind) return ocu::invalid("--bind: " + bind.error().message());
   auto framing = ocu::parse_framing(c.framing);
   if (!framing) return ocu::invalid("--framing: " + framing.error().message());
-  auto self = ocu::parse_address(c.as, false);
+  auto self = ocu::parse_address(c.as.empty() ? fresh_ocu_address() : c.as, false);
   if (!self) return ocu::invalid("--as: " + self.error().message());
   if (self->component == 1)
     return ocu::invalid(std::string("--as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"));

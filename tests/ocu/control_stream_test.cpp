@@ -87,7 +87,7 @@ TEST_F(ControlStreamTest, EmergencyStopsTheStreamAndAClearDoesNotRestartIt) {
   EXPECT_EQ(err.str(), kEmergencyStop);
   const auto lines = out_lines();
   ASSERT_EQ(lines.size(), 3u) << out.str();
-  EXPECT_EQ(lines[0], "control of 1.1.33.1 granted (authority 7)");
+  EXPECT_EQ(lines[0], "control of 1.1.33.1 granted to 254.1.40.1 (authority 7)");
   EXPECT_EQ(lines[1], "1.1.33.1: state Ready");
   EXPECT_EQ(lines[2], "1.1.33.1: state Ready -> Emergency");
   // Released: the Release comes after every command sent.
@@ -111,7 +111,7 @@ TEST_F(ControlStreamTest, AComponentInEmergencyAtTheStartGetsNothingEvenOnceClea
   EXPECT_EQ(err.str(),
             "jausctl control: 1.1.33.1 is in Emergency, not Ready: sent no Set Wrench Effort; not starting "
             "(see --resume-when-ready)\n");
-  EXPECT_EQ(out.str(), "control of 1.1.33.1 granted (authority 7)\n1.1.33.1: state Emergency\n");
+  EXPECT_EQ(out.str(), "control of 1.1.33.1 granted to 254.1.40.1 (authority 7)\n1.1.33.1: state Emergency\n");
   ASSERT_TRUE(run_until([&] { return !controlled(); }));
 
   other->send(kDriver, jaus::msg::ClearEmergency{{1}});

@@ -30,9 +30,9 @@ TEST_F(ControlTest, GrantedHeldPastTheControllerTimeoutAndReleased) {
   ASSERT_TRUE(ocu);
   ocu::ControlHold control(*ocu, kCommunicator, 5);
   const auto requested = control.request(1s);
-  ASSERT_EQ(requested.outcome, ocu::ControlHold::Outcome::granted) << ocu::control_request_text(requested, kCommunicator, 5);
+  ASSERT_EQ(requested.outcome, ocu::ControlHold::Outcome::granted) << ocu::control_request_text(requested, kCommunicator, 5, ocu->self());
   EXPECT_FALSE(requested.error);
-  EXPECT_EQ(ocu::control_request_text(requested, kCommunicator, 5), "control of 1.1.35.1 granted (authority 5)");
+  EXPECT_EQ(ocu::control_request_text(requested, kCommunicator, 5, ocu->self()), "control of 1.1.35.1 granted to 254.1.40.1 (authority 5)");
   EXPECT_EQ(controller(), ocu->self());
 
   // The fourth check comes a third of a timeout past the controller timeout: had
@@ -57,7 +57,7 @@ TEST_F(ControlTest, CommandHoldsForAWhileThenReleases) {
   ASSERT_EQ(ocu::run_control(*ocu, options, io()), kExitOk) << err.str();
   const auto lines = out_lines();
   ASSERT_EQ(lines.size(), 3u) << out.str();
-  EXPECT_EQ(lines[0], "control of 1.1.35.1 granted (authority 7)");
+  EXPECT_EQ(lines[0], "control of 1.1.35.1 granted to 254.1.40.1 (authority 7)");
   EXPECT_EQ(lines[1], "1.1.35.1: state Ready");  // from the 5 Hz Report Component Status
   EXPECT_EQ(lines[2].rfind("control of 1.1.35.1 released after ", 0), 0u) << lines[2];
   EXPECT_EQ(err.str(), "");
@@ -122,7 +122,7 @@ TEST_F(ControlTest, AHigherAuthorityTakeoverIsReportedAsLost) {
   options.authority = 5;
   options.hold_for = 30s;  // only if B never takes over
   EXPECT_EQ(ocu::run_control(*a, options, io()), kExitFailure);
-  EXPECT_EQ(out.str(), "control of 1.1.35.1 granted (authority 5)\n1.1.35.1: state Ready\n");
+  EXPECT_EQ(out.str(), "control of 1.1.35.1 granted to 254.1.40.1 (authority 5)\n1.1.35.1: state Ready\n");
   const std::string e = err.str();
   EXPECT_EQ(e.rfind("jausctl control: control of 1.1.35.1 lost after ", 0), 0u) << e;
   EXPECT_NE(e.find(": Reject Component Control received; taken over by 254.2.40.1 (authority 10)\n"),
@@ -158,7 +158,7 @@ TEST_F(ControlTest, ARejectAsTheAnswerIsARefusal) {
   ocu::ControlHold refused(*b, kCommunicator, 5);
   const auto result = refused.request(1s);
   EXPECT_EQ(result.outcome, ocu::ControlHold::Outcome::rejected);
-  EXPECT_EQ(ocu::control_request_text(result, kCommunicator, 5), "control of 1.1.35.1 refused (Reject Component Control)");
+  EXPECT_EQ(ocu::control_request_text(result, kCommunicator, 5, b->self()), "control of 1.1.35.1 refused (Reject Component Control)");
 }
 
 TEST_F(ControlTest, NoReplyTimesOut) {

@@ -252,16 +252,17 @@ TEST_F(JausctlEndToEnd, Status) {
 }
 
 TEST_F(JausctlEndToEnd, SendReadsStdinAndQueryPrintsTheReport) {
-  auto r = run({"send", "1.1.35.1", "-", "--to", to(), "--timeout", "0.2"},
+  // One ID for both runs: each jausctl run is a fresh ID otherwise, and only the holder clears its hold.
+  auto r = run({"send", "1.1.35.1", "-", "--as", "254.3.40.1", "--to", to(), "--timeout", "0.2"},
                R"({"code":"0x0006","fields":{"emergency_code":1}})");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(eventually([&] { return target->communicator().state() == jaus::msg::PrimaryStatus::emergency; }));
   r = run({"query", "1.1.35.1", "Query Component Status", "--to", to(), "--timeout", "5"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["fields"]["primary_status"], "emergency");
-  r = run({"emergency", "1.1.35.1", "clear", "--to", to(), "--timeout", "5"});
+  r = run({"emergency", "1.1.35.1", "clear", "--as", "254.3.40.1", "--to", to(), "--timeout", "5"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out, "1.1.35.1: emergency cleared (state Ready)\n");
+  EXPECT_EQ(r.out, "1.1.35.1: emergency cleared by 254.3.40.1 (state Ready)\n");
 }
 
 TEST_F(JausctlEndToEnd, SubscribeCountsReportsAndTerminates) {

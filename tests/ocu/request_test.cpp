@@ -117,12 +117,12 @@ TEST_F(OcuTest, EmergencySetAndClearShowTheResultingState) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   ASSERT_EQ(ocu::run_emergency(*ocu, kCommunicator, true, 1s, io()), kExitOk) << err.str();
-  EXPECT_EQ(out.str(), "1.1.35.1: emergency set (state Emergency)\n");
+  EXPECT_EQ(out.str(), "1.1.35.1: emergency set by 254.1.40.1 (state Emergency)\n");
   EXPECT_EQ(target->communicator().state(), PrimaryStatus::emergency);
 
   out.str("");
   ASSERT_EQ(ocu::run_emergency(*ocu, kCommunicator, false, 1s, io()), kExitOk) << err.str();
-  EXPECT_EQ(out.str(), "1.1.35.1: emergency cleared (state Ready)\n");
+  EXPECT_EQ(out.str(), "1.1.35.1: emergency cleared by 254.1.40.1 (state Ready)\n");
   EXPECT_EQ(target->communicator().state(), PrimaryStatus::ready);
 }
 

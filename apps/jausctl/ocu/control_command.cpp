@@ -18,11 +18,12 @@ constexpr jaus::rt::Duration kWhoHasControlTimeout = std::chrono::milliseconds(5
 }  // namespace
 
 std::string control_request_text(const ControlHold::RequestResult& r, const jaus::Address& target,
-                                 std::uint8_t authority) {
+                                 std::uint8_t authority, const jaus::Address& self) {
   const std::string what = "control of " + target.to_string();
   if (r.error) return r.error->message();
   switch (r.outcome) {
-    case ControlHold::Outcome::granted: return what + " granted (authority " + std::to_string(authority) + ")";
+    case ControlHold::Outcome::granted:
+      return what + " granted to " + self.to_string() + " (authority " + std::to_string(authority) + ")";
     case ControlHold::Outcome::rejected: return what + " refused (Reject Component Control)";
     case ControlHold::Outcome::refused:
       return what + " refused: " + control_response_text(r.response_code) + " (response " +
@@ -53,7 +54,7 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
   const std::string target = options.target.to_string();
   ControlHold control(session, options.target, options.authority, options.status_silence);
   const auto requested = control.request(options.timeout);
-  const std::string requested_text = control_request_text(requested, options.target, options.authority);
+  const std::string requested_text = control_request_text(requested, options.target, options.authority, session.self());
   if (requested.outcome != ControlHold::Outcome::granted) {
     io.err << "jausctl control: " << requested_text << "\n";
     return kExitFailure;

@@ -63,10 +63,11 @@ struct ControlOptions {
   bool resume_when_ready = false;
 };
 int run_control(OcuSession& session, const ControlOptions& options, CommandIo io);
-// What run_control says of a request: "control of 1.1.35.1 granted (authority 5)",
-// "control of 1.1.35.1 refused: not available (response 2)", the error's line, ...
+// What run_control says of a request: "control of 1.1.35.1 granted to
+// 254.7.40.1 (authority 5)" (`self`, the ID that holds it), "control of
+// 1.1.35.1 refused: not available (response 2)", the error's line, ...
 std::string control_request_text(const ControlHold::RequestResult& result, const jaus::Address& target,
-                                 std::uint8_t authority);
+                                 std::uint8_t authority, const jaus::Address& self);
 
 struct SubscribeOptions {
   jaus::Address target;

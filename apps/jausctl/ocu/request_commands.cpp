@@ -98,7 +98,7 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   const std::string what = set ? "Set Emergency" : "Clear Emergency";
   if (target.is_broadcast()) {
     // Many components may answer; there is no single state to show.
-    io.out << what << " sent to " << target.to_string() << "\n";
+    io.out << what << " sent to " << target.to_string() << " by " << session.self().to_string() << "\n";
     return kExitOk;
   }
   // The status query follows the command through the same queue: its answer shows the outcome.
@@ -119,7 +119,9 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   if (!set && is_emergency(*report))
     return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, " +
                                      "the platform's own stop does, or " + session.self().to_string() + " never set it");
-  io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " (state " << state << ")\n";
+  // Who set or cleared it: the holder's ID is what clears the hold later (--as).
+  io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " by " << session.self().to_string()
+         << " (state " << state << ")\n";
   return kExitOk;
 }
 
