@@ -44,7 +44,7 @@ class NodeManagerTest : public ::testing::Test {
   }
 
   template <class M>
-  void deliver(const Address& from, const M& message) {
+  void deliver(const Address& from, const M& message, rt::SenderStanding standing = rt::SenderStanding::trusted) {
     std::vector<std::uint8_t> payload(kMaxPayloadSize);
     const auto size = wire::encode_payload(message, payload);
     ASSERT_TRUE(size);
@@ -52,7 +52,7 @@ class NodeManagerTest : public ::testing::Test {
     h.command_code = M::code;
     h.source = from;
     h.destination = kNodeManager;
-    manager->receive(h, std::span(payload).first(*size));
+    manager->receive(h, std::span(payload).first(*size), wire::Dialect::ra, standing);
   }
 
   rt::VirtualTime time;
@@ -248,6 +248,54 @@ TEST_F(NodeManagerTest, EventsAreCappedPerRequesterAndEndWithTheirRequester) {
   time.advance(1s);
   EXPECT_TRUE(outbox.to<msg::Event>(kOcuA).empty());
   EXPECT_EQ(outbox.to<msg::Event>(kOcuB).size(), 10u);  // 10 Hz
+}
+
+// Issue 28: a requester the node could not record (its tables full) would
+// keep an event nothing ends: refused (response 3), stored nowhere.
+TEST_F(NodeManagerTest, AnUnrecordedRequestersCreateEventIsRefusedAndStoredNowhere) {
+  msg::CreateEvent create;
+  create.request_id = 4;
+  create.report_code = msg::ReportConfiguration::code;
+  create.event_type = 1;
+  deliver(kOcuA, create, rt::SenderStanding::unrecorded);
+  const auto confirms = outbox.to<msg::ConfirmEventRequest>(kOcuA);
+  ASSERT_EQ(confirms.size(), 1u);
+  EXPECT_EQ(confirms[0].request_id, 4);
+  EXPECT_EQ(confirms[0].message_code, msg::ReportConfiguration::code);
+  EXPECT_EQ(confirms[0].response_code, msg::event_response::kRefused);
+  EXPECT_EQ(manager->event_subscriptions(), 0u);
+  EXPECT_EQ(manager->counters().refused_unrecorded, 1u);
+  EXPECT_FALSE(manager->keeps_state_for(Address{kOcuA.subsystem, kOcuA.node, 0, 0}));
+  manager->configuration_changed();
+  time.advance(2s);
+  EXPECT_TRUE(outbox.to<msg::Event>(kOcuA).empty());
+  // Its queries are answered.
+  deliver(kOcuA, msg::QueryConfiguration{{msg::identification::kNode}}, rt::SenderStanding::unrecorded);
+  EXPECT_EQ(outbox.to<msg::ReportConfiguration>(kOcuA).size(), 1u);
+}
+
+// An observer (outside transport.control_from) may subscribe; its event is
+// state the node keeps for its node until it cancels.
+TEST_F(NodeManagerTest, AnObserverSubscribesAndItsNodeIsKeptUntilItCancels) {
+  const Address node_of_a{kOcuA.subsystem, kOcuA.node, 0, 0};
+  msg::CreateEvent create;
+  create.request_id = 5;
+  create.report_code = msg::ReportSubsystemList::code;
+  create.event_type = 1;
+  deliver(kOcuA, create, rt::SenderStanding::observer);
+  const auto confirm = outbox.to<msg::ConfirmEventRequest>(kOcuA).at(0);
+  EXPECT_EQ(confirm.response_code, msg::event_response::kSuccessful);
+  EXPECT_EQ(manager->event_subscriptions(), 1u);
+  EXPECT_TRUE(manager->keeps_state_for(node_of_a));
+  EXPECT_FALSE(manager->keeps_state_for(Address{kOcuB.subsystem, kOcuB.node, 0, 0}));
+  EXPECT_FALSE(driver->keeps_state_for(node_of_a));  // the events are the node manager's
+  msg::CancelEvent cancel;
+  cancel.request_id = 6;
+  cancel.message_code = msg::ReportSubsystemList::code;
+  cancel.event_id = confirm.event_id;
+  deliver(kOcuA, cancel, rt::SenderStanding::observer);
+  EXPECT_EQ(manager->event_subscriptions(), 0u);
+  EXPECT_FALSE(manager->keeps_state_for(node_of_a));
 }
 
 TEST(Communicator, ReportsAndSetsDataLinks) {

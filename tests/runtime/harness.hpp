@@ -122,6 +122,12 @@ class ComponentTest : public ::testing::Test {
 
   template <class M>
   void deliver(const Address& from, const M& message, std::uint8_t priority = priority::kDefault) {
+    deliver_as(rt::SenderStanding::trusted, from, message, priority);
+  }
+  // The same from a sender of the given standing (an observer, or one the node could not record).
+  template <class M>
+  void deliver_as(rt::SenderStanding standing, const Address& from, const M& message,
+                  std::uint8_t priority = priority::kDefault) {
     std::vector<std::uint8_t> payload(kMaxPayloadSize);
     auto size = wire::encode_payload(message, payload);
     ASSERT_TRUE(size);
@@ -131,7 +137,7 @@ class ComponentTest : public ::testing::Test {
     h.source = from;
     h.destination = kDriver;
     h.data_size = static_cast<std::uint16_t>(*size);
-    driver->receive(h, std::span(payload).first(*size));
+    driver->receive(h, std::span(payload).first(*size), wire::Dialect::ra, standing);
     time.run_ready();
   }
 
@@ -141,9 +147,10 @@ class ComponentTest : public ::testing::Test {
     deliver(from, m);
   }
 
-  std::optional<std::uint8_t> request_control(const Address& from, std::uint8_t authority) {
+  std::optional<std::uint8_t> request_control(const Address& from, std::uint8_t authority,
+                                              rt::SenderStanding standing = rt::SenderStanding::trusted) {
     outbox.clear();
-    deliver(from, msg::RequestComponentControl{{authority}});
+    deliver_as(standing, from, msg::RequestComponentControl{{authority}});
     const auto confirms = outbox.to<msg::ConfirmComponentControl>(from);
     if (confirms.empty()) return std::nullopt;
     return confirms.back().response_code;
@@ -164,7 +171,8 @@ namespace jaus::test {
 // Delivers `message` from `from` to `component` as its node would (header
 // filled, payload encoded in the RA dialect), then runs whatever became due.
 template <class M>
-void deliver_to(rt::Component& component, rt::VirtualTime& time, const Address& from, const M& message) {
+void deliver_to(rt::Component& component, rt::VirtualTime& time, const Address& from, const M& message,
+                rt::SenderStanding standing = rt::SenderStanding::trusted) {
   std::vector<std::uint8_t> payload(kMaxPayloadSize);
   const auto size = wire::encode_payload(message, payload);
   ASSERT_TRUE(size) << M::name;
@@ -173,7 +181,7 @@ void deliver_to(rt::Component& component, rt::VirtualTime& time, const Address& 
   h.source = from;
   h.destination = component.address();
   h.data_size = static_cast<std::uint16_t>(*size);
-  component.receive(h, std::span(payload).first(*size));
+  component.receive(h, std::span(payload).first(*size), wire::Dialect::ra, standing);
   time.run_ready();
 }
 

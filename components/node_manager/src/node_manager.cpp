@@ -116,7 +116,19 @@ void NodeManager::confirm_event(const Address& to, std::uint8_t request_id, std:
   send(to, confirm);
 }
 
+bool NodeManager::keeps_state_for(const Address& node) const {
+  return Component::keeps_state_for(node) ||
+         std::any_of(events_.begin(), events_.end(), [&](const auto& e) { return node.covers(e.second.requester); });
+}
+
 void NodeManager::on_create_event(const Header& h, const msg::CreateEvent& m) {
+  if (sender_standing() == SenderStanding::unrecorded) {
+    // Response 3 (refused; Part 3 defines only 0, the RA 3.3 peers use 3 for
+    // a refused connection): the node cannot record the requester, so it
+    // could never end the event when the requester goes.
+    refuse_for_standing(h, "Create Event");
+    return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt, msg::event_response::kRefused);
+  }
   if (!supports_events(m.report_code))
     return confirm_event(h.source, m.request_id, m.report_code, 0, std::nullopt,
                          msg::event_response::kMessageNotSupported);

@@ -116,6 +116,12 @@ std::vector<Address> Node::known_subsystems() const {
   return out;
 }
 
+bool Node::holds_state_for(std::uint8_t subsystem, std::uint8_t node) const {
+  const Address whole_node{subsystem, node, 0, 0};  // 0 below: every component of it (Address::covers)
+  return std::any_of(components_.begin(), components_.end(),
+                     [&](const auto& c) { return c->keeps_state_for(whole_node); });
+}
+
 bool Node::hosts_component(std::uint8_t component_id) const {
   return std::any_of(components_.begin(), components_.end(),
                      [&](const auto& c) { return c->address().component == component_id; });
@@ -156,7 +162,6 @@ void Node::receive_bytes(std::span<const std::uint8_t> bytes) {
 }
 
 void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
-  (void)standing;  // issue 28: handed to the component with the message (in progress)
   ++counters_.packets_received;
   const Header& h = packet.header;
   const Address& s = h.source;
@@ -172,10 +177,22 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
     return;
   }
   const rt::TimePoint now = clock_.now();
-  if (liveness_.heard(s, now).new_subsystem && s.subsystem != config_.subsystem) {
+  const HeardResult heard = liveness_.heard(s, now);
+  if (heard.new_subsystem && s.subsystem != config_.subsystem) {
     lines_.write({"subsystems found", rt::kNoteworthyBurst}, rt::LogLevel::info,
                  [&] { return "subsystem " + std::to_string(s.subsystem) + " found (" + s.to_string() + ")"; });
     subsystems_changed();
+  }
+  // What a sender leaves behind ends when its node (or subsystem) falls
+  // silent (peer_lost); a silent component alone ends nothing. So a sender
+  // is unrecorded when its node is not in the table: a new component of a
+  // known node, refused a component entry by a full table, still is.
+  if (!heard.recorded && !liveness_.find_node(s)) {
+    standing = rt::SenderStanding::unrecorded;
+    ++counters_.unrecorded_senders;
+    lines_.write("packets from senders the liveness table cannot record", rt::LogLevel::warn, [&] {
+      return "liveness table full: " + s.to_string() + " not recorded; what it asks may not outlive it";
+    });
   }
   if (!is_local(h.destination)) {
     ++counters_.not_for_this_node;
@@ -191,14 +208,28 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
     return;
   }
   auto assembled = assembler_.feed(h, packet.payload, now);
+  const LargeDataSetKey set_key{s, h.command_code};
   switch (assembled.status) {
     case AssemblyStatus::single:
-      enqueue(Inbound{h, copy_payload(packet.payload), Address{}});
+      enqueue(Inbound{h, copy_payload(packet.payload), Address{}, standing});
       return;
-    case AssemblyStatus::complete:
-      enqueue(Inbound{assembled.message->first_header, std::move(assembled.message->payload), Address{}});
+    case AssemblyStatus::complete: {
+      if (const auto it = set_standings_.find(set_key); it != set_standings_.end()) {
+        standing = rt::least_of(standing, it->second);
+        set_standings_.erase(it);
+      }
+      enqueue(Inbound{assembled.message->first_header, std::move(assembled.message->payload), Address{}, standing});
       return;
+    }
     case AssemblyStatus::pending:
+      // A newer message of the same source and code restarts the set: its standing too.
+      if (assembled.issue == AssemblyIssue::superseded) set_standings_.erase(set_key);
+      if (standing != rt::SenderStanding::trusted) {
+        if (const auto it = set_standings_.find(set_key); it != set_standings_.end())
+          it->second = rt::least_of(it->second, standing);
+        else if (set_standings_.size() < kMaxSetStandings)
+          set_standings_.emplace(set_key, standing);
+      }
       return;
     case AssemblyStatus::dropped:
       lines_.write("large data set packets dropped", rt::LogLevel::warn, [&] {
@@ -236,7 +267,7 @@ void Node::drain() {
     for (std::size_t i = 0; i < components_.size(); ++i) {
       rt::Component* c = components_[i].get();
       if (!h.destination.matches(c->address()) || c->address() == message->exclude) continue;
-      c->receive(h, message->payload, config_.dialect);
+      c->receive(h, message->payload, config_.dialect, message->standing);
       delivered = true;
       ++counters_.delivered;
       // A component that shut down leaves the node (after this message).
@@ -383,11 +414,14 @@ void Node::housekeeping() {
     subsystem_lost |= gone.level == LivenessLevel::subsystem && gone.address.subsystem != config_.subsystem;
   }
   if (subsystem_lost) subsystems_changed();
-  for (const auto& discarded : assembler_.expire(now))
+  for (const auto& discarded : assembler_.expire(now)) {
+    set_standings_.erase(discarded.key);
     lines_.write("large data sets discarded", rt::LogLevel::warn, [&] {
       return "large data set 0x" + wire::detail::hex_u32(discarded.key.command_code) + " from " +
              discarded.key.source.to_string() + " discarded: " + std::string(to_string(discarded.reason));
     });
+  }
+  if (assembler_.sets_in_progress() == 0) set_standings_.clear();  // sets discarded on the way
   auto poll = acks_.poll(now);
   for (const auto& again : poll.retransmit) transmit(again.header, again.payload);
   for (const auto& failed : poll.failed)

@@ -214,7 +214,17 @@ void Component::enforce_stop(std::string_view why) {
 
 // ---- dispatch --------------------------------------------------------------
 
-void Component::receive(const Header& header, std::span<const std::uint8_t> payload, wire::Dialect dialect) {
+void Component::receive(const Header& header, std::span<const std::uint8_t> payload, wire::Dialect dialect,
+                        SenderStanding standing) {
+  // Handlers read it through sender_standing(); kept for this message only
+  // (a message sent meanwhile is queued by the node, never handled inside this call).
+  const SenderStanding outer = standing_;
+  standing_ = standing;
+  dispatch(header, payload, dialect);
+  standing_ = outer;
+}
+
+void Component::dispatch(const Header& header, std::span<const std::uint8_t> payload, wire::Dialect dialect) {
   ++counters_.received;
   if (lifecycle_.state() == PrimaryStatus::shutdown) return;  // a shut-down component answers nothing
 
@@ -240,6 +250,12 @@ void Component::receive(const Header& header, std::span<const std::uint8_t> payl
   const Handler& handler = it->second;
   if (handler.access == Access::controller && !control_.is_controller(header.source)) {
     refuse_not_controller(header, handler.name);
+    return;
+  }
+  // A controller that is no longer trusted (moved outside control_from, or
+  // its route lost to a full table) commands nothing.
+  if (handler.access == Access::controller && standing_ != SenderStanding::trusted) {
+    refuse_for_standing(header, handler.name);
     return;
   }
   if (handler.ready_only && lifecycle_.state() != PrimaryStatus::ready) {
@@ -269,6 +285,27 @@ void Component::refuse_not_controller(const Header& header, std::string_view wha
     return std::string(what) + " from " + header.source.to_string() +
            " not executed: " + (controller ? "controlled by " + describe(*controller) : "not controlled");
   });
+}
+
+void Component::refuse_for_standing(const Header& header, std::string_view what) {
+  const bool unrecorded = standing_ == SenderStanding::unrecorded;
+  ++(unrecorded ? counters_.refused_unrecorded : counters_.refused_observer);
+  const auto line = [&] {
+    return std::string(what) + " from " + header.source.to_string() + " refused: sender " +
+           std::string(to_string(standing_));
+  };
+  // Per standing, not per sender: a flood of forged sources is one line and a count.
+  if (unrecorded)
+    log_repeated("requests from unrecorded senders refused", LogLevel::warn, line);
+  else
+    log_repeated("requests from observers refused", LogLevel::info, line);
+}
+
+bool Component::keeps_state_for(const Address& node) const {
+  if (const auto& c = control_.controller(); c && node.covers(c->address)) return true;
+  for (const auto& holder : emergency_->holders())
+    if (node.covers(holder)) return true;
+  return services_.has_requester_under(node);
 }
 
 // ---- core messages -----------------------------------------------------------
@@ -357,9 +394,13 @@ void Component::register_core_handlers() {
   });
   handle<Resume>(Access::controller, false,
                  [this](const Header& h, const Resume&) { transition(LifecycleEvent::resume, h.source); });
-  // Standby and Set Emergency only make the vehicle safer: anyone may send them.
-  handle<Standby>(Access::anyone, false,
-                  [this](const Header& h, const Standby&) { transition(LifecycleEvent::standby, h.source); });
+  // Standby and Set Emergency only make the vehicle safer: anyone may send
+  // them, but an observer (a host not allowed to command) may not stop the
+  // vehicle in a way it would need Resume (a controller's) to undo.
+  handle<Standby>(Access::anyone, false, [this](const Header& h, const Standby&) {
+    if (standing_ == SenderStanding::observer) return refuse_for_standing(h, "Standby");
+    transition(LifecycleEvent::standby, h.source);
+  });
   handle<SetEmergency>(Access::anyone, false,
                        [this](const Header& h, const SetEmergency& m) { on_set_emergency(h, m); });
   handle<ClearEmergency>(Access::anyone, false,
@@ -368,7 +409,7 @@ void Component::register_core_handlers() {
   // Service connections: anyone may subscribe to reports; command SCs check
   // control themselves (response 3 for a non-controller).
   handle<CreateServiceConnection>(Access::anyone, false, [this](const Header& h, const CreateServiceConnection& m) {
-    services_.on_create(h, m);
+    on_create_service_connection(h, m);
   });
   handle<ConfirmServiceConnection>(Access::anyone, false, [this](const Header& h, const ConfirmServiceConnection& m) {
     subscriptions_.on_confirm(h, m);
@@ -395,6 +436,18 @@ void Component::on_set_emergency(const Header& h, const msg::SetEmergency& m) {
                  [&] { return "Set Emergency from " + h.source.to_string() + " without the Stop bit ignored"; });
     return;
   }
+  if (standing_ == SenderStanding::unrecorded) {
+    // Obeyed, fail safe: the node cannot tie this ID to a sender, so the hold
+    // is the latch's unnamed one (as its overflow), released only locally.
+    ++counters_.unrecorded_emergencies;
+    const bool first = emergency_->hold_unrecorded();
+    log_repeated(first ? Repeated{"emergency Stop set", kNoteworthyBurst} : Repeated{"repeated Set Emergency"},
+                 LogLevel::warn, [&] {
+                   return "emergency Stop set by " + h.source.to_string() + ", " +
+                          std::string(to_string(standing_)) + ": held until cleared locally";
+                 });
+    return;
+  }
   const bool first = emergency_->set(h.source);  // every member follows (follow_emergency)
   if (first) {
     log_repeated({"emergency Stop set", kNoteworthyBurst}, LogLevel::warn,
@@ -415,6 +468,12 @@ void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m
                  [&] { return "Clear Emergency from " + h.source.to_string() + " without the Stop bit ignored"; });
     return;
   }
+  if (standing_ == SenderStanding::unrecorded) {
+    // Not trusted to be the holder it names: the hold stays (its own, if it
+    // set one, is unnamed and released only locally).
+    ++counters_.refused_clears;
+    return refuse_for_standing(h, "Clear Emergency");
+  }
   switch (emergency_->clear(h.source)) {  // on the last one, every member follows
     case EmergencyLatch::ClearResult::not_a_holder:
       ++counters_.refused_clears;
@@ -433,9 +492,41 @@ void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m
   }
 }
 
+// ---- service connections -----------------------------------------------------
+
+void Component::on_create_service_connection(const Header& h, const msg::CreateServiceConnection& m) {
+  if (standing_ == SenderStanding::unrecorded) {
+    // Response 4, "refused due to internal component restrictions": the
+    // node has no room to record the requester, so it could never end the
+    // connection when the requester goes; the same code the provider gives
+    // when its own table is full, so a requester may retry later.
+    refuse_for_standing(h, "Create Service Connection");
+    return services_.refuse(h, m, msg::sc_response::kRefused);
+  }
+  if (standing_ == SenderStanding::observer && services_.accepts_command(m.command_code)) {
+    // Response 3, as for any non-controller: an observer never commands.
+    refuse_for_standing(h, "Create Service Connection (command)");
+    return services_.refuse(h, m, msg::sc_response::kInsufficientAuthority);
+  }
+  services_.on_create(h, m);
+}
+
 // ---- control -------------------------------------------------------------------
 
+void Component::answer_refused_control(const Address& to) {
+  if (config_.reject_refused_requests)
+    send(to, msg::RejectComponentControl{});
+  else
+    send(to, msg::ConfirmComponentControl{{msg::control_response::kNotAccepted}});
+}
+
 void Component::on_request_control(const Header& h, const msg::RequestComponentControl& m) {
+  // Control is state the node must end when the controller goes (and only
+  // hosts allowed to command may hold it): answered as any refused request.
+  if (standing_ != SenderStanding::trusted) {
+    refuse_for_standing(h, "Request Component Control");
+    return answer_refused_control(h.source);
+  }
   const auto previous = control_.controller();
   const auto outcome = control_.request(h.source, m.authority);
   if (!outcome.accepted) {
@@ -443,11 +534,7 @@ void Component::on_request_control(const Header& h, const msg::RequestComponentC
       return "control request from " + h.source.to_string() + " (authority " + std::to_string(m.authority) +
              ") refused: " + std::string(outcome.why);
     });
-    if (config_.reject_refused_requests)
-      send(h.source, msg::RejectComponentControl{});
-    else
-      send(h.source, msg::ConfirmComponentControl{{msg::control_response::kNotAccepted}});
-    return;
+    return answer_refused_control(h.source);
   }
   send(h.source, msg::ConfirmComponentControl{{msg::control_response::kAccepted}});
   controller_last_heard_ = env_.clock.now();

@@ -18,6 +18,16 @@ bool EmergencyLatch::set(const Address& holder) {
   return !was_active;
 }
 
+bool EmergencyLatch::hold_unrecorded() {
+  const bool was_active = active();
+  ++unrecorded_;
+  last_by_ = Address{};  // nobody the node can name
+  if (overflowed_) return false;
+  overflowed_ = true;
+  changed();
+  return !was_active;
+}
+
 EmergencyLatch::ClearResult EmergencyLatch::clear(const Address& holder) {
   if (holders_.erase(holder) == 0) return ClearResult::not_a_holder;
   last_by_ = holder;
@@ -64,7 +74,9 @@ std::string EmergencyLatch::describe_holders() const {
   std::string text;
   const auto add = [&](const std::string& part) { text += (text.empty() ? "" : ", ") + part; };
   for (const auto& a : holders_) add(a.to_string());
-  if (overflowed_) add("senders beyond the " + std::to_string(kMaxHolders) + " recorded (cleared only locally)");
+  if (overflowed_)
+    add("senders not recorded (beyond the " + std::to_string(kMaxHolders) +
+        " or unknown to the node; cleared only locally)");
   for (const auto& l : local_) add(l);
   return text;
 }

@@ -87,9 +87,22 @@ std::uint8_t ServiceConnectionProvider::instance_for(std::uint16_t code, std::ui
   return instance;
 }
 
+bool ServiceConnectionProvider::accepts_command(std::uint16_t code) const {
+  return std::find(command_codes_.begin(), command_codes_.end(), code) != command_codes_.end();
+}
+
+bool ServiceConnectionProvider::has_requester_under(const Address& where) const {
+  return std::any_of(connections_.begin(), connections_.end(),
+                     [&](const auto& entry) { return where.covers(entry.first.requester); });
+}
+
+void ServiceConnectionProvider::refuse(const Header& h, const msg::CreateServiceConnection& m, std::uint8_t response) {
+  confirm(h, m.command_code, 0, 0, response);
+}
+
 void ServiceConnectionProvider::on_create(const Header& h, const msg::CreateServiceConnection& m) {
   const std::uint16_t code = m.command_code;
-  const bool command = std::find(command_codes_.begin(), command_codes_.end(), code) != command_codes_.end();
+  const bool command = accepts_command(code);
   const auto provided = provided_.find(code);
   if (!command && provided == provided_.end()) return confirm(h, code, 0, 0, kCommandNotSupported);
   if (!(m.periodic_rate_hz >= kMinimumRateHz)) return confirm(h, code, 0, 0, kInvalidParameters);

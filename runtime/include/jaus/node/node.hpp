@@ -4,7 +4,11 @@
 // remembered in the liveness table, ACK/NAK replies are matched, large data
 // sets are reassembled, and the message is queued by priority (12-15 before
 // everything queued) for every local component its destination matches (255
-// is broadcast at each level). An ACK request is answered with ACK when some
+// is broadcast at each level), with the sender's standing: what the
+// transport said, made `unrecorded` when the liveness table could not record
+// the sender's node (full: a flood of new sources), since nothing would then
+// end the state its requests leave (issue 28; component.hpp says who may do
+// what). An ACK request is answered with ACK when some
 // local component took the message and NAK when none could.
 // From a local component (send): the node stamps the sequence number (per
 // source and destination; service connection reports keep their own), splits
@@ -14,6 +18,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -59,6 +64,9 @@ struct NodeCounters {
   std::uint64_t not_for_this_node = 0;
   std::uint64_t delivered = 0;           // messages handed to a local component
   std::uint64_t undeliverable = 0;       // addressed here, no such component
+  // Packets from senders the liveness table could not record (delivered as
+  // unrecorded: components refuse what would outlive them).
+  std::uint64_t unrecorded_senders = 0;
   std::uint64_t queue_dropped = 0;
   std::uint64_t packets_sent = 0;
   std::uint64_t acks_sent = 0;
@@ -95,6 +103,11 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   // The same from raw bytes (16-byte header + payload), for sources that have
   // not decoded the header: it is decoded and checked here once.
   void receive_bytes(std::span<const std::uint8_t> bytes);
+  // Whether some local component keeps state for a component of JAUS node
+  // `node` of `subsystem` (controller, emergency holder, service connection
+  // requester, event subscriber: Component::keeps_state_for). The transport
+  // asks before it lets another address claim that node's route.
+  bool holds_state_for(std::uint8_t subsystem, std::uint8_t node) const;
 
   // rt::Outbox: a message from a local component.
   void send(const Header& header, std::span<const std::uint8_t> payload) override;
@@ -115,6 +128,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
     Header header;
     std::vector<std::uint8_t> payload;
     Address exclude;  // the local sender of a broadcast does not get it back
+    rt::SenderStanding standing = rt::SenderStanding::trusted;  // local senders are trusted
   };
 
   bool is_local(const Address& destination) const;
@@ -152,6 +166,12 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);  // expires with the node
   rt::TimerId housekeeping_timer_ = rt::kNoTimer;
   LargeDataSetAssembler assembler_;
+  // The least standing of the packets held so far of sets in progress, for
+  // sets not all trusted (a set is as trusted as its least trusted packet).
+  // Bounded: cleared when no set is in progress; beyond kMaxSetStandings the
+  // completing packet's standing is all that counts.
+  static constexpr std::size_t kMaxSetStandings = 64;
+  std::map<LargeDataSetKey, rt::SenderStanding> set_standings_;
   AckTracker acks_;
   LivenessTable liveness_;
   SequenceCounters sequences_;

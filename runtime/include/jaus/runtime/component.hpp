@@ -9,6 +9,31 @@
 //   - whenever control is lost (released, taken over, or controller silent),
 // see Component::enforce_stop(). Commands that move hardware are registered
 // `ready_only`, so nothing moves outside Ready or without a live controller.
+//
+// Who may do what, by the sender's standing (rt::SenderStanding, decided by
+// the transport and the node's liveness table; issue 28). The rule: what a
+// sender asks may leave state behind only when the node can tie that state
+// to the sender and end it when the sender goes (liveness), and only hosts
+// allowed to command (transport.control_from) may change the component.
+//   - trusted: everything the handlers allow (control, then commands).
+//   - observer (outside transport.control_from): queries, inform service
+//     connections (reports), Set Emergency and Clear Emergency of its own
+//     hold. Refused: Request Component Control (answered as any refused
+//     request), Standby, command service connections (response 3, as for a
+//     non-controller), and every controller-only message, even from a
+//     controller that became an observer.
+//   - unrecorded (the node's tables are full): queries are answered,
+//     Standby is obeyed (it only stops), Set Emergency is obeyed as a hold
+//     only the local clear releases (EmergencyLatch::hold_unrecorded: its ID
+//     cannot be tied to a sender, so no Clear Emergency is trusted to be its
+//     own). Refused, since the node could never end what it would leave:
+//     Create Service Connection (response 4), Request Component Control,
+//     Clear Emergency, controller-only messages; derived components refuse
+//     their own state-keeping requests (the node manager's Create Event)
+//     through sender_standing().
+// Every refusal is counted (refused_observer, refused_unrecorded) and logged
+// through the repeat limiter. Release Component Control, Terminate/Suspend
+// Service Connection and Cancel Event only end state: open to all.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +53,7 @@
 #include "jaus/runtime/environment.hpp"
 #include "jaus/runtime/lifecycle.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
+#include "jaus/runtime/sender_standing.hpp"
 #include "jaus/runtime/service_connection_client.hpp"
 #include "jaus/runtime/service_connections.hpp"
 
@@ -57,6 +83,11 @@ struct ComponentCounters {
   std::uint64_t refused_clears = 0;
   std::uint64_t control_changes = 0;
   std::uint64_t stops_commanded = 0;
+  // Requests refused for the sender's standing (see the header comment).
+  std::uint64_t refused_observer = 0;
+  std::uint64_t refused_unrecorded = 0;
+  // Set Emergency from unrecorded senders, held until the local clear.
+  std::uint64_t unrecorded_emergencies = 0;
 };
 
 class Component {
@@ -73,9 +104,10 @@ class Component {
   // stops the platform, drops control and ends every service connection.
   void shutdown(std::string_view why);
   // One received message (header + payload). Never throws; bad payloads are
-  // counted and logged, never acted upon.
+  // counted and logged, never acted upon. `standing` is what the node knows
+  // of the sender (local components are trusted); see the header comment.
   void receive(const Header& header, std::span<const std::uint8_t> payload,
-               wire::Dialect dialect = wire::Dialect::ra);
+               wire::Dialect dialect = wire::Dialect::ra, SenderStanding standing = SenderStanding::trusted);
 
   const Address& address() const { return config_.address; }
   const std::string& name() const { return config_.name; }
@@ -143,6 +175,12 @@ class Component {
   // connections end, and if the controller was among them, control is dropped
   // (platform stops).
   void peer_lost(const Address& peer);
+  // Whether this component keeps state for a component under `node` (a node
+  // address, 0 below: Address::covers): it is the controller, holds an
+  // emergency on this component's latch (own or shared), or requests a
+  // service connection. The transport keeps such a node's route pinned.
+  // Derived components add what they keep (the node manager's events).
+  virtual bool keeps_state_for(const Address& node) const;
 
  protected:
   // Who may have a message executed.
@@ -272,6 +310,14 @@ class Component {
   // control was taken away): what else this component keeps for it ends here.
   virtual void requester_lost(const Address& /*peer*/) {}
 
+  // The standing of the sender of the message being handled (trusted
+  // outside a handler): a derived component refuses by it what would leave
+  // state the node cannot end (Create Event from an unrecorded sender).
+  SenderStanding sender_standing() const { return standing_; }
+  // Counts and logs (repeat-limited) a request refused for the standing of
+  // its sender; the caller sends whatever refusal the message has.
+  void refuse_for_standing(const Header& header, std::string_view what);
+
   void log(LogLevel level, const std::string& text) const;
   // A line remote input can repeat at will: written at most `kind.burst`
   // times per 10 s window of its kind (a string literal, "unsupported
@@ -293,6 +339,7 @@ class Component {
   };
 
   void register_core_handlers();
+  void dispatch(const Header& header, std::span<const std::uint8_t> payload, wire::Dialect dialect);
   msg::ReportComponentStatus status_report() const;
   void run_initialisation();
   // `by` names who asked in the log line; `cause`, when given, says why instead (a local hold).
@@ -302,6 +349,8 @@ class Component {
 
   // Control.
   void on_request_control(const Header& header, const msg::RequestComponentControl& request);
+  // Confirm Component Control "not accepted", or Reject if configured.
+  void answer_refused_control(const Address& to);
   void on_release_control(const Header& header);
   void take_control_away(std::string_view why);
   // Control changed hands or ended: the command SCs of anyone but the new
@@ -314,6 +363,7 @@ class Component {
   void follow_emergency();
   void on_set_emergency(const Header& header, const msg::SetEmergency& message);
   void on_clear_emergency(const Header& header, const msg::ClearEmergency& message);
+  void on_create_service_connection(const Header& header, const msg::CreateServiceConnection& message);
 
   // Time.
   UtcTime component_time() const;
@@ -328,6 +378,7 @@ class Component {
   EmergencyLatch::MemberId emergency_membership_ = 0;
   StateListener state_listener_;
   ComponentCounters counters_;
+  SenderStanding standing_ = SenderStanding::trusted;  // of the message being handled
   std::unordered_map<std::uint16_t, Handler> handlers_;
   ServiceConnectionProvider services_;
   ServiceConnectionClient subscriptions_;

@@ -17,6 +17,10 @@
 // `overflowed`, which holds it like a holder that never clears (a flood of
 // forged senders can keep a vehicle stopped, never move it). An overflowed
 // latch is cleared only by the local command. Nothing is ever dropped.
+// A Set Emergency from a sender the node could not record at all (its
+// liveness table or the transport's routes were full: hold_unrecorded) is
+// held the same way: its ID is not tied to anyone the node can tell apart,
+// so no Clear Emergency can be trusted to be its own (issue 28).
 //
 // A latch may be shared by several components (emergency_scope: vehicle):
 // each component is a member and follows active(). Observers hear every
@@ -55,6 +59,10 @@ class EmergencyLatch {
   // A JAUS holder sets the Stop condition. Returns true when this made the
   // latch active (it was clear before).
   bool set(const Address& holder);
+  // A Set Emergency from a sender the node could not record: held like the
+  // overflow (until the local clear), its address never recorded. Returns
+  // true when this made the latch active.
+  bool hold_unrecorded();
   enum class ClearResult { released_last, still_held, not_a_holder };
   ClearResult clear(const Address& holder);
 
@@ -71,10 +79,13 @@ class EmergencyLatch {
   bool active() const { return held_by_jaus() || !local_.empty(); }
   // Held by Set Emergency (recorded or not): what the platform's emergency flag mirrors.
   bool held_by_jaus() const { return !holders_.empty() || overflowed_; }
+  // Held by senders not recorded by address (beyond kMaxHolders, or
+  // unrecorded by the node): cleared only by the local command.
   bool overflowed() const { return overflowed_; }
   std::vector<Address> holders() const { return {holders_.begin(), holders_.end()}; }
   std::vector<std::string> local_holds() const { return {local_.begin(), local_.end()}; }
-  // Set Emergency from senders that could not be recorded (counted, never forgotten).
+  // Set Emergency from senders that could not be recorded (counted, never
+  // forgotten): beyond kMaxHolders, or unrecorded by the node.
   std::uint64_t unrecorded() const { return unrecorded_; }
   // "3.1.40.1, 4.1.40.1, the platform's e-stop", for log lines.
   std::string describe_holders() const;

@@ -79,6 +79,12 @@ class ServiceConnectionProvider {
   void accept_commands(std::uint16_t command_code) { command_codes_.push_back(command_code); }
 
   void on_create(const Header& h, const msg::CreateServiceConnection& m);
+  // Answers a Create the component refuses before the provider sees it (a
+  // sender the node could not record, an observer asking for a command SC):
+  // Confirm Service Connection with `response`, counted as refused; nothing kept.
+  void refuse(const Header& h, const msg::CreateServiceConnection& m, std::uint8_t response);
+  // Whether `code` is a command this component accepts on command SCs.
+  bool accepts_command(std::uint16_t code) const;
   void on_activate(const Header& h, const msg::ActivateServiceConnection& m);
   void on_suspend(const Header& h, const msg::SuspendServiceConnection& m);
   void on_terminate(const Header& h, const msg::TerminateServiceConnection& m);
@@ -95,6 +101,8 @@ class ServiceConnectionProvider {
   void end_all(std::string_view why);
 
   std::size_t active() const { return connections_.size(); }
+  // Whether some connection's requester lies under `where` (Address::covers).
+  bool has_requester_under(const Address& where) const;
   // Report code -> available presence vector of everything provided.
   std::map<std::uint16_t, std::uint32_t> provided() const {
     std::map<std::uint16_t, std::uint32_t> out;

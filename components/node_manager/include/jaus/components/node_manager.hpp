@@ -8,6 +8,9 @@
 // other one the node has heard, until it falls silent) and Services, and
 // keeps Create Event subscriptions to Report Configuration and Report
 // Subsystem List, sending an Event on every change (or periodically).
+// A Create Event from a sender the node could not record (its tables full)
+// is refused (Confirm Event Request, response 3) and stored nowhere: nothing
+// would end it when the sender goes (issue 28). Observers may subscribe.
 #pragma once
 
 #include <map>
@@ -45,6 +48,8 @@ class NodeManager final : public rt::Component, public rt::ConfigurationObserver
   // Event, at most max_event_rate_hz (a flood of new sources is one Event).
   void subsystems_changed() override;
   std::size_t event_subscriptions() const { return events_.size(); }
+  // Adds its event subscribers to what the component base keeps state for.
+  bool keeps_state_for(const Address& node) const override;
 
  protected:
   bool initialize() override;
