@@ -21,9 +21,9 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   if (!link) return unexpected(link.error());
   h->link_ = std::move(*link);
   h->node_ = std::make_unique<node::Node>(h->config_.node, h->runtime_, h->runtime_, *h->link_, h->log_);
-  h->link_->on_packet([host = h.get()](const PacketView& packet, transport::Framing) {
+  h->link_->on_packet([host = h.get()](const PacketView& packet, transport::Framing, rt::SenderStanding standing) {
     if (host->watcher_) host->watcher_(packet);
-    host->node_->receive(packet);
+    host->node_->receive(packet, standing);
   });
   // The hardware the configured components need, each made once.
   VehicleBackends backends;

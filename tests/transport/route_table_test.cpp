@@ -149,5 +149,123 @@ TEST(RouteTable, OneEndpointClaimingManyNodesKeepsOnlyItsNewest) {
   EXPECT_EQ(table.peers().at(kPeerB).routes, 2u);
 }
 
+// Issue 28: an ID holding state (a controller, an emergency holder) never
+// moves to another host, whatever its silence, and never expires; its own
+// host on a new port (the OCU restarted) may still take it.
+TEST(RouteTable, APinnedIdNeverMovesToAnotherHostNorExpires) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{.route_timeout = 30s});
+  bool holds = true;
+  int asked = 0;
+  table.pin_while([&](std::uint8_t subsystem, std::uint8_t node) {
+    ++asked;
+    return holds && subsystem == 2 && node == 1;
+  });
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  for (int i = 0; i < 100; ++i) table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  EXPECT_EQ(asked, 0);  // not per datagram
+  time.advance(10min);
+  table.expire(time.now());
+  ASSERT_TRUE(table.route(2, 1));  // silent for 10 min, still held
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::opc, time.now()), Learnt::claim_refused);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerA);
+  EXPECT_EQ(table.counters().pinned_claims_refused, 1u);
+  // A configured peer on another host does not take it either.
+  const Ipv4Endpoint kConfigured{0x7F000004, 3794};
+  table.add_static_peer(kConfigured, Framing::opc);
+  EXPECT_EQ(table.learn(2, 1, kConfigured, Framing::opc, time.now()), Learnt::claim_refused);
+  // The operator's OCU restarted on the same host: it may move it (and then release).
+  const Ipv4Endpoint restarted{kPeerA.address, 40001};
+  EXPECT_EQ(table.learn(2, 1, restarted, Framing::opc, time.now()), Learnt::moved);
+  EXPECT_EQ(table.route(2, 1)->endpoint, restarted);
+  // Released: today's rules again (expiry, then anyone).
+  holds = false;
+  time.advance(31s);
+  table.expire(time.now());
+  EXPECT_FALSE(table.route(2, 1));
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::opc, time.now()), Learnt::new_route);
+}
+
+TEST(RouteTable, AnUnpinnedSilentIdStillMovesAfterTheSilence) {
+  rt::VirtualTime time;
+  RouteTable table;
+  table.pin_while([](std::uint8_t, std::uint8_t node) { return node == 9; });
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  time.advance(3s);
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::opc, time.now()), Learnt::moved);
+}
+
+// One host with 256 ports cannot fill the learnt endpoints: its ninth port
+// replaces its least recently heard one, and an OCU on another host is recorded.
+TEST(RouteTable, OneHostWithManyPortsCannotFillTheTable) {
+  rt::VirtualTime time;
+  RouteTable table;  // 256 entries, 8 endpoints per address
+  std::vector<Ipv4Endpoint> forgotten;
+  table.on_forgotten([&](const Ipv4Endpoint& e) { forgotten.push_back(e); });
+  const std::uint32_t flooder = 0x0A000009;
+  for (std::uint16_t port = 1000; port < 1256; ++port) {
+    table.learn(static_cast<std::uint8_t>(10 + port % 200), 1, Ipv4Endpoint{flooder, port}, Framing::opc, time.now());
+    time.advance(1ms);
+  }
+  EXPECT_EQ(table.peers().size(), 8u);
+  EXPECT_EQ(table.counters().endpoints_replaced, 248u);
+  EXPECT_EQ(forgotten.size(), 248u);
+  EXPECT_EQ(forgotten.front(), (Ipv4Endpoint{flooder, 1000}));  // least recently heard first
+  EXPECT_LE(table.route_count(), 8u);
+  EXPECT_EQ(table.learn(2, 1, kPeerA, Framing::opc, time.now()), Learnt::new_route);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerA);
+}
+
+// An endpoint holding state is never the one replaced; if all of an
+// address's endpoints hold state, the newcomer is not recorded.
+TEST(RouteTable, EndpointsHoldingStateAreNotReplaced) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{.max_endpoints_per_address = 2});
+  table.pin_while([](std::uint8_t subsystem, std::uint8_t) { return subsystem < 10; });
+  table.learn(2, 1, Ipv4Endpoint{kPeerA.address, 1}, Framing::opc, time.now());  // pinned, oldest
+  time.advance(1s);
+  table.learn(20, 1, Ipv4Endpoint{kPeerA.address, 2}, Framing::opc, time.now());
+  time.advance(1s);
+  // The third port replaces port 2 (no state), not port 1 (older, but holding state).
+  EXPECT_EQ(table.learn(3, 1, Ipv4Endpoint{kPeerA.address, 3}, Framing::opc, time.now()), Learnt::new_route);
+  EXPECT_TRUE(table.route(2, 1));
+  EXPECT_FALSE(table.route(20, 1));
+  EXPECT_EQ(table.counters().endpoints_replaced, 1u);
+  // Both left hold state: a fourth port is not recorded.
+  EXPECT_EQ(table.learn(30, 1, Ipv4Endpoint{kPeerA.address, 4}, Framing::opc, time.now()), Learnt::rejected);
+  EXPECT_EQ(table.counters().rejected_per_address, 1u);
+  EXPECT_FALSE(table.peers().contains(Ipv4Endpoint{kPeerA.address, 4}));
+  // Another address is not affected.
+  EXPECT_EQ(table.learn(30, 1, kPeerB, Framing::opc, time.now()), Learnt::new_route);
+}
+
+// An endpoint's newest route replaces its oldest one without state, never a pinned one.
+TEST(RouteTable, AnEndpointsRouteHoldingStateIsNotReplacedByItsNewest) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{.max_routes_per_endpoint = 2});
+  table.pin_while([](std::uint8_t subsystem, std::uint8_t) { return subsystem == 2; });
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  time.advance(1ms);
+  table.learn(3, 1, kPeerA, Framing::opc, time.now());
+  time.advance(1ms);
+  table.learn(4, 1, kPeerA, Framing::opc, time.now());
+  EXPECT_TRUE(table.route(2, 1));
+  EXPECT_FALSE(table.route(3, 1));
+  EXPECT_TRUE(table.route(4, 1));
+}
+
+// A full table records no newcomer, but the claim check still runs first.
+TEST(RouteTable, AFullTableStillRefusesClaims) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{.max_entries = 2});
+  table.learn(2, 1, kPeerA, Framing::opc, time.now());
+  table.learn(3, 1, kPeerB, Framing::opc, time.now());
+  const Ipv4Endpoint stranger{0x7F000009, 3794};
+  EXPECT_EQ(table.learn(2, 1, stranger, Framing::opc, time.now()), Learnt::claim_refused);
+  EXPECT_EQ(table.learn(4, 1, stranger, Framing::opc, time.now()), Learnt::rejected);
+  EXPECT_EQ(table.route(2, 1)->endpoint, kPeerA);
+  EXPECT_FALSE(table.route(4, 1));
+}
+
 }  // namespace
 }  // namespace jaus::transport

@@ -379,8 +379,8 @@ TEST(UdpLinks, BroadcastsReachStaticPeersWhichThenLearnTheRouteBack) {
   auto a = UdpLink::open(io, runtime, runtime, options_a);
   ASSERT_TRUE(a) << a.error().message();
   std::vector<Header> at_a, at_b;
-  (*a)->on_packet([&](const PacketView& p, Framing) { at_a.push_back(p.header); });
-  (*b)->on_packet([&](const PacketView& p, Framing) { at_b.push_back(p.header); });
+  (*a)->on_packet([&](const PacketView& p, Framing, rt::SenderStanding) { at_a.push_back(p.header); });
+  (*b)->on_packet([&](const PacketView& p, Framing, rt::SenderStanding) { at_b.push_back(p.header); });
   (*a)->start();
   (*b)->start();
   transmit(**a, packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
@@ -414,7 +414,7 @@ class SubsystemLinks : public ::testing::Test {
     EXPECT_TRUE(opened) << opened.error().message();
     UdpLink& link = *links.emplace_back(std::move(*opened));
     auto& heard = at[&link];
-    link.on_packet([&heard](const PacketView& p, Framing) { heard.push_back(p.header); });
+    link.on_packet([&heard](const PacketView& p, Framing, rt::SenderStanding) { heard.push_back(p.header); });
     link.start();
     return link;
   }
@@ -517,8 +517,8 @@ TEST(UdpLinks, BroadcastsGoToTheMulticastGroupAndOwnOnesAreNotTakenBack) {
     if (line.find("broadcasts go to known peers only") != std::string::npos)
       GTEST_SKIP() << "no multicast on this host's loopback: " << line;
   std::vector<Header> at_a, at_b;
-  (*a)->on_packet([&](const PacketView& p, Framing) { at_a.push_back(p.header); });
-  (*b)->on_packet([&](const PacketView& p, Framing) { at_b.push_back(p.header); });
+  (*a)->on_packet([&](const PacketView& p, Framing, rt::SenderStanding) { at_a.push_back(p.header); });
+  (*b)->on_packet([&](const PacketView& p, Framing, rt::SenderStanding) { at_b.push_back(p.header); });
   (*a)->start();
   (*b)->start();
   transmit(**a, packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));

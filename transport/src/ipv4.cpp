@@ -3,7 +3,13 @@
 #include "jaus/base/quoted.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <charconv>
+#include <cstring>
+
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <netinet/in.h>
 
 namespace jaus::transport {
 
@@ -101,6 +107,24 @@ Expected<Cidr> parse_cidr(std::string_view text) {
     return invalid(jaus::quoted(text) + " has host bits set below the prefix (the network is " +
                       to_string(Cidr{cidr.network & mask, cidr.prefix_length}) + ")");
   return cidr;
+}
+
+std::vector<Cidr> local_networks() {
+  std::vector<Cidr> out{Cidr{0x7F000000, 8}};
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return out;  // loopback at least
+  for (const ifaddrs* it = list; it != nullptr; it = it->ifa_next) {
+    if (it->ifa_addr == nullptr || it->ifa_netmask == nullptr || it->ifa_addr->sa_family != AF_INET) continue;
+    sockaddr_in address{}, netmask{};
+    std::memcpy(&address, it->ifa_addr, sizeof address);  // no alignment assumed of the kernel's sockaddr
+    std::memcpy(&netmask, it->ifa_netmask, sizeof netmask);
+    const std::uint32_t mask = ntohl(netmask.sin_addr.s_addr);
+    const auto prefix = static_cast<std::uint8_t>(std::popcount(mask));
+    const Cidr cidr{ntohl(address.sin_addr.s_addr) & mask_of(prefix), prefix};
+    if (std::find(out.begin(), out.end(), cidr) == out.end()) out.push_back(cidr);
+  }
+  ::freeifaddrs(list);
+  return out;
 }
 
 }  // namespace jaus::transport

@@ -2,6 +2,7 @@
 
 #include <boost/asio/ip/multicast.hpp>
 #include <numeric>
+#include <random>
 
 #include "handler_memory.hpp"
 
@@ -30,6 +31,14 @@ constexpr rt::Duration kExpiryPeriod = std::chrono::seconds(1);
 // New and moved routes are worth a line each, a flood of forged sources is not.
 constexpr int kNewRouteLinesPerWindow = 10;
 
+std::array<std::uint64_t, 2> challenge_key(const UdpLinkOptions& options) {
+  if (options.challenge_key) return *options.challenge_key;
+  std::random_device random;  // the kernel's entropy (getrandom), once per link
+  std::array<std::uint64_t, 2> key{};
+  for (auto& word : key) word = (std::uint64_t{random()} << 32) ^ random();
+  return key;
+}
+
 }  // namespace
 
 std::uint64_t UdpLinkCounters::dropped_total() const {
@@ -55,8 +64,14 @@ UdpLink::UdpLink(asio::io_context& io, rt::Clock& clock, rt::Scheduler& schedule
       options_(std::move(options)),
       log_(log ? std::move(log) : rt::silent_log()),
       routes_(options_.routes),
+      guard_(options_.amplification, challenge_key(options_)),
       repeated_lines_(clock_, scheduler_, log_) {
   for (const auto& peer : options_.peers) routes_.add_static_peer(peer.endpoint, peer.framing);
+  // Verification goes with the endpoint: a new one at that port starts unverified.
+  routes_.on_forgotten([this](const Ipv4Endpoint& endpoint) {
+    guard_.forget(endpoint);
+    counters_.amplification = guard_.counters();
+  });
 }
 
 void UdpLink::receive_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
@@ -159,6 +174,8 @@ void UdpLink::schedule_expiry() {
   expiry_timer_ = scheduler_.call_at(clock_.now() + kExpiryPeriod, [this] {
     expiry_timer_ = rt::kNoTimer;
     routes_.expire(clock_.now());
+    guard_.expire(clock_.now());
+    counters_.amplification = guard_.counters();
     schedule_expiry();
   });
 }
@@ -178,6 +195,13 @@ void UdpLink::receive_next(Socket& socket) {
 bool UdpLink::allowed(std::uint32_t address) const {
   if (options_.allow.empty()) return true;
   for (const auto& cidr : options_.allow)
+    if (cidr.contains(address)) return true;
+  return false;
+}
+
+bool UdpLink::may_control(std::uint32_t address) const {
+  if (options_.control_from.empty()) return true;
+  for (const auto& cidr : options_.control_from)
     if (cidr.contains(address)) return true;
   return false;
 }
@@ -236,9 +260,67 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
              std::string(to_string(unframed->framing)) + ")";
     });
   }
+  const bool recorded = learnt != Learnt::rejected;
+  if (options_.verify_endpoints) {
+    // A new learnt endpoint starts unverified (static peers are verified from
+    // the start); one without a route too, since (255, ...) broadcasts reach it.
+    if (!guard_.tracks(from)) {
+      const auto peer = routes_.peers().find(from);
+      if (peer != routes_.peers().end() && !peer->second.is_static) guard_.track(from);
+    }
+    if (guard_.unverified(from)) {
+      const bool answered = guard_.received(from, datagram.size(), header.source, header);
+      if (answered) {
+        // The challenge's answer is the link's: the endpoint receives at its address, so what was held goes.
+        for (const auto& held : guard_.release(from)) send_to(from, held.framing, held.packet);
+        counters_.amplification = guard_.counters();
+        return;
+      }
+      send_challenge(from, unframed->framing);  // its budget grew: a challenge may fit now
+      counters_.amplification = guard_.counters();
+    }
+  }
+  rt::SenderStanding standing = rt::SenderStanding::trusted;
+  if (!recorded) {
+    standing = rt::SenderStanding::unrecorded;
+    ++counters_.delivered_unrecorded;
+    repeated_lines_.write("senders not recorded", rt::LogLevel::warn, [&] {
+      return "node " + node() + " at " + to_string(from) +
+             " not recorded (route table full, or its host's endpoints all hold state): delivered as unrecorded [" +
+             std::to_string(counters_.delivered_unrecorded) + " so far]";
+    });
+  } else if (!may_control(from.address)) {
+    standing = rt::SenderStanding::observer;
+    ++counters_.delivered_observer;
+  }
   if (options_.relay) relay(from, header, datagram.last(kHeaderSize + unframed->packet.payload.size()));
   ++counters_.packets_delivered;
-  if (handler_) handler_(unframed->packet, unframed->framing);
+  if (handler_) handler_(unframed->packet, unframed->framing, standing);
+}
+
+void UdpLink::send_challenge(const Ipv4Endpoint& to, Framing framing) {
+  const auto challenge = guard_.challenge(to, framing, options_.subsystem, options_.node, clock_.now());
+  if (!challenge) return;
+  std::array<std::uint8_t, kHeaderSize> bytes{};
+  encode_header_unchecked(*challenge, bytes);
+  send_to(to, framing, bytes);
+}
+
+void UdpLink::send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
+  if (!options_.verify_endpoints) return send_to(to, framing, packet);
+  const auto verdict = guard_.offer(to, framing, packet, clock_.now());
+  if (verdict == AmplificationGuard::Verdict::send) {
+    send_to(to, framing, packet);
+  } else {
+    repeated_lines_.write("replies held for unverified endpoints", rt::LogLevel::info, [&] {
+      const auto& c = guard_.counters();
+      return "reply to " + to_string(to) + (verdict == AmplificationGuard::Verdict::held ? " held" : " dropped") +
+             ": more than it sent until it answers a challenge [" + std::to_string(c.replies_held) + " held, " +
+             std::to_string(c.replies_dropped_unverified) + " dropped so far]";
+    });
+    send_challenge(to, framing);
+  }
+  counters_.amplification = guard_.counters();
 }
 
 void UdpLink::relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet) {
@@ -252,7 +334,7 @@ void UdpLink::relay(const Ipv4Endpoint& from, const Header& header, std::span<co
   const auto sender = routes_.route(header.source.subsystem, header.source.node);
   if (!sender || sender->endpoint != from) return;
   ++counters_.relayed;
-  send_to(next->endpoint, next->framing, packet);
+  send_routed(next->endpoint, next->framing, packet);
 }
 
 bool UdpLink::broadcast_reaches(const Address& to, const Peer& peer) {
@@ -281,7 +363,7 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
   const Address& to = header.destination;
   const bool broadcast = to.subsystem == Address::kBroadcast || to.node == Address::kBroadcast;
   if (!broadcast) {
-    if (auto peer = routes_.route(to.subsystem, to.node)) return send_to(peer->endpoint, peer->framing, packet);
+    if (auto peer = routes_.route(to.subsystem, to.node)) return send_routed(peer->endpoint, peer->framing, packet);
     ++counters_.unrouted;
   }
   // Broadcast, or a node not heard from yet: the multicast group and the
@@ -294,7 +376,7 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
   if (broadcast && options_.broadcast_to_peers) {
     for (const auto& [endpoint, peer] : routes_.peers()) {
       if (!broadcast_reaches(to, peer)) continue;
-      send_to(endpoint, peer.framing, packet);
+      send_routed(endpoint, peer.framing, packet);
       sent = true;
     }
   } else {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "jaus/base/expected.hpp"
 
@@ -42,5 +43,11 @@ std::string to_string(const Cidr& cidr);  // "10.0.0.0/8"
 // "a.b.c.d/prefix" (prefix 0..32) or "a.b.c.d" (/32). Host bits set below
 // the prefix ("10.1.2.3/8") are an error that names the network meant.
 Expected<Cidr> parse_cidr(std::string_view text);
+
+// The networks of this host's IPv4 interfaces (address and netmask of each,
+// host bits cleared), always with 127.0.0.0/8, without duplicates: what the
+// word `local` in a CIDR list stands for. Read when called (getifaddrs): an
+// interface that comes up later is not in an earlier answer.
+std::vector<Cidr> local_networks();
 
 }  // namespace jaus::transport

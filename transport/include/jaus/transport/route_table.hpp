@@ -10,17 +10,39 @@
 // out peers already known. One endpoint is one node in RA 3.x, so a single
 // endpoint may hold only a few routes (its newest replace its oldest): a flood
 // of forged JAUS sources from one socket cannot fill the table either.
-// A known node moves to a new endpoint only when the claim comes from the same
-// IP address (a tool restarted on a new port), from a configured peer, or once
-// its old endpoint has been silent for `move_after_silence`; any other host
-// claiming its ID is refused, so nobody can steer a node's traffic away by
-// forging its ID. A configured peer that is already another live node's
-// endpoint is relaying (udp_link.hpp): what it relays for a node heard
-// directly is a copy, dropped without moving the route.
+//
+// Learnt endpoints are bounded per IP address (`max_endpoints_per_address`):
+// a new port of an address that already has that many replaces the address's
+// least recently heard endpoint whose routes hold no state (its routes go);
+// if all of them hold state the newcomer is not recorded. One host with 256
+// ports cannot fill the table, and hundreds of short-lived tools run from one
+// host (each a new port) keep working.
+//
+// Who may take over a node's ID (a claim: the ID heard from a new endpoint):
+// - the same IP address on a new port: the tool or OCU restarted on the same
+//   host. Always allowed, pinned or not: it is how an operator whose OCU
+//   restarted releases its control or clears its own emergency hold. Telling
+//   it apart from a hijack by the address only is deliberate: another process
+//   on the operator's own host can reach the node as that host anyway, and an
+//   off-path host cannot receive the replies to a forged local address.
+// - another IP address, for an ID that holds state at this node (control, an
+//   emergency hold, a service connection: the node answers through
+//   pin_while()): never, whatever the silence, and such a route never expires
+//   while the state lasts, so nobody can claim a silent controller's or a
+//   one-shot emergency holder's ID and act in its name (Clear Emergency).
+// - another IP address, for an ID holding no state: a configured peer at
+//   once, anyone else once the old endpoint has been silent for
+//   `move_after_silence`; otherwise the claim is refused, so nobody can steer
+//   a live node's traffic away by forging its ID.
+// The claim check runs before anything is recorded, so a full table never
+// skips it. A configured peer that is already another live node's endpoint
+// is relaying (udp_link.hpp): what it relays for a node heard directly is a
+// copy, dropped without moving the route.
 #pragma once
 
 #include <bitset>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -47,10 +69,14 @@ struct RouteTableOptions {
   std::size_t max_routes_per_endpoint = 4;
   rt::Duration route_timeout = std::chrono::seconds(30);
   rt::Duration move_after_silence = std::chrono::seconds(3);
+  std::size_t max_endpoints_per_address = 8;  // learnt endpoints (ports) of one IP address
 };
 
 // What learn() did, so the link can tell the operator about new and moved nodes.
-// claim_refused: the node is heard from another live endpoint; drop the datagram.
+// rejected: the source could not be recorded (table full, or its address has
+// max_endpoints_per_address endpoints holding state): deliver it as unrecorded.
+// claim_refused: the node is heard from another live endpoint, or its ID
+// holds state and the claim comes from another address; drop the datagram.
 // relayed_copy: a configured peer that is another node relayed a message of a
 // node heard directly: drop the copy, keep the direct route.
 enum class Learnt : std::uint8_t { known, new_route, moved, rejected, claim_refused, relayed_copy };
@@ -58,9 +84,12 @@ enum class Learnt : std::uint8_t { known, new_route, moved, rejected, claim_refu
 struct RouteTableCounters {
   std::uint64_t learnt = 0;          // new routes
   std::uint64_t moved = 0;           // a node heard from a new endpoint
-  std::uint64_t claims_refused = 0;  // a node's ID from another host while its endpoint is live
+  std::uint64_t claims_refused = 0;  // a node's ID from another host while its endpoint is live or it is pinned
+  std::uint64_t pinned_claims_refused = 0;  // ...of those, refused because the ID holds state
   std::uint64_t relayed_copies = 0;  // a configured relay's copy of a node heard directly
-  std::uint64_t rejected_full = 0;   // newcomers not recorded
+  std::uint64_t rejected_full = 0;   // newcomers not recorded: a table full
+  std::uint64_t rejected_per_address = 0;  // new endpoints not recorded: their address's all hold state
+  std::uint64_t endpoints_replaced = 0;    // an address's least recently heard endpoint gave way to a new one
   std::uint64_t replaced = 0;        // an endpoint's oldest route gave way to its newest
   std::uint64_t expired = 0;
 };
@@ -68,6 +97,18 @@ struct RouteTableCounters {
 class RouteTable {
  public:
   explicit RouteTable(RouteTableOptions options = {}) : options_(options) {}
+
+  // Whether a node ID holds state at this node (control, an emergency hold, a
+  // service connection): such a route never moves to another IP address and
+  // never expires (see above). Asked only on a claim from another address, on
+  // expiry of a silent route and when an endpoint or route must give way,
+  // never per datagram. Unset: nothing is pinned.
+  using HoldsState = std::function<bool(std::uint8_t subsystem, std::uint8_t node)>;
+  void pin_while(HoldsState holds_state) { holds_state_ = std::move(holds_state); }
+  // Told when a learnt endpoint is forgotten (expired or replaced), so what
+  // the link keeps per endpoint (its verification) goes with it.
+  using Forgotten = std::function<void(const Ipv4Endpoint& endpoint)>;
+  void on_forgotten(Forgotten forgotten) { forgotten_ = std::move(forgotten); }
 
   void add_static_peer(const Ipv4Endpoint& endpoint, Framing framing);
   // A datagram from `from`, framed in `framing`, whose JAUS source is subsystem.node.
@@ -94,12 +135,20 @@ class RouteTable {
   };
   void erase_route(std::map<std::uint16_t, Route>::iterator route);
   void recount_subsystems(Peer& peer) const;
+  bool pinned(std::uint16_t k) const { return holds_state_ && holds_state_(k >> 8, k & 0xFF); }
+  bool holds_pinned_route(const Ipv4Endpoint& endpoint) const;
+  // Makes room for a new endpoint of `address` if it has its share: false if
+  // every endpoint of the address holds state (the newcomer is not recorded).
+  bool room_for_endpoint_of(std::uint32_t address);
+  void erase_peer(std::map<Ipv4Endpoint, Peer>::iterator peer);
 
   RouteTableOptions options_;
   std::map<std::uint16_t, Route> routes_;         // (subsystem, node) -> endpoint
   std::map<Ipv4Endpoint, Peer> peers_;            // endpoint -> framing, liveness
   std::size_t learnt_peers_ = 0;
   RouteTableCounters counters_;
+  HoldsState holds_state_;
+  Forgotten forgotten_;
 };
 
 }  // namespace jaus::transport

@@ -13,6 +13,20 @@
 // non-blocking (the node's bytes are only valid during transmit()); a full
 // socket buffer drops the datagram and counts it, never blocks the node.
 // Everything runs on the io_context's thread.
+//
+// Hostile network (issue 28). Every delivered message carries the sender's
+// standing (rt::SenderStanding), decided here:
+// - unrecorded: its source could not be recorded (route table full, or its
+//   address at max_endpoints_per_address endpoints that all hold state). It
+//   is still delivered (Set Emergency is obeyed from anyone), but the runtime
+//   lets it leave no state behind. The claim check always runs first: a
+//   claim on a known ID that the rules refuse is dropped, full table or not.
+// - observer: recorded, from an address outside `control_from`;
+// - trusted: recorded, and `control_from` is empty or contains its address.
+// Routes of IDs that hold state at this node (pin_routes_while) never move to
+// another IP address and never expire while they do (route_table.hpp).
+// With `verify_endpoints`, no learnt endpoint is sent more bytes than it sent
+// until it answers a challenge (amplification_guard.hpp).
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -29,6 +43,8 @@
 #include "jaus/node/node.hpp"
 #include "jaus/runtime/environment.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
+#include "jaus/runtime/sender_standing.hpp"
+#include "jaus/transport/amplification_guard.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
@@ -53,6 +69,18 @@ struct UdpLinkOptions {
   bool relay = false;
   std::vector<StaticPeer> peers;
   std::vector<Cidr> allow;                  // empty: anyone may talk to the node
+  // Who may command: a recorded sender from outside these networks is
+  // delivered as an observer (queries, reports, its own emergency hold).
+  // Empty: every allowed host may command (trusted).
+  std::vector<Cidr> control_from;
+  // No more bytes to a learnt endpoint than it sent until it answers a
+  // challenge (amplification_guard.hpp): on for a node (jausd), off for
+  // clients that start the conversation themselves (OCU tools).
+  bool verify_endpoints = false;
+  AmplificationGuardOptions amplification;
+  // The key of the challenges' sequence numbers; unset: random per link.
+  // Tests inject it to know the numbers.
+  std::optional<std::array<std::uint64_t, 2>> challenge_key;
   RouteTableOptions routes;
 };
 
@@ -65,6 +93,9 @@ struct UdpLinkCounters {
   std::uint64_t unrouted = 0;           // unicast to an unknown node: sent to static peers and multicast
   std::uint64_t no_route = 0;           // ...and nowhere to send it: dropped
   std::uint64_t relayed = 0;            // messages for another subsystem sent on to its node
+  std::uint64_t delivered_unrecorded = 0;  // delivered as rt::SenderStanding::unrecorded
+  std::uint64_t delivered_observer = 0;    // delivered as rt::SenderStanding::observer
+  AmplificationCounters amplification;     // verify_endpoints (amplification_guard.hpp)
   std::uint64_t dropped_total() const;
   std::uint64_t dropped_for(DropReason reason) const { return dropped[static_cast<std::size_t>(reason)]; }
 };
@@ -72,8 +103,9 @@ struct UdpLinkCounters {
 class UdpLink final : public node::Link {
  public:
   // A received JAUS message: header decoded and checked once, here, with its
-  // payload (a view into the datagram, valid during the call) and framing.
-  using PacketHandler = std::function<void(const PacketView& packet, Framing framing)>;
+  // payload (a view into the datagram, valid during the call), framing and
+  // what the link knows of its sender (see above).
+  using PacketHandler = std::function<void(const PacketView& packet, Framing framing, rt::SenderStanding standing)>;
 
   // Opens and binds the sockets. A failure is one readable line, e.g.
   // "127.0.0.1:3794 is already in use".
@@ -86,6 +118,12 @@ class UdpLink final : public node::Link {
 
   // Where received JAUS messages go; typically Node::receive.
   void on_packet(PacketHandler handler) { handler_ = std::move(handler); }
+  // Whether a node ID holds control, an emergency hold or a service
+  // connection at one of this node's components: its route is pinned
+  // (route_table.hpp). Asked on claims from another address, never per datagram.
+  void pin_routes_while(std::function<bool(std::uint8_t subsystem, std::uint8_t node)> holds_state) {
+    routes_.pin_while(std::move(holds_state));
+  }
   // Starts receiving.
   void start();
   // Stops receiving and sending (pending handlers are cancelled).
@@ -93,7 +131,8 @@ class UdpLink final : public node::Link {
 
   // node::Link: routes one message by its header's destination.
   void transmit(const Header& header, std::span<const std::uint8_t> packet) override;
-  // Sends one message to an endpoint in a framing, outside routing (tools).
+  // Sends one message to an endpoint in a framing, outside routing (tools):
+  // not limited by verify_endpoints (the caller chose the endpoint).
   void send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
 
   // Takes `datagram` as if the socket had received it from `from`: every
@@ -121,6 +160,11 @@ class UdpLink final : public node::Link {
   // Counts a drop that is expected and worth no line (our multicast coming back).
   void count_drop(DropReason reason) { ++counters_.dropped[static_cast<std::size_t>(reason)]; }
   bool allowed(std::uint32_t address) const;
+  bool may_control(std::uint32_t address) const;
+  // send_to, through the amplification guard when verify_endpoints is on:
+  // what goes to learnt endpoints the routes chose.
+  void send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
+  void send_challenge(const Ipv4Endpoint& to, Framing framing);
   // A message for a node of another subsystem whose route we know, from a
   // node heard directly at `from`: sent on, in the framing that node speaks.
   void relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet);
@@ -137,6 +181,7 @@ class UdpLink final : public node::Link {
   std::unique_ptr<Socket> main_;
   std::unique_ptr<Socket> multicast_;  // bound to the group when the main socket is bound to one address
   RouteTable routes_;
+  AmplificationGuard guard_;
   PacketHandler handler_;
   UdpLinkCounters counters_;
   rt::TimerId expiry_timer_ = rt::kNoTimer;

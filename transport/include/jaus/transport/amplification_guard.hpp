@@ -1,0 +1,133 @@
+// No amplification toward unverified endpoints. Sans-I/O: the UDP link tells
+// it what arrives and asks it before it sends; the guard keeps the budgets,
+// the held replies and the challenges, the link does the I/O.
+//
+// A UDP source address can be forged, and a 16-byte query can return tens of
+// kilobytes (Report Image): a node answering every source would be an
+// amplifier aimed at whoever the forger names. As QUIC's address validation
+// (RFC 9000 section 8): the bytes sent to a learnt endpoint not yet verified
+// never exceed the bytes received from it. A reply that does not fit is held
+// (a few per endpoint, bounded bytes per endpoint and in total, dropped after
+// `hold_time`) and the endpoint is challenged: a header-only Query Heartbeat
+// Pulse (0x2202) with ACK requested, from this node's node manager to the
+// sender's JAUS address, with an unpredictable sequence number. A JAUS node
+// answers every ACK-requested message with ACK or NAK carrying the same code
+// and sequence number; only a sender that really receives at that address can
+// answer, so the answer verifies the endpoint and the held replies go out.
+// One challenge outstanding per endpoint, sent again at most once per
+// `challenge_interval`, its bytes counted against the budget (it is never
+// larger than the smallest datagram received in the same framing). Endpoints
+// not tracked (static peers, the multicast group, tools' direct sends) are not
+// limited; verification is forgotten with the endpoint.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "jaus/base/time.hpp"
+#include "jaus/core/address.hpp"
+#include "jaus/core/header.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+namespace jaus::transport {
+
+inline constexpr std::uint16_t kChallengeCode = 0x2202;  // Query Heartbeat Pulse: harmless, header only
+
+struct AmplificationGuardOptions {
+  std::size_t max_held_per_endpoint = 16;  // datagrams (a large data set is several)
+  std::size_t max_held_bytes_per_endpoint = 64 * 1024;
+  std::size_t max_held_bytes_total = 512 * 1024;
+  rt::Duration hold_time = std::chrono::seconds(2);
+  rt::Duration challenge_interval = std::chrono::seconds(1);
+  // Wrong answers (ACK/NAK of the challenge's code, another sequence number)
+  // after which a challenge is retired and the next gets a new number: a
+  // blind forger has a few guesses per challenge, not 65,536 per second.
+  std::size_t wrong_answers_per_challenge = 3;
+};
+
+struct AmplificationCounters {
+  std::uint64_t bytes_received_unverified = 0;   // datagram bytes from unverified endpoints
+  std::uint64_t bytes_sent_unverified = 0;       // datagram bytes to them (replies and challenges)
+  std::uint64_t replies_held = 0;                // datagrams held for want of budget
+  std::uint64_t replies_dropped_unverified = 0;  // held ones dropped (hold time, bounds, endpoint forgotten)
+  std::uint64_t challenges_sent = 0;
+  std::uint64_t endpoints_verified = 0;
+  std::uint64_t wrong_answers = 0;               // ACK/NAK of the challenge code with another sequence number
+};
+
+class AmplificationGuard {
+ public:
+  // `key` makes the challenge sequence numbers unpredictable (SipHash-2-4 of
+  // a counter): random per link, injected by tests.
+  AmplificationGuard(AmplificationGuardOptions options, std::array<std::uint64_t, 2> key)
+      : options_(options), key_(key) {}
+
+  // A learnt endpoint, unverified until it answers a challenge.
+  void track(const Ipv4Endpoint& endpoint);
+  // The endpoint was forgotten by the route table: so is its state.
+  void forget(const Ipv4Endpoint& endpoint);
+  bool tracks(const Ipv4Endpoint& endpoint) const { return endpoints_.contains(endpoint); }
+  bool unverified(const Ipv4Endpoint& endpoint) const;
+
+  // A datagram of `size` bytes from an unverified endpoint whose JAUS source
+  // is `source`: its budget grows. Returns true if `header` answers the
+  // endpoint's challenge: the endpoint is now verified, the datagram is the
+  // link's (not delivered), and release() gives what was held.
+  bool received(const Ipv4Endpoint& from, std::size_t size, const Address& source, const Header& header);
+
+  enum class Verdict : std::uint8_t { send, held, dropped };
+  // Before sending `packet` (header and payload) framed in `framing` to
+  // `to`: send (counted against the budget), held (copied) or dropped.
+  Verdict offer(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet, rt::TimePoint now);
+
+  struct Held {
+    Framing framing;
+    std::vector<std::uint8_t> packet;
+    rt::TimePoint since;
+  };
+  // What was held for an endpoint just verified, in order (then forgotten).
+  std::vector<Held> release(const Ipv4Endpoint& endpoint);
+
+  // The challenge to send to `to` now, if one is due (something held, none
+  // sent within challenge_interval, and it fits the budget): the header is
+  // counted as sent. `self` is this node's ID (the challenge is from S.N.1.1).
+  std::optional<Header> challenge(const Ipv4Endpoint& to, Framing framing, std::uint8_t subsystem, std::uint8_t node,
+                                  rt::TimePoint now);
+
+  // Drops what was held longer than hold_time.
+  void expire(rt::TimePoint now);
+
+  const AmplificationCounters& counters() const { return counters_; }
+  std::size_t held_bytes() const { return held_bytes_; }
+
+ private:
+  struct State {
+    bool verified = false;
+    std::uint64_t received = 0;  // bytes, while unverified
+    std::uint64_t sent = 0;
+    Address source;  // the JAUS address last heard from it: where challenges go
+    std::deque<Held> held;
+    std::size_t held_bytes = 0;
+    std::optional<std::uint16_t> challenge;  // the outstanding challenge's sequence number
+    std::optional<rt::TimePoint> challenged_at;
+    std::size_t wrong_answers = 0;
+  };
+  static std::size_t framed_size(Framing framing, std::size_t packet_size);
+  void drop_held(State& state);
+  std::uint16_t next_sequence();
+
+  AmplificationGuardOptions options_;
+  std::array<std::uint64_t, 2> key_;
+  std::uint64_t challenges_made_ = 0;
+  std::map<Ipv4Endpoint, State> endpoints_;  // at most the route table's learnt endpoints
+  std::size_t held_bytes_ = 0;
+  AmplificationCounters counters_;
+};
+
+}  // namespace jaus::transport

@@ -1,0 +1,164 @@
+#include "jaus/transport/amplification_guard.hpp"
+
+namespace jaus::transport {
+
+namespace {
+
+constexpr std::uint64_t rotl(std::uint64_t x, int b) { return (x << b) | (x >> (64 - b)); }
+
+// SipHash-2-4 of one 64-bit word: a keyed PRF, so challenge numbers seen at
+// one's own endpoints tell nothing of those sent elsewhere (a plain PRNG such
+// as mt19937 can be rebuilt from its outputs).
+std::uint64_t siphash(const std::array<std::uint64_t, 2>& key, std::uint64_t message) {
+  std::uint64_t v0 = key[0] ^ 0x736f6d6570736575ULL, v1 = key[1] ^ 0x646f72616e646f6dULL;
+  std::uint64_t v2 = key[0] ^ 0x6c7967656e657261ULL, v3 = key[1] ^ 0x7465646279746573ULL;
+  auto round = [&] {
+    v0 += v1, v1 = rotl(v1, 13), v1 ^= v0, v0 = rotl(v0, 32);
+    v2 += v3, v3 = rotl(v3, 16), v3 ^= v2;
+    v0 += v3, v3 = rotl(v3, 21), v3 ^= v0;
+    v2 += v1, v1 = rotl(v1, 17), v1 ^= v2, v2 = rotl(v2, 32);
+  };
+  v3 ^= message;
+  round(), round();
+  v0 ^= message;
+  const std::uint64_t last = std::uint64_t{8} << 56;  // the length byte of an 8-byte message
+  v3 ^= last;
+  round(), round();
+  v0 ^= last;
+  v2 ^= 0xFF;
+  round(), round(), round(), round();
+  return v0 ^ v1 ^ v2 ^ v3;
+}
+
+}  // namespace
+
+std::size_t AmplificationGuard::framed_size(Framing framing, std::size_t packet_size) {
+  return frame_prefix(framing, packet_size).size + packet_size;
+}
+
+std::uint16_t AmplificationGuard::next_sequence() {
+  return static_cast<std::uint16_t>(siphash(key_, ++challenges_made_));
+}
+
+void AmplificationGuard::track(const Ipv4Endpoint& endpoint) { endpoints_.try_emplace(endpoint); }
+
+void AmplificationGuard::forget(const Ipv4Endpoint& endpoint) {
+  const auto it = endpoints_.find(endpoint);
+  if (it == endpoints_.end()) return;
+  drop_held(it->second);
+  endpoints_.erase(it);
+}
+
+bool AmplificationGuard::unverified(const Ipv4Endpoint& endpoint) const {
+  const auto it = endpoints_.find(endpoint);
+  return it != endpoints_.end() && !it->second.verified;
+}
+
+void AmplificationGuard::drop_held(State& state) {
+  counters_.replies_dropped_unverified += state.held.size();
+  held_bytes_ -= state.held_bytes;
+  state.held.clear();
+  state.held_bytes = 0;
+}
+
+bool AmplificationGuard::received(const Ipv4Endpoint& from, std::size_t size, const Address& source,
+                                  const Header& header) {
+  const auto it = endpoints_.find(from);
+  if (it == endpoints_.end() || it->second.verified) return false;
+  State& state = it->second;
+  state.received += size;
+  state.source = source;
+  counters_.bytes_received_unverified += size;
+  const bool answer = (header.ack_nak == AckNak::ack || header.ack_nak == AckNak::nak) &&
+                      header.command_code == kChallengeCode && state.challenge;
+  if (!answer) return false;
+  if (header.sequence != *state.challenge) {
+    ++counters_.wrong_answers;
+    if (++state.wrong_answers >= options_.wrong_answers_per_challenge) {
+      // Retired: the next challenge (not before challenge_interval) has a new number.
+      state.challenge.reset();
+      state.wrong_answers = 0;
+    }
+    return false;
+  }
+  state.verified = true;
+  state.challenge.reset();
+  ++counters_.endpoints_verified;
+  return true;
+}
+
+AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Framing framing,
+                                                      std::span<const std::uint8_t> packet, rt::TimePoint now) {
+  const auto it = endpoints_.find(to);
+  if (it == endpoints_.end() || it->second.verified) return Verdict::send;
+  State& state = it->second;
+  const std::size_t size = framed_size(framing, packet.size());
+  // Behind what is already held, never before it: a large data set stays in order.
+  if (state.held.empty() && state.sent + size <= state.received) {
+    state.sent += size;
+    counters_.bytes_sent_unverified += size;
+    return Verdict::send;
+  }
+  if (state.held.size() >= options_.max_held_per_endpoint ||
+      state.held_bytes + packet.size() > options_.max_held_bytes_per_endpoint ||
+      held_bytes_ + packet.size() > options_.max_held_bytes_total) {
+    ++counters_.replies_dropped_unverified;
+    return Verdict::dropped;
+  }
+  state.held.push_back(Held{framing, std::vector<std::uint8_t>(packet.begin(), packet.end()), now});
+  state.held_bytes += packet.size();
+  held_bytes_ += packet.size();
+  ++counters_.replies_held;
+  return Verdict::held;
+}
+
+std::vector<AmplificationGuard::Held> AmplificationGuard::release(const Ipv4Endpoint& endpoint) {
+  const auto it = endpoints_.find(endpoint);
+  if (it == endpoints_.end()) return {};
+  State& state = it->second;
+  std::vector<Held> out(std::make_move_iterator(state.held.begin()), std::make_move_iterator(state.held.end()));
+  held_bytes_ -= state.held_bytes;
+  state.held.clear();
+  state.held_bytes = 0;
+  return out;
+}
+
+std::optional<Header> AmplificationGuard::challenge(const Ipv4Endpoint& to, Framing framing, std::uint8_t subsystem,
+                                                    std::uint8_t node, rt::TimePoint now) {
+  const auto it = endpoints_.find(to);
+  if (it == endpoints_.end() || it->second.verified || it->second.held.empty()) return std::nullopt;
+  State& state = it->second;
+  if (!state.source.is_valid()) return std::nullopt;  // never heard: nowhere to address it
+  if (state.challenged_at && now - *state.challenged_at < options_.challenge_interval) return std::nullopt;
+  const std::size_t size = framed_size(framing, kHeaderSize);
+  if (state.sent + size > state.received) return std::nullopt;  // wait for the sender's next datagram
+  if (!state.challenge) {
+    state.challenge = next_sequence();
+    state.wrong_answers = 0;
+  }
+  state.challenged_at = now;
+  state.sent += size;
+  counters_.bytes_sent_unverified += size;
+  ++counters_.challenges_sent;
+  Header h;
+  h.ack_nak = AckNak::ack_requested;
+  h.command_code = kChallengeCode;
+  h.destination = state.source;
+  h.source = Address{subsystem, node, 1, 1};  // this node's node manager
+  h.data_size = 0;
+  h.sequence = *state.challenge;
+  return h;
+}
+
+void AmplificationGuard::expire(rt::TimePoint now) {
+  for (auto& [endpoint, state] : endpoints_) {
+    while (!state.held.empty() && now - state.held.front().since >= options_.hold_time) {
+      state.held_bytes -= state.held.front().packet.size();
+      held_bytes_ -= state.held.front().packet.size();
+      state.held.pop_front();
+      ++counters_.replies_dropped_unverified;
+    }
+  }
+}
+
+}  // namespace jaus::transport
