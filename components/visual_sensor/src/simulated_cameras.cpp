@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <optional>
 
 #include "jaus/components/image_directory.hpp"
@@ -58,12 +60,29 @@ struct AxisMotion {
   }
 };
 
+// A directory read by capture() on the loop and by capture jobs on a worker:
+// its listing is cached state, so one reader at a time. Shared with the jobs,
+// so a job still queued when the cameras go keeps it alive.
+struct LockedDirectory {
+  explicit LockedDirectory(std::string path) : directory(std::move(path)) {}
+  Expected<Image> frame(std::uint64_t frame) {
+    std::lock_guard lock(mutex);
+    return directory.frame(frame);
+  }
+  std::mutex mutex;
+  ImageDirectory directory;
+};
+
+Error no_camera(std::uint8_t camera_id) {
+  return make_error(ErrorCode::invalid_argument, "no camera " + std::to_string(camera_id));
+}
+
 }  // namespace
 
 struct SimulatedCameras::Camera {
   explicit Camera(const CameraConfig& c)
       : config(c), pan(c.pan), tilt(c.tilt), zoom(c.zoom) {
-    if (!c.image_directory.empty()) directory.emplace(c.image_directory);
+    if (!c.image_directory.empty()) directory = std::make_shared<LockedDirectory>(c.image_directory);
   }
 
   void advance_to(rt::TimePoint now) {
@@ -77,7 +96,7 @@ struct SimulatedCameras::Camera {
   const CameraConfig& config;
   AxisMotion pan, tilt, zoom;
   rt::TimePoint moved_at{};
-  std::optional<ImageDirectory> directory;
+  std::shared_ptr<LockedDirectory> directory;
 };
 
 SimulatedCameras::SimulatedCameras(VisualSensorConfig config, const rt::Clock& clock)
@@ -134,13 +153,20 @@ std::uint64_t SimulatedCameras::frame_number(std::uint16_t frame_rate_fps) const
 }
 
 Expected<Image> SimulatedCameras::capture(std::uint8_t camera_id, const ImageRequest& request) {
+  return capture_job(camera_id, request)();
+}
+
+CaptureJob SimulatedCameras::capture_job(std::uint8_t camera_id, const ImageRequest& request) {
   Camera* camera = find(camera_id);
-  if (!camera) return unexpected(make_error(ErrorCode::invalid_argument, "no camera " + std::to_string(camera_id)));
+  if (!camera) return [camera_id]() -> Expected<Image> { return unexpected(no_camera(camera_id)); };
+  // The frame number is read here, on the clock's thread: the job is the frame shown now.
   const std::uint64_t frame = frame_number(std::max<std::uint16_t>(request.frame_rate_fps, 1));
-  if (camera->directory) return camera->directory->frame(frame);
-  if (request.width == 0 || request.height == 0)
-    return unexpected(make_error(ErrorCode::invalid_argument, "image size 0"));
-  return encode_image(test_pattern(request.width, request.height, frame), request.format);
+  if (camera->directory) return [directory = camera->directory, frame] { return directory->frame(frame); };
+  return [request, frame]() -> Expected<Image> {
+    if (request.width == 0 || request.height == 0)
+      return unexpected(make_error(ErrorCode::invalid_argument, "image size 0"));
+    return encode_image(test_pattern(request.width, request.height, frame), request.format);
+  };
 }
 
 }  // namespace jaus::components

@@ -27,10 +27,25 @@ constexpr std::uint32_t kFormatCommandFields = 0x02;
 
 std::string id_text(std::uint8_t id) { return std::to_string(id); }
 
+// The pipeline keeps capturing, one frame period apart, this long after the
+// last request for a frame: streams slower than the frame rate get a recent frame.
+constexpr Duration kKeepCapturing = std::chrono::seconds(2);
+// Query Image per requesting node: the frame rate, with a burst of this many (jitter).
+constexpr double kQueryBurst = 2;
+// Requesting nodes tracked for Query Image; beyond (a flood of sources), new ones are ignored.
+constexpr std::size_t kMaxQueryRequesters = 256;
+// Query Image senders a capture under way answers at most.
+constexpr std::size_t kMaxWaiting = 64;
+
 }  // namespace
 
 VisualSensor::VisualSensor(ComponentConfig config, Environment env, Cameras& cameras, VisualSensorOptions options)
-    : Component(std::move(config), std::move(env)), cameras_(cameras), options_(options) {
+    : Component(std::move(config), std::move(env)),
+      cameras_(cameras),
+      options_(options),
+      own_worker_(std::make_unique<ScheduledFrameWorker>(this->env().scheduler, this->env().clock)),
+      worker_(own_worker_.get()),
+      images_(&cameras) {
   using namespace msg;
   std::set<std::uint8_t> ids;
   for (const CameraConfig& c : cameras_.configs())
@@ -73,12 +88,7 @@ VisualSensor::VisualSensor(ComponentConfig config, Environment env, Cameras& cam
                                      wire::mask_presence(report, q.presence_vector);
                                      send(h.source, report);
                                    });
-  handle<QueryImage>(Access::anyone, /*ready_only=*/true, [this](const Header& h, const QueryImage&) {
-    if (auto report = image_report()) {
-      ++sensor_counters_.images_sent;
-      send(h.source, *report);
-    }
-  });
+  handle<QueryImage>(Access::anyone, /*ready_only=*/true, [this](const Header& h, const QueryImage&) { on_query_image(h); });
 
   // The same reports on service connections, for the selected camera.
   provide<ReportCameraCount>(0, [this] {
@@ -106,7 +116,14 @@ VisualSensor::VisualSensor(ComponentConfig config, Environment env, Cameras& cam
   declare_input_presence(QueryCameraFormatOptions::code, kFormatReportFields);
 }
 
-VisualSensor::~VisualSensor() = default;
+VisualSensor::~VisualSensor() {
+  if (next_capture_ != kNoTimer) env().scheduler.cancel(next_capture_);
+}
+
+void VisualSensor::use_frame_worker(FrameWorker& worker, Cameras* images) {
+  worker_ = &worker;
+  images_ = images ? images : &cameras_;
+}
 
 // A configuration without a usable camera (none, or IDs 0 or repeated) is a
 // failed initialisation: the operator sees Failure, not a sensor with no eyes.
@@ -170,11 +187,166 @@ void VisualSensor::provide_images() {
       0,
       [this]() -> std::optional<msg::ReportImage> {
         if (state() != PrimaryStatus::ready) return std::nullopt;  // Standby pauses the stream
-        auto report = image_report();
-        if (report) ++sensor_counters_.images_sent;
-        return report;
+        const auto frame = want_frame();
+        if (!frame) return std::nullopt;  // nothing captured yet
+        ++sensor_counters_.images_sent;
+        return *frame;
       },
       c ? c->settings.frame_rate_fps : 0);
+}
+
+std::optional<VisualSensor::FrameKey> VisualSensor::selected_key() const {
+  const Camera* c = find(selected_);
+  if (!c) return std::nullopt;
+  return FrameKey{selected_, c->settings.image_format, c->settings.width, c->settings.height};
+}
+
+Duration VisualSensor::frame_period() const {
+  const Camera* c = find(selected_);
+  const std::uint16_t fps = c ? std::max<std::uint16_t>(c->settings.frame_rate_fps, 1) : 1;
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / fps));
+}
+
+bool VisualSensor::frame_fresh() {
+  return frame_ && env().clock.now() - frame_at_ < frame_period();
+}
+
+std::shared_ptr<const msg::ReportImage> VisualSensor::want_frame() {
+  const auto key = selected_key();
+  if (!key) return nullptr;
+  if (!(*key == key_)) {
+    // Another camera, format or size: the newest frame is not one of it, and
+    // the capture under way (if any) will be dropped when it is done.
+    key_ = *key;
+    frame_.reset();
+    capturing_ = false;
+    captured_before_ = false;
+  }
+  wanted_at_ = env().clock.now();
+  if (!frame_fresh()) request_capture();
+  return frame_;
+}
+
+void VisualSensor::request_capture() {
+  const TimePoint now = env().clock.now();
+  // At most one capture under way, and one per frame period (less an eighth
+  // for timer jitter: a stream at the frame rate asks a little early at times).
+  const Duration period = frame_period();
+  if (capturing_ || (captured_before_ && now - capture_began_ < period - period / 8)) return;
+  const Camera* c = find(key_.camera);
+  if (!c) return;
+  const CameraSettings& s = c->settings;
+  CaptureJob job = images_->capture_job(key_.camera, ImageRequest{s.image_format, s.width, s.height, s.frame_rate_fps});
+  const FrameKey key = key_;
+  const std::uint64_t id = capture_id_ + 1;
+  const bool submitted = worker_->submit(
+      std::move(job), [this, key, id, alive = std::weak_ptr<char>(alive_)](Expected<Image> image) {
+        if (alive.expired()) return;
+        capture_done(key, id, std::move(image));
+      });
+  if (!submitted) {
+    // The worker is full (another camera's captures, a slow disk): the newest frame serves meanwhile.
+    ++sensor_counters_.captures_refused;
+    log_repeated("image captures refused by a full worker", LogLevel::warn,
+                 [&] { return "camera " + id_text(key_.camera) + ": frame worker full, newest frame sent again"; });
+    return;
+  }
+  capture_id_ = id;
+  capturing_ = true;
+  captured_before_ = true;
+  capture_began_ = now;
+}
+
+void VisualSensor::capture_done(const FrameKey& key, std::uint64_t id, Expected<Image> image) {
+  if (id != capture_id_ || !capturing_) return;  // the settings changed meanwhile: not this frame
+  capturing_ = false;
+  std::optional<std::string> error;
+  if (!image)
+    error = image.error().message();
+  else if (image->data.size() + 2 > kMaxLargeDataSetSize)
+    error = std::to_string(image->data.size()) + " bytes, over a large data set's 1 MiB";
+  std::vector<Address> waiting;
+  waiting.swap(waiting_);
+  if (error) {
+    ++sensor_counters_.capture_errors;
+    // Once per distinct error, and (a controller selecting cameras in turn repeats it) limited.
+    if (capture_error_ != error)
+      log_repeated({"cameras without images", kNoteworthyBurst}, LogLevel::warn,
+                   [&] { return "camera " + id_text(key.camera) + ": no image: " + *error; });
+    capture_error_ = error;
+  } else {
+    if (capture_error_)
+      log_repeated({"cameras with images again", kNoteworthyBurst}, LogLevel::info,
+                   [&] { return "camera " + id_text(key.camera) + ": images again"; });
+    capture_error_.reset();
+    auto report = std::make_shared<msg::ReportImage>();
+    report->camera_id = key.camera;
+    report->image_format = image->format;
+    report->data = std::move(image->data);
+    frame_ = std::move(report);
+    frame_at_ = capture_began_;
+    ++sensor_counters_.frames_captured;
+    // The Query Image senders that waited for it (not outside Ready: Standby came meanwhile).
+    if (state() == PrimaryStatus::ready)
+      for (const Address& to : waiting) {
+        ++sensor_counters_.images_sent;
+        send(to, *frame_);
+      }
+  }
+  // Someone wants frames: the next one a frame period after this one began.
+  const TimePoint now = env().clock.now();
+  if (now - wanted_at_ < kKeepCapturing && next_capture_ == kNoTimer)
+    next_capture_ = env().scheduler.call_at(capture_began_ + frame_period(), [this] {
+      next_capture_ = kNoTimer;
+      if (env().clock.now() - wanted_at_ < kKeepCapturing && state() == PrimaryStatus::ready && selected_key() == key_)
+        request_capture();
+    });
+}
+
+bool VisualSensor::query_allowed(const Address& requester) {
+  const TimePoint now = env().clock.now();
+  const Camera* c = find(selected_);
+  const double rate = c ? std::max<std::uint16_t>(c->settings.frame_rate_fps, 1) : 1;
+  const std::pair<std::uint8_t, std::uint8_t> node{requester.subsystem, requester.node};
+  auto it = query_buckets_.find(node);
+  if (it == query_buckets_.end()) {
+    if (query_buckets_.size() >= kMaxQueryRequesters) {
+      // Forget the requesters whose bucket has refilled: they are as new.
+      std::erase_if(query_buckets_, [&](const auto& entry) {
+        return std::chrono::duration<double>(now - entry.second.at).count() * rate >= kQueryBurst;
+      });
+      if (query_buckets_.size() >= kMaxQueryRequesters) return false;
+    }
+    it = query_buckets_.emplace(node, QueryBucket{kQueryBurst, now}).first;
+  }
+  QueryBucket& b = it->second;
+  b.tokens = std::min(kQueryBurst, b.tokens + std::chrono::duration<double>(now - b.at).count() * rate);
+  b.at = now;
+  if (b.tokens < 1) return false;
+  b.tokens -= 1;
+  return true;
+}
+
+void VisualSensor::on_query_image(const Header& h) {
+  if (!query_allowed(h.source)) {
+    ++sensor_counters_.image_queries_limited;
+    log_repeated("Query Image beyond its requester's rate ignored", LogLevel::warn, [&] {
+      return "Query Image from " + h.source.to_string() + " beyond the camera's frame rate: ignored";
+    });
+    return;
+  }
+  const auto frame = want_frame();
+  if (frame && frame_fresh()) {
+    ++sensor_counters_.images_sent;
+    send(h.source, *frame);
+  } else if (capturing_) {
+    // Answered when the capture under way is done (never here: nothing waits).
+    if (waiting_.size() < kMaxWaiting && std::find(waiting_.begin(), waiting_.end(), h.source) == waiting_.end())
+      waiting_.push_back(h.source);
+  } else if (frame) {
+    ++sensor_counters_.images_sent;  // no capture possible now: the newest there is
+    send(h.source, *frame);
+  }
 }
 
 std::optional<msg::ReportCameraPose> VisualSensor::camera_pose_report(std::uint8_t camera_id) {
@@ -198,37 +370,6 @@ std::optional<msg::ReportCameraFormatOptions> VisualSensor::format_report(std::u
   if (!c) return std::nullopt;
   msg::ReportCameraFormatOptions report;
   static_cast<msg::CameraFormatReportBody&>(report) = to_format_body(*c->config, c->settings);
-  return report;
-}
-
-std::optional<msg::ReportImage> VisualSensor::image_report() {
-  const Camera* c = find(selected_);
-  if (!c) return std::nullopt;
-  const CameraSettings& s = c->settings;
-  auto image = cameras_.capture(selected_, ImageRequest{s.image_format, s.width, s.height, s.frame_rate_fps});
-  std::optional<std::string> error;
-  if (!image)
-    error = image.error().message();
-  else if (image->data.size() + 2 > kMaxLargeDataSetSize)
-    error = std::to_string(image->data.size()) + " bytes, over a large data set's 1 MiB";
-  if (error) {
-    ++sensor_counters_.capture_errors;
-    // Logged once per distinct error, not at the stream's rate.
-    // Once per distinct error, and (a controller selecting cameras in turn repeats it) limited.
-    if (capture_error_ != error)
-      log_repeated({"cameras without images", kNoteworthyBurst}, LogLevel::warn,
-                   [&] { return "camera " + id_text(selected_) + ": no image: " + *error; });
-    capture_error_ = error;
-    return std::nullopt;
-  }
-  if (capture_error_)
-    log_repeated({"cameras with images again", kNoteworthyBurst}, LogLevel::info,
-                 [&] { return "camera " + id_text(selected_) + ": images again"; });
-  capture_error_.reset();
-  msg::ReportImage report;
-  report.camera_id = selected_;
-  report.image_format = image->format;
-  report.data = std::move(image->data);
   return report;
 }
 

@@ -49,6 +49,7 @@ class VisualSensorTest : public ::testing::Test {
 
   void make(VisualSensorConfig config) {
     sensor.reset();
+    worker.reset();
     cameras = std::make_unique<SimulatedCameras>(std::move(config), time);
     rt::ComponentConfig component;
     component.name = "visual sensor";
@@ -100,11 +101,18 @@ class VisualSensorTest : public ::testing::Test {
     return images.front();
   }
   bool logged(const std::string& text) const { return any_line_contains(logs, text); }
+  // A worker the test sees (captures counted, slow at will) instead of the sensor's own.
+  ScheduledFrameWorker& use_worker(std::size_t capacity = 4, rt::Duration delay = {}) {
+    worker = std::make_unique<ScheduledFrameWorker>(time, time, capacity, delay);
+    sensor->use_frame_worker(*worker);
+    return *worker;
+  }
 
   rt::VirtualTime time;
   RecordingOutbox outbox;
   std::vector<std::string> logs;
   std::unique_ptr<SimulatedCameras> cameras;
+  std::unique_ptr<ScheduledFrameWorker> worker;  // declared before the sensor: outlives it
   std::unique_ptr<VisualSensor> sensor;
 };
 
@@ -398,8 +406,11 @@ TEST_F(VisualSensorTest, ImagesStreamAtTheRequestedRateCappedAtTheFrameRateAsLar
   EXPECT_NEAR(confirms[0].confirmed_rate_hz, 5, 0.01);
   const auto start = time.now();
   time.advance(1s);
+  // The first period comes before the first frame is done (nothing waits for
+  // it): the four after it each send the newest frame.
   const auto sent = frames(outbox, kOcuB, start, start + 1s);
-  EXPECT_EQ(sent.size(), 5u);
+  EXPECT_EQ(sent.size(), 4u);
+  for (std::size_t i = 1; i < sent.size(); ++i) EXPECT_NE(sent[i].payload, sent[i - 1].payload);
   for (const auto& s : sent) {
     EXPECT_TRUE(s.header.service_connection);
     EXPECT_GT(s.payload.size(), kMaxPayloadSize);  // each whole, the node sends a large data set
@@ -486,6 +497,7 @@ TEST_F(VisualSensorTest, AnUnreadableImageDirectoryIsLoggedOnceAndNothingIsSent)
   config.cameras[0].image_directory = "/nonexistent/jaus-images";
   make(config);
   EXPECT_FALSE(query_image(kOcuB));
+  time.advance(100ms);  // (a failed capture is tried again a frame period later)
   EXPECT_FALSE(query_image(kOcuB));
   EXPECT_EQ(sensor->sensor_counters().capture_errors, 2u);
   int lines = 0;
@@ -517,6 +529,118 @@ TEST_F(VisualSensorTest, ServicesListWhatItAcceptsAndProvides) {
   for (std::uint16_t code : {0x4800, 0x4801, 0x4804, 0x4805, 0x4806, 0x4807})
     EXPECT_TRUE(outputs.contains(code)) << code;
   EXPECT_EQ(outputs.at(0x4800), 0x03FFu);
+}
+
+// ---- images off the event loop, limited per requester (issue 28) ----------------
+
+TEST_F(VisualSensorTest, ConnectionsOfOneFormatShareOneCapturePerFramePeriod) {
+  ScheduledFrameWorker& w = use_worker();
+  // Eight streams at the camera's 10 fps from eight nodes, half of them 37 ms
+  // out of phase with the others, and queries besides.
+  std::vector<Address> requesters;
+  for (std::uint8_t n = 10; n < 18; ++n) requesters.push_back(Address{1, n, 40, 1});
+  for (std::size_t i = 0; i < requesters.size(); ++i) {
+    if (i == 4) time.advance(37ms);
+    deliver(requesters[i], msg::CreateServiceConnection{{msg::ReportImage::code, 10, 0}});
+  }
+  const auto start = time.now();
+  for (int i = 0; i < 20; ++i) {
+    deliver(kOcuC, msg::QueryImage{});
+    time.advance(100ms);
+  }
+  // One capture per frame period over the 2 s (and the first), whatever the
+  // number of connections and queries.
+  EXPECT_GE(w.ran(), 20u);
+  EXPECT_LE(w.ran(), 22u);
+  EXPECT_EQ(sensor->sensor_counters().frames_captured, w.ran());
+  for (const Address& r : requesters) {
+    const auto sent = frames(outbox, r, start, time.now());
+    EXPECT_GE(sent.size(), 19u) << r.to_string();
+    EXPECT_LE(sent.size(), 21u) << r.to_string();
+  }
+  EXPECT_EQ(reports_to<msg::ReportImage>(kOcuC).size(), 20u);
+  // Every stream's frames are the same encoded bytes at the same moment: shared.
+  const auto a = frames(outbox, requesters[0], start, start + 500ms);
+  const auto b = frames(outbox, requesters[1], start, start + 500ms);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].payload, b[i].payload);
+}
+
+TEST_F(VisualSensorTest, ASlowCaptureNeverDelaysOtherMessagesAndItsQueryIsAnsweredWhenItIsDone) {
+  use_worker(4, 3s);  // a camera that takes 3 s per frame
+  outbox.clear();
+  deliver(kOcuB, msg::QueryImage{});
+  EXPECT_TRUE(reports_to<msg::ReportImage>(kOcuB).empty());  // nothing waited on the loop
+  deliver(kOcuC, msg::QueryComponentStatus{});
+  EXPECT_EQ(reports_to<msg::ReportComponentStatus>(kOcuC).size(), 1u);  // answered meanwhile
+  deliver(kOcuA, msg::RequestComponentControl{{5}});
+  EXPECT_TRUE(sensor->control().is_controller(kOcuA));
+  deliver(kOcuC, msg::CreateServiceConnection{{msg::ReportImage::code, 10, 0}});
+  time.advance(2900ms);
+  EXPECT_TRUE(reports_to<msg::ReportImage>(kOcuB).empty());
+  EXPECT_TRUE(reports_to<msg::ReportImage>(kOcuC).empty());  // no frame yet: the stream's periods send nothing
+  time.advance(100ms);
+  ASSERT_EQ(reports_to<msg::ReportImage>(kOcuB).size(), 1u);
+  EXPECT_TRUE(decode_png(reports_to<msg::ReportImage>(kOcuB)[0].data));
+  time.advance(100ms);
+  EXPECT_EQ(reports_to<msg::ReportImage>(kOcuC).size(), 1u);  // the newest frame, from then on
+}
+
+TEST_F(VisualSensorTest, AFullWorkerRefusesWithoutGrowingAndTheNewestFrameServesMeanwhile) {
+  rt::VirtualTime t;
+  ScheduledFrameWorker bounded(t, t, 2);
+  int done = 0;
+  const auto job = [] { return Expected<Image>(Image{}); };
+  const auto count = [&](Expected<Image>) { ++done; };
+  EXPECT_TRUE(bounded.submit(job, count));
+  EXPECT_TRUE(bounded.submit(job, count));
+  EXPECT_FALSE(bounded.submit(job, count));
+  EXPECT_EQ(bounded.pending(), 2u);
+  EXPECT_EQ(bounded.refused(), 1u);
+  t.run_ready();
+  EXPECT_EQ(done, 2);
+  EXPECT_EQ(bounded.pending(), 0u);
+
+  // The sensor: a capture of camera 1 under way fills a worker of one; the
+  // controller selects camera 2, whose capture is refused and counted.
+  ScheduledFrameWorker& w = use_worker(1, 1s);
+  take_control(kOcuA);
+  deliver(kOcuB, msg::QueryImage{});
+  deliver(kOcuA, msg::SelectCamera{{2}});
+  deliver(kOcuC, msg::QueryImage{});
+  EXPECT_EQ(w.pending(), 1u);
+  EXPECT_EQ(w.refused(), 1u);
+  EXPECT_EQ(sensor->sensor_counters().captures_refused, 1u);
+  time.advance(1s);  // camera 1's frame is dropped: camera 2 is selected now
+  EXPECT_TRUE(reports_to<msg::ReportImage>(kOcuB).empty());
+  time.advance(100ms);
+  outbox.clear();
+  deliver(kOcuC, msg::QueryImage{});
+  time.advance(1s);
+  const auto images = reports_to<msg::ReportImage>(kOcuC);
+  ASSERT_EQ(images.size(), 1u);
+  EXPECT_EQ(images[0].camera_id, 2);
+}
+
+TEST_F(VisualSensorTest, QueryImageBeyondTheFrameRatePerRequesterIsIgnoredAndCounted) {
+  use_worker();
+  // 100 queries a second for 2 s from one node (two of its components): at
+  // most the camera's 10 fps (and a burst of 2) are answered.
+  const Address other_component{kOcuB.subsystem, kOcuB.node, 41, 1};
+  outbox.clear();
+  for (int i = 0; i < 200; ++i) {
+    deliver(i % 2 ? kOcuB : other_component, msg::QueryImage{});
+    if (i % 10 == 0) deliver(kOcuC, msg::QueryImage{});  // another node at 10 Hz: untouched
+    time.advance(10ms);
+  }
+  const std::size_t answered = reports_to<msg::ReportImage>(kOcuB).size() + reports_to<msg::ReportImage>(other_component).size();
+  EXPECT_GE(answered, 19u);
+  EXPECT_LE(answered, 22u);
+  EXPECT_EQ(sensor->sensor_counters().image_queries_limited, 200u - answered);
+  EXPECT_EQ(reports_to<msg::ReportImage>(kOcuC).size(), 20u);
+  int lines = 0;
+  for (const auto& l : logs) lines += l.find("beyond the camera's frame rate") != std::string::npos;
+  EXPECT_LE(lines, 2);  // limited: a line, then a count
 }
 
 }  // namespace

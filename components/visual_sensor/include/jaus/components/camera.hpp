@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -63,6 +64,11 @@ struct Image {
   std::vector<std::uint8_t> data;
 };
 
+// One frame's capture as work for another thread (frame_worker.hpp): it holds
+// copies of what it needs and shares nothing with its backend that is not
+// synchronised, so it may run anywhere, after the backend's state moved on.
+using CaptureJob = std::function<Expected<Image>()>;
+
 class Cameras {
  public:
   virtual ~Cameras() = default;
@@ -78,6 +84,12 @@ class Cameras {
 
   // The frame of `camera_id` now (a source never queues frames).
   virtual Expected<Image> capture(std::uint8_t camera_id, const ImageRequest& request) = 0;
+  // The frame of `camera_id` now, captured and encoded by whoever runs the
+  // job. By default the frame is captured here, now (a backend whose capture
+  // is cheap or cannot leave its thread); the simulated cameras defer it.
+  virtual CaptureJob capture_job(std::uint8_t camera_id, const ImageRequest& request) {
+    return [image = capture(camera_id, request)] { return image; };
+  }
 };
 
 }  // namespace jaus::components

@@ -38,6 +38,10 @@ class SimulatedCameras final : public Cameras {
   // directory's file of this frame as it is. An unknown camera, a format
   // other than PNG/JPEG or an unreadable directory is an error.
   Expected<Image> capture(std::uint8_t camera_id, const ImageRequest& request) override;
+  // The same frame (the one shown now), encoded or read by whoever runs the
+  // job: the test pattern's job holds the frame number and the request; a
+  // directory's shares the directory behind a lock with capture().
+  CaptureJob capture_job(std::uint8_t camera_id, const ImageRequest& request) override;
 
   // The frame number a camera at `frame_rate_fps` shows now.
   std::uint64_t frame_number(std::uint16_t frame_rate_fps) const;
