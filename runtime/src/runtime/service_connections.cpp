@@ -114,6 +114,14 @@ void ServiceConnectionProvider::on_create(const Header& h, const msg::CreateServ
   auto existing = connections_.find(key);
   if (existing == connections_.end() && connections_.size() >= limits_.max_connections)
     return confirm(h, code, 0, 0, kRefused);
+  if (const auto cap = limits_.max_per_requester_node.find(code);
+      !command && existing == connections_.end() && cap != limits_.max_per_requester_node.end()) {
+    const auto held = std::count_if(connections_.begin(), connections_.end(), [&](const auto& entry) {
+      const Address& r = entry.first.requester;
+      return entry.first.code == code && r.subsystem == h.source.subsystem && r.node == h.source.node;
+    });
+    if (static_cast<std::size_t>(held) >= cap->second) return confirm(h, code, 0, 0, kRefused);
+  }
 
   // The confirmed rate never exceeds the requested one, the limits' maximum,
   // nor the rate the report's source updates at.

@@ -45,6 +45,11 @@ struct ServiceConnectionLimits {
   // ...and never later than this: at the RA's slowest rate (one a minute),
   // three periods would leave a vehicle on its last command for 3 minutes.
   Duration deadman_maximum = std::chrono::seconds(1);
+  // Inform SCs of a report code that one requesting node (subsystem and node:
+  // its components together) may hold, by code; beyond, Create is refused
+  // (response 4). A code not listed has no cap of its own (Report Image: the
+  // visual sensor's, each an image stream).
+  std::map<std::uint16_t, std::size_t> max_per_requester_node;
 };
 
 struct ServiceConnectionCounters {
