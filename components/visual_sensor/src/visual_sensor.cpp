@@ -37,10 +37,16 @@ constexpr std::size_t kMaxQueryRequesters = 256;
 // Query Image senders a capture under way answers at most.
 constexpr std::size_t kMaxWaiting = 64;
 
+// The base refuses a requesting node's image streams beyond the option.
+ComponentConfig with_image_cap(ComponentConfig config, const VisualSensorOptions& options) {
+  config.service_connections.max_per_requester_node[msg::ReportImage::code] = options.image_connections_per_requester;
+  return config;
+}
+
 }  // namespace
 
 VisualSensor::VisualSensor(ComponentConfig config, Environment env, Cameras& cameras, VisualSensorOptions options)
-    : Component(std::move(config), std::move(env)),
+    : Component(with_image_cap(std::move(config), options), std::move(env)),
       cameras_(cameras),
       options_(options),
       own_worker_(std::make_unique<ScheduledFrameWorker>(this->env().scheduler, this->env().clock)),

@@ -643,5 +643,40 @@ TEST_F(VisualSensorTest, QueryImageBeyondTheFrameRatePerRequesterIsIgnoredAndCou
   EXPECT_LE(lines, 2);  // limited: a line, then a count
 }
 
+TEST_F(VisualSensorTest, ARequestingNodesThirdImageConnectionIsRefused) {
+  // Three components of one node ask for image streams: two are confirmed
+  // (the default), the third refused; another node still gets its own.
+  const auto response = [&](const Address& from) {
+    outbox.clear();
+    deliver(from, msg::CreateServiceConnection{{msg::ReportImage::code, 10, 0}});
+    const auto confirms = reports_to<msg::ConfirmServiceConnection>(from);
+    return confirms.size() == 1 ? confirms[0].response_code : 255;
+  };
+  const Address first{kOcuB.subsystem, kOcuB.node, 40, 1}, second{kOcuB.subsystem, kOcuB.node, 41, 1},
+      third{kOcuB.subsystem, kOcuB.node, 42, 1};
+  EXPECT_EQ(response(first), msg::sc_response::kCreated);
+  EXPECT_EQ(response(second), msg::sc_response::kCreated);
+  EXPECT_EQ(response(third), msg::sc_response::kRefused);
+  EXPECT_EQ(response(first), msg::sc_response::kCreated);  // a Create again updates its own
+  EXPECT_EQ(response(kOcuC), msg::sc_response::kCreated);
+  // Other reports are not capped by it.
+  outbox.clear();
+  deliver(third, msg::CreateServiceConnection{{msg::ReportCameraPose::code, 1, 0x0001}});
+  EXPECT_EQ(reports_to<msg::ConfirmServiceConnection>(third).at(0).response_code, msg::sc_response::kCreated);
+  // Once one ends, the third may have its stream.
+  deliver(second, msg::TerminateServiceConnection{{msg::ReportImage::code, 0}});
+  EXPECT_EQ(response(third), msg::sc_response::kCreated);
+
+  // The option: one per node.
+  VisualSensorOptions one;
+  one.image_connections_per_requester = 1;
+  rt::ComponentConfig component;
+  component.address = kVisualSensor;
+  sensor = std::make_unique<VisualSensor>(component, rt::Environment{time, time, outbox}, *cameras, one);
+  sensor->start();
+  EXPECT_EQ(response(first), msg::sc_response::kCreated);
+  EXPECT_EQ(response(second), msg::sc_response::kRefused);
+}
+
 }  // namespace
 }  // namespace jaus::test
