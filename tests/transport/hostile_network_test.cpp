@@ -324,6 +324,33 @@ TEST_F(HostileNetwork, StaticPeersAreVerifiedFromTheStart) {
   EXPECT_EQ(link->counters().amplification.challenges_sent, 0u);
 }
 
+// The held replies are bounded per endpoint (datagrams, bytes) and in
+// total; forgetting an endpoint drops what it held.
+TEST(AmplificationGuardBounds, HeldRepliesAreBoundedAndGoWithTheEndpoint) {
+  AmplificationGuardOptions options;
+  options.max_held_per_endpoint = 3;
+  options.max_held_bytes_per_endpoint = 10000;
+  options.max_held_bytes_total = 12000;
+  AmplificationGuard guard(options, {3, 4});
+  const Ipv4Endpoint a{0x7F000002, 1}, b{0x7F000003, 1};
+  guard.track(a);
+  guard.track(b);
+  const std::vector<std::uint8_t> big(4000), small(100);
+  const rt::TimePoint now{};
+  EXPECT_EQ(guard.offer(a, Framing::opc, big, now), AmplificationGuard::Verdict::held);
+  EXPECT_EQ(guard.offer(a, Framing::opc, big, now), AmplificationGuard::Verdict::held);
+  EXPECT_EQ(guard.offer(a, Framing::opc, big, now), AmplificationGuard::Verdict::dropped);  // 12000 > 10000
+  EXPECT_EQ(guard.offer(a, Framing::opc, small, now), AmplificationGuard::Verdict::held);
+  EXPECT_EQ(guard.offer(a, Framing::opc, small, now), AmplificationGuard::Verdict::dropped);  // 3 datagrams
+  EXPECT_EQ(guard.offer(b, Framing::opc, small, now), AmplificationGuard::Verdict::held);
+  EXPECT_EQ(guard.offer(b, Framing::opc, big, now), AmplificationGuard::Verdict::dropped);  // 12200 > 12000 in all
+  EXPECT_EQ(guard.held_bytes(), 8200u);
+  guard.forget(a);
+  EXPECT_EQ(guard.held_bytes(), 100u);
+  EXPECT_EQ(guard.counters().replies_dropped_unverified, 3u + 3u);  // 3 refused, 3 held by a
+  EXPECT_EQ(guard.offer(Ipv4Endpoint{0x7F000004, 1}, Framing::opc, big, now), AmplificationGuard::Verdict::send);  // untracked
+}
+
 // End to end on real sockets: a node with verify_endpoints and an OCU-side
 // node (its own Node, which answers ACK requests as every node does): the
 // OCU's query is answered after the challenge, without anyone's help.
