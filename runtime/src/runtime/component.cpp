@@ -406,8 +406,9 @@ void Component::register_core_handlers() {
   handle<ClearEmergency>(Access::anyone, false,
                          [this](const Header& h, const ClearEmergency& m) { on_clear_emergency(h, m); });
 
-  // Service connections: anyone may subscribe to reports; command SCs check
-  // control themselves (response 3 for a non-controller).
+  // Service connections: anyone the node can record may subscribe to
+  // reports; command SCs check control themselves (response 3 for a
+  // non-controller); on_create_service_connection refuses by standing.
   handle<CreateServiceConnection>(Access::anyone, false, [this](const Header& h, const CreateServiceConnection& m) {
     on_create_service_connection(h, m);
   });
