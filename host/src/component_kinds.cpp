@@ -20,7 +20,7 @@ const std::vector<ComponentKind>& kinds() {
       {"primitive_driver", 33, {"command_timeout_s", "stop_brake_percent"}},
       {"global_pose_sensor", 38, {"stale_after_s", "local_pose"}},
       {"velocity_state_sensor", 42, {"stale_after_s"}},
-      {"visual_sensor", 37, {}},
+      {"visual_sensor", 37, {"image_connections_per_requester"}},
       {"primitive_manipulator", 49, {"command_timeout_s"}},
   };
   return registry;

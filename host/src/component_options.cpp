@@ -93,8 +93,16 @@ Expected<components::SensorOptions> velocity_state_sensor_options(const Componen
   return sensor_options(spec);
 }
 
-Expected<components::VisualSensorOptions> visual_sensor_options(const ComponentSpec&) {
-  return components::VisualSensorOptions{};
+Expected<components::VisualSensorOptions> visual_sensor_options(const ComponentSpec& spec) {
+  components::VisualSensorOptions o;
+  // At most the service connection table (64 by default), at least one.
+  const auto connections = number(spec, "image_connections_per_requester", 1, 64,
+                                  static_cast<double>(o.image_connections_per_requester));
+  if (!connections) return unexpected(connections.error());
+  if (*connections != std::floor(*connections))
+    return unexpected(option_error(spec, "image_connections_per_requester", "a whole number 1..64"));
+  o.image_connections_per_requester = static_cast<std::size_t>(*connections);
+  return o;
 }
 
 Expected<components::PrimitiveManipulatorOptions> primitive_manipulator_options(const ComponentSpec& spec) {
@@ -116,6 +124,8 @@ std::optional<OptionProblem> check_component_options(const ComponentSpec& spec) 
     if (auto o = velocity_state_sensor_options(spec); !o) error = o.error();
   } else if (spec.kind == "primitive_manipulator") {
     if (auto o = primitive_manipulator_options(spec); !o) error = o.error();
+  } else if (spec.kind == "visual_sensor") {
+    if (auto o = visual_sensor_options(spec); !o) error = o.error();
   }
   if (!error) return std::nullopt;
   const auto line = spec.option_lines.find(error->field);

@@ -1,11 +1,13 @@
 #include "jaus/host/node_host.hpp"
 
+#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <algorithm>
 #include <csignal>
 
 #include "jaus/clearpath/link.hpp"
 #include "jaus/clearpath/sim/loopback_client.hpp"
+#include "jaus/components/visual_sensor.hpp"
 
 namespace jaus::host {
 
@@ -44,6 +46,10 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
       // The images are always the simulated cameras'; their mounts may be the platform's.
       h->cameras_ = std::make_unique<components::SimulatedCameras>(h->config_.cameras, h->runtime_);
       backends.cameras = h->cameras_.get();
+      // Frames are encoded on a thread of their own; boost::asio::post (not
+      // AsioRuntime::post, which is the loop's alone) brings each back.
+      h->frame_worker_ = std::make_unique<components::ThreadFrameWorker>(
+          [&io](std::function<void()> fn) { boost::asio::post(io, std::move(fn)); });
       const auto& mounts = h->config_.platform.cameras;
       if (h->config_.platform.kind != PlatformSettings::Kind::model && !mounts.mounts.empty()) {
         if (auto ok = bridge::check_clearpath_cameras_config(h->config_.cameras.cameras, mounts); !ok)
@@ -69,6 +75,9 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   for (const auto& spec : h->config_.components) {
     auto component = make_component(spec, h->config_.settings, *h->node_, backends);
     if (!component) return unexpected(component.error());
+    // The images are the simulated cameras' even when the platform moves the mounts.
+    if (auto* sensor = dynamic_cast<components::VisualSensor*>(component->get()); sensor && h->frame_worker_)
+      sensor->use_frame_worker(*h->frame_worker_, h->cameras_.get());
     const Hardware hardware = hardware_of(spec.kind);
     if (hardware != Hardware::none) {
       // Before it starts: a hold restored from the file puts it in Emergency at once.
@@ -220,7 +229,10 @@ void NodeHost::open_platform(boost::asio::io_context& io) {
   platform_ = std::make_unique<bridge::PlatformConnection>(*platform_client_, runtime_, log_);
 }
 
-NodeHost::~NodeHost() { stop("host destroyed"); }
+NodeHost::~NodeHost() {
+  stop("host destroyed");
+  if (frame_worker_) frame_worker_->stop();  // a host that never fully opened: before its cameras go
+}
 
 namespace {
 std::string signal_name(int signal) {
@@ -283,6 +295,9 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
+  // No frame is wanted after Shutdown: the worker's thread ends here, before
+  // anything it was given could go.
+  if (frame_worker_) frame_worker_->stop();
   persist_emergency_holds();  // a change still waiting for the loop
   // ...and the stop's zero setpoint goes out now, before a process exits
   // without running its io_context again.

@@ -18,6 +18,7 @@
 #include "jaus/bridge/platform_emergency.hpp"
 #include "jaus/clearpath/client.hpp"
 #include "jaus/clearpath/link.hpp"
+#include "jaus/components/frame_worker.hpp"
 #include "jaus/components/simulated_arm.hpp"
 #include "jaus/components/simulated_cameras.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
@@ -107,6 +108,7 @@ class NodeHost {
   // The simulated hardware, when a configured component needs it.
   components::SimulatedVehicle* vehicle() { return vehicle_.get(); }
   components::SimulatedCameras* cameras() { return cameras_.get(); }
+  components::ThreadFrameWorker* frame_worker() { return frame_worker_.get(); }
   components::SimulatedArm* arm() { return arm_.get(); }
   // The Clearpath platform, when the configuration names one: its client
   // (ClearpathLink or, for clearpath_sim, sim::LoopbackClient) and the
@@ -145,6 +147,10 @@ class NodeHost {
   bool persisting_fails_ = false;  // the last write failed (said once per streak)
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> link_;
+  // The visual sensor's frames are captured and encoded on this thread, off
+  // the loop; stop() (and so the destructor) joins it before the components
+  // and cameras go, dropping what is queued.
+  std::unique_ptr<components::ThreadFrameWorker> frame_worker_;
   // Declared before the node: components refer to them, so they outlive them.
   std::unique_ptr<components::SimulatedVehicle> vehicle_;
   std::unique_ptr<components::SimulatedCameras> cameras_;
