@@ -89,6 +89,11 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.link.relay = config.transport.relay;
   h.link.peers = config.transport.peers;
   h.link.allow = config.transport.allow;
+  // `local` is read now, at start: the machine's networks are those it has when jausd runs.
+  h.link.control_from = config.transport.control_from;
+  if (config.transport.control_from_local)
+    for (const auto& network : transport::local_networks()) h.link.control_from.push_back(network);
+  h.link.verify_endpoints = config.transport.verify_endpoints;
   h.link.routes.max_entries = config.transport.max_peers;
 
   rt::ComponentConfig& c = h.settings.defaults;

@@ -538,7 +538,25 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                     t.allow.push_back(*cidr);
                   }
                 }},
-               {"max_peers",
+               {"control_from",
+                [&](const Entry& e) {
+                  t.control_from.clear();
+                  t.control_from_local = false;  // the list given replaces the default [local]
+                  for (const auto& item : read_list(e)) {
+                    if (!item.IsScalar())
+                      fail(line_of(item), "'control_from' entries must be a.b.c.d/prefix or local, got " +
+                                              describe(item));
+                    if (item.Scalar() == "local") {
+                      t.control_from_local = true;
+                      continue;
+                    }
+                    auto cidr = jaus::transport::parse_cidr(item.Scalar());
+                    if (!cidr) fail(line_of(item), "'control_from': " + cidr.error().message() + " (or local)");
+                    t.control_from.push_back(*cidr);
+                  }
+                }},
+               {"verify_endpoints", [&](const Entry& e) { t.verify_endpoints = boolean(e); }},
+{"max_peers",
                 [&](const Entry& e) { t.max_peers = integer<std::size_t>(e, 1, kMaxPeersLimit); }}});
           for (const auto& p : peers) {
             t.peers.push_back(StaticPeer{p.endpoint, p.framing.value_or(t.framing)});
@@ -679,6 +697,24 @@ ConfigResult load_config_file(const std::string& path) {
   }
   if (in.bad()) return cannot_open(std::strerror(errno));
   return load_config_string(text, path);
+}
+
+std::vector<std::string> posture_warnings(const JausdConfig& c) {
+  const auto& t = c.transport;
+  std::vector<std::string> warnings;
+  // A node bound to loopback is reachable from this machine only: nothing to warn about.
+  if ((t.bind.address >> 24) == 127) return warnings;
+  const bool anyone = (t.control_from.empty() && !t.control_from_local) ||
+                      std::any_of(t.control_from.begin(), t.control_from.end(),
+                                  [](const jaus::transport::Cidr& cidr) { return cidr.prefix_length == 0; });
+  if (anyone)
+    warnings.push_back("transport.control_from lets any host that reaches " + jaus::transport::to_string(t.bind) +
+                       " take control of this node's components and change their state; list the operators' "
+                       "networks instead (default: [local], this machine's own networks)");
+  if (!t.verify_endpoints)
+    warnings.push_back("transport.verify_endpoints is off: a small query with a forged source address gets a "
+                       "large reply (Report Image), so this node can be used to flood another host");
+  return warnings;
 }
 
 }  // namespace jausd

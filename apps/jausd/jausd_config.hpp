@@ -37,6 +37,15 @@ struct TransportConfig {
   bool relay = false;  // messages for other subsystems sent on to where their node was heard
   std::vector<jaus::transport::StaticPeer> peers;  // known from the start (no discovery needed)
   std::vector<jaus::transport::Cidr> allow;        // sources that may talk to the node; empty = everyone
+  // Hosts that may take control and change the node's state (others may
+  // query, subscribe and stop it): these networks, and with control_from_local
+  // the machine's own networks (its interfaces' subnets and 127.0.0.0/8, read
+  // when jausd starts). Both empty: every allowed host (an open posture).
+  std::vector<jaus::transport::Cidr> control_from;
+  bool control_from_local = true;  // the `local` entry; the default is [local]
+  // Replies larger than what a peer sent go only to endpoints that answered a
+  // challenge (no amplification toward a forged source address).
+  bool verify_endpoints = true;
   std::size_t max_peers = 256;  // peers learnt from traffic remembered at once (static ones come on top)
 };
 
@@ -101,6 +110,11 @@ struct JausdConfig {
 jaus::Error config_error(std::string_view file, int line, std::string what);
 
 using ConfigResult = jaus::Expected<JausdConfig>;
+
+// What in a valid configuration leaves the vehicle open to the network
+// (anyone may take control, the node amplifies toward forged addresses): one
+// sentence each, for `jausd --check-config` and the log at start.
+std::vector<std::string> posture_warnings(const JausdConfig& config);
 
 // Reads and checks a configuration file (parse, ranges, then validate()).
 // Never throws.

@@ -88,10 +88,13 @@ int main(int argc, char** argv) {
     std::cerr << source << ": " << *problem << "\n";
     return kExitBadInput;
   }
+  const auto warnings = jausd::posture_warnings(config);
   if (cl.check_config) {
     std::cout << source << ": ok (subsystem " << int{config.subsystem} << ", node " << int{config.node} << ", "
               << config.components.size() << " components, bind " << jaus::transport::to_string(config.transport.bind)
               << ")\n";
+    // Valid but open: said, not refused (an operator may mean it; README, "Open it to an OCU elsewhere").
+    for (const auto& warning : warnings) std::cerr << source << ": warning: " << warning << "\n";
     return kExitOk;
   }
 
@@ -108,6 +111,7 @@ int main(int argc, char** argv) {
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
                jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
   logger->info("configuration {}", source);
+  for (const auto& warning : warnings) logger->warn("{}", warning);
   // Safety: NodeHost::run ends with every component's stop path run
   // (platform commanded to stop, the zero setpoint flushed), whether a stop
   // signal or an exception ended the loop.

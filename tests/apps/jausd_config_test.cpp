@@ -138,6 +138,9 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_FALSE(c.transport.relay);
   EXPECT_TRUE(c.transport.peers.empty());
   EXPECT_TRUE(c.transport.allow.empty());
+  EXPECT_TRUE(c.transport.control_from.empty());
+  EXPECT_TRUE(c.transport.control_from_local);  // [local]: safe by default
+  EXPECT_TRUE(c.transport.verify_endpoints);
   EXPECT_EQ(c.transport.max_peers, 256u);
   ASSERT_EQ(c.components.size(), 7u);
   EXPECT_EQ(c.components[0].kind, "node_manager");
@@ -212,7 +215,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 152);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 155);  // declared in the file
   EXPECT_EQ(validate(*result), std::nullopt);
 }
 
@@ -275,6 +278,8 @@ transport:
     - address: 127.0.0.4
     - 10.1.2.3:4000
   allow: [127.0.0.0/8, 10.0.0.0/8, 192.168.1.7]
+  control_from: [10.20.0.0/24, local]
+  verify_endpoints: false
   max_peers: 1
 components:
   - kind: node_manager
@@ -323,20 +328,24 @@ logging:
   EXPECT_EQ(c.transport.allow[0], (Cidr{0x7F000000, 8}));
   EXPECT_EQ(c.transport.allow[1], (Cidr{0x0A000000, 8}));
   EXPECT_EQ(c.transport.allow[2], (Cidr{0xC0A80107, 32}));
+  ASSERT_EQ(c.transport.control_from.size(), 1u);
+  EXPECT_EQ(c.transport.control_from[0], (Cidr{0x0A140000, 24}));
+  EXPECT_TRUE(c.transport.control_from_local);
+  EXPECT_FALSE(c.transport.verify_endpoints);
   EXPECT_EQ(c.transport.max_peers, 1u);  // learnt peers; static ones come on top
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 40);
+  EXPECT_EQ(c.components[0].line, 42);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 43);
+  EXPECT_EQ(c.components[1].line, 45);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 49);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 51);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -461,7 +470,7 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "subsystem_timeout_s)");
   expect_error("transport:\n  port: 3794\n", 2,
                "unknown key 'port' in transport (known: bind, framing, multicast, broadcast_to_peers, relay, "
-               "peers, allow, max_peers)");
+               "peers, allow, control_from, verify_endpoints, max_peers)");
   expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framming: judp\n", 4,
                "unknown key 'framming' in transport.peers (known: address, framing)");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    ID: 35\n", 4,
@@ -784,6 +793,43 @@ clearpath:
   const auto ackermann = jausd::host_config(expect_ok("vehicle: {steering: ackermann}\n"));
   EXPECT_EQ(ackermann.platform.vehicle.drive, jaus::bridge::DriveMode::ackermann);
   EXPECT_EQ(ackermann.platform.sim.vehicle.drive, jaus::clearpath::sim::Drive::ackermann);
+}
+
+// Safe by default (issue 28): only this machine's networks may command; the
+// open postures load (an operator may mean them) but are named.
+TEST(JausdConfig, ControlFromIsLocalByDefaultAndAnOpenPostureIsWarnedAbout) {
+  const auto defaults = expect_ok("");
+  EXPECT_TRUE(jausd::posture_warnings(defaults).empty());
+  const auto host = jausd::host_config(defaults);
+  ASSERT_FALSE(host.link.control_from.empty());  // `local` read at start: never an empty (open) list
+  EXPECT_TRUE(std::any_of(host.link.control_from.begin(), host.link.control_from.end(),
+                          [](const Cidr& cidr) { return cidr.contains(0x7F000001); }));
+  EXPECT_FALSE(std::any_of(host.link.control_from.begin(), host.link.control_from.end(),
+                           [](const Cidr& cidr) { return cidr.prefix_length == 0; }));
+  EXPECT_TRUE(host.link.verify_endpoints);
+
+  const auto named = jausd::host_config(expect_ok("transport: {control_from: [10.20.0.0/24]}\n"));
+  ASSERT_EQ(named.link.control_from.size(), 1u);  // the list replaces [local]
+  EXPECT_EQ(named.link.control_from[0], (Cidr{0x0A140000, 24}));
+
+  for (const auto* open : {"transport: {control_from: [0.0.0.0/0]}\n", "transport: {control_from: []}\n"}) {
+    const auto warnings = jausd::posture_warnings(expect_ok(open));
+    ASSERT_EQ(warnings.size(), 1u) << open;
+    EXPECT_NE(warnings[0].find("transport.control_from lets any host that reaches 0.0.0.0:3794 take control"),
+              std::string::npos)
+        << warnings[0];
+  }
+  const auto unverified = jausd::posture_warnings(expect_ok("transport: {verify_endpoints: false}\n"));
+  ASSERT_EQ(unverified.size(), 1u);
+  EXPECT_NE(unverified[0].find("transport.verify_endpoints is off"), std::string::npos);
+  // Bound to loopback, nothing off the machine reaches it.
+  EXPECT_TRUE(jausd::posture_warnings(
+                  expect_ok("transport: {bind: 127.0.0.2, control_from: [0.0.0.0/0], verify_endpoints: false}\n"))
+                  .empty());
+  const auto bad = load("transport:\n  control_from: [everyone]\n");
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().message().rfind("test.yaml:2: 'control_from': ", 0), 0u) << bad.error().message();
+  EXPECT_NE(bad.error().message().find("(or local)"), std::string::npos) << bad.error().message();
 }
 
 TEST(JausdConfigErrors, PlatformAndClearpathValues) {

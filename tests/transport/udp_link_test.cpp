@@ -283,7 +283,7 @@ TEST_F(UdpNodeTest, InvalidSourcesAndForeignClaimsOfAKnownIdAreDroppedAndCounted
 TEST_F(UdpNodeTest, ANodeOpenToTheNetworkWithoutAnAllowListSaysSoAtStart) {
   const auto warned = [](const std::vector<std::string>& lines) {
     return std::any_of(lines.begin(), lines.end(),
-                       [](const auto& l) { return l.find("with an empty allow-list") != std::string::npos; });
+                       [](const auto& l) { return l.find("with an empty allow-list and control_from") != std::string::npos; });
   };
   EXPECT_FALSE(warned(logs));  // loopback only
   std::vector<std::string> lines;
@@ -297,6 +297,11 @@ TEST_F(UdpNodeTest, ANodeOpenToTheNetworkWithoutAnAllowListSaysSoAtStart) {
   options.allow = {*parse_cidr("10.0.0.0/8")};
   auto guarded = UdpLink::open(io, runtime, runtime, options, collect);
   ASSERT_TRUE(guarded) << guarded.error().message();
+  EXPECT_FALSE(warned(lines));
+  options.allow.clear();  // open to all, but only these may command
+  options.control_from = {*parse_cidr("10.0.0.0/8")};
+  auto commanded_from = UdpLink::open(io, runtime, runtime, options, collect);
+  ASSERT_TRUE(commanded_from) << commanded_from.error().message();
   EXPECT_FALSE(warned(lines));
 }
 

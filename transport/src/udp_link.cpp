@@ -87,10 +87,10 @@ Expected<std::unique_ptr<UdpLink>> UdpLink::open(asio::io_context& io, rt::Clock
   // Reachable from the network and open to everyone on it: the operator
   // should choose that knowingly.
   const bool loopback = (link->options_.bind.address >> 24) == 127;
-  if (!loopback && link->options_.allow.empty())
+  if (!loopback && link->options_.allow.empty() && link->options_.control_from.empty())
     link->log_(rt::LogLevel::warn, "listening on " + to_string(link->options_.bind) +
-                                       " with an empty allow-list: any host on the network may command this "
-                                       "node (list trusted networks in transport.allow)");
+                                       " with an empty allow-list and control_from: any host on the network may "
+                                       "command this node (list the operators' networks in transport.control_from)");
   return link;
 }
 
@@ -315,7 +315,8 @@ void UdpLink::send_routed(const Ipv4Endpoint& to, Framing framing, std::span<con
     repeated_lines_.write("replies held for unverified endpoints", rt::LogLevel::info, [&] {
       const auto& c = guard_.counters();
       return "reply to " + to_string(to) + (verdict == AmplificationGuard::Verdict::held ? " held" : " dropped") +
-             ": more than it sent until it answers a challenge [" + std::to_string(c.replies_held) + " held, " +
+             ": more than it sent until it answers a challenge (ACK requested; a peer that ignores ACK requests "
+             "goes in transport.peers) [" + std::to_string(c.replies_held) + " held, " +
              std::to_string(c.replies_dropped_unverified) + " dropped so far]";
     });
     send_challenge(to, framing);
