@@ -44,7 +44,7 @@
 //   jausd at d2237e7 (verify_endpoints on, frames on the host's frame worker,
 //   claims of IDs holding state refused): Set Emergency acted on 100/100,
 //   ACK p50 0.04 ms, p99 0.37-1.09 ms; bytes to the attackers / from them
-//   0.37-0.70 (4 runs); frames 640/s calm, 630/s under attack (least served requester
+//   0.37-0.70 (3 runs); frames 640/s calm, 630/s under attack (least served requester
 //   9.8/s), no stream re-created; bystander p99 0.7-2.3 ms, none lost;
 //   VmRSS 13.8 -> 14.9 MiB; log +26 lines (the forged claims: 20,944
 //   datagrams dropped as "node ID claimed from a second endpoint").
