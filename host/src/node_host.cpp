@@ -27,6 +27,12 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     if (host->watcher_) host->watcher_(packet);
     host->node_->receive(packet, standing);
   });
+  // No hijack (issue 28): an ID that holds control, an emergency or a
+  // service connection here keeps its route to its host while it does. The
+  // link asks only on a claim from another address, never per datagram.
+  h->link_->pin_routes_while([node = h->node_.get()](std::uint8_t subsystem, std::uint8_t node_id) {
+    return node->holds_state_for(subsystem, node_id);
+  });
   // The hardware the configured components need, each made once.
   VehicleBackends backends;
   for (const auto& spec : h->config_.components) {

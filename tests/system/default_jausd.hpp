@@ -20,14 +20,17 @@ namespace jaus::test {
 class DefaultJausd {
  public:
   // `name` names the directory; the node is `subsystem`.1 at `address`:3794;
-  // `more_config` is appended to its configuration (e.g. a `platform:`).
-  DefaultJausd(const std::string& name, int subsystem, std::string address, const std::string& more_config = "")
+  // `more_config` is appended to its configuration (e.g. a `platform:`),
+  // `more_transport` to its `transport:` map (e.g. "control_from: [...]").
+  DefaultJausd(const std::string& name, int subsystem, std::string address, const std::string& more_config = "",
+               const std::string& more_transport = "")
       : dir_(std::filesystem::temp_directory_path() / ("jaus-" + name + "-" + std::to_string(::getpid()))),
         address_(std::move(address)) {
     std::filesystem::create_directories(dir_);
     const auto config = dir_ / "jausd.yaml";
     std::ofstream(config) << "identification: {subsystem: " << subsystem << ", node: 1}\n"
-                          << "transport: {bind: " << address_ << ":3794}\n"
+                          << "transport: {bind: " << address_ << ":3794"
+                          << (more_transport.empty() ? "" : ", " + more_transport) << "}\n"
                           << more_config;
     process_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
