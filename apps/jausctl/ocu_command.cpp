@@ -40,9 +40,7 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
                   "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")->type_name("ADDR[:PORT]")
       ->capture_default_str();
   cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->type_name("opc|judp")->capture_default_str();
-  cmd->add_option("--as", c.as,
-                  "this OCU's JAUS address S.N.C.I (its node manager is S.N.1.1); default: a fresh 254.N.40.1 per "
-                  "run, shown in the output of emergency and control (give the same --as to clear or release later)")
+  cmd->add_option("--as", c.as, "this OCU's JAUS address (default: a new 254.N.40.1 each run; reuse it to clear)")
       ->type_name("S.N.C.I");
   cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->type_name("SECONDS")->capture_default_str();
   cmd->add_option("--dialect", c.dialect, "how payloads from the node are read: ra | openjaus")->type_name("ra|openjaus")
