@@ -2,7 +2,7 @@
 // codec on the command line. Output is JSON (decode) or hex (encode); errors
 // are one line on stderr naming the offset or field, with exit code 2.
 // `wireshark` writes the Lua dissector generated from the descriptions (JAUS
-// and Clearpath: only an app may combine them, docs/architecture.md).
+// and Clearpath: apps/wireshark, docs/wireshark.md).
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -12,9 +12,8 @@
 
 #include "commands.hpp"
 #include "jaus/base/hex.hpp"
-#include "jaus/clearpath/wireshark_lua.hpp"
 #include "jaus/messages/catalogue.hpp"
-#include "jaus/messages/wireshark_lua.hpp"
+#include "wireshark_plugin.hpp"
 
 namespace jausctl {
 
@@ -68,7 +67,7 @@ int list() {
 }
 
 int wireshark(const std::string& output) {
-  const std::string plugin = jaus::msg::wireshark_lua() + jaus::clearpath::wireshark_lua();
+  const std::string plugin = jaus::wireshark::plugin_lua();
   if (output.empty() || output == "-") {
     std::cout << plugin;
     return kExitOk;

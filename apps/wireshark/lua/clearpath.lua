@@ -1,47 +1,24 @@
-// The fixed Lua of the Clearpath dissector. It never names a message or a
-// field: what it shows comes from CP_MESSAGES and CP_ACK, which
-// wireshark_lua.cpp generates from the descriptions. Field abbreviations are
-// clearpath.<message>.<field path> (e.g. clearpath.set_velocity.translational);
-// structural items end in .count (list elements), .index (a record of a list)
-// and .length (a text's length byte). A command or request type is read as
-// the host's message unless only an ACK (2-byte result) explains it, as
-// `jausctl clearpath decode` does, or as an ACK when it comes from the
-// platform port set in the preferences. Malformed frames end in expert info,
-// never in a Lua error.
-#include "wireshark_runtime.hpp"
+-- The fixed Lua of the Clearpath dissector: it reads CP_MESSAGES (type ->
+-- name, kind and payload description) and CP_ACK, which the plugin defines
+-- just before this file from the message descriptions
+-- (apps/wireshark/clearpath_table.hpp), and uses the prelude's bit32,
+-- field_registry, int_ftype, names_of and register_udp. It never names a
+-- message or a field. Field abbreviations are clearpath.<message>.<field path>
+-- (e.g. clearpath.set_velocity.translational); structural items end in .count
+-- (list elements), .index (a record of a list) and .length (a text's length
+-- byte). A command or request type is read as the host's message unless only
+-- an ACK (2-byte result) explains it, as `jausctl clearpath decode` does, or as
+-- an ACK when it comes from the platform port set in the preferences.
+-- Malformed frames end in expert info, never in a Lua error.
 
-namespace jaus::clearpath::wireshark {
-
-std::string_view clearpath_lua_runtime() {
-  return R"lua(
--- Lua 5.2 (Wireshark 3.x/4.0) has bit32; later Lua has operators instead (kept in a string: 5.2 cannot parse them).
-local bit32 = bit32 or load([[return {
-  band = function(a, b) return a & b end, bxor = function(a, b) return a ~ b end,
-  bnot = function(a) return ~a & 0xFFFFFFFF end, btest = function(a, b) return a & b ~= 0 end,
-  lshift = function(a, n) return (a << n) & 0xFFFFFFFF end, rshift = function(a, n) return (a & 0xFFFFFFFF) >> n end,
-  extract = function(a, f, w) return (a >> f) & ((1 << (w or 1)) - 1) end}]])()
 local cp = Proto("clearpath", "Clearpath platform protocol")
 cp.prefs.port = Pref.uint("UDP port", 0, "UDP port of a Clearpath platform (0: found by the frame's shape alone)")
 cp.prefs.platform_port = Pref.uint("Platform UDP port", 0,
   "Frames from this UDP port come from the platform (command and request types are ACKs); 0: decide by the payload")
 
-local fields, field_of = {}, {}
-local function field(abbr, label, ftype, vs, base_, mask)
-  local f = field_of[abbr]
-  if f == nil then
-    f = ProtoField.new(label, abbr, ftype, vs, base_, mask)
-    field_of[abbr] = f
-    fields[#fields + 1] = f
-  end
-  return f
-end
-local function int_ftype(s, signed)
-  if signed then return ({ftypes.INT8, ftypes.INT16, ftypes.INT24, ftypes.INT32})[s] end
-  return ({ftypes.UINT8, ftypes.UINT16, ftypes.UINT24, ftypes.UINT32})[s]
-end
+local fields, field = field_registry()
 
-local TYPE_NAMES = {}
-for t, m in pairs(CP_MESSAGES) do TYPE_NAMES[t] = m.name end
+local TYPE_NAMES = names_of(CP_MESSAGES)
 local ACK_BITS = {[0] = "bad checksum", "type not supported", "bad format", "out of range", "no bandwidth",
   "frequency too high", "too many message types"}
 
@@ -387,17 +364,4 @@ local function heuristic(tvb, pinfo, tree)
   return true
 end
 
-local registered_port
-local function register_port()
-  local udp = DissectorTable.get("udp.port")
-  if registered_port and registered_port ~= 0 then udp:remove(registered_port, cp) end
-  registered_port = cp.prefs.port
-  if registered_port ~= 0 then udp:add(registered_port, cp) end
-end
-register_port()
-cp.prefs_changed = register_port
-cp:register_heuristic("udp", heuristic)
-)lua";
-}
-
-}  // namespace jaus::clearpath::wireshark
+register_udp(cp, heuristic)

@@ -1,24 +1,15 @@
-// The fixed Lua of the JAUS dissector. It never names a message or a field:
-// everything it shows comes from MESSAGES, which wireshark_lua.cpp generates
-// from the descriptions. Field abbreviations are jaus.<message>.<field path>
-// (e.g. jaus.report_global_pose.latitude_deg); the structural items of a body
-// end in .pv (presence vector, with one bit per optional field), .count
-// (elements of a list), .index (a record of a list) and .length (a size
-// prefix); enumerated values get a generated .name beside their number.
-// Malformed input ends in expert info, never in a Lua error (the body walk
-// runs under pcall).
-#include "wireshark_runtime.hpp"
+-- The fixed Lua of the JAUS dissector: it reads MESSAGES (code -> name and
+-- body description), which the plugin defines just before this file from the
+-- message descriptions (apps/wireshark/jaus_table.hpp), and uses the
+-- prelude's bit32, field_registry, int_ftype, names_of and register_udp.
+-- It never names a message or a field. Field abbreviations are
+-- jaus.<message>.<field path> (e.g. jaus.report_global_pose.latitude_deg);
+-- the structural items of a body end in .pv (presence vector, with one bit
+-- per optional field), .count (elements of a list), .index (a record of a
+-- list) and .length (a size prefix); enumerated values get a generated .name
+-- beside their number. Malformed input ends in expert info, never in a Lua
+-- error (the body walk runs under pcall).
 
-namespace jaus::msg::wireshark {
-
-std::string_view jaus_lua_runtime() {
-  return R"lua(
--- Lua 5.2 (Wireshark 3.x/4.0) has bit32; later Lua has operators instead (kept in a string: 5.2 cannot parse them).
-local bit32 = bit32 or load([[return {
-  band = function(a, b) return a & b end, bxor = function(a, b) return a ~ b end,
-  bnot = function(a) return ~a & 0xFFFFFFFF end, btest = function(a, b) return a & b ~= 0 end,
-  lshift = function(a, n) return (a << n) & 0xFFFFFFFF end, rshift = function(a, n) return (a & 0xFFFFFFFF) >> n end,
-  extract = function(a, f, w) return (a >> f) & ((1 << (w or 1)) - 1) end}]])()
 local jaus = Proto("jaus", "JAUS RA 3.x")
 local OPENJAUS = 1
 jaus.prefs.dialect = Pref.enum("Dialect", 0,
@@ -28,22 +19,7 @@ jaus.prefs.port = Pref.uint("UDP port", 3794, "UDP port of JAUS (OPC and JUDP fr
 jaus.prefs.reassemble = Pref.bool("Reassemble large data sets", true,
   "Show the whole message of a large data set on its last packet (reassembled in capture order)")
 
-local fields, field_of = {}, {}
--- One ProtoField per abbreviation (created once, however often it is asked for).
-local function field(abbr, label, ftype, vs, base_, mask)
-  local f = field_of[abbr]
-  if f == nil then
-    f = ProtoField.new(label, abbr, ftype, vs, base_, mask)
-    field_of[abbr] = f
-    fields[#fields + 1] = f
-  end
-  return f
-end
-
-local function int_ftype(s, signed)
-  if signed then return ({ftypes.INT8, ftypes.INT16, ftypes.INT24, ftypes.INT32, [8] = ftypes.INT64})[s] end
-  return ({ftypes.UINT8, ftypes.UINT16, ftypes.UINT24, ftypes.UINT32, [8] = ftypes.UINT64})[s]
-end
+local fields, field = field_registry()
 
 local ACK_NAK = {[0] = "none", [1] = "ack_requested", [2] = "nak", [3] = "ack"}
 local DATA_FLAGS = {[0] = "single", [1] = "first", [2] = "middle", [4] = "retransmitted", [8] = "last"}
@@ -51,8 +27,7 @@ local LIMIT_TYPES = {[0] = "byte", [1] = "short_integer", [2] = "integer", [3] =
   [4] = "unsigned_short", [5] = "unsigned_integer", [6] = "unsigned_long", [7] = "float32", [8] = "float64", [9] = "rgb"}
 local LIMIT_SIZES = {[0] = 1, [1] = 2, [2] = 4, [3] = 8, [4] = 2, [5] = 4, [6] = 8, [7] = 4, [8] = 8, [9] = 3}
 
-local CODE_NAMES = {}
-for code, m in pairs(MESSAGES) do CODE_NAMES[code] = m.name end
+local CODE_NAMES = names_of(MESSAGES)
 
 local hf = {
   framing = field("jaus.framing", "Framing", ftypes.STRING),
@@ -637,17 +612,4 @@ local function heuristic(tvb, pinfo, tree)
   return true
 end
 
-local registered_port
-local function register_port()
-  local udp = DissectorTable.get("udp.port")
-  if registered_port and registered_port ~= 0 then udp:remove(registered_port, jaus) end
-  registered_port = jaus.prefs.port
-  if registered_port ~= 0 then udp:add(registered_port, jaus) end
-end
-register_port()
-jaus.prefs_changed = register_port
-jaus:register_heuristic("udp", heuristic)
-)lua";
-}
-
-}  // namespace jaus::msg::wireshark
+register_udp(jaus, heuristic)

@@ -1,11 +1,12 @@
-// A described message body as a Lua table for the Wireshark dissector
-// (wireshark_lua.hpp): one entry per field, in wire order, with what the
-// dissector's run-time part needs to read it (kind, size, signedness, limits,
-// presence bit, dialect, counts, nested records, value and bit names).
+// A described JAUS message body as a Lua table for the dissector
+// (wireshark_plugin.hpp): one entry per field, in wire order, with what the
+// dissector's fixed part (lua/jaus.lua) needs to read it (kind, size,
+// signedness, limits, presence bit, dialect, counts, nested records, value
+// and bit names).
 //
-// Walks the same descriptions (describe.hpp) the codec is built from, at
-// compile time: a codec kind this file does not know fails to compile, so the
-// dissector cannot fall behind the codec silently.
+// Walks the same descriptions (jaus/wire/describe.hpp) the codec is built
+// from, at compile time: a codec kind this file does not know fails to
+// compile, so the dissector cannot fall behind the codec silently.
 #pragma once
 
 #include <cstdint>
@@ -17,33 +18,9 @@
 #include <type_traits>
 
 #include "jaus/wire/describe.hpp"
+#include "lua_text.hpp"
 
-namespace jaus::msg::wireshark {
-
-// A Lua string literal (quotes, backslashes and control bytes escaped).
-inline std::string lua_string(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\%03u", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-// Enough digits that Lua reads back the same double (limits must match the codec's).
-inline std::string lua_number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
+namespace jaus::wireshark::jaus_table {
 
 namespace detail {
 
@@ -137,7 +114,7 @@ std::string count_lua(const Count& count) {
   } else if constexpr (IsFromDim<Count>::value) {
     return "{dim=" + std::to_string(IsFromDim<Count>::index) + ",less=" + std::to_string(IsFromDim<Count>::less) + "}";
   } else {
-    static_assert(kAlwaysFalse<Count>, "wireshark_fields.hpp: a count kind the dissector does not know");
+    static_assert(kAlwaysFalse<Count>, "jaus_table.hpp: a count kind the dissector does not know");
     return {};
   }
 }
@@ -197,8 +174,8 @@ std::string codec_lua(const Codec& codec) {
     return "k=\"records\",count=" + count_lua(codec.count) + ",body=" + body_lua<typename IsRecords<Codec>::record>();
   } else {
     static_assert(kAlwaysFalse<Codec>,
-                  "wireshark_fields.hpp: a codec kind the dissector does not know; add its case here and in "
-                  "wireshark_runtime.cpp");
+                  "jaus_table.hpp: a codec kind the dissector does not know; add its case here and in "
+                  "lua/jaus.lua");
     return {};
   }
 }
@@ -236,4 +213,4 @@ std::string message_lua() {
          "},\n";
 }
 
-}  // namespace jaus::msg::wireshark
+}  // namespace jaus::wireshark::jaus_table

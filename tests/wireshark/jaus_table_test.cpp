@@ -1,7 +1,8 @@
-// The JAUS part of the Wireshark plugin is generated from the descriptions:
-// every catalogue message and every field of it is in the Lua, and the
-// enumeration and bit-field codecs (detected by enum_names()/flag_fields())
-// become value strings and bit fields. tests/wireshark runs it in tshark.
+// The JAUS half of the Wireshark plugin is generated from the descriptions
+// (apps/wireshark): every catalogue message and every field of it is in the
+// Lua, and the enumeration and bit-field codecs (detected by
+// enum_names()/flag_fields()) become value strings and bit fields. The tshark
+// tests of this folder run the plugin.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -11,8 +12,8 @@
 #include <string_view>
 
 #include "jaus/messages/catalogue.hpp"
-#include "jaus/messages/wireshark_fields.hpp"
-#include "jaus/messages/wireshark_lua.hpp"
+#include "jaus_table.hpp"
+#include "wireshark_plugin.hpp"
 
 namespace jaus {
 namespace {
@@ -27,7 +28,7 @@ std::string entry_of(const std::string& lua, std::uint16_t code) {
 }
 
 TEST(WiresharkLua, EveryCatalogueMessageAndEveryFieldIsInThePlugin) {
-  const std::string lua = msg::wireshark_lua();
+  const std::string lua = wireshark::jaus_tables_lua();
   std::size_t fields = 0;
   for (const auto& m : msg::catalogue()) {
     const std::string entry = entry_of(lua, m.code);
@@ -45,15 +46,15 @@ TEST(WiresharkLua, EveryCatalogueMessageAndEveryFieldIsInThePlugin) {
 }
 
 TEST(WiresharkLua, ScaledFieldsCarryTheCodecsLimitsExactly) {
-  const std::string entry = entry_of(msg::wireshark_lua(), 0x4402);  // Report Global Pose
+  const std::string entry = entry_of(wireshark::jaus_tables_lua(), 0x4402);  // Report Global Pose
   EXPECT_NE(entry.find("{n=\"latitude_deg\",bit=0,k=\"scaled\",s=4,signed=true,lo=-90,hi=90}"), std::string::npos)
       << entry;
   EXPECT_NE(entry.find("k=\"pv\",s=2"), std::string::npos) << entry;
-  const std::string relative = entry_of(msg::wireshark_lua(), 0x4802);  // Report Relative Object Position
+  const std::string relative = entry_of(wireshark::jaus_tables_lua(), 0x4802);  // Report Relative Object Position
   EXPECT_NE(relative.find("only=\"openjaus\""), std::string::npos) << relative;
 }
 
-TEST(WiresharkLua, LuaStringsAreEscaped) { EXPECT_EQ(msg::wireshark::lua_string("a\"b\\c\n"), "\"a\\\"b\\\\c\\010\""); }
+TEST(WiresharkLua, LuaStringsAreEscaped) { EXPECT_EQ(wireshark::lua_string("a\"b\\c\n"), "\"a\\\"b\\\\c\\010\""); }
 
 // Codecs shaped like the enumeration and bit-field codecs: the generator
 // finds them by enum_names() and flag_fields() alone.
@@ -88,7 +89,7 @@ struct FakeBody {
 };
 
 TEST(WiresharkLua, EnumerationsBecomeValueStringsAndBitFieldsBitmasks) {
-  const std::string lua = msg::wireshark::body_lua<FakeBody>();
+  const std::string lua = wireshark::jaus_table::body_lua<FakeBody>();
   EXPECT_NE(lua.find("{n=\"mode\",k=\"int\",s=1,vs={[0]=\"off\",[7]=\"auto\",}}"), std::string::npos) << lua;
   EXPECT_NE(lua.find("{n=\"flags\",k=\"flags\",s=2,bits={{first=0,width=1,n=\"enabled\"},"
                      "{first=4,width=2,n=\"level\",vs={[1]=\"low\",[2]=\"high\",}},}}"),

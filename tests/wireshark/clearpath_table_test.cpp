@@ -1,19 +1,20 @@
-// The Clearpath part of the Wireshark plugin is generated from the
-// descriptions: every type of the catalogue with its name and kind, the ACK,
-// and a layout chosen by payload size where decoding does so (Change Gear).
+// The Clearpath half of the Wireshark plugin is generated from the
+// descriptions (apps/wireshark): every type of the catalogue with its name and
+// kind, the ACK, and a layout chosen by payload size where decoding does so
+// (Change Gear).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <string>
 
 #include "jaus/clearpath/messages.hpp"
-#include "jaus/clearpath/wireshark_lua.hpp"
+#include "wireshark_plugin.hpp"
 
 namespace jaus::clearpath {
 namespace {
 
 TEST(ClearpathWiresharkLua, EveryTypeOfTheCatalogueIsInThePlugin) {
-  const std::string lua = wireshark_lua();
+  const std::string lua = jaus::wireshark::clearpath_tables_lua();
   for (const auto& info : message_catalogue()) {
     char key[64];
     std::snprintf(key, sizeof key, "[0x%04X]={name=\"", info.type);
@@ -28,7 +29,7 @@ TEST(ClearpathWiresharkLua, EveryTypeOfTheCatalogueIsInThePlugin) {
 }
 
 TEST(ClearpathWiresharkLua, FieldsCarryTheirWireTypeAndScale) {
-  const std::string lua = wireshark_lua();
+  const std::string lua = jaus::wireshark::clearpath_tables_lua();
   // 0x0204 Set Velocity: i16 m/s x 100.
   EXPECT_NE(lua.find("{k=\"num\",n=\"translational\",s=2,signed=true,scale=100,unit=\"m/s\"}"), std::string::npos);
   // 0x0212 Change Gear: two bytes are [flags, gear].

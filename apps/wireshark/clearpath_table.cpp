@@ -1,19 +1,18 @@
-#include "jaus/clearpath/wireshark_lua.hpp"
-
+// The Clearpath half's tables: every message type of the catalogue, and the
+// ACK, walked by clearpath_table.hpp.
 #include <cstdio>
 
+#include "clearpath_table.hpp"
 #include "jaus/clearpath/any_message.hpp"
 #include "jaus/clearpath/frame.hpp"
 #include "jaus/clearpath/message_kind.hpp"
-#include "wireshark_fields.hpp"
-#include "wireshark_runtime.hpp"
+#include "wireshark_plugin.hpp"
 
-namespace jaus::clearpath {
+namespace jaus::wireshark {
 
 namespace {
 
-using wireshark::lua_string;
-using wireshark::LuaFieldWriter;
+using clearpath_table::LuaFieldWriter;
 
 template <class M>
 std::string body_for_size(std::size_t payload_size) {
@@ -33,10 +32,10 @@ std::string message_lua() {
   std::snprintf(type, sizeof type, "0x%04X", static_cast<unsigned>(M::kType));
   const std::string body = body_for_size<M>(0);
   std::string out = std::string("[") + type + "]={name=" + lua_string(M::kName) +
-                    ",kind=" + lua_string(to_string(kind_of(M::kType))) + ",body=" + body;
+                    ",kind=" + lua_string(clearpath::to_string(clearpath::kind_of(M::kType))) + ",body=" + body;
   if constexpr (requires(M m) { M::prepare_decode(m, std::size_t{0}); }) {
     out += ",by_size={";
-    for (std::size_t size = 1; size <= kMaxPayload; ++size) {
+    for (std::size_t size = 1; size <= clearpath::kMaxPayload; ++size) {
       const std::string other = body_for_size<M>(size);
       if (other != body) out += "[" + std::to_string(size) + "]=" + other + ",";
     }
@@ -46,21 +45,15 @@ std::string message_lua() {
 }
 
 template <class... Ms>
-std::string messages_lua(TypeList<Ack, Ms...>) {
+std::string messages_lua(clearpath::TypeList<clearpath::Ack, Ms...>) {
   return (std::string() + ... + message_lua<Ms>());
 }
 
 }  // namespace
 
-std::string wireshark_lua() {
-  std::string out =
-      "-- Clearpath over UDP: generated from the message descriptions by `jausctl msg wireshark`; do not edit.\n"
-      "do\nlocal CP_MESSAGES = {\n";
-  out += messages_lua(MessageTypes{});
-  out += "}\nlocal CP_ACK = " + LuaFieldWriter::body_of<Ack>() + "\n";
-  out += wireshark::clearpath_lua_runtime();
-  out += "end\n";
-  return out;
+std::string clearpath_tables_lua() {
+  return "local CP_MESSAGES = {\n" + messages_lua(clearpath::MessageTypes{}) +
+         "}\nlocal CP_ACK = " + LuaFieldWriter::body_of<clearpath::Ack>() + "\n";
 }
 
-}  // namespace jaus::clearpath
+}  // namespace jaus::wireshark

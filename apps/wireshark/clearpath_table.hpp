@@ -1,7 +1,8 @@
-// A Clearpath message's description as a Lua table for the dissector: a
-// visitor over describe(), one overload per field kind of fields.hpp. A kind
-// it does not know fails to compile (the catch-all below), so a new kind
-// gets its case here and in wireshark_runtime.cpp before it builds.
+// A Clearpath message's description as a Lua table for the dissector
+// (wireshark_plugin.hpp): a visitor over describe(), one overload per field
+// kind of jaus/clearpath/fields.hpp. A kind it does not know fails to compile
+// (the catch-all below), so a new kind gets its case here and in
+// lua/clearpath.lua before it builds.
 #pragma once
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <type_traits>
 
 #include "jaus/clearpath/fields.hpp"
+#include "lua_text.hpp"
 
 // Declared here too, so this header compiles with a fields.hpp before the
 // packed date-time kind existed (the declaration matches its definition).
@@ -18,22 +20,9 @@ template <class T>
 struct PackedDateTime;
 }  // namespace jaus::clearpath::fields
 
-namespace jaus::clearpath::wireshark {
+namespace jaus::wireshark::clearpath_table {
 
-inline std::string lua_string(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
-inline std::string lua_number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
+namespace fields = clearpath::fields;
 
 template <class T>
 inline constexpr bool kAlwaysFalse = false;
@@ -85,8 +74,8 @@ class LuaFieldWriter {
   template <class F>
   void operator()(const F&) {
     static_assert(kAlwaysFalse<F>,
-                  "clearpath/src/wireshark_fields.hpp: a field kind the dissector does not know; add its overload "
-                  "here and its reader in wireshark_runtime.cpp");
+                  "clearpath_table.hpp: a field kind the dissector does not know; add its overload here and "
+                  "its reader in lua/clearpath.lua");
   }
 
   template <class Record>
@@ -108,4 +97,4 @@ class LuaFieldWriter {
   }
 };
 
-}  // namespace jaus::clearpath::wireshark
+}  // namespace jaus::wireshark::clearpath_table
