@@ -137,8 +137,15 @@ std::optional<Issue> check_number(std::string_view key, double v, const NumberRa
   return Issue{0, "'" + std::string(key) + "' must be " + std::string(range.text) + ", got " + number_text(v)};
 }
 
+// The kind, one per node, whose ID `id` is (nullptr: none's).
+const ComponentKind* one_per_node_at(std::uint8_t id) {
+  for (const auto& k : component_kinds())
+    if (k.one_per_node && k.default_id == id) return &k;
+  return nullptr;
+}
+
 std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& lines) {
-  const ComponentSpec* node_manager = nullptr;
+  std::map<std::string_view, const ComponentSpec*> one_per_node;  // kind -> its component
   std::map<std::pair<int, int>, int> seen;  // (id, instance) -> line
   for (const auto& spec : c.components) {
     const ComponentKind* kind = find_component_kind(spec.kind);
@@ -156,16 +163,17 @@ std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& l
     if (spec.instance < kAddressMin || spec.instance > kAddressMax)
       return Issue{spec.line, "component 'instance' must be an integer 1..254, got " + std::to_string(spec.instance)};
     if (auto problem = identification_problem("name", spec.name); !problem.empty()) return Issue{spec.line, problem};
-    if (spec.kind == "node_manager") {
-      if (node_manager)
-        return Issue{spec.line, "only one node_manager per node" + first_at(node_manager->line)};
-      if (spec.id != 1 || spec.instance != 1)
-        return Issue{spec.line, "the node_manager must have id 1 and instance 1, got id " + std::to_string(spec.id) +
-                                    " instance " + std::to_string(spec.instance)};
-      node_manager = &spec;
-    } else if (spec.id == 1) {
-      return Issue{spec.line, "component id 1 is the node_manager's (" + spec.kind + " has RA id " +
-                                  std::to_string(kind->default_id) + ")"};
+    if (kind->one_per_node) {
+      if (const ComponentSpec* first = one_per_node[kind->name])
+        return Issue{spec.line, "only one " + spec.kind + " per node" + first_at(first->line)};
+      if (spec.id != kind->default_id || spec.instance != 1)
+        return Issue{spec.line, "the " + spec.kind + " must have id " + std::to_string(kind->default_id) +
+                                    " and instance 1, got id " + std::to_string(spec.id) + " instance " +
+                                    std::to_string(spec.instance)};
+      one_per_node[kind->name] = &spec;
+    } else if (const ComponentKind* owner = one_per_node_at(spec.id)) {
+      return Issue{spec.line, "component id " + std::to_string(spec.id) + " is the " + std::string(owner->name) +
+                                  "'s (" + spec.kind + " has RA id " + std::to_string(kind->default_id) + ")"};
     }
     if (auto problem = jaus::host::check_component_options(spec)) return Issue{problem->line, problem->what};
     const auto [it, inserted] = seen.emplace(std::pair<int, int>{spec.id, spec.instance}, spec.line);
@@ -173,7 +181,10 @@ std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& l
       return Issue{spec.line, "duplicate component id " + std::to_string(spec.id) + " instance " +
                                   std::to_string(spec.instance) + first_at(it->second)};
   }
-  if (!node_manager) return Issue{lines.components, "a node_manager component is required (id 1, instance 1)"};
+  for (const auto& k : component_kinds())
+    if (k.one_per_node && !one_per_node.contains(k.name))
+      return Issue{lines.components, "a " + std::string(k.name) + " component is required (id " +
+                                         std::to_string(k.default_id) + ", instance 1)"};
   return std::nullopt;
 }
 

@@ -7,7 +7,6 @@
 
 #include "jaus/clearpath/link.hpp"
 #include "jaus/clearpath/sim/loopback_client.hpp"
-#include "jaus/components/visual_sensor.hpp"
 
 namespace jaus::host {
 
@@ -33,67 +32,28 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   h->link_->pin_routes_while([node = h->node_.get()](std::uint8_t subsystem, std::uint8_t node_id) {
     return node->holds_state_for(subsystem, node_id);
   });
-  // The hardware the configured components need, each made once.
-  VehicleBackends backends;
-  for (const auto& spec : h->config_.components) {
-    const Hardware hardware = hardware_of(spec.kind);
-    if (hardware == Hardware::vehicle && !h->vehicle_ && !h->clearpath_vehicle_) {
-      if (h->config_.platform.kind == PlatformSettings::Kind::model) {
-        h->vehicle_ = std::make_unique<components::SimulatedVehicle>(h->config_.vehicle, h->runtime_);
-        backends.drive = h->vehicle_.get();
-        backends.pose = h->vehicle_.get();
-      } else {
-        h->open_platform(io);
-        h->clearpath_vehicle_ = std::make_unique<bridge::ClearpathVehicle>(*h->platform_, h->config_.platform.vehicle);
-        backends.drive = h->clearpath_vehicle_.get();
-        backends.pose = h->clearpath_vehicle_.get();
-      }
-    } else if (hardware == Hardware::cameras && !h->cameras_) {
-      // The images are always the simulated cameras'; their mounts may be the platform's.
-      h->cameras_ = std::make_unique<components::SimulatedCameras>(h->config_.cameras, h->runtime_);
-      backends.cameras = h->cameras_.get();
-      // Frames are encoded on a thread of their own; boost::asio::post (not
-      // AsioRuntime::post, which is the loop's alone) brings each back.
-      h->frame_worker_ = std::make_unique<components::ThreadFrameWorker>(
-          [&io](std::function<void()> fn) { boost::asio::post(io, std::move(fn)); });
-      const auto& mounts = h->config_.platform.cameras;
-      if (h->config_.platform.kind != PlatformSettings::Kind::model && !mounts.mounts.empty()) {
-        if (auto ok = bridge::check_clearpath_cameras_config(h->config_.cameras.cameras, mounts); !ok)
-          return unexpected(ok.error());
-        h->open_platform(io);
-        h->clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*h->platform_, h->runtime_, *h->cameras_, mounts);
-        backends.cameras = h->clearpath_cameras_.get();
-      }
-    } else if (hardware == Hardware::arm && !h->arm_ && !h->clearpath_arm_) {
-      const auto& joints = h->config_.platform.arm;
-      if (h->config_.platform.kind != PlatformSettings::Kind::model && !joints.joints.empty()) {
-        if (auto ok = bridge::check_clearpath_arm_config(h->config_.arm, joints); !ok) return unexpected(ok.error());
-        h->open_platform(io);
-        h->clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*h->platform_, h->runtime_, h->config_.arm, joints);
-        backends.arm = h->clearpath_arm_.get();
-      } else {
-        h->arm_ = std::make_unique<components::SimulatedArm>(h->config_.arm, h->runtime_);
-        backends.arm = h->arm_.get();
-      }
-    }
-  }
+  // The hardware the configured components need (each kind says which
+  // interfaces), each made once on the configured platform.
+  for (const auto& spec : h->config_.components)
+    if (const ComponentKind* kind = find_component_kind(spec.kind))
+      for (const std::string_view interface : kind->needs)
+        if (auto error = h->provide(interface, io)) return unexpected(*error);
   h->restore_emergency_holds();
   for (const auto& spec : h->config_.components) {
-    auto component = make_component(spec, h->config_.settings, *h->node_, backends);
+    auto component = make_component(spec, h->config_.settings, *h->node_, h->backends_);
     if (!component) return unexpected(component.error());
-    // The images are the simulated cameras' even when the platform moves the mounts.
-    if (auto* sensor = dynamic_cast<components::VisualSensor*>(component->get()); sensor && h->frame_worker_)
-      sensor->use_frame_worker(*h->frame_worker_, h->cameras_.get());
-    const Hardware hardware = hardware_of(spec.kind);
-    if (hardware != Hardware::none) {
+    const ComponentKind& kind = *find_component_kind(spec.kind);  // made, so known
+    if (!kind.needs.empty()) {
+      const auto needs = [&](std::string_view interface) {
+        return std::find(kind.needs.begin(), kind.needs.end(), interface) != kind.needs.end();
+      };
       // Before it starts: a hold restored from the file puts it in Emergency at once.
       rt::EmergencyLatch& latch = h->latch_for(spec);
       (*component)->share_emergency(latch);
-      if (spec.kind == "primitive_driver") h->driver_latch_ = &latch;
+      // The platform's emergency flag mirrors the latch of what drives the vehicle.
+      if (needs(components::Drive::kInterface)) h->driver_latch_ = &latch;
       // Every component on the Clearpath platform is held by its e-stop.
-      const bool on_platform = (hardware == Hardware::vehicle && h->clearpath_vehicle_) ||
-                               (hardware == Hardware::cameras && h->clearpath_cameras_) ||
-                               (hardware == Hardware::arm && h->clearpath_arm_);
+      const bool on_platform = std::any_of(h->platform_interfaces_.begin(), h->platform_interfaces_.end(), needs);
       if (on_platform && std::find(h->platform_latches_.begin(), h->platform_latches_.end(), &latch) ==
                              h->platform_latches_.end())
         h->platform_latches_.push_back(&latch);
@@ -154,7 +114,7 @@ rt::EmergencyLatch& NodeHost::latch_for(const ComponentSpec& spec) {
 bool NodeHost::latch_configured(const std::string& name) const {
   if (name == "vehicle") return config_.emergency.scope == EmergencyScope::vehicle;
   for (const auto& c : config_.components)
-    if (hardware_of(c.kind) != Hardware::none &&
+    if (has_hardware(c.kind) &&
         Address{config_.node.subsystem, config_.node.node, c.id, c.instance}.to_string() == name)
       return true;
   return false;
@@ -211,6 +171,68 @@ std::size_t NodeHost::clear_emergency_holds_locally(const std::string& why) {
 const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) const {
   const auto it = latches_.find(name);
   return it == latches_.end() ? nullptr : it->second.get();
+}
+
+// The platform's backend of each hardware interface: `model` makes the
+// components' own simulations (vehicle, cameras, arm), `clearpath` and
+// `clearpath_sim` the bridge's backends on one PlatformConnection (the
+// images stay the simulated cameras'; a camera mount or an arm joint not
+// mapped to the platform stays simulated).
+std::optional<Error> NodeHost::provide(std::string_view interface, boost::asio::io_context& io) {
+  const bool model = config_.platform.kind == PlatformSettings::Kind::model;
+  if (interface == components::Drive::kInterface || interface == components::PoseSource::kInterface) {
+    if (vehicle_ || clearpath_vehicle_) return std::nullopt;
+    components::Drive* drive = nullptr;
+    components::PoseSource* pose = nullptr;
+    if (model) {
+      vehicle_ = std::make_unique<components::SimulatedVehicle>(config_.vehicle, runtime_);
+      drive = vehicle_.get();
+      pose = vehicle_.get();
+    } else {
+      open_platform(io);
+      clearpath_vehicle_ = std::make_unique<bridge::ClearpathVehicle>(*platform_, config_.platform.vehicle);
+      drive = clearpath_vehicle_.get();
+      pose = clearpath_vehicle_.get();
+      platform_interfaces_.push_back(components::Drive::kInterface);
+      platform_interfaces_.push_back(components::PoseSource::kInterface);
+    }
+    backends_.offer<components::Drive>(drive);
+    backends_.offer<components::PoseSource>(pose);
+  } else if (interface == components::Cameras::kInterface) {
+    if (cameras_) return std::nullopt;
+    // The images are always the simulated cameras'; their mounts may be the platform's.
+    cameras_ = std::make_unique<components::SimulatedCameras>(config_.cameras, runtime_);
+    backends_.offer<components::Cameras>(cameras_.get());
+    backends_.offer<components::Cameras>("camera_images", cameras_.get());
+    // Frames are encoded on a thread of their own; boost::asio::post (not
+    // AsioRuntime::post, which is the loop's alone) brings each back.
+    frame_worker_ = std::make_unique<components::ThreadFrameWorker>(
+        [&io](std::function<void()> fn) { boost::asio::post(io, std::move(fn)); });
+    backends_.offer<components::FrameWorker>(frame_worker_.get());
+    const auto& mounts = config_.platform.cameras;
+    if (!model && !mounts.mounts.empty()) {
+      if (auto ok = bridge::check_clearpath_cameras_config(config_.cameras.cameras, mounts); !ok) return ok.error();
+      open_platform(io);
+      clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*platform_, runtime_, *cameras_, mounts);
+      backends_.offer<components::Cameras>(clearpath_cameras_.get());
+      platform_interfaces_.push_back(components::Cameras::kInterface);
+    }
+  } else if (interface == components::ManipulatorArm::kInterface) {
+    if (arm_ || clearpath_arm_) return std::nullopt;
+    const auto& joints = config_.platform.arm;
+    if (!model && !joints.joints.empty()) {
+      if (auto ok = bridge::check_clearpath_arm_config(config_.arm, joints); !ok) return ok.error();
+      open_platform(io);
+      clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*platform_, runtime_, config_.arm, joints);
+      backends_.offer<components::ManipulatorArm>(clearpath_arm_.get());
+      platform_interfaces_.push_back(components::ManipulatorArm::kInterface);
+    } else {
+      arm_ = std::make_unique<components::SimulatedArm>(config_.arm, runtime_);
+      backends_.offer<components::ManipulatorArm>(arm_.get());
+    }
+  }
+  // Anything else this platform does not have: the kind that needs it says so.
+  return std::nullopt;
 }
 
 // The Clearpath platform's client: a link that reopens with backoff and never

@@ -1,6 +1,7 @@
-// The node host: every registered component kind can be built, a host opens
-// with its configured components and extra ones, a busy address is one error,
-// and stop() shuts the components down before the link closes.
+// The node host: every registered component kind can be built, a kind of a
+// test's own is hosted like the built-in ones (the host names none), a host
+// opens with its configured components and extra ones, a busy address is one
+// error, and stop() shuts the components down before the link closes.
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
@@ -10,6 +11,9 @@
 
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/clearpath/sim/loopback_client.hpp"
+#include "jaus/components/global_pose_sensor_kind.hpp"
+#include "jaus/components/primitive_driver_kind.hpp"
+#include "jaus/components/primitive_manipulator_kind.hpp"
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
 
@@ -44,7 +48,11 @@ TEST(ComponentKinds, EveryRegisteredKindIsBuiltWithItsIdAndName) {
   components::SimulatedVehicle vehicle({}, time);
   components::SimulatedCameras cameras(components::VisualSensorConfig{{components::CameraConfig{}}}, time);
   components::SimulatedArm arm(components::ArmConfig{{components::JointConfig{}}}, time);
-  const VehicleBackends backends{&vehicle, &vehicle, &cameras, &arm};
+  rt::Backends backends;
+  backends.offer<components::Drive>(&vehicle);
+  backends.offer<components::PoseSource>(&vehicle);
+  backends.offer<components::Cameras>(&cameras);
+  backends.offer<components::ManipulatorArm>(&arm);
   ASSERT_FALSE(component_kinds().empty());
   for (const auto& kind : component_kinds()) {
     auto made = make_component(ComponentSpec{std::string(kind.name), kind.default_id, 2, 7, "", {}, 0, {}}, settings,
@@ -76,8 +84,11 @@ TEST(ComponentKinds, AVehicleComponentWithoutAVehicleOrWithABadOptionIsOneError)
   EXPECT_EQ(armless.error().message(), "primitive_manipulator needs an arm and the host has none");
 
   components::SimulatedVehicle vehicle({}, time);
+  rt::Backends backends;
+  backends.offer<components::Drive>(&vehicle);
+  backends.offer<components::PoseSource>(&vehicle);
   auto bad = make_component(ComponentSpec{"primitive_driver", 33, 1, 0, "", {{"command_timeout_s", "soon"}}, 0, {}}, {},
-                            node, {&vehicle, &vehicle});
+                            node, backends);
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(bad.error().field, "command_timeout_s");
@@ -87,13 +98,13 @@ TEST(ComponentKinds, AVehicleComponentWithoutAVehicleOrWithABadOptionIsOneError)
 TEST(ComponentOptions, EachKindsOptionsAreReadAndCheckedWithTheirLine) {
   ComponentSpec driver{"primitive_driver", 33, 1, 0, "", {{"command_timeout_s", "0.25"}, {"stop_brake_percent", "40"}},
                        7, {}};
-  const auto options = primitive_driver_options(driver);
+  const auto options = components::primitive_driver_options({driver.kind, driver.options});
   ASSERT_TRUE(options) << options.error().message();
   EXPECT_EQ(options->command_timeout, std::chrono::milliseconds(250));
   EXPECT_EQ(options->stop_brake_percent, 40);
 
   ComponentSpec sensor{"global_pose_sensor", 38, 1, 0, "", {{"stale_after_s", "2"}, {"local_pose", "false"}}, 9, {}};
-  const auto pose = global_pose_sensor_options(sensor);
+  const auto pose = components::global_pose_sensor_options({sensor.kind, sensor.options});
   ASSERT_TRUE(pose) << pose.error().message();
   EXPECT_EQ(pose->sensor.stale_after, std::chrono::seconds(2));
   EXPECT_FALSE(pose->local_pose);
@@ -105,7 +116,7 @@ TEST(ComponentOptions, EachKindsOptionsAreReadAndCheckedWithTheirLine) {
   EXPECT_EQ(problem->line, 13);  // the option's own line
   EXPECT_NE(problem->what.find("stale_after_s"), std::string::npos) << problem->what;
   ComponentSpec arm{"primitive_manipulator", 49, 1, 0, "", {{"command_timeout_s", "1.5"}}, 3, {}};
-  const auto manipulator = primitive_manipulator_options(arm);
+  const auto manipulator = components::primitive_manipulator_options({arm.kind, arm.options});
   ASSERT_TRUE(manipulator) << manipulator.error().message();
   EXPECT_EQ(manipulator->command_timeout, std::chrono::milliseconds(1500));
   arm.options["command_timeout_s"] = "-1";
@@ -115,6 +126,114 @@ TEST(ComponentOptions, EachKindsOptionsAreReadAndCheckedWithTheirLine) {
   ComponentSpec brake{"primitive_driver", 33, 1, 0, "", {{"stop_brake_percent", "101"}}, 5, {}};
   ASSERT_TRUE(check_component_options(brake));
   EXPECT_EQ(check_component_options(brake)->line, 5);  // no option line known: the component's
+}
+
+TEST(ComponentKinds, AKindNoListHasIsRefusedEverywhere) {
+  EXPECT_EQ(find_component_kind("warp_drive"), nullptr);
+  EXPECT_FALSE(has_hardware("warp_drive"));
+  EXPECT_FALSE(moves_hardware("warp_drive"));
+  EXPECT_FALSE(check_component_options(ComponentSpec{"warp_drive", 99, 1, 0, "", {{"warp", "9"}}, 0, {}}));
+  EXPECT_FALSE(remove_component_kind("warp_drive"));
+}
+
+// A kind of the test's own, registered at run time: the host builds it from
+// a configuration, checks its options, gives it the hardware it needs and a
+// latch, and refuses a second kind of the same name. Nothing in the host
+// names it, as nothing there names the built-in ones.
+struct TestKind {
+  TestKind() {
+    rt::ComponentKind kind{
+        .name = "test_beacon",
+        .default_id = 201,
+        .options = {"period_s"},
+        .needs = {components::PoseSource::kInterface},
+        .moves_hardware = false,
+        .one_per_node = false,
+        .check = rt::check_by([](const rt::KindOptions& o) { return rt::number_option(o, "period_s", 0, 10, 1); }),
+        .make = [this](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
+          const auto pose = k.need<components::PoseSource>();
+          if (!pose) return unexpected(pose.error());
+          const auto period = rt::number_option(k.options, "period_s", 0, 10, 1);
+          if (!period) return unexpected(period.error());
+          ++made;
+          period_s = *period;
+          struct Beacon : rt::Component {
+            using Component::Component;
+          };
+          return std::unique_ptr<rt::Component>(std::make_unique<Beacon>(k.config, k.env));
+        },
+    };
+    EXPECT_FALSE(add_component_kind(std::move(kind)));
+  }
+  ~TestKind() { EXPECT_TRUE(remove_component_kind("test_beacon")); }
+  int made = 0;
+  double period_s = 0;
+};
+
+TEST(ComponentKinds, AKindRegisteredByATestIsHostedLikeTheBuiltInOnes) {
+  const std::size_t builtin = component_kinds().size();
+  {
+    TestKind kind;
+    ASSERT_EQ(component_kinds().size(), builtin + 1);
+    ASSERT_NE(find_component_kind("test_beacon"), nullptr);
+    EXPECT_TRUE(has_hardware("test_beacon"));
+    EXPECT_FALSE(moves_hardware("test_beacon"));
+    const auto taken = add_component_kind(rt::ComponentKind{.name = "test_beacon",
+                                                            .default_id = 202,
+                                                            .options = {},
+                                                            .needs = {},
+                                                            .moves_hardware = false,
+                                                            .one_per_node = false,
+                                                            .check = {},
+                                                            .make = [](const rt::KindContext&) {
+                                                              return Expected<std::unique_ptr<rt::Component>>(nullptr);
+                                                            }});
+    ASSERT_TRUE(taken);
+    EXPECT_EQ(taken->message(), "component kind 'test_beacon' already exists");
+
+    // Its options are its own to check, with the option's line.
+    ComponentSpec bad{"test_beacon", 201, 1, 0, "", {{"period_s", "11"}}, 4, {{"period_s", 6}}};
+    const auto problem = check_component_options(bad);
+    ASSERT_TRUE(problem);
+    EXPECT_EQ(problem->what, "test_beacon option 'period_s' must be a number 0..10, got '11'");
+    EXPECT_EQ(problem->line, 6);
+
+    // On a host: made with the simulated vehicle's pose, and held by a latch of its own.
+    boost::asio::io_context io;
+    HostConfig config;
+    config.link.bind = transport::Ipv4Endpoint{kLoopback, 0};
+    config.components.push_back(ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}});
+    config.components.push_back(ComponentSpec{"test_beacon", 201, 1, 0, "", {{"period_s", "2.5"}}, 0, {}});
+    auto host = NodeHost::open(config, io);
+    ASSERT_TRUE(host) << host.error().message();
+    EXPECT_EQ(kind.made, 1);
+    EXPECT_EQ(kind.period_s, 2.5);
+    ASSERT_NE((*host)->node().find(Address{1, 1, 201, 1}), nullptr);
+    EXPECT_EQ((*host)->node().find(Address{1, 1, 201, 1})->name(), "test_beacon");
+    EXPECT_NE((*host)->vehicle(), nullptr);  // its pose source, made because it needs one
+    EXPECT_NE((*host)->emergency_latch("1.1.201.1"), nullptr);
+    (*host)->stop("test");
+
+    // Without the hardware it needs: one error naming both.
+    rt::VirtualTime time;
+    struct NullLink : node::Link {
+      void transmit(const Header&, std::span<const std::uint8_t>) override {}
+    } link;
+    node::Node node(node::NodeConfig{}, time, time, link);
+    auto blind = make_component(ComponentSpec{"test_beacon", 201, 1, 0, "", {}, 0, {}}, {}, node);
+    ASSERT_FALSE(blind);
+    EXPECT_EQ(blind.error().message(), "test_beacon needs a vehicle pose source and the host has none");
+  }
+  // Removed: unknown again, and the list is the built-in one.
+  EXPECT_EQ(component_kinds().size(), builtin);
+  EXPECT_EQ(find_component_kind("test_beacon"), nullptr);
+  boost::asio::io_context io;
+  HostConfig config;
+  config.link.bind = transport::Ipv4Endpoint{kLoopback, 0};
+  config.components.push_back(ComponentSpec{"test_beacon", 201, 1, 0, "", {}, 0, {}});
+  auto host = NodeHost::open(config, io);
+  ASSERT_FALSE(host);
+  EXPECT_EQ(host.error().message(), "component kind 'test_beacon' cannot be hosted by this build");
 }
 
 TEST(NodeHost, HostsConfiguredAndAddedComponentsAndStopsThemFirst) {

@@ -107,4 +107,12 @@ void SensorComponent::check_source() {
   arm_watch(std::min(sample->taken_at, now) + options_.stale_after);
 }
 
+Expected<SensorOptions> sensor_options(const rt::KindOptions& options) {
+  SensorOptions o;
+  const auto stale = rt::seconds_option(options, "stale_after_s", 0, 60, o.stale_after, /*min_exclusive=*/true);
+  if (!stale) return unexpected(stale.error());
+  o.stale_after = *stale;
+  return o;
+}
+
 }  // namespace jaus::components

@@ -1,34 +1,39 @@
 // The component kinds a node host can build, and how one is built from its
-// configuration entry. A new component kind is one registry line in
-// component_kinds.cpp (name, RA 3.x component ID, option keys) and one case
-// in make_component(); configuration readers check kinds and options here.
+// configuration entry. A kind describes itself (rt::ComponentKind,
+// jaus/runtime/component_kind.hpp) in its own folder, components/<name>/;
+// the host walks the list and never names one. The list is the kinds
+// components/ lists (builtin_component_kinds(), generated at build time) and
+// those added at run time (add_component_kind: a test's, later a plugin's).
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <span>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "jaus/components/camera.hpp"
-#include "jaus/components/drive.hpp"
-#include "jaus/components/manipulator_arm.hpp"
 #include "jaus/components/node_manager.hpp"
-#include "jaus/components/pose_source.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/runtime/component.hpp"
+#include "jaus/runtime/component_kind.hpp"
 
 namespace jaus::host {
 
-struct ComponentKind {
-  std::string_view name;
-  std::uint8_t default_id;  // RA 3.x component ID
-  std::vector<std::string_view> options;
-};
-std::span<const ComponentKind> component_kinds();
+using ComponentKind = rt::ComponentKind;
+
+// Every kind this process knows, built-in first. Add or remove kinds before
+// any host opens or configuration is read (pointers into the list stay valid
+// until the next change).
+const std::vector<ComponentKind>& component_kinds();
 const ComponentKind* find_component_kind(std::string_view name);
+// A kind of one's own: an error (invalid_argument) when the name is empty or
+// taken, or it cannot make components.
+std::optional<Error> add_component_kind(ComponentKind kind);
+bool remove_component_kind(std::string_view name);  // false: no such kind
+// What components/ lists (generated from its CMake files).
+std::vector<const ComponentKind*> builtin_component_kinds();
 
 // One component a node should host.
 struct ComponentSpec {
@@ -42,16 +47,6 @@ struct ComponentSpec {
   std::map<std::string, int> option_lines;     // where each option is (from a file)
 };
 
-// The hardware a node's vehicle components drive and read: the host's
-// simulated vehicle, cameras and arm by default (a Clearpath platform's
-// backends in bridge/ otherwise).
-struct VehicleBackends {
-  components::Drive* drive = nullptr;
-  components::PoseSource* pose = nullptr;
-  components::Cameras* cameras = nullptr;
-  components::ManipulatorArm* arm = nullptr;
-};
-
 // What every component of the node shares, and what the node manager says of it.
 struct ComponentSettings {
   rt::ComponentConfig defaults;  // controller timeout, refusals, service connection limits
@@ -59,15 +54,14 @@ struct ComponentSettings {
 };
 
 // The component `spec` asks for, on `node` at (subsystem, node) of the node,
-// on `vehicle` for the kinds that drive or sense it. An error
-// (invalid_argument) when this build cannot make the kind, an option is
-// invalid, or the kind needs a backend `vehicle` lacks.
+// with `backends`: the hardware (by interface) the kinds that drive or sense
+// it need. An error (invalid_argument) when no kind has the name, an option
+// is invalid, or the kind needs a backend `backends` lacks.
 Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spec, const ComponentSettings& settings,
-                                                        node::Node& node, const VehicleBackends& vehicle = {});
-// The hardware a kind drives or reads (the host then makes its simulation).
-enum class Hardware { none, vehicle, cameras, arm };
-Hardware hardware_of(std::string_view kind);
-bool needs_vehicle(std::string_view kind);  // hardware_of(kind) == Hardware::vehicle
+                                                        node::Node& node, const rt::Backends& backends = {});
+// The kind drives or reads hardware (its `needs`): it follows an emergency
+// latch the host keeps. False for a kind nobody knows.
+bool has_hardware(std::string_view kind);
 // The kind moves hardware (a drive, an arm, camera mounts): with
 // emergency_scope vehicle, one Set Emergency holds every such component.
 bool moves_hardware(std::string_view kind);

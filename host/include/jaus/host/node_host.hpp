@@ -122,6 +122,10 @@ class NodeHost {
 
  private:
   NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
+  // Makes the backend of a hardware interface (rt::Backends names) once, on
+  // the configured platform, and offers it in backends_; an interface the
+  // platform lacks is left out (the kind that needs it says so).
+  std::optional<Error> provide(std::string_view interface, boost::asio::io_context& io);
   void open_platform(boost::asio::io_context& io);
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
@@ -162,6 +166,8 @@ class NodeHost {
   std::unique_ptr<bridge::ClearpathCameras> clearpath_cameras_;
   std::unique_ptr<bridge::ClearpathArm> clearpath_arm_;
   std::unique_ptr<bridge::PlatformEmergencyMirror> platform_emergency_;  // the platform's stops <-> the latches
+  rt::Backends backends_;  // what the components are made with: the above, by interface
+  std::vector<std::string_view> platform_interfaces_;  // those of backends_ the Clearpath platform carries
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;

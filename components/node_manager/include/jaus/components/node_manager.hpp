@@ -15,6 +15,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "jaus/messages/communications_messages.hpp"
@@ -26,6 +27,10 @@
 namespace jaus::components {
 
 struct NodeManagerConfig {
+  // What a host offers the node's components (rt::Backends): the node's identity.
+  static constexpr std::string_view kInterface = "node_identity";
+  static constexpr std::string_view kDescription = "the node's identity";
+
   rt::Duration heartbeat_period = std::chrono::seconds(1);
   std::string subsystem_name = "jaus-node";
   std::uint16_t subsystem_type = 10001;  // 10001+ vehicle, 20001+ OCU, 30001+ other

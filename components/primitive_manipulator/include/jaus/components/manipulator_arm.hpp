@@ -7,6 +7,7 @@
 // cannot.
 #pragma once
 
+#include <string_view>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -32,6 +33,10 @@ struct JointSample {
 
 class ManipulatorArm {
  public:
+  // Its name among the hardware a host offers a component kind (rt::Backends).
+  static constexpr std::string_view kInterface = "arm";
+  static constexpr std::string_view kDescription = "an arm";
+
   virtual ~ManipulatorArm() = default;
 
   // The arm's joints (Denavit-Hartenberg table, limits) and its base frame on

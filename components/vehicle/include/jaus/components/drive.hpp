@@ -6,6 +6,7 @@
 // only drives, and says what it actually applied.
 #pragma once
 
+#include <string_view>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -81,6 +82,10 @@ struct OperationalData {
 
 class Drive {
  public:
+  // Its name among the hardware a host offers a component kind (rt::Backends).
+  static constexpr std::string_view kInterface = "drive";
+  static constexpr std::string_view kDescription = "a vehicle drive";
+
   // Hears a fault of the drive when it appears (what is wrong: "link to the
   // platform lost") and when it clears (nullopt). Called on the runtime's
   // thread.

@@ -7,6 +7,7 @@
 // from other conventions happen once, in navigation_frames.hpp.
 #pragma once
 
+#include <string_view>
 #include <optional>
 
 #include "jaus/base/time.hpp"
@@ -47,6 +48,10 @@ struct PoseSample {
 
 class PoseSource {
  public:
+  // Its name among the hardware a host offers a component kind (rt::Backends).
+  static constexpr std::string_view kInterface = "pose_source";
+  static constexpr std::string_view kDescription = "a vehicle pose source";
+
   virtual ~PoseSource() = default;
   // The latest sample; none before the source has produced one.
   virtual std::optional<PoseSample> sample() = 0;

@@ -32,6 +32,7 @@
 #include "jaus/components/pose_source.hpp"
 #include "jaus/core/time_stamp.hpp"
 #include "jaus/runtime/component.hpp"
+#include "jaus/runtime/component_kind.hpp"
 
 namespace jaus::components {
 
@@ -39,6 +40,9 @@ struct SensorOptions {
   // A sample this old (runtime clock, from PoseSample::taken_at) is stale.
   rt::Duration stale_after = std::chrono::seconds(1);
 };
+// The sensors' options as a configuration writes them: stale_after_s, a
+// number of seconds > 0 and <= 60.
+Expected<SensorOptions> sensor_options(const rt::KindOptions& options);
 
 // The RA time stamp (UTC; milliseconds .. day of month) of a UTC time.
 TimeStamp time_stamp_of(rt::UtcTime utc);

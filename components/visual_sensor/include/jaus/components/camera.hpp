@@ -7,6 +7,7 @@
 // the camera's home direction), zoom in percent of the lens range (0 widest).
 #pragma once
 
+#include <string_view>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -71,6 +72,10 @@ using CaptureJob = std::function<Expected<Image>()>;
 
 class Cameras {
  public:
+  // Its name among the hardware a host offers a component kind (rt::Backends).
+  static constexpr std::string_view kInterface = "cameras";
+  static constexpr std::string_view kDescription = "cameras";
+
   virtual ~Cameras() = default;
 
   // Every camera, as configured (the component validates IDs).

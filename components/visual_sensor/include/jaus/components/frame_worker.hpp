@@ -13,6 +13,7 @@
 // component never makes a thread).
 #pragma once
 
+#include <string_view>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -30,6 +31,10 @@ namespace jaus::components {
 
 class FrameWorker {
  public:
+  // Its name among what a host offers a component kind (rt::Backends).
+  static constexpr std::string_view kInterface = "frame_worker";
+  static constexpr std::string_view kDescription = "a frame worker";
+
   using Done = std::function<void(Expected<Image>)>;
   virtual ~FrameWorker() = default;
   // Runs `work` later, then `done` with its result on the event loop. False,

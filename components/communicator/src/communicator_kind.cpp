@@ -1,0 +1,28 @@
+#include "jaus/components/communicator_kind.hpp"
+
+#include "jaus/components/communicator.hpp"
+
+namespace jaus::components {
+
+const rt::ComponentKind& communicator_kind() {
+  static const rt::ComponentKind kind{
+      .name = "communicator",
+      .default_id = 35,
+      .options = {},
+      .needs = {},
+      .moves_hardware = false,
+      .one_per_node = false,
+      .check = {},
+      // One data link; heartbeats to other subsystems at the node's heartbeat
+      // period, which the host offers as "heartbeat_period".
+      .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
+        CommunicatorConfig config;
+        if (const auto* period = k.backends.find<const rt::Duration>("heartbeat_period"))
+          config.heartbeat_period = *period;
+        return std::unique_ptr<rt::Component>(std::make_unique<Communicator>(k.config, k.env, config));
+      },
+  };
+  return kind;
+}
+
+}  // namespace jaus::components

@@ -1,0 +1,11 @@
+// The velocity state sensor as a component kind (jaus/runtime/component_kind.hpp): what
+// a node host needs to know of it, in this folder only.
+#pragma once
+
+#include "jaus/runtime/component_kind.hpp"
+
+namespace jaus::components {
+
+const rt::ComponentKind& velocity_state_sensor_kind();
+
+}  // namespace jaus::components
