@@ -3,6 +3,10 @@
 // it parses and checks every value (bad input: exit 2, one line naming what
 // is wrong, before any socket is opened), opens an OcuSession and hands over
 // to the command in ocu/.
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
 #include <csignal>
 #include <iostream>
 #include <iterator>
@@ -112,18 +116,40 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   return out;
 }
 
+// SIGINT and SIGTERM ask `session` to stop (the command then cleans up:
+// releases control, terminates its service connections), each time: the
+// clean-up only sends (it never waits), so a second Ctrl-C is never needed.
+class StopOnSignals {
+ public:
+  StopOnSignals(boost::asio::io_context& io, ocu::OcuSession& session) : signals_(io, SIGINT, SIGTERM), session_(session) {
+    arm();
+  }
+
+ private:
+  void arm() {
+    signals_.async_wait([this](const boost::system::error_code& ec, int) {
+      if (ec) return;  // cancelled: the command is over
+      session_.request_stop();
+      arm();
+    });
+  }
+  boost::asio::signal_set signals_;
+  ocu::OcuSession& session_;
+};
+
 // Parses the common options, opens the session and runs `command` on it.
 template <class Run>
 int with_session(std::string_view name, const Common& common, Run run) {
   // A closed stdout (| head) must not kill the process before it has released
   // control or terminated its service connection: writes fail instead.
   std::signal(SIGPIPE, SIG_IGN);
-  auto session = ocu::OcuSession::open(common.session);
+  boost::asio::io_context io;  // the session's, and the signals'
+  auto session = ocu::OcuSession::open(common.session, &io);
   if (!session) {
     std::cerr << "jausctl " << name << ": " << session.error().message() << "\n";
     return kExitFailure;
   }
-  (*session)->stop_on_signals();
+  const StopOnSignals signals(io, **session);
   return run(**session, ocu::CommandIo{std::cout, std::cerr});
 }
 

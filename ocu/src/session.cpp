@@ -1,8 +1,11 @@
 #include "jaus/ocu/session.hpp"
 
+#include <boost/asio/signal_set.hpp>
 #include <algorithm>
 #include <csignal>
+#include <stdexcept>
 
+#include "jaus/components/node_manager.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/ocu/names.hpp"
 
@@ -16,27 +19,49 @@ using jaus::unexpected;
 // run_until() wakes at least this often to look at its deadline.
 constexpr jaus::rt::Duration kRunSlice = 100ms;
 constexpr std::uint8_t kNodeManagerComponent = 1;
+constexpr const char* kExits = "jausctl exits";
+
+// Who the OCU's node manager says the node is.
+jaus::components::NodeManagerConfig ocu_identity() {
+  jaus::components::NodeManagerConfig identity;
+  identity.subsystem_name = "jausctl";
+  identity.subsystem_type = kOcuSubsystemType;
+  identity.node_name = "jausctl";
+  return identity;
+}
 
 }  // namespace
+
+struct OcuSession::Signals {
+  explicit Signals(boost::asio::io_context& io) : set(io, SIGINT, SIGTERM) {}
+  boost::asio::signal_set set;
+};
 
 jaus::Error no_reply_error(const jaus::Address& from, jaus::rt::Duration timeout) {
   return jaus::make_error(jaus::ErrorCode::timeout, "no reply from " + from.to_string() + " within " + seconds_text(timeout));
 }
 
-OcuSession::OcuSession(SessionOptions options, boost::asio::io_context* io)
-    : options_(std::move(options)),
-      owned_io_(io ? nullptr : std::make_unique<boost::asio::io_context>()),
-      io_(io ? *io : *owned_io_) {
+OcuSession::OcuSession(SessionOptions options) : options_(std::move(options)) {
   if (!options_.log) options_.log = jaus::rt::silent_log();
 }
 
-jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions options, boost::asio::io_context* io) {
-  const jaus::Address self = options.self;
+std::optional<jaus::Error> OcuSession::check_address(const jaus::Address& self) {
   if (!self.is_valid() || self.is_broadcast() || self.component == kNodeManagerComponent)
-    return unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument,
-                                       "the OCU's address " + self.to_string() +
-                                           " must be a real component (no 0 or 255; component 1 is its node manager)"));
-  std::unique_ptr<OcuSession> s(new OcuSession(std::move(options), io));
+    return jaus::make_error(jaus::ErrorCode::invalid_argument,
+                            "the OCU's address " + self.to_string() +
+                                " must be a real component (no 0 or 255; component 1 is its node manager)");
+  return std::nullopt;
+}
+
+jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions options, boost::asio::io_context* io) {
+  if (auto error = check_address(options.self)) return unexpected(std::move(*error));
+  const jaus::Address self = options.self;
+  std::unique_ptr<OcuSession> s(new OcuSession(std::move(options)));
+  if (!io) {
+    s->owned_io_ = std::make_unique<boost::asio::io_context>();
+    io = s->owned_io_.get();
+  }
+  s->io_ = io;
   const SessionOptions& o = s->options_;
 
   jaus::host::HostConfig config;
@@ -47,42 +72,93 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.link.framing = o.framing;
   for (const auto& peer : o.to) config.link.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
   config.link.relay = false;  // messages end at the OCU
-  config.settings.identity.subsystem_name = "jausctl";
-  config.settings.identity.subsystem_type = kOcuSubsystemType;
-  config.settings.identity.node_name = "jausctl";
+  config.settings.identity = ocu_identity();
   config.components = {jaus::host::ComponentSpec{"node_manager", kNodeManagerComponent, 1, 0, "jausctl node manager", {}, 0, {}}};
-  auto host = jaus::host::NodeHost::open(std::move(config), s->io_, o.log);
+  auto host = jaus::host::NodeHost::open(std::move(config), *s->io_, o.log);
   if (!host) return unexpected(host.error());
   s->host_ = std::move(*host);
   s->host_->watch([session = s.get()](const jaus::PacketView& packet) { session->observe(packet); });
-
-  jaus::rt::ComponentConfig ocu_config = s->host_->component_config("jausctl", self.component, self.instance);
-  ocu_config.authority = o.authority;
-  s->component_ = &s->host_->emplace<OcuComponent>(
-      ocu_config, [session = s.get()](const jaus::Header& h, std::span<const std::uint8_t> payload) {
-        session->deliver(Received{h, {payload.begin(), payload.end()}});
-      });
+  s->node_ = &s->host_->node();
+  s->clock_ = &s->host_->runtime();
+  s->add_ocu_component();
   return s;
 }
 
-jaus::node::Node& OcuSession::node() { return host_->node(); }
-jaus::transport::UdpLink& OcuSession::link() { return host_->link(); }
-jaus::rt::Clock& OcuSession::clock() { return host_->runtime(); }
+jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::attach(SessionOptions options, SessionEnvironment environment) {
+  if (auto error = check_address(options.self)) return unexpected(std::move(*error));
+  if (!environment.clock || !environment.scheduler || !environment.link || !environment.connect || !environment.wait)
+    return unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument,
+                                       "an attached OCU session needs a clock, a scheduler, a link, connect and wait"));
+  std::unique_ptr<OcuSession> s(new OcuSession(std::move(options)));
+  s->environment_ = std::move(environment);
+  const SessionOptions& o = s->options_;
+  jaus::node::NodeConfig node_config;
+  node_config.subsystem = o.self.subsystem;
+  node_config.node = o.self.node;
+  node_config.dialect = o.dialect;
+  SessionEnvironment& env = s->environment_;
+  s->own_node_ = std::make_unique<jaus::node::Node>(node_config, *env.clock, *env.scheduler, *env.link, o.log);
+  s->node_ = s->own_node_.get();
+  s->clock_ = env.clock;
+  jaus::rt::ComponentConfig manager;
+  manager.name = "jausctl node manager";
+  manager.address = jaus::Address{o.self.subsystem, o.self.node, kNodeManagerComponent, 1};
+  s->node_->add(std::make_unique<jaus::components::NodeManager>(manager, s->node_->environment(), *s->node_,
+                                                                ocu_identity()));
+  s->add_ocu_component();
+  env.connect([session = s.get()](std::span<const std::uint8_t> bytes) { session->receive_packet(bytes); });
+  return s;
+}
+
+void OcuSession::add_ocu_component() {
+  jaus::rt::ComponentConfig config =
+      host_ ? host_->component_config("jausctl", options_.self.component, options_.self.instance) : jaus::rt::ComponentConfig{};
+  config.name = "jausctl";
+  config.address = options_.self;
+  config.authority = options_.authority;
+  component_ = &node_->add_as(std::make_unique<OcuComponent>(
+      config, node_->environment(), [this](const jaus::Header& h, std::span<const std::uint8_t> payload) {
+        deliver(Received{h, {payload.begin(), payload.end()}});
+      }));
+}
+
+void OcuSession::receive_packet(std::span<const std::uint8_t> bytes) {
+  // What a UDP link checks before the node: a packet that does not decode is
+  // the node's to count (receive_bytes).
+  const auto packet = jaus::decode_packet(bytes);
+  if (!packet) return node_->receive_bytes(bytes);
+  observe(*packet);
+  node_->receive(*packet);
+}
+
+jaus::transport::UdpLink& OcuSession::link() {
+  if (!host_) throw std::logic_error("OcuSession::link(): an attached session has no UDP link");
+  return host_->link();
+}
+
+boost::asio::io_context& OcuSession::io_context() {
+  if (!io_) throw std::logic_error("OcuSession::io_context(): an attached session has no io_context");
+  return *io_;
+}
 
 OcuSession::~OcuSession() {
   if (signals_) {
     boost::system::error_code ignored;
-    signals_->cancel(ignored);
+    signals_->set.cancel(ignored);
   }
   // While the link is open: the OCU component's service connections are
   // terminated on the wire, not left to time out on the provider.
-  if (host_) host_->stop("jausctl exits");
+  if (host_) host_->stop(kExits);
+  if (own_node_) {
+    own_node_->shutdown(kExits);
+    environment_.connect({});  // nothing more for this session
+  }
 }
 
 void OcuSession::send_raw(jaus::Header header, std::span<const std::uint8_t> payload) {
   header.source = options_.self;
   header.data_size = static_cast<std::uint16_t>(std::min(payload.size(), std::size_t{0xFFFF}));
-  host_->node().send(header, payload);
+  node_->send(header, payload);
 }
 
 OcuSession::ListenerId OcuSession::listen(Listener listener) {
@@ -126,28 +202,32 @@ bool OcuSession::run_until(const std::function<bool()>& done, jaus::rt::Duration
   const auto deadline = clock().now() + limit;
   for (;;) {
     if (done()) return true;
-    if (interrupted_) return false;
+    if (interrupted()) return false;
     const auto now = clock().now();
     if (now >= deadline) return false;
-    if (io_.stopped()) io_.restart();
-    io_.run_one_for(std::min(deadline - now, kRunSlice));
+    if (!io_) {
+      environment_.wait(deadline);
+      continue;
+    }
+    if (io_->stopped()) io_->restart();
+    io_->run_one_for(std::min(deadline - now, kRunSlice));
   }
 }
 
 void OcuSession::stop_on_signals() {
-  if (signals_) return;
-  signals_.emplace(io_, SIGINT, SIGTERM);
-  arm_signals();
-}
-
-void OcuSession::arm_signals() {
+  if (signals_ || !io_) return;
+  signals_ = std::make_unique<Signals>(*io_);
   // Every signal interrupts; the commands' clean-up only sends (it never
   // waits), so a second Ctrl-C is never needed.
-  signals_->async_wait([this](const boost::system::error_code& ec, int) {
-    if (ec) return;  // cancelled: the session is gone
-    interrupted_ = true;
-    arm_signals();
-  });
+  struct Rearm {
+    OcuSession* session;
+    void operator()(const boost::system::error_code& ec, int) const {
+      if (ec) return;  // cancelled: the session is gone
+      session->request_stop();
+      session->signals_->set.async_wait(*this);
+    }
+  };
+  signals_->set.async_wait(Rearm{this});
 }
 
 jaus::Expected<Received> OcuSession::await_reply(const jaus::Address& from,
@@ -162,7 +242,7 @@ jaus::Expected<Received> OcuSession::await_reply(const jaus::Address& from,
   run_until([&] { return reply.has_value(); }, timeout);
   unlisten(id);
   if (reply) return std::move(*reply);
-  if (interrupted_) return unexpected(jaus::make_error(jaus::ErrorCode::interrupted, "interrupted"));
+  if (interrupted()) return unexpected(jaus::make_error(jaus::ErrorCode::interrupted, "interrupted"));
   return unexpected(no_reply_error(from, timeout));
 }
 

@@ -1,21 +1,20 @@
 // `jausctl control`: granted, held past the component's controller timeout
 // (its liveness checks are answered), released on exit; a takeover or a
-// refusal is reported. On the real clock, each test acts on what it has seen
-// (a state shown, enough checks answered), never at a fixed time; the
-// liveness rule itself is timed under virtual time (tests/runtime/control_test.cpp).
+// refusal is reported. Against a node in process under virtual time
+// (virtual_fixture.hpp); each test acts on what it has seen (a state shown,
+// enough checks answered); the liveness rule itself is timed in
+// tests/runtime/control_test.cpp.
 #include "jaus/ocu/control_hold.hpp"
-#include "ocu_fixture.hpp"
+#include "virtual_fixture.hpp"
 
 namespace jausctl::test {
 namespace {
 
 const jaus::Address kOcuB{254, 2, 40, 1};
 
-class ControlTest : public OcuTest {
+class ControlTest : public VirtualOcuTest {
  protected:
-  // The component checks its controller every 0.5 s. Long enough that only a
-  // stall of this process for about a second could make it drop a controller
-  // that answers; short enough to hold past it quickly.
+  // The component checks its controller every 0.5 s.
   static constexpr jaus::rt::Duration kControllerTimeout = 1500ms;
   void SetUp() override { start_target(TargetOptions{kControllerTimeout, false}); }
 

@@ -1,9 +1,10 @@
-// status, query, send and emergency against a live node, and the one line a
+// status, query, send and emergency against a node in process under virtual
+// time (virtual_fixture.hpp), and the one line a
 // command prints when nobody answers.
 #include <nlohmann/json.hpp>
 
 #include "jaus/ocu/message_json.hpp"
-#include "ocu_fixture.hpp"
+#include "virtual_fixture.hpp"
 
 namespace jausctl::test {
 namespace {
@@ -16,7 +17,7 @@ ocu::PreparedMessage prepared(const std::string& json) {
   return p ? *p : ocu::PreparedMessage{};
 }
 
-TEST_F(OcuTest, StatusPrintsTheComponentStatusAsJson) {
+TEST_F(VirtualOcuTest, StatusPrintsTheComponentStatusAsJson) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   ASSERT_EQ(ocu::run_status(*ocu, kCommunicator, 1s, io()), kExitOk) << err.str();
@@ -27,7 +28,7 @@ TEST_F(OcuTest, StatusPrintsTheComponentStatusAsJson) {
   EXPECT_EQ(j["emergency"], false);
 }
 
-TEST_F(OcuTest, NoReplyIsOneLineNamingTheComponentAndTheTimeout) {
+TEST_F(VirtualOcuTest, NoReplyIsOneLineNamingTheComponentAndTheTimeout) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   EXPECT_EQ(ocu::run_status(*ocu, kNobody, 300ms, io()), kExitFailure);
@@ -35,7 +36,7 @@ TEST_F(OcuTest, NoReplyIsOneLineNamingTheComponentAndTheTimeout) {
   EXPECT_EQ(out.str(), "");
 }
 
-TEST_F(OcuTest, QueryWithAPresenceVectorGetsTheReportWithThoseFields) {
+TEST_F(VirtualOcuTest, QueryWithAPresenceVectorGetsTheReportWithThoseFields) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   auto query = ocu::prepare_query(jaus::msg::QueryGlobalPose::code, 0x3, ocu::Json::object());
@@ -54,7 +55,7 @@ TEST_F(OcuTest, QueryWithAPresenceVectorGetsTheReportWithThoseFields) {
   EXPECT_FALSE(j["fields"].contains("elevation_m"));
 }
 
-TEST_F(OcuTest, QueryFieldsOtherThanThePresenceVectorAreGiven) {
+TEST_F(VirtualOcuTest, QueryFieldsOtherThanThePresenceVectorAreGiven) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   auto query = ocu::prepare_query(jaus::msg::QueryIdentification::code, std::nullopt, ocu::Json{{"query_type", 3}});
@@ -66,7 +67,7 @@ TEST_F(OcuTest, QueryFieldsOtherThanThePresenceVectorAreGiven) {
   EXPECT_EQ(j["fields"]["type"], 40001);
 }
 
-TEST_F(OcuTest, QueryWithoutAnswerTimesOut) {
+TEST_F(VirtualOcuTest, QueryWithoutAnswerTimesOut) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   auto query = ocu::prepare_query(jaus::msg::QueryGlobalPose::code, std::nullopt, ocu::Json::object());
@@ -77,7 +78,7 @@ TEST_F(OcuTest, QueryWithoutAnswerTimesOut) {
   EXPECT_EQ(err.str(), "jausctl query: no reply from 1.1.35.1 within 0.3 s\n");
 }
 
-TEST_F(OcuTest, SendOfAJsonCommandActsAndItsClearUndoesIt) {
+TEST_F(VirtualOcuTest, SendOfAJsonCommandActsAndItsClearUndoesIt) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   // As `jausctl msg decode` prints it, with someone else's addresses: they are replaced.
@@ -94,7 +95,7 @@ TEST_F(OcuTest, SendOfAJsonCommandActsAndItsClearUndoesIt) {
   ASSERT_TRUE(run_until([&] { return target->communicator().state() == PrimaryStatus::ready; }));
 }
 
-TEST_F(OcuTest, SendPrintsTheReplyWhenOneComes) {
+TEST_F(VirtualOcuTest, SendPrintsTheReplyWhenOneComes) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   ASSERT_EQ(ocu::run_send(*ocu, kCommunicator, prepared(R"({"name":"Query Component Authority"})"), 1s, io()),
@@ -113,7 +114,7 @@ TEST_F(OcuTest, SendPrintsTheReplyWhenOneComes) {
   EXPECT_EQ(confirm["fields"]["response_code"], "created");
 }
 
-TEST_F(OcuTest, EmergencySetAndClearShowTheResultingState) {
+TEST_F(VirtualOcuTest, EmergencySetAndClearShowTheResultingState) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   ASSERT_EQ(ocu::run_emergency(*ocu, kCommunicator, true, 1s, io()), kExitOk) << err.str();
@@ -126,7 +127,7 @@ TEST_F(OcuTest, EmergencySetAndClearShowTheResultingState) {
   EXPECT_EQ(target->communicator().state(), PrimaryStatus::ready);
 }
 
-TEST_F(OcuTest, ClearingSomeoneElsesEmergencyFailsAndSaysWhy) {
+TEST_F(VirtualOcuTest, ClearingSomeoneElsesEmergencyFailsAndSaysWhy) {
   auto other = open_ocu(jaus::Address{254, 2, 40, 1});
   auto ocu = open_ocu();
   ASSERT_TRUE(other && ocu);

@@ -1,18 +1,22 @@
-// One OCU on the network: a node host (UDP link, node and a node manager, so
-// the other side hears this OCU's heartbeats and keeps its service
-// connections and control alive) and the OCU component, all on one
-// io_context. Commands are thin: they send, then run the io_context until
-// what they wait for arrives or their time is up.
+// One OCU on the network: a node (with a node manager, so the other side
+// hears this OCU's heartbeats and keeps its service connections and control
+// alive) and the OCU component. Commands are thin: they send, then wait
+// (run_until) until what they wait for arrives or their time is up.
+//
+// Two ways to open one: open() on UDP, a node host on an io_context (jausctl,
+// jaus-conform); attach() on an injected link, clock and scheduler and a way
+// to wait (tests on jaus::testing's memory link and virtual time, where
+// waiting advances the virtual clock instead of blocking).
 //
 // Single-threaded like the runtime: everything here runs on the thread that
-// calls run_until(). Tests pass their own io_context so that a target node
-// and the OCU share it.
+// calls run_until(), but request_stop(). Signals are the application's: it
+// handles them and calls request_stop().
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
-#include <boost/asio/signal_set.hpp>
+#include <atomic>
 #include <functional>
 #include <map>
 #include <memory>
@@ -57,6 +61,22 @@ struct SessionOptions {
   jaus::rt::LogFn log;
 };
 
+// What an attached session runs on instead of UDP and an io_context.
+struct SessionEnvironment {
+  jaus::rt::Clock* clock = nullptr;
+  jaus::rt::Scheduler* scheduler = nullptr;
+  // Where the session's node transmits.
+  jaus::node::Link* link = nullptr;
+  // Hands the link what takes each packet it receives (16-byte header and
+  // payload); called once by attach(), and again with an empty function when
+  // the session goes.
+  std::function<void(std::function<void(std::span<const std::uint8_t>)>)> connect;
+  // Lets time pass up to `until` at most and returns (after one step of
+  // virtual time, one handler of an event loop): run_until looks at its
+  // condition between calls. jaus::testing::stepper(time) for VirtualTime.
+  std::function<void(jaus::rt::TimePoint until)> wait;
+};
+
 // A message addressed to the OCU component.
 struct Received {
   jaus::Header header;
@@ -74,6 +94,10 @@ class OcuSession {
   // is already in use".
   static jaus::Expected<std::unique_ptr<OcuSession>> open(SessionOptions options,
                                                          boost::asio::io_context* io = nullptr);
+  // The same node on an injected link, clock and scheduler (options.to, bind
+  // and framing are the link's business and not used). Errors: an invalid
+  // address, an environment with something missing (invalid_argument).
+  static jaus::Expected<std::unique_ptr<OcuSession>> attach(SessionOptions options, SessionEnvironment environment);
   // Shuts the node down in order: subscriptions still open are terminated.
   ~OcuSession();
   OcuSession(const OcuSession&) = delete;
@@ -82,11 +106,14 @@ class OcuSession {
   const jaus::Address& self() const { return options_.self; }
   const SessionOptions& options() const { return options_; }
   OcuComponent& component() { return *component_; }
-  jaus::node::Node& node();
+  jaus::node::Node& node() { return *node_; }
+  jaus::rt::Clock& clock() { return *clock_; }
+  // Whether it was opened on UDP (open()) rather than attached.
+  bool on_udp() const { return io_ != nullptr; }
+  // Only for a session opened on UDP: its link, and what runs it (another
+  // session opened on it runs whenever this one does).
   jaus::transport::UdpLink& link();
-  jaus::rt::Clock& clock();
-  // What runs it: another session opened on it runs whenever this one does.
-  boost::asio::io_context& io_context() { return io_; }
+  boost::asio::io_context& io_context();
 
   // Sends from the OCU component; the datagram has left when this returns.
   template <class M>
@@ -105,16 +132,22 @@ class OcuSession {
   ListenerId watch(Watcher watcher);
   void unlisten(ListenerId id);
 
-  // Runs the io_context until `done()`, `limit` has passed or the session is
-  // interrupted. True when `done()`.
+  // Runs the io_context (or waits in the environment) until `done()`, `limit`
+  // has passed or a stop is requested. True when `done()`.
   bool run_until(const std::function<bool()>& done, jaus::rt::Duration limit);
   void run_for(jaus::rt::Duration limit) { run_until([] { return false; }, limit); }
 
-  // SIGINT and SIGTERM interrupt the session (commands then clean up: release
-  // control, terminate service connections).
+  // Interrupts what the session is waiting for, now and later (commands then
+  // clean up: release control, terminate service connections). From any
+  // thread, a signal handler too: a waiting run_until() sees it within 100 ms
+  // on UDP (at once when called from the loop, e.g. by an asio signal_set).
+  void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
+  void interrupt() { request_stop(); }
+  bool interrupted() const { return interrupted_.load(std::memory_order_relaxed); }
+  // Deprecated, for jaus-conform until it handles its signals itself:
+  // SIGINT and SIGTERM request a stop. Applications install their own
+  // handler (jausctl: ocu_command.cpp) and call request_stop().
   void stop_on_signals();
-  void interrupt() { interrupted_ = true; }
-  bool interrupted() const { return interrupted_; }
 
   // The first message from `from` (255s match any ID) with one of `codes`
   // (any code when empty). Errors: timeout ("no reply from 1.1.33.1 within
@@ -129,18 +162,27 @@ class OcuSession {
   }
 
  private:
-  OcuSession(SessionOptions options, boost::asio::io_context* io);
+  explicit OcuSession(SessionOptions options);
+  static std::optional<jaus::Error> check_address(const jaus::Address& self);
+  void add_ocu_component();
+  void receive_packet(std::span<const std::uint8_t> bytes);  // an attached session's link
   void observe(const jaus::PacketView& packet);
-  void arm_signals();
   void deliver(const Received& message);
 
   SessionOptions options_;
+  // On UDP: the io_context (owned_io_ when the caller gave none) and the host.
   std::unique_ptr<boost::asio::io_context> owned_io_;
-  boost::asio::io_context& io_;
+  boost::asio::io_context* io_ = nullptr;
   std::unique_ptr<jaus::host::NodeHost> host_;
+  struct Signals;  // stop_on_signals(), deprecated
+  std::unique_ptr<Signals> signals_;
+  // Attached: the environment and the node (declared after it: gone first).
+  SessionEnvironment environment_;
+  std::unique_ptr<jaus::node::Node> own_node_;
+  jaus::node::Node* node_ = nullptr;
+  jaus::rt::Clock* clock_ = nullptr;
   OcuComponent* component_ = nullptr;
-  std::optional<boost::asio::signal_set> signals_;
-  bool interrupted_ = false;
+  std::atomic<bool> interrupted_ = false;
   ListenerId last_id_ = 0;
   std::map<ListenerId, Listener> listeners_;
   std::map<ListenerId, Watcher> watchers_;

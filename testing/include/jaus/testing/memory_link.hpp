@@ -1,0 +1,124 @@
+// Nodes in one process, joined as a network would join them, for tests and
+// examples under virtual time (or any injected scheduler): each node
+// transmits on its own MemoryLink of one MemoryNetwork, and a packet reaches
+// the links of the JAUS nodes its destination names (255: every one but the
+// sender's) `latency` later, through the scheduler, never during transmit().
+//
+//   rt::VirtualTime time;
+//   testing::MemoryNetwork network(time, time);
+//   auto& link = network.attach(1, 1);
+//   node::Node node(config, time, time, link);   // config: subsystem 1, node 1
+//   link.deliver_to(node);
+//
+// The network outlives its links, and the nodes and sessions they deliver to
+// disconnect (on_receive({})) or outlive the packets still in flight.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "jaus/base/time.hpp"
+#include "jaus/core/header.hpp"
+#include "jaus/node/node.hpp"
+
+namespace jaus::testing {
+
+class MemoryNetwork;
+
+class MemoryLink final : public node::Link {
+ public:
+  using Receiver = std::function<void(std::span<const std::uint8_t> packet)>;
+
+  // Where the packets that reach this link go: the node's receive_bytes(),
+  // or whatever stands in front of a node (an OCU session that watches every
+  // packet). Empty: they are dropped.
+  void deliver_to(node::Node& node) {
+    receiver_ = [&node](std::span<const std::uint8_t> packet) { node.receive_bytes(packet); };
+  }
+  void on_receive(Receiver receiver) { receiver_ = std::move(receiver); }
+
+  // The cable pulled (false): nothing leaves or arrives, in flight included.
+  void set_connected(bool connected) { connected_ = connected; }
+  bool connected() const { return connected_; }
+
+  std::uint8_t subsystem() const { return subsystem_; }
+  std::uint8_t node() const { return node_; }
+  std::uint64_t packets_sent() const { return sent_; }
+  std::uint64_t packets_received() const { return received_; }
+
+  // node::Link.
+  void transmit(const Header& header, std::span<const std::uint8_t> packet) override;
+
+ private:
+  friend class MemoryNetwork;
+  MemoryLink(MemoryNetwork& network, std::uint8_t subsystem, std::uint8_t node)
+      : network_(network), subsystem_(subsystem), node_(node) {}
+  void arrive(std::span<const std::uint8_t> packet) {
+    if (!connected_ || !receiver_) return;
+    ++received_;
+    receiver_(packet);
+  }
+  bool reached_by(const Address& destination) const {
+    return (destination.subsystem == subsystem_ || destination.subsystem == Address::kBroadcast) &&
+           (destination.node == node_ || destination.node == Address::kBroadcast);
+  }
+
+  MemoryNetwork& network_;
+  std::uint8_t subsystem_;
+  std::uint8_t node_;
+  bool connected_ = true;
+  Receiver receiver_;
+  std::uint64_t sent_ = 0;
+  std::uint64_t received_ = 0;
+};
+
+class MemoryNetwork {
+ public:
+  // latency 0: a packet arrives once the current handler has returned.
+  MemoryNetwork(rt::Clock& clock, rt::Scheduler& scheduler, rt::Duration latency = {})
+      : clock_(clock), scheduler_(scheduler), latency_(latency) {}
+  MemoryNetwork(const MemoryNetwork&) = delete;
+  MemoryNetwork& operator=(const MemoryNetwork&) = delete;
+
+  // The link of JAUS node `subsystem`.`node`, valid as long as the network.
+  MemoryLink& attach(std::uint8_t subsystem, std::uint8_t node) {
+    links_.push_back(std::unique_ptr<MemoryLink>(new MemoryLink(*this, subsystem, node)));
+    return *links_.back();
+  }
+
+  rt::Duration latency() const { return latency_; }
+  void set_latency(rt::Duration latency) { latency_ = latency; }
+
+ private:
+  friend class MemoryLink;
+
+  void carry(const MemoryLink& from, const Header& header, std::span<const std::uint8_t> packet) {
+    std::shared_ptr<const std::vector<std::uint8_t>> bytes;
+    for (const auto& link : links_) {
+      if (link.get() == &from || !link->reached_by(header.destination)) continue;
+      if (!bytes) bytes = std::make_shared<const std::vector<std::uint8_t>>(packet.begin(), packet.end());
+      // Packets already in flight when the network goes are dropped.
+      std::weak_ptr<const char> alive = alive_;
+      scheduler_.call_at(clock_.now() + latency_, [alive, to = link.get(), bytes] {
+        if (!alive.expired()) to->arrive(*bytes);
+      });
+    }
+  }
+
+  rt::Clock& clock_;
+  rt::Scheduler& scheduler_;
+  rt::Duration latency_;
+  std::vector<std::unique_ptr<MemoryLink>> links_;
+  std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);
+};
+
+inline void MemoryLink::transmit(const Header& header, std::span<const std::uint8_t> packet) {
+  if (!connected_) return;
+  ++sent_;
+  network_.carry(*this, header, packet);
+}
+
+}  // namespace jaus::testing
