@@ -1,8 +1,11 @@
 // `jausctl discover` against a live node: subsystem, node and components with
-// identification and services, in JSON and as a table.
+// identification and services, in JSON and as a table (in process under
+// virtual time, virtual_fixture.hpp); every node given with --to, and nobody
+// there, on loopback sockets (ocu_fixture.hpp).
 #include <nlohmann/json.hpp>
 
 #include "ocu_fixture.hpp"
+#include "virtual_fixture.hpp"
 
 namespace jausctl::test {
 namespace {
@@ -19,7 +22,7 @@ bool has_code(const nlohmann::json& codes, const std::string& code) {
   return false;
 }
 
-TEST_F(OcuTest, DiscoverFindsTheSubsystemNodeAndComponentsWithIdentificationAndServices) {
+TEST_F(VirtualOcuTest, DiscoverFindsTheSubsystemNodeAndComponentsWithIdentificationAndServices) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   ASSERT_EQ(ocu::run_discover(*ocu, {1s, true}, io()), kExitOk) << err.str();
@@ -60,7 +63,7 @@ TEST_F(OcuTest, DiscoverFindsTheSubsystemNodeAndComponentsWithIdentificationAndS
   EXPECT_EQ((*global_pose)["presence_vector"], PoseSensor::kAvailable);
 }
 
-TEST_F(OcuTest, DiscoverPrintsATable) {
+TEST_F(VirtualOcuTest, DiscoverPrintsATable) {
   auto ocu = open_ocu();
   ASSERT_TRUE(ocu);
   ASSERT_EQ(ocu::run_discover(*ocu, {1s, false}, io()), kExitOk) << err.str();
