@@ -10,11 +10,12 @@
 
 #include "ocu/ocu_commands.hpp"
 #include "jaus/ocu/session.hpp"
+#include "command_output.hpp"
 #include "target_node.hpp"
 
 namespace jausctl::test {
 
-class OcuTest : public ::testing::Test {
+class OcuTest : public ::testing::Test, public CommandOutput {
  protected:
   void SetUp() override { start_target({}); }
 
@@ -56,19 +57,9 @@ class OcuTest : public ::testing::Test {
     poll(pollers_.emplace_back(context), std::move(condition), std::move(action));
   }
 
-  ocu::CommandIo io() { return ocu::CommandIo{out, err}; }
-  bool out_has(const std::string& text) const { return out.str().find(text) != std::string::npos; }
-  std::vector<std::string> out_lines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(out.str());
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-  }
 
   boost::asio::io_context context;
   std::unique_ptr<TargetNode> target;
-  std::ostringstream out;
-  std::ostringstream err;
 
  private:
   void poll(boost::asio::steady_timer& timer, std::function<bool()> condition, std::function<void()> action) {

@@ -17,6 +17,7 @@
 #include "jaus/testing/memory_link.hpp"
 #include "jaus/testing/virtual_time.hpp"
 #include "ocu/ocu_commands.hpp"
+#include "command_output.hpp"
 #include "target_node.hpp"
 
 namespace jausctl::test {
@@ -73,7 +74,7 @@ class VirtualTarget {
   PoseSensor* pose_ = nullptr;
 };
 
-class VirtualOcuTest : public ::testing::Test {
+class VirtualOcuTest : public ::testing::Test, public CommandOutput {
  protected:
   void SetUp() override { start_target({}); }
 
@@ -112,20 +113,10 @@ class VirtualOcuTest : public ::testing::Test {
     });
   }
 
-  ocu::CommandIo io() { return ocu::CommandIo{out, err}; }
-  bool out_has(const std::string& text) const { return out.str().find(text) != std::string::npos; }
-  std::vector<std::string> out_lines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(out.str());
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-  }
 
   jaus::rt::VirtualTime time;
   jaus::testing::MemoryNetwork network{time, time};
   std::unique_ptr<VirtualTarget> target;
-  std::ostringstream out;
-  std::ostringstream err;
 };
 
 }  // namespace jausctl::test
