@@ -175,7 +175,8 @@ std::optional<Issue> check_components(const JausdConfig& c, const SourceLines& l
       return Issue{spec.line, "component id " + std::to_string(spec.id) + " is the " + std::string(owner->name) +
                                   "'s (" + spec.kind + " has RA id " + std::to_string(kind->default_id) + ")"};
     }
-    if (auto problem = jaus::host::check_component_options(spec)) return Issue{problem->line, problem->what};
+    if (auto checked = jaus::host::check_component_options(spec); !checked)
+      return Issue{checked.error().line, checked.error().what};
     const auto [it, inserted] = seen.emplace(std::pair<int, int>{spec.id, spec.instance}, spec.line);
     if (!inserted)
       return Issue{spec.line, "duplicate component id " + std::to_string(spec.id) + " instance " +

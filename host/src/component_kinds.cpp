@@ -25,15 +25,16 @@ const ComponentKind* find_component_kind(std::string_view name) {
   return nullptr;
 }
 
-std::optional<Error> add_component_kind(ComponentKind kind) {
-  if (kind.name.empty()) return make_error(ErrorCode::invalid_argument, "a component kind needs a name");
+Expected<void> add_component_kind(ComponentKind kind) {
+  if (kind.name.empty()) return unexpected(make_error(ErrorCode::invalid_argument, "a component kind needs a name"));
   if (find_component_kind(kind.name))
-    return make_error(ErrorCode::invalid_argument, "component kind '" + std::string(kind.name) + "' already exists");
+    return unexpected(
+        make_error(ErrorCode::invalid_argument, "component kind '" + std::string(kind.name) + "' already exists"));
   if (!kind.make)
-    return make_error(ErrorCode::invalid_argument,
-                      "component kind '" + std::string(kind.name) + "' cannot make components");
+    return unexpected(make_error(ErrorCode::invalid_argument,
+                                 "component kind '" + std::string(kind.name) + "' cannot make components"));
   kinds().push_back(std::move(kind));
-  return std::nullopt;
+  return {};
 }
 
 bool remove_component_kind(std::string_view name) {
@@ -78,13 +79,14 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
   return made;
 }
 
-std::optional<OptionProblem> check_component_options(const ComponentSpec& spec) {
+Expected<void, OptionProblem> check_component_options(const ComponentSpec& spec) {
   const ComponentKind* kind = find_component_kind(spec.kind);
-  if (!kind || !kind->check) return std::nullopt;
-  const std::optional<Error> error = kind->check(rt::KindOptions{kind->name, spec.options});
-  if (!error) return std::nullopt;
-  const auto line = spec.option_lines.find(error->field);
-  return OptionProblem{error->message(), line != spec.option_lines.end() ? line->second : spec.line};
+  if (!kind || !kind->check) return {};
+  const Expected<void> checked = kind->check(rt::KindOptions{kind->name, spec.options});
+  if (checked) return {};
+  const auto line = spec.option_lines.find(checked.error().field);
+  return unexpected(
+      OptionProblem{checked.error().message(), line != spec.option_lines.end() ? line->second : spec.line});
 }
 
 }  // namespace jaus::host

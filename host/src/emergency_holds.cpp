@@ -62,7 +62,7 @@ Expected<PersistedHolds> read_emergency_holds(const std::filesystem::path& file)
   return holds;
 }
 
-std::optional<Error> write_emergency_holds(const std::filesystem::path& file, const PersistedHolds& holds) {
+Expected<void> write_emergency_holds(const std::filesystem::path& file, const PersistedHolds& holds) {
   std::ostringstream text;
   text << "# jausd: Set Emergency holds, restored at start (docs/safety.md). Clear with SIGUSR1 to jausd.\n";
   for (const auto& [latch, hold] : holds) {
@@ -72,7 +72,7 @@ std::optional<Error> write_emergency_holds(const std::filesystem::path& file, co
   const std::string bytes = text.str();
   const auto temporary = std::filesystem::path(file.string() + ".new");
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return file_error(temporary, std::strerror(errno));
+  if (fd < 0) return unexpected(file_error(temporary, std::strerror(errno)));
   std::size_t written = 0;
   while (written < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
@@ -80,16 +80,16 @@ std::optional<Error> write_emergency_holds(const std::filesystem::path& file, co
     if (n <= 0) {
       const std::string why = std::strerror(errno);
       ::close(fd);
-      return file_error(temporary, why);
+      return unexpected(file_error(temporary, why));
     }
     written += static_cast<std::size_t>(n);
   }
   // On the disk before it replaces the old holds: a power cut keeps one or the other.
-  if (::fsync(fd) != 0 || ::close(fd) != 0) return file_error(temporary, std::strerror(errno));
+  if (::fsync(fd) != 0 || ::close(fd) != 0) return unexpected(file_error(temporary, std::strerror(errno)));
   std::error_code ec;
   std::filesystem::rename(temporary, file, ec);
-  if (ec) return file_error(file, ec.message());
-  return std::nullopt;
+  if (ec) return unexpected(file_error(file, ec.message()));
+  return {};
 }
 
 }  // namespace jaus::host

@@ -37,7 +37,7 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   for (const auto& spec : h->config_.components)
     if (const ComponentKind* kind = find_component_kind(spec.kind))
       for (const std::string_view interface : kind->needs)
-        if (auto error = h->provide(interface, io)) return unexpected(*error);
+        if (auto provided = h->provide(interface, io); !provided) return unexpected(provided.error());
   h->restore_emergency_holds();
   for (const auto& spec : h->config_.components) {
     auto component = make_component(spec, h->config_.settings, *h->node_, h->backends_);
@@ -141,10 +141,10 @@ void NodeHost::persist_emergency_holds() {
   for (const auto& [name, latch] : latches_)
     if (latch->held_by_jaus()) holds[name] = PersistedHold{latch->holders(), latch->overflowed()};
   if (holds == written_holds_) return;  // a local hold changed, or nothing did
-  if (auto error = write_emergency_holds(*holds_file_, holds)) {
+  if (auto written = write_emergency_holds(*holds_file_, holds); !written) {
     // Once per failing streak: a peer toggling Set/Clear Emergency on a broken disk writes one line, not one a toggle.
     if (!persisting_fails_)
-      log_(rt::LogLevel::error, "emergency holds not persisted: " + error->message() + " (retried at every change)");
+      log_(rt::LogLevel::error, "emergency holds not persisted: " + written.error().message() + " (retried at every change)");
     persisting_fails_ = true;
     return;
   }
@@ -178,10 +178,10 @@ const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) con
 // `clearpath_sim` the bridge's backends on one PlatformConnection (the
 // images stay the simulated cameras'; a camera mount or an arm joint not
 // mapped to the platform stays simulated).
-std::optional<Error> NodeHost::provide(std::string_view interface, boost::asio::io_context& io) {
+Expected<void> NodeHost::provide(std::string_view interface, boost::asio::io_context& io) {
   const bool model = config_.platform.kind == PlatformSettings::Kind::model;
   if (interface == components::Drive::kInterface || interface == components::PoseSource::kInterface) {
-    if (vehicle_ || clearpath_vehicle_) return std::nullopt;
+    if (vehicle_ || clearpath_vehicle_) return {};
     components::Drive* drive = nullptr;
     components::PoseSource* pose = nullptr;
     if (model) {
@@ -199,7 +199,7 @@ std::optional<Error> NodeHost::provide(std::string_view interface, boost::asio::
     backends_.offer<components::Drive>(drive);
     backends_.offer<components::PoseSource>(pose);
   } else if (interface == components::Cameras::kInterface) {
-    if (cameras_) return std::nullopt;
+    if (cameras_) return {};
     // The images are always the simulated cameras'; their mounts may be the platform's.
     cameras_ = std::make_unique<components::SimulatedCameras>(config_.cameras, runtime_);
     backends_.offer<components::Cameras>(cameras_.get());
@@ -211,17 +211,17 @@ std::optional<Error> NodeHost::provide(std::string_view interface, boost::asio::
     backends_.offer<components::FrameWorker>(frame_worker_.get());
     const auto& mounts = config_.platform.cameras;
     if (!model && !mounts.mounts.empty()) {
-      if (auto ok = bridge::check_clearpath_cameras_config(config_.cameras.cameras, mounts); !ok) return ok.error();
+      if (auto ok = bridge::check_clearpath_cameras_config(config_.cameras.cameras, mounts); !ok) return unexpected(ok.error());
       open_platform(io);
       clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*platform_, runtime_, *cameras_, mounts);
       backends_.offer<components::Cameras>(clearpath_cameras_.get());
       platform_interfaces_.push_back(components::Cameras::kInterface);
     }
   } else if (interface == components::ManipulatorArm::kInterface) {
-    if (arm_ || clearpath_arm_) return std::nullopt;
+    if (arm_ || clearpath_arm_) return {};
     const auto& joints = config_.platform.arm;
     if (!model && !joints.joints.empty()) {
-      if (auto ok = bridge::check_clearpath_arm_config(config_.arm, joints); !ok) return ok.error();
+      if (auto ok = bridge::check_clearpath_arm_config(config_.arm, joints); !ok) return unexpected(ok.error());
       open_platform(io);
       clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*platform_, runtime_, config_.arm, joints);
       backends_.offer<components::ManipulatorArm>(clearpath_arm_.get());
@@ -232,7 +232,7 @@ std::optional<Error> NodeHost::provide(std::string_view interface, boost::asio::
     }
   }
   // Anything else this platform does not have: the kind that needs it says so.
-  return std::nullopt;
+  return {};
 }
 
 // The Clearpath platform's client: a link that reopens with backoff and never

@@ -163,7 +163,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.components[6].id, 49);
   expect_default_hardware(c);
   // Options written in the default file are their defaults.
-  for (const auto& spec : c.components) EXPECT_FALSE(jaus::host::check_component_options(spec)) << spec.kind;
+  for (const auto& spec : c.components) EXPECT_TRUE(jaus::host::check_component_options(spec)) << spec.kind;
   const jaus::components::SimulatedVehicleConfig vehicle;
   EXPECT_EQ(c.vehicle.specifications.name, vehicle.specifications.name);
   EXPECT_EQ(c.vehicle.steering, vehicle.steering);

@@ -44,4 +44,23 @@ class Expected {
   std::variant<T, E> state_;
 };
 
+// Where nothing is returned: success, or the error. `return {};` succeeds;
+// `if (!result) ... result.error()`. The one style for every fallible
+// operation without a value (no optional<Error>, no bool and out-string).
+template <class E>
+class Expected<void, E> {
+ public:
+  Expected() = default;
+  Expected(Unexpected<E> u) : error_(std::move(u.error)), failed_(true) {}  // NOLINT: implicit by design
+
+  bool has_value() const { return !failed_; }
+  explicit operator bool() const { return has_value(); }
+  void value() const { assert(has_value()); }
+  const E& error() const { assert(!has_value()); return error_; }
+
+ private:
+  E error_{};
+  bool failed_ = false;
+};
+
 }  // namespace jaus

@@ -30,7 +30,7 @@ const std::vector<ComponentKind>& component_kinds();
 const ComponentKind* find_component_kind(std::string_view name);
 // A kind of one's own: an error (invalid_argument) when the name is empty or
 // taken, or it cannot make components.
-std::optional<Error> add_component_kind(ComponentKind kind);
+Expected<void> add_component_kind(ComponentKind kind);
 bool remove_component_kind(std::string_view name);  // false: no such kind
 // What components/ lists (generated from its CMake files).
 std::vector<const ComponentKind*> builtin_component_kinds();

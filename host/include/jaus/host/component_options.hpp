@@ -11,13 +11,13 @@
 
 namespace jaus::host {
 
-// The first problem with the spec's options, or nothing; `line` is the
+// The spec's options are good, or the first problem with them; `line` is the
 // option's line when the spec came from a file and knows it. A kind nobody
 // knows has no problem here (configuration readers refuse the kind itself).
 struct OptionProblem {
   std::string what;
   int line = 0;
 };
-std::optional<OptionProblem> check_component_options(const ComponentSpec& spec);
+Expected<void, OptionProblem> check_component_options(const ComponentSpec& spec);
 
 }  // namespace jaus::host

@@ -57,6 +57,6 @@ using PersistedHolds = std::map<std::string, PersistedHold>;
 Expected<PersistedHolds> read_emergency_holds(const std::filesystem::path& file);
 // Written whole to a temporary file, synced and renamed over `file`, so a
 // crash leaves the old holds or the new ones, never half.
-std::optional<Error> write_emergency_holds(const std::filesystem::path& file, const PersistedHolds& holds);
+Expected<void> write_emergency_holds(const std::filesystem::path& file, const PersistedHolds& holds);
 
 }  // namespace jaus::host

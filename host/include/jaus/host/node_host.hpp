@@ -125,7 +125,7 @@ class NodeHost {
   // Makes the backend of a hardware interface (rt::Backends names) once, on
   // the configured platform, and offers it in backends_; an interface the
   // platform lacks is left out (the kind that needs it says so).
-  std::optional<Error> provide(std::string_view interface, boost::asio::io_context& io);
+  Expected<void> provide(std::string_view interface, boost::asio::io_context& io);
   void open_platform(boost::asio::io_context& io);
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);

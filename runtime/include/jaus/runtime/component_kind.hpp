@@ -110,7 +110,7 @@ struct ComponentKind {
   bool one_per_node = false;
   // The first problem with the options (Error::field names the key), or
   // nothing; nothing is built. Empty: the kind has no options to check.
-  std::function<std::optional<Error>(const KindOptions&)> check;
+  std::function<Expected<void>(const KindOptions&)> check;
   std::function<Expected<std::unique_ptr<Component>>(const KindContext&)> make;
 };
 
@@ -169,11 +169,11 @@ inline Expected<bool> bool_option(const KindOptions& options, std::string_view k
 
 // check() of a kind whose options are read by `read` into its options struct.
 template <class Read>
-std::function<std::optional<Error>(const KindOptions&)> check_by(Read read) {
-  return [read](const KindOptions& options) -> std::optional<Error> {
+std::function<Expected<void>(const KindOptions&)> check_by(Read read) {
+  return [read](const KindOptions& options) -> Expected<void> {
     auto o = read(options);
-    if (!o) return o.error();
-    return std::nullopt;
+    if (!o) return unexpected(o.error());
+    return {};
   };
 }
 
