@@ -49,8 +49,10 @@ void send(CaseContext& c, const M& message, std::uint8_t priority = priority::kD
 template <class R>
 Expected<R> decode(CaseContext& c, const ocu::Received& received) {
   R report{};
-  if (auto error = wire::decode_payload_into(received.payload, report, c.session.options().dialect, kHeaderSize))
-    return unexpected(make_error(ErrorCode::malformed, std::string(R::name) + " does not decode: " + error->message()));
+  if (auto decoded = wire::decode_payload_into(received.payload, report, c.session.options().dialect, kHeaderSize);
+      !decoded)
+    return unexpected(
+        make_error(ErrorCode::malformed, std::string(R::name) + " does not decode: " + decoded.error().message()));
   return report;
 }
 

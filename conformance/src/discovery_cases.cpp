@@ -316,8 +316,8 @@ CaseOutcome configuration_event(CaseContext& c) {
       return fail("Event " + std::to_string(event_id) + " carries code " + std::to_string(event.report_code) +
                   ", not Report Configuration");
     msg::ReportConfiguration report{};
-    if (auto error = wire::decode_payload_into(event.report_message, report, c.session.options().dialect))
-      return fail("the Event's Report Configuration does not decode: " + error->message());
+    if (auto decoded = wire::decode_payload_into(event.report_message, report, c.session.options().dialect); !decoded)
+      return fail("the Event's Report Configuration does not decode: " + decoded.error().message());
     if (!listed(report, self.subsystem).contains(self))
       return fail("the Event's Report Configuration does not list the node manager " + self.to_string());
     if (last_sequence && event.sequence_number != static_cast<std::uint8_t>(*last_sequence + 1))

@@ -43,7 +43,7 @@ ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
     return r;
   }
   jaus::msg::ConfirmComponentControl confirm{};
-  if (jaus::wire::decode_payload_into(reply->payload, confirm, session_.options().dialect, jaus::kHeaderSize)) {
+  if (!jaus::wire::decode_payload_into(reply->payload, confirm, session_.options().dialect, jaus::kHeaderSize)) {
     r.outcome = Outcome::refused;
     r.response_code = 0xFF;
     r.error = jaus::make_error(jaus::ErrorCode::malformed, "Confirm Component Control from " + target_.to_string() +
@@ -178,7 +178,7 @@ std::optional<jaus::msg::ReportComponentControl> ControlHold::who_has_control(ja
                                 {jaus::msg::ReportComponentControl::code}, timeout);
   if (!reply) return std::nullopt;
   jaus::msg::ReportComponentControl report{};
-  if (jaus::wire::decode_payload_into(reply->payload, report, session_.options().dialect, jaus::kHeaderSize))
+  if (!jaus::wire::decode_payload_into(reply->payload, report, session_.options().dialect, jaus::kHeaderSize))
     return std::nullopt;
   return report;
 }

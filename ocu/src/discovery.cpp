@@ -15,7 +15,7 @@ jaus::Address node_manager(std::uint8_t subsystem, std::uint8_t node) {
 template <class M>
 std::optional<M> decode(std::span<const std::uint8_t> payload, jaus::wire::Dialect dialect) {
   M message{};
-  if (jaus::wire::decode_payload_into(payload, message, dialect, jaus::kHeaderSize)) return std::nullopt;
+  if (!jaus::wire::decode_payload_into(payload, message, dialect, jaus::kHeaderSize)) return std::nullopt;
   return message;
 }
 

@@ -14,10 +14,11 @@ jaus::Expected<std::size_t> save_report_image(const jaus::ocu::Received& report,
     return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument,
                                              "--save-image needs Report Image (0x4807) reports"));
   jaus::msg::ReportImage image;
-  if (auto error = jaus::wire::decode_payload_into(report.payload, image, jaus::wire::Dialect::ra, jaus::kHeaderSize))
+  if (auto decoded = jaus::wire::decode_payload_into(report.payload, image, jaus::wire::Dialect::ra, jaus::kHeaderSize);
+      !decoded)
     return jaus::unexpected(jaus::make_error(jaus::ErrorCode::malformed, "Report Image from " +
                                                                              report.header.source.to_string() +
-                                                                             " does not decode: " + error->message()));
+                                                                             " does not decode: " + decoded.error().message()));
   const std::string temporary = path + ".part";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);

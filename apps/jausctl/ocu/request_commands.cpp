@@ -23,10 +23,11 @@ jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& sessio
                                timeout);
   if (!reply) return jaus::unexpected(reply.error());
   jaus::msg::ReportComponentStatus report{};
-  if (auto error = jaus::wire::decode_payload_into(reply->payload, report, session.options().dialect, jaus::kHeaderSize))
+  if (auto decoded = jaus::wire::decode_payload_into(reply->payload, report, session.options().dialect, jaus::kHeaderSize);
+      !decoded)
     return jaus::unexpected(jaus::make_error(jaus::ErrorCode::malformed,
                                              "Report Component Status from " + reply->header.source.to_string() +
-                                                 " does not decode: " + error->message()));
+                                                 " does not decode: " + decoded.error().message()));
   return report;
 }
 

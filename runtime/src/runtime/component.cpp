@@ -266,10 +266,11 @@ void Component::dispatch(const Header& header, std::span<const std::uint8_t> pay
     });
     return;
   }
-  if (auto error = handler.invoke(header, payload, dialect)) {
+  if (auto handled = handler.invoke(header, payload, dialect); !handled) {
     ++counters_.decode_errors;
     log_repeated("malformed messages ignored", LogLevel::warn, [&] {
-      return "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " + error->message();
+      return "malformed " + std::string(handler.name) + " from " + header.source.to_string() + ": " +
+             handled.error().message();
     });
     return;
   }

@@ -59,9 +59,8 @@
   extern_or_not template Expected<std::size_t, Error> wire::encode_payload<Body>(const Body&,                  \
                                                                                  std::span<std::uint8_t>,      \
                                                                                  wire::Dialect);               \
-  extern_or_not template std::optional<Error> wire::decode_payload_into<Body>(std::span<const std::uint8_t>,   \
-                                                                              Body&, wire::Dialect,            \
-                                                                              std::size_t);
+  extern_or_not template Expected<void> wire::decode_payload_into<Body>(std::span<const std::uint8_t>, Body&,   \
+                                                                        wire::Dialect, std::size_t);
 #define JAUS_DECLARE_CODEC(Body) JAUS_CODEC_INSTANCES(extern, Body)
 
 namespace jaus {

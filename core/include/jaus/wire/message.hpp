@@ -70,8 +70,8 @@ Expected<std::size_t, Error> encode_payload(const M& message, std::span<std::uin
 // Decodes a payload into an existing object (reusing its storage: no heap
 // allocation for fixed-size messages). Every byte must be consumed.
 template <class M>
-std::optional<Error> decode_payload_into(std::span<const std::uint8_t> payload, M& out,
-                                         Dialect dialect = Dialect::ra, std::size_t base_offset = 0) {
+Expected<void> decode_payload_into(std::span<const std::uint8_t> payload, M& out, Dialect dialect = Dialect::ra,
+                                   std::size_t base_offset = 0) {
   if constexpr (detail::IsMessageOfOtherBody<M>) {
     return decode_payload_into<typename M::body_type>(payload, out, dialect, base_offset);
   } else {
@@ -82,15 +82,15 @@ std::optional<Error> decode_payload_into(std::span<const std::uint8_t> payload, 
       r.set_field({});
       r.fail(ErrorCode::trailing_bytes, std::to_string(r.remaining()) + " bytes");
     }
-    if (!r.failed()) return std::nullopt;
-    return r.error();
+    if (!r.failed()) return {};
+    return unexpected(r.error());
   }
 }
 
 template <class M>
 Expected<M, Error> decode_payload(std::span<const std::uint8_t> payload, Dialect dialect = Dialect::ra) {
   M out{};
-  if (auto error = decode_payload_into(payload, out, dialect)) return unexpected(std::move(*error));
+  if (auto decoded = decode_payload_into(payload, out, dialect); !decoded) return unexpected(decoded.error());
   return out;
 }
 

@@ -127,10 +127,10 @@ class Component {
         provider, M::code, rate_hz, presence_vector,
         [this, on_report = std::move(on_report)](const Header& h, std::span<const std::uint8_t> payload) {
           M report{};
-          if (auto error = wire::decode_payload_into(payload, report, wire::Dialect::ra, kHeaderSize)) {
+          if (auto decoded = wire::decode_payload_into(payload, report, wire::Dialect::ra, kHeaderSize); !decoded) {
             ++counters_.decode_errors;
             log(LogLevel::warn, "malformed " + std::string(M::name) + " from " + h.source.to_string() + ": " +
-                                    error->message());
+                                    decoded.error().message());
             return;
           }
           on_report(h, report);
@@ -193,12 +193,13 @@ class Component {
     if (access == Access::controller && ready_only) services_.accept_commands(M::code);
     handlers_[M::code] = Handler{access, ready_only, M::name,
                                  [fn = std::move(fn)](const Header& h, std::span<const std::uint8_t> payload,
-                                                      wire::Dialect dialect) -> std::optional<Error> {
+                                                      wire::Dialect dialect) -> Expected<void> {
                                    M message{};
-                                   if (auto error = wire::decode_payload_into(payload, message, dialect, kHeaderSize))
-                                     return error;
+                                   if (auto decoded = wire::decode_payload_into(payload, message, dialect, kHeaderSize);
+                                       !decoded)
+                                     return decoded;
                                    fn(h, message);
-                                   return std::nullopt;
+                                   return {};
                                  }};
   }
 
@@ -330,7 +331,7 @@ class Component {
   Environment& env() { return env_; }
 
  private:
-  using Invoke = std::function<std::optional<Error>(const Header&, std::span<const std::uint8_t>, wire::Dialect)>;
+  using Invoke = std::function<Expected<void>(const Header&, std::span<const std::uint8_t>, wire::Dialect)>;
   struct Handler {
     Access access;
     bool ready_only;
