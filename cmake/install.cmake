@@ -26,6 +26,19 @@ set(JAUS_PUBLIC_INCLUDE_DIRS
     components/global_pose_sensor components/velocity_state_sensor components/primitive_manipulator
     components/visual_sensor)
 
+# jaus::plugin_api: what a component plugin compiles against (the headers,
+# C++20, the header-only libraries they include) and nothing it links: jausd
+# carries the one copy of the libraries (cmake/jausPlugin.cmake).
+add_library(jaus_plugin_api INTERFACE)
+add_library(jaus::plugin_api ALIAS jaus_plugin_api)
+foreach(dir IN LISTS JAUS_PUBLIC_INCLUDE_DIRS)
+  target_include_directories(jaus_plugin_api INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/${dir}/include>)
+endforeach()
+target_include_directories(jaus_plugin_api INTERFACE $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated/include>)
+target_compile_features(jaus_plugin_api INTERFACE cxx_std_20)
+target_link_libraries(jaus_plugin_api INTERFACE Boost::boost nlohmann_json::nlohmann_json)
+set_target_properties(jaus_plugin_api PROPERTIES EXPORT_NAME plugin_api)
+
 set(JAUS_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/jaus)
 set(JAUS_INSTALL_DOCDIR ${CMAKE_INSTALL_DATAROOTDIR}/doc/jaus-node)
 
@@ -36,7 +49,7 @@ function(jaus_install_libraries)
     string(REGEX REPLACE "^jaus_" "" exported "${library}")
     set_target_properties(${library} PROPERTIES EXPORT_NAME ${exported})
   endforeach()
-  install(TARGETS ${JAUS_EXPORTED_LIBRARIES}
+  install(TARGETS ${JAUS_EXPORTED_LIBRARIES} jaus_plugin_api
           EXPORT jausTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -56,6 +69,7 @@ function(jaus_install_libraries)
   write_basic_package_version_file(${PROJECT_BINARY_DIR}/package/jausConfigVersion.cmake
                                    VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
   install(FILES ${PROJECT_BINARY_DIR}/package/jausConfig.cmake ${PROJECT_BINARY_DIR}/package/jausConfigVersion.cmake
+                ${PROJECT_SOURCE_DIR}/cmake/jausPlugin.cmake
           DESTINATION ${JAUS_INSTALL_CMAKEDIR})
 endfunction()
 

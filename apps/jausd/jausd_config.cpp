@@ -2,6 +2,7 @@
 
 #include "config_reader.hpp"
 #include "hardware_config.hpp"
+#include "plugins_config.hpp"
 
 #include "jaus/base/quoted.hpp"
 #include "jaus/host/component_options.hpp"
@@ -602,6 +603,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
           lines.manipulator = s.key_line;
           read_manipulator(s, c.manipulator);
         }},
+       {"plugins", [](const Entry&) {}},  // loaded before this read (load_config_string)
        {"components",
         [&](const Entry& e) {
           lines.components = e.key_line;
@@ -662,7 +664,24 @@ TextShape shape_of(std::string_view text) {
 
 }  // namespace
 
-ConfigResult load_config_string(std::string_view yaml, std::string_view name) {
+namespace {
+
+// The plugins come first, wherever the key is in the file: the components
+// that name their kinds are read and checked as the file's other keys.
+std::vector<jaus::host::LoadedPlugin> load_listed_plugins(const YAML::Node& root,
+                                                          const std::optional<std::filesystem::path>& folder) {
+  if (!root.IsMap()) return {};
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    const YAML::Node key = it->first;
+    if (key.IsScalar() && key.Scalar() == "plugins") return load_plugins(Entry{"plugins", line_of(key), it->second}, folder);
+  }
+  return {};
+}
+
+}  // namespace
+
+ConfigResult load_config_string(std::string_view yaml, std::string_view name,
+                                const std::optional<std::filesystem::path>& plugin_folder) {
   const std::string file(name);
   try {
     const TextShape shape = shape_of(yaml);
@@ -679,7 +698,9 @@ ConfigResult load_config_string(std::string_view yaml, std::string_view name) {
           config_error(file, shape.first_content_line,
                        "not a YAML mapping of settings: '" + shape.first_content.substr(0, 40) + "'"));
     SourceLines lines;
+    auto plugins = load_listed_plugins(root, plugin_folder);
     JausdConfig config = read_config(root, lines);
+    config.plugins = std::move(plugins);
     if (auto issue = check(config, lines)) return jaus::unexpected(config_error(file, issue->line, issue->what));
     return config;
   } catch (const Failure& f) {
@@ -708,7 +729,8 @@ ConfigResult load_config_file(const std::string& path) {
     if (text.size() > kMaxFileSize) return cannot_open("larger than 1 MiB, not a configuration file");
   }
   if (in.bad()) return cannot_open(std::strerror(errno));
-  return load_config_string(text, path);
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  return load_config_string(text, path, folder.empty() ? std::filesystem::path(".") : folder);
 }
 
 std::vector<std::string> posture_warnings(const JausdConfig& c) {

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <span>
@@ -20,6 +21,7 @@
 #include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/component_plugins.hpp"
 #include "jaus/host/emergency_holds.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
@@ -88,6 +90,9 @@ struct JausdConfig {
   ClearpathOptions clearpath;   // the bridge's mapping, for a Clearpath platform (platform_config.hpp)
   jaus::components::VisualSensorConfig cameras = default_cameras();  // the visual sensor's (hardware_config.hpp)
   jaus::components::ArmConfig manipulator = default_arm();           // the primitive manipulator's arm
+  // Loaded from `plugins:` (docs/plugins.md) before the components were
+  // read: their kinds are in jaus::host::component_kinds().
+  std::vector<jaus::host::LoadedPlugin> plugins;
   std::vector<ComponentSpec> components = default_components();
   std::string log_level = "info";      // debug, info, warn, error
   // Set Emergency to one moving component holds them all (vehicle) or only it (component).
@@ -117,10 +122,17 @@ using ConfigResult = jaus::Expected<JausdConfig>;
 std::vector<std::string> posture_warnings(const JausdConfig& config);
 
 // Reads and checks a configuration file (parse, ranges, then validate()).
+// The plugins it lists are loaded first (paths relative to its folder).
 // Never throws.
 ConfigResult load_config_file(const std::string& path);
-// The same for text in memory; `name` stands for the file in errors.
-ConfigResult load_config_string(std::string_view yaml, std::string_view name);
+// The same for text in memory; `name` stands for the file in errors. Plugins
+// are loaded relative to `plugin_folder`; without one a `plugins:` list is an
+// error (text from memory names no place to load code from).
+ConfigResult load_config_string(std::string_view yaml, std::string_view name,
+                                const std::optional<std::filesystem::path>& plugin_folder = std::nullopt);
+
+// One line per loaded plugin, its name, file and kinds, for the log at start.
+std::vector<std::string> plugin_summaries(const JausdConfig& config);
 
 // Every range and cross-field rule on the values (a loaded file passes; run
 // it again after command-line overrides). The first problem, or nothing.

@@ -1,0 +1,176 @@
+#include "jaus/host/component_plugins.hpp"
+
+#include <dlfcn.h>
+
+#include <cstring>
+#include <exception>
+#include <map>
+#include <set>
+#include <string_view>
+#include <system_error>
+#include <utility>
+
+#include "jaus/base/version.hpp"
+#include "jaus/host/component_kinds.hpp"
+#include "jaus/runtime/component_plugin.hpp"
+
+namespace jaus::host {
+
+namespace {
+
+struct PluginRegistry {
+  std::vector<LoadedPlugin> plugins;
+  std::map<std::string, std::string, std::less<>> kind_owner;  // kind -> "plugin 'name' (path)"
+};
+
+PluginRegistry& registry() {
+  static PluginRegistry r;
+  return r;
+}
+
+Error plugin_error(const std::filesystem::path& path, std::string what) {
+  return make_error(ErrorCode::invalid_argument, path.string() + ": " + std::move(what));
+}
+
+std::string text_or(const char* text, std::string_view fallback) { return text ? text : std::string(fallback); }
+
+// What an exception escaping the plugin said.
+std::string what_of(std::exception_ptr thrown) {
+  try {
+    std::rethrow_exception(std::move(thrown));
+  } catch (const std::exception& e) {
+    return std::string("threw: ") + e.what();
+  } catch (...) {
+    return "threw an exception that is not a std::exception";
+  }
+}
+
+// The plugin's check and make, with any exception turned into an error
+// naming the plugin and the kind: the plugin never unwinds into the host.
+void guard(ComponentKind& kind, const std::string& plugin) {
+  const std::string who = plugin + " kind '" + std::string(kind.name) + "'";
+  if (kind.check)
+    kind.check = [check = std::move(kind.check), who](const rt::KindOptions& options) -> Expected<void> {
+      try {
+        return check(options);
+      } catch (...) {
+        return unexpected(
+            make_error(ErrorCode::invalid_argument, who + " checking its options " + what_of(std::current_exception())));
+      }
+    };
+  kind.make = [make = std::move(kind.make),
+               who](const rt::KindContext& context) -> Expected<std::unique_ptr<rt::Component>> {
+    try {
+      return make(context);
+    } catch (...) {
+      return unexpected(
+          make_error(ErrorCode::invalid_argument, who + " making a component " + what_of(std::current_exception())));
+    }
+  };
+}
+
+// The entry point's description, checked field by field in the order the
+// fields may be trusted: the ABI number first (nothing else is read when it
+// differs), then the version, toolchain and layout.
+Expected<const rt::ComponentPluginInfo*> checked_info(const std::filesystem::path& path, void* handle) {
+  dlerror();
+  void* symbol = dlsym(handle, rt::kComponentPluginSymbol);
+  if (!symbol)
+    return unexpected(plugin_error(path, "not a jaus component plugin: no " + std::string(rt::kComponentPluginSymbol) +
+                                             " symbol (write JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp)"));
+  const auto entry = reinterpret_cast<rt::ComponentPluginEntry>(symbol);
+  const rt::ComponentPluginInfo* info = entry();
+  if (!info) return unexpected(plugin_error(path, std::string(rt::kComponentPluginSymbol) + " returned nothing"));
+  if (info->abi != rt::kComponentPluginAbi)
+    return unexpected(plugin_error(path, "plugin ABI " + std::to_string(info->abi) + ", this jausd loads ABI " +
+                                             std::to_string(rt::kComponentPluginAbi) +
+                                             ": rebuild the plugin against this jaus"));
+  const std::string name = text_or(info->name, "(unnamed)");
+  const std::string version = text_or(info->jaus_version, "(none)");
+  if (version != kVersion)
+    return unexpected(plugin_error(path, "plugin '" + name + "' was built against jaus " + version +
+                                             ", this jausd is " + std::string(kVersion) + ": rebuild it"));
+  const std::string toolchain = text_or(info->toolchain, "(none)");
+  if (toolchain != rt::kComponentPluginToolchain)
+    return unexpected(plugin_error(path, "plugin '" + name + "' was built for " + toolchain + ", this jausd for " +
+                                             rt::kComponentPluginToolchain + ": rebuild it with the same flags"));
+  if (info->component_kind_size != sizeof(rt::ComponentKind))
+    return unexpected(plugin_error(path, "plugin '" + name + "' sees a component kind of " +
+                                             std::to_string(info->component_kind_size) + " bytes, this jausd of " +
+                                             std::to_string(sizeof(rt::ComponentKind)) +
+                                             ": built against other headers; rebuild it"));
+  if (!info->name || !*info->name) return unexpected(plugin_error(path, "the plugin has no name"));
+  if (!info->kinds) return unexpected(plugin_error(path, "plugin '" + name + "' has no kinds function"));
+  return info;
+}
+
+}  // namespace
+
+const std::vector<LoadedPlugin>& loaded_component_plugins() { return registry().plugins; }
+
+Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& requested) {
+  std::error_code ec;
+  // Absolute, so dlopen never searches the library path for a bare name.
+  std::filesystem::path path = std::filesystem::absolute(requested, ec).lexically_normal();
+  if (ec) path = requested;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+  auto& r = registry();
+  for (const auto& loaded : r.plugins)
+    if (!ec && std::filesystem::weakly_canonical(loaded.path, ec) == canonical) return loaded;
+
+  // RTLD_NOW: an undefined symbol is an error here, not a crash later.
+  // Never closed: components of its kinds, and their code, live until exit.
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    // dlerror() names the file too ("<path>: undefined symbol: ..."): said once.
+    std::string why = text_or(dlerror(), "?");
+    if (why.starts_with(path.string() + ": ")) why.erase(0, path.string().size() + 2);
+    return unexpected(plugin_error(path, "cannot load the plugin: " + why));
+  }
+  const auto info = checked_info(path, handle);
+  if (!info) return unexpected(info.error());
+  const std::string name = (*info)->name;
+  const std::string who = "plugin '" + name + "' (" + path.string() + ")";
+
+  std::vector<ComponentKind> kinds;
+  try {
+    kinds = (*info)->kinds();
+  } catch (...) {
+    return unexpected(plugin_error(path, "plugin '" + name + "' listing its kinds " + what_of(std::current_exception())));
+  }
+  if (kinds.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' brings no component kind"));
+  // Every kind is checked before any is added: a plugin loads whole or not at all.
+  std::set<std::string_view> names;
+  for (const auto& kind : kinds) {
+    const std::string kind_name(kind.name);
+    if (kind.name.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' brings a kind without a name"));
+    if (!names.insert(kind.name).second)
+      return unexpected(plugin_error(path, "plugin '" + name + "' brings kind '" + kind_name + "' twice"));
+    if (find_component_kind(kind.name)) {
+      const auto owner = r.kind_owner.find(kind.name);
+      return unexpected(plugin_error(path, "plugin '" + name + "' brings kind '" + kind_name +
+                                               "', a name already taken by " +
+                                               (owner != r.kind_owner.end() ? owner->second : "a built-in kind")));
+    }
+    if (!kind.make)
+      return unexpected(plugin_error(path, "plugin '" + name + "' kind '" + kind_name + "' cannot make components"));
+  }
+  LoadedPlugin loaded{path, name, {}};
+  for (auto& kind : kinds) {
+    const std::string kind_name(kind.name);
+    guard(kind, who);
+    if (auto added = add_component_kind(std::move(kind)); !added) {
+      for (const auto& done : loaded.kinds) {
+        remove_component_kind(done);
+        r.kind_owner.erase(done);
+      }
+      return unexpected(plugin_error(path, "plugin '" + name + "': " + added.error().message()));
+    }
+    loaded.kinds.push_back(kind_name);
+    r.kind_owner.emplace(kind_name, who);
+  }
+  r.plugins.push_back(loaded);
+  return loaded;
+}
+
+}  // namespace jaus::host

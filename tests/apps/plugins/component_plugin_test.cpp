@@ -1,0 +1,164 @@
+// Component plugins in process: every way a plugin is refused, as an error
+// naming the file (never a crash), and a plugin's kind configured, checked
+// and hosted on a node under virtual time, answering a query.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "jaus/base/version.hpp"
+#include "jaus/host/component_kinds.hpp"
+#include "jaus/host/component_options.hpp"
+#include "jaus/host/component_plugins.hpp"
+#include "jaus/messages/platform_messages.hpp"
+#include "jaus/testing/memory_link.hpp"
+#include "jaus/testing/virtual_time.hpp"
+#include "jausd_config.hpp"
+
+namespace {
+
+using jaus::host::load_component_plugin;
+namespace fs = std::filesystem;
+
+// The error loading `path` gives (a failure when it loads).
+std::string refusal(const std::string& path) {
+  const auto loaded = load_component_plugin(path);
+  if (loaded) {
+    ADD_FAILURE() << path << " loaded";
+    return {};
+  }
+  EXPECT_EQ(loaded.error().code, jaus::ErrorCode::invalid_argument);
+  return loaded.error().message();
+}
+
+TEST(ComponentPlugins, APluginOfAnotherAbiIsRefusedOnItsFirstField) {
+  EXPECT_EQ(refusal(WRONG_ABI_PLUGIN), std::string(WRONG_ABI_PLUGIN) +
+                                           ": plugin ABI 2, this jausd loads ABI 1: rebuild the plugin against this jaus");
+}
+
+TEST(ComponentPlugins, APluginOfAnotherJausVersionIsRefused) {
+  EXPECT_EQ(refusal(WRONG_VERSION_PLUGIN), std::string(WRONG_VERSION_PLUGIN) +
+                                               ": plugin 'old_version' was built against jaus 0.0.1, this jausd is " +
+                                               std::string(jaus::kVersion) + ": rebuild it");
+}
+
+TEST(ComponentPlugins, ALibraryWithoutTheEntryPointIsNotAPlugin) {
+  EXPECT_EQ(refusal(NO_ENTRY_PLUGIN),
+            std::string(NO_ENTRY_PLUGIN) + ": not a jaus component plugin: no jaus_component_plugin symbol (write "
+                                           "JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp)");
+}
+
+TEST(ComponentPlugins, AnUndefinedSymbolIsRefusedWhenOpened) {
+  const std::string error = refusal(UNDEFINED_SYMBOL_PLUGIN);
+  EXPECT_EQ(error.rfind(std::string(UNDEFINED_SYMBOL_PLUGIN) + ": cannot load the plugin: ", 0), 0u) << error;
+  EXPECT_NE(error.find("undefined symbol"), std::string::npos) << error;
+  EXPECT_NE(error.find("jaus_test_defined_nowhere"), std::string::npos) << error;
+}
+
+TEST(ComponentPlugins, AKindNameAlreadyTakenIsRefusedAndNothingIsAdded) {
+  const auto kinds = jaus::host::component_kinds().size();
+  EXPECT_EQ(refusal(TAKEN_KIND_PLUGIN),
+            std::string(TAKEN_KIND_PLUGIN) +
+                ": plugin 'taken_kind' brings kind 'primitive_driver', a name already taken by a built-in kind");
+  EXPECT_EQ(jaus::host::component_kinds().size(), kinds);
+}
+
+TEST(ComponentPlugins, AKindsFunctionThatThrowsIsAnError) {
+  EXPECT_EQ(refusal(THROWING_KINDS_PLUGIN),
+            std::string(THROWING_KINDS_PLUGIN) +
+                ": plugin 'throwing_kinds' listing its kinds threw: no odometer board found");
+}
+
+TEST(ComponentPlugins, AMissingFileIsAnErrorNamingIt) {
+  const std::string missing = (fs::path(TEST_ODOMETER_PLUGIN).parent_path() / "libnowhere.so").string();
+  const std::string error = refusal(missing);
+  EXPECT_EQ(error.rfind(missing + ": cannot load the plugin: ", 0), 0u) << error;
+}
+
+// The operator's side of the query.
+class Operator final : public jaus::rt::Component {
+ public:
+  Operator(jaus::rt::ComponentConfig config, jaus::rt::Environment env) : Component(std::move(config), std::move(env)) {
+    handle<jaus::msg::ReportVelocityState>(
+        Access::anyone, false, [this](const jaus::Header&, const jaus::msg::ReportVelocityState& r) { report = r; });
+  }
+  void ask(const jaus::Address& to) { send(to, jaus::msg::QueryVelocityState{{0x0001}}); }
+  std::optional<jaus::msg::ReportVelocityState> report;
+};
+
+TEST(ComponentPlugins, APluginKindIsConfiguredCheckedAndHosted) {
+  const auto loaded = load_component_plugin(TEST_ODOMETER_PLUGIN);
+  ASSERT_TRUE(loaded) << loaded.error().message();
+  EXPECT_EQ(loaded->name, "test_odometer");
+  EXPECT_EQ(loaded->kinds, std::vector<std::string>{"plugin_odometer"});
+  // Loading the same file again adds nothing and is no error.
+  const auto again = load_component_plugin(TEST_ODOMETER_PLUGIN);
+  ASSERT_TRUE(again) << again.error().message();
+  EXPECT_EQ(again->kinds, loaded->kinds);
+
+  // In a configuration: listed relative to its folder, options checked with the option's line.
+  const fs::path folder = fs::path(TEST_ODOMETER_PLUGIN).parent_path();
+  const std::string head = "plugins: [libtest_odometer.so]\ncomponents:\n  - kind: node_manager\n"
+                           "  - kind: plugin_odometer\n    options:\n";
+  const auto bad = jausd::load_config_string(head + "      speed_mps: 11\n", "test.yaml", folder);
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message(), "test.yaml:6: plugin_odometer option 'speed_mps' must be a number 0..10, got '11'");
+  const auto config = jausd::load_config_string(head + "      speed_mps: 2.5\n", "test.yaml", folder);
+  ASSERT_TRUE(config) << config.error().message();
+  ASSERT_EQ(config->plugins.size(), 1u);
+  EXPECT_EQ(jausd::plugin_summaries(*config),
+            std::vector<std::string>{"plugin 'test_odometer' (" + std::string(TEST_ODOMETER_PLUGIN) +
+                                     "): component kinds plugin_odometer"});
+  // Text from memory names no folder: its plugin list is refused, nothing loaded.
+  const auto from_memory = jausd::load_config_string(head + "      speed_mps: 2.5\n", "memory.yaml");
+  ASSERT_FALSE(from_memory);
+  EXPECT_EQ(from_memory.error().message(),
+            "memory.yaml:1: 'plugins' are loaded only from a configuration file (jausd --config FILE)");
+
+  // Hosted: made as jausd makes it, on node 1.1, queried from node 1.2.
+  jaus::rt::VirtualTime time;
+  jaus::testing::MemoryNetwork network(time, time);
+  auto& robot_link = network.attach(1, 1);
+  auto& station_link = network.attach(1, 2);
+  jaus::node::NodeConfig robot_config, station_config;
+  station_config.node = 2;
+  jaus::node::Node robot(robot_config, time, time, robot_link);
+  jaus::node::Node station(station_config, time, time, station_link);
+  robot_link.deliver_to(robot);
+  station_link.deliver_to(station);
+  const auto& spec = config->components.at(1);
+  auto made = jaus::host::make_component(spec, jaus::host::ComponentSettings{}, robot);
+  ASSERT_TRUE(made) << made.error().message();
+  robot.add(std::move(*made));
+  jaus::rt::ComponentConfig operator_config;
+  operator_config.name = "operator";
+  operator_config.address = {1, 2, 40, 1};
+  auto& op = station.add_as(std::make_unique<Operator>(operator_config, station.environment()));
+  op.ask({1, 1, 42, 1});
+  ASSERT_TRUE(jaus::testing::run_until(time, [&] { return op.report.has_value(); }, std::chrono::seconds(1)));
+  ASSERT_TRUE(op.report->velocity_x_mps);
+  EXPECT_NEAR(*op.report->velocity_x_mps, 2.5, 0.01);
+}
+
+TEST(ComponentPlugins, AnExceptionFromAKindsCheckOrMakeIsAnErrorNamingThePluginAndKind) {
+  const auto loaded = load_component_plugin(THROWING_MAKER_PLUGIN);
+  ASSERT_TRUE(loaded) << loaded.error().message();
+  const std::string who = "plugin 'throwing_maker' (" + std::string(THROWING_MAKER_PLUGIN) + ") kind 'throwing_maker'";
+  jaus::host::ComponentSpec spec{"throwing_maker", 200, 1, 0, "", {{"explode", "yes"}}, 7, {}};
+  const auto checked = jaus::host::check_component_options(spec);
+  ASSERT_FALSE(checked);
+  EXPECT_EQ(checked.error().what, who + " checking its options threw: options exploded");
+  EXPECT_EQ(checked.error().line, 7);
+
+  jaus::rt::VirtualTime time;
+  jaus::testing::MemoryNetwork network(time, time);
+  auto& link = network.attach(1, 1);
+  jaus::node::Node robot(jaus::node::NodeConfig{}, time, time, link);
+  spec.options.clear();
+  const auto made = jaus::host::make_component(spec, jaus::host::ComponentSettings{}, robot);
+  ASSERT_FALSE(made);
+  EXPECT_EQ(made.error().message(), who + " making a component threw: device busy");
+}
+
+}  // namespace

@@ -1,0 +1,43 @@
+// A working plugin: kind `plugin_odometer` (option speed_mps 0..10) answers
+// Query Velocity State with the configured speed.
+#include "jaus/messages/platform_messages.hpp"
+#include "jaus/runtime/component_plugin.hpp"
+
+namespace {
+
+class PluginOdometer final : public jaus::rt::Component {
+ public:
+  PluginOdometer(jaus::rt::ComponentConfig config, jaus::rt::Environment env, double speed_mps)
+      : Component(std::move(config), std::move(env)) {
+    handle<jaus::msg::QueryVelocityState>(Access::anyone, false,
+                                          [this, speed_mps](const jaus::Header& header, const jaus::msg::QueryVelocityState&) {
+                                            jaus::msg::ReportVelocityState report;
+                                            report.velocity_x_mps = speed_mps;
+                                            send(header.source, report);
+                                          });
+  }
+};
+
+jaus::Expected<double> speed(const jaus::rt::KindOptions& options) {
+  return jaus::rt::number_option(options, "speed_mps", 0, 10, 1);
+}
+
+std::vector<jaus::rt::ComponentKind> kinds() {
+  return {jaus::rt::ComponentKind{
+      .name = "plugin_odometer",
+      .default_id = 42,
+      .options = {"speed_mps"},
+      .needs = {},
+      .moves_hardware = false,
+      .one_per_node = false,
+      .check = jaus::rt::check_by(speed),
+      .make = [](const jaus::rt::KindContext& k) -> jaus::Expected<std::unique_ptr<jaus::rt::Component>> {
+        const auto s = speed(k.options);
+        if (!s) return jaus::unexpected(s.error());
+        return std::unique_ptr<jaus::rt::Component>(std::make_unique<PluginOdometer>(k.config, k.env, *s));
+      }}};
+}
+
+}  // namespace
+
+JAUS_COMPONENT_PLUGIN("test_odometer", kinds)
