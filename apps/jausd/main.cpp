@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
                jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
   logger->info("configuration {}", source);
+  for (const auto& plugin : jausd::plugin_summaries(config)) logger->info("{}", plugin);
   for (const auto& warning : warnings) logger->warn("{}", warning);
   // Safety: NodeHost::run ends with every component's stop path run
   // (platform commanded to stop, the zero setpoint flushed), whether a stop
