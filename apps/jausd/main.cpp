@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
     logger->error("{}", host.error().message());
     return drain_logs_at_exit.exiting_with(kExitBadInput);
   }
-  const auto& link = (*host)->link();
+  const auto& link = *(*host)->udp_link();
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
                jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
   logger->info("configuration {}", source);

@@ -10,37 +10,65 @@
 
 namespace jaus::host {
 
-NodeHost::NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log)
-    : config_(std::move(config)), runtime_(io), log_(log ? std::move(log) : rt::silent_log()) {
+NodeHost::NodeHost(HostConfig config, rt::LogFn log)
+    : config_(std::move(config)), log_(log ? std::move(log) : rt::silent_log()) {
   config_.link.subsystem = config_.node.subsystem;
   config_.link.node = config_.node.node;
 }
 
 Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asio::io_context& io, rt::LogFn log) {
-  std::unique_ptr<NodeHost> h(new NodeHost(std::move(config), io, std::move(log)));
-  auto link = transport::UdpLink::open(io, h->runtime_, h->runtime_, h->config_.link, h->log_);
+  std::unique_ptr<NodeHost> h(new NodeHost(std::move(config), std::move(log)));
+  h->io_ = &io;
+  h->asio_runtime_ = std::make_unique<transport::AsioRuntime>(io);
+  h->clock_ = h->asio_runtime_.get();
+  h->scheduler_ = h->asio_runtime_.get();
+  auto link = transport::UdpLink::open(io, *h->asio_runtime_, *h->asio_runtime_, h->config_.link, h->log_);
   if (!link) return unexpected(link.error());
-  h->link_ = std::move(*link);
-  h->node_ = std::make_unique<node::Node>(h->config_.node, h->runtime_, h->runtime_, *h->link_, h->log_);
-  h->link_->on_packet([host = h.get()](const PacketView& packet, transport::Framing, rt::SenderStanding standing) {
+  h->udp_link_ = std::move(*link);
+  h->make_node(*h->udp_link_);
+  h->udp_link_->on_packet([host = h.get()](const PacketView& packet, transport::Framing, rt::SenderStanding standing) {
     if (host->watcher_) host->watcher_(packet);
     host->node_->receive(packet, standing);
   });
   // No hijack (issue 28): an ID that holds control, an emergency or a
   // service connection here keeps its route to its host while it does. The
   // link asks only on a claim from another address, never per datagram.
-  h->link_->pin_routes_while([node = h->node_.get()](std::uint8_t subsystem, std::uint8_t node_id) {
+  h->udp_link_->pin_routes_while([node = h->node_.get()](std::uint8_t subsystem, std::uint8_t node_id) {
     return node->holds_state_for(subsystem, node_id);
   });
+  if (auto added = h->add_components(); !added) return unexpected(added.error());
+  h->udp_link_->start();
+  return h;
+}
+
+Expected<std::unique_ptr<NodeHost>> NodeHost::attach(HostConfig config, node::Link& link, rt::Clock& clock,
+                                                     rt::Scheduler& scheduler, rt::LogFn log) {
+  if (config.platform.kind == PlatformSettings::Kind::clearpath)
+    return unexpected(make_error(ErrorCode::invalid_argument,
+                                 "a Clearpath platform at an endpoint needs an opened host (NodeHost::open, on an "
+                            "io_context); an attached host takes model or clearpath_sim"));
+  std::unique_ptr<NodeHost> h(new NodeHost(std::move(config), std::move(log)));
+  h->clock_ = &clock;
+  h->scheduler_ = &scheduler;
+  h->make_node(link);
+  if (auto added = h->add_components(); !added) return unexpected(added.error());
+  return h;
+}
+
+void NodeHost::make_node(node::Link& link) {
+  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, link, log_);
+}
+
+Expected<void> NodeHost::add_components() {
   // The hardware the configured components need (each kind says which
   // interfaces), each made once on the configured platform.
-  for (const auto& spec : h->config_.components)
+  for (const auto& spec : config_.components)
     if (const ComponentKind* kind = find_component_kind(spec.kind))
       for (const std::string_view interface : kind->needs)
-        if (auto provided = h->provide(interface, io); !provided) return unexpected(provided.error());
-  h->restore_emergency_holds();
-  for (const auto& spec : h->config_.components) {
-    auto component = make_component(spec, h->config_.settings, *h->node_, h->backends_);
+        if (auto provided = provide(interface); !provided) return unexpected(provided.error());
+  restore_emergency_holds();
+  for (const auto& spec : config_.components) {
+    auto component = make_component(spec, config_.settings, *node_, backends_);
     if (!component) return unexpected(component.error());
     const ComponentKind& kind = *find_component_kind(spec.kind);  // made, so known
     if (!kind.needs.empty()) {
@@ -48,24 +76,23 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
         return std::find(kind.needs.begin(), kind.needs.end(), interface) != kind.needs.end();
       };
       // Before it starts: a hold restored from the file puts it in Emergency at once.
-      rt::EmergencyLatch& latch = h->latch_for(spec);
+      rt::EmergencyLatch& latch = latch_for(spec);
       (*component)->share_emergency(latch);
       // The platform's emergency flag mirrors the latch of what drives the vehicle.
-      if (needs(components::Drive::kInterface)) h->driver_latch_ = &latch;
+      if (needs(components::Drive::kInterface)) driver_latch_ = &latch;
       // Every component on the Clearpath platform is held by its e-stop.
-      const bool on_platform = std::any_of(h->platform_interfaces_.begin(), h->platform_interfaces_.end(), needs);
-      if (on_platform && std::find(h->platform_latches_.begin(), h->platform_latches_.end(), &latch) ==
-                             h->platform_latches_.end())
-        h->platform_latches_.push_back(&latch);
+      const bool on_platform = std::any_of(platform_interfaces_.begin(), platform_interfaces_.end(), needs);
+      if (on_platform &&
+          std::find(platform_latches_.begin(), platform_latches_.end(), &latch) == platform_latches_.end())
+        platform_latches_.push_back(&latch);
     }
-    h->node_->add(std::move(*component));
+    node_->add(std::move(*component));
   }
-  h->persist_emergency_holds();
-  if (h->clearpath_vehicle_)
-    h->platform_emergency_ = std::make_unique<bridge::PlatformEmergencyMirror>(
-        *h->clearpath_vehicle_, h->platform_latches_, h->driver_latch_);
-  h->link_->start();
-  return h;
+  persist_emergency_holds();
+  if (clearpath_vehicle_)
+    platform_emergency_ =
+        std::make_unique<bridge::PlatformEmergencyMirror>(*clearpath_vehicle_, platform_latches_, driver_latch_);
+  return {};
 }
 
 // ---- emergency holds (emergency_holds.hpp) -------------------------------------
@@ -128,7 +155,7 @@ bool NodeHost::latch_configured(const std::string& name) const {
 void NodeHost::schedule_persisting() {
   if (!holds_file_ || persist_posted_) return;
   persist_posted_ = true;
-  runtime_.post([this, alive = std::weak_ptr<char>(alive_)] {
+  scheduler_->post([this, alive = std::weak_ptr<char>(alive_)] {
     if (alive.expired()) return;
     persist_posted_ = false;
     persist_emergency_holds();
@@ -178,18 +205,18 @@ const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) con
 // `clearpath_sim` the bridge's backends on one PlatformConnection (the
 // images stay the simulated cameras'; a camera mount or an arm joint not
 // mapped to the platform stays simulated).
-Expected<void> NodeHost::provide(std::string_view interface, boost::asio::io_context& io) {
+Expected<void> NodeHost::provide(std::string_view interface) {
   const bool model = config_.platform.kind == PlatformSettings::Kind::model;
   if (interface == components::Drive::kInterface || interface == components::PoseSource::kInterface) {
     if (vehicle_ || clearpath_vehicle_) return {};
     components::Drive* drive = nullptr;
     components::PoseSource* pose = nullptr;
     if (model) {
-      vehicle_ = std::make_unique<components::SimulatedVehicle>(config_.vehicle, runtime_);
+      vehicle_ = std::make_unique<components::SimulatedVehicle>(config_.vehicle, *clock_);
       drive = vehicle_.get();
       pose = vehicle_.get();
     } else {
-      open_platform(io);
+      open_platform();
       clearpath_vehicle_ = std::make_unique<bridge::ClearpathVehicle>(*platform_, config_.platform.vehicle);
       drive = clearpath_vehicle_.get();
       pose = clearpath_vehicle_.get();
@@ -201,19 +228,25 @@ Expected<void> NodeHost::provide(std::string_view interface, boost::asio::io_con
   } else if (interface == components::Cameras::kInterface) {
     if (cameras_) return {};
     // The images are always the simulated cameras'; their mounts may be the platform's.
-    cameras_ = std::make_unique<components::SimulatedCameras>(config_.cameras, runtime_);
+    cameras_ = std::make_unique<components::SimulatedCameras>(config_.cameras, *clock_);
     backends_.offer<components::Cameras>(cameras_.get());
     backends_.offer<components::Cameras>("camera_images", cameras_.get());
-    // Frames are encoded on a thread of their own; boost::asio::post (not
-    // AsioRuntime::post, which is the loop's alone) brings each back.
-    frame_worker_ = std::make_unique<components::ThreadFrameWorker>(
-        [&io](std::function<void()> fn) { boost::asio::post(io, std::move(fn)); });
+    if (io_ != nullptr) {
+      // Frames are encoded on a thread of their own; boost::asio::post (not
+      // AsioRuntime::post, which is the loop's alone) brings each back.
+      auto thread = std::make_unique<components::ThreadFrameWorker>(
+          [io = io_](std::function<void()> fn) { boost::asio::post(*io, std::move(fn)); });
+      frame_thread_ = thread.get();
+      frame_worker_ = std::move(thread);
+    } else {
+      frame_worker_ = std::make_unique<components::ScheduledFrameWorker>(*scheduler_, *clock_);
+    }
     backends_.offer<components::FrameWorker>(frame_worker_.get());
     const auto& mounts = config_.platform.cameras;
     if (!model && !mounts.mounts.empty()) {
       if (auto ok = bridge::check_clearpath_cameras_config(config_.cameras.cameras, mounts); !ok) return unexpected(ok.error());
-      open_platform(io);
-      clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*platform_, runtime_, *cameras_, mounts);
+      open_platform();
+      clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*platform_, *scheduler_, *cameras_, mounts);
       backends_.offer<components::Cameras>(clearpath_cameras_.get());
       platform_interfaces_.push_back(components::Cameras::kInterface);
     }
@@ -222,12 +255,12 @@ Expected<void> NodeHost::provide(std::string_view interface, boost::asio::io_con
     const auto& joints = config_.platform.arm;
     if (!model && !joints.joints.empty()) {
       if (auto ok = bridge::check_clearpath_arm_config(config_.arm, joints); !ok) return unexpected(ok.error());
-      open_platform(io);
-      clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*platform_, runtime_, config_.arm, joints);
+      open_platform();
+      clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*platform_, *scheduler_, config_.arm, joints);
       backends_.offer<components::ManipulatorArm>(clearpath_arm_.get());
       platform_interfaces_.push_back(components::ManipulatorArm::kInterface);
     } else {
-      arm_ = std::make_unique<components::SimulatedArm>(config_.arm, runtime_);
+      arm_ = std::make_unique<components::SimulatedArm>(config_.arm, *clock_);
       backends_.offer<components::ManipulatorArm>(arm_.get());
     }
   }
@@ -238,7 +271,7 @@ Expected<void> NodeHost::provide(std::string_view interface, boost::asio::io_con
 // The Clearpath platform's client: a link that reopens with backoff and never
 // fails the node (a missing port is a link down, which the components report
 // as Failure), or the simulated platform in this process.
-void NodeHost::open_platform(boost::asio::io_context& io) {
+void NodeHost::open_platform() {
   if (platform_) return;
   const auto& p = config_.platform;
   if (p.kind == PlatformSettings::Kind::clearpath_sim) {
@@ -246,20 +279,21 @@ void NodeHost::open_platform(boost::asio::io_context& io) {
     loopback.platform = p.sim;
     loopback.client = p.client;
     loopback.period = std::chrono::milliseconds(5);
-    platform_client_ = std::make_unique<clearpath::sim::LoopbackClient>(runtime_, runtime_, loopback);
+    platform_client_ = std::make_unique<clearpath::sim::LoopbackClient>(*clock_, *scheduler_, loopback);
     log_(rt::LogLevel::info, "Clearpath platform: simulated in process");
   } else {
-    auto link = std::make_unique<clearpath::ClearpathLink>(io, runtime_, runtime_, p.endpoint, p.client);
+    // attach() refuses a real platform: an opened host has the io_context.
+    auto link = std::make_unique<clearpath::ClearpathLink>(*io_, *clock_, *scheduler_, p.endpoint, p.client);
     link->start();
     platform_link_ = link.get();
     platform_client_ = std::move(link);
   }
-  platform_ = std::make_unique<bridge::PlatformConnection>(*platform_client_, runtime_, log_);
+  platform_ = std::make_unique<bridge::PlatformConnection>(*platform_client_, *clock_, log_);
 }
 
 NodeHost::~NodeHost() {
   stop("host destroyed");
-  if (frame_worker_) frame_worker_->stop();  // a host that never fully opened: before its cameras go
+  if (frame_thread_ != nullptr) frame_thread_->stop();  // a host that never fully opened: before its cameras go
 }
 
 namespace {
@@ -318,20 +352,24 @@ rt::ComponentConfig NodeHost::component_config(std::string name, std::uint8_t co
 }
 
 void NodeHost::stop(const std::string& why) {
-  if (stopped_ || !node_ || !link_) return;  // stopped, or never fully opened
+  if (stopped_ || !node_) return;  // stopped, or never fully opened
   stopped_ = true;
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
   // No frame is wanted after Shutdown: the worker's thread ends here, before
   // anything it was given could go.
-  if (frame_worker_) frame_worker_->stop();
+  if (frame_thread_ != nullptr) frame_thread_->stop();
   persist_emergency_holds();  // a change still waiting for the loop
   // ...and the stop's zero setpoint goes out now, before a process exits
   // without running its io_context again.
   if (platform_link_ != nullptr) platform_link_->flush();
   const auto& n = node_->counters();
-  const auto& l = link_->counters();
+  if (!udp_link_) {
+    log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(n.delivered) + " messages delivered");
+    return;
+  }
+  const auto& l = udp_link_->counters();
   std::string reasons;
   for (std::size_t r = 0; r < l.dropped.size(); ++r)
     if (l.dropped[r] > 0)
@@ -342,7 +380,7 @@ void NodeHost::stop(const std::string& why) {
                                std::to_string(l.dropped_total()) + " dropped" + reasons + ", " +
                                std::to_string(n.delivered) + " messages delivered, " +
                                std::to_string(l.datagrams_sent) + " datagrams out");
-  link_->close();
+  udp_link_->close();
 }
 
 }  // namespace jaus::host

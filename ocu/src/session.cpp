@@ -79,7 +79,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   s->host_ = std::move(*host);
   s->host_->watch([session = s.get()](const jaus::PacketView& packet) { session->observe(packet); });
   s->node_ = &s->host_->node();
-  s->clock_ = &s->host_->runtime();
+  s->clock_ = &s->host_->clock();
   s->add_ocu_component();
   return s;
 }
@@ -133,7 +133,7 @@ void OcuSession::receive_packet(std::span<const std::uint8_t> bytes) {
 
 jaus::transport::UdpLink& OcuSession::link() {
   if (!host_) throw std::logic_error("OcuSession::link(): an attached session has no UDP link");
-  return host_->link();
+  return *host_->udp_link();
 }
 
 boost::asio::io_context& OcuSession::io_context() {

@@ -358,7 +358,7 @@ class BrokenNode {
                       DriverFlaw::keeps_effort_on_takeover);
     add<BrokenArm>("arm keeps moving on release", kArmKeepsMovingOnRelease, ArmFlaw::keeps_moving_on_release);
   }
-  transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
+  transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
   host::NodeHost& host() { return *host_; }
 
  private:

@@ -137,7 +137,7 @@ class BrokenDiscoveryNode {
     host_->emplace<BrokenNodeManager>(host_->component_config("broken node manager", 1), host_->node(), flaw);
     host_->emplace<Worker>(host_->component_config("worker", kWorkerComponent));
   }
-  transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
+  transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
   host::NodeHost& host() { return *host_; }
 
  private:

@@ -50,7 +50,7 @@ class KindNode {
     if (!host) throw std::runtime_error(host.error().message());
     host_ = std::move(*host);
   }
-  transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
+  transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
   host::NodeHost& host() { return *host_; }
 
  private:

@@ -16,6 +16,9 @@
 #include "jaus/components/primitive_manipulator_kind.hpp"
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
+#include "jaus/testing/memory_link.hpp"
+#include "jaus/testing/virtual_time.hpp"
+#include "jaus/wire/message.hpp"
 
 #include <unistd.h>
 
@@ -27,6 +30,8 @@
 
 namespace jaus::host {
 namespace {
+
+using namespace std::chrono_literals;
 
 constexpr std::uint32_t kLoopback = 0x7F000001;
 
@@ -242,7 +247,7 @@ TEST(NodeHost, HostsConfiguredAndAddedComponentsAndStopsThemFirst) {
   ASSERT_TRUE(host) << host.error().message();
   NodeHost& h = **host;
   EXPECT_EQ(h.node().local_components().size(), component_kinds().size());
-  EXPECT_NE(h.link().local_endpoint().port, 0);
+  EXPECT_NE(h.udp_link()->local_endpoint().port, 0);
 
   struct Extra : rt::Component {
     using Component::Component;
@@ -301,7 +306,7 @@ TEST(NodeHost, ABusyAddressIsOneIoError) {
   auto first = NodeHost::open(loopback_config(), io);
   ASSERT_TRUE(first) << first.error().message();
   HostConfig second_config = loopback_config();
-  second_config.link.bind = (*first)->link().local_endpoint();
+  second_config.link.bind = (*first)->udp_link()->local_endpoint();
   auto second = NodeHost::open(second_config, io);
   ASSERT_FALSE(second);
   EXPECT_EQ(second.error().code, ErrorCode::io);
@@ -363,7 +368,7 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   // Someone presses the platform's e-stop.
   auto* platform = dynamic_cast<clearpath::sim::LoopbackClient*>(h.platform_client());
   ASSERT_NE(platform, nullptr);
-  const auto press = [&](bool on) { platform->platform().press(clearpath::sim::HardwareInput::estop, on, h.runtime().now()); };
+  const auto press = [&](bool on) { platform->platform().press(clearpath::sim::HardwareInput::estop, on, h.clock().now()); };
   press(true);
   EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::emergency && pose->state() == rt::PrimaryStatus::emergency; }));
   press(false);
@@ -383,6 +388,107 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   EXPECT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready; }));
   EXPECT_EQ(platform->platform().vehicle().commanded_safety() & 0x08, 0);
   h.stop("test");
+}
+
+// An attached host: the same node and components on a memory link under
+// virtual time, no socket and no real clock; a tester at 2.1.40.1 on the same
+// network sends it what an OCU would.
+class AttachedHost : public ::testing::Test {
+ protected:
+  static constexpr Address kTester{2, 1, 40, 1};
+
+  std::unique_ptr<NodeHost> attach(HostConfig config) {
+    auto host = NodeHost::attach(std::move(config), host_link, time, time,
+                                 [this](rt::LogLevel, const std::string& l) { lines.push_back(l); });
+    if (!host) {
+      ADD_FAILURE() << host.error().message();
+      return nullptr;
+    }
+    host_link.deliver_to((*host)->node());
+    return std::move(*host);
+  }
+  template <class M>
+  void send(const Address& to, const M& message) {
+    Header header;
+    header.source = kTester;
+    header.destination = to;
+    std::vector<std::uint8_t> packet(kHeaderSize + kMaxPayloadSize);
+    const auto size = wire::encode_message(header, message, packet);
+    ASSERT_TRUE(size) << size.error().message();
+    packet.resize(*size);
+    header.command_code = M::code;
+    header.data_size = static_cast<std::uint16_t>(*size - kHeaderSize);
+    tester_link.transmit(header, packet);
+  }
+  // The components that sent the tester a message with this code.
+  std::vector<Address> senders_of(std::uint16_t code) const {
+    std::vector<Address> senders;
+    for (const auto& h : received)
+      if (h.command_code == code) senders.push_back(h.source);
+    return senders;
+  }
+
+  rt::VirtualTime time;
+  testing::MemoryNetwork network{time, time};
+  testing::MemoryLink& host_link = network.attach(1, 1);
+  testing::MemoryLink& tester_link = [this]() -> testing::MemoryLink& {
+    auto& link = network.attach(2, 1);
+    link.on_receive([this](std::span<const std::uint8_t> bytes) {
+      if (auto packet = decode_packet(bytes)) received.push_back(packet->header);
+    });
+    return link;
+  }();
+  std::vector<Header> received;
+  std::vector<std::string> lines;
+};
+
+TEST_F(AttachedHost, EveryBuiltInKindAnswersAQueryOverAMemoryLink) {
+  auto host = attach(loopback_config());
+  ASSERT_NE(host, nullptr);
+  EXPECT_EQ(host->udp_link(), nullptr);  // no socket
+  const auto components = host->node().local_components();
+  ASSERT_EQ(components.size(), component_kinds().size());
+  for (const auto* component : components) send(component->address(), msg::QueryComponentStatus{});
+  EXPECT_TRUE(testing::run_until(time, [&] { return senders_of(msg::ReportComponentStatus::code).size() == components.size(); }, 1s));
+  for (const auto* component : components) {
+    const auto senders = senders_of(msg::ReportComponentStatus::code);
+    EXPECT_NE(std::find(senders.begin(), senders.end(), component->address()), senders.end()) << component->name();
+  }
+  host->stop("test");
+  EXPECT_TRUE(host->node().local_components().empty());
+  EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [](const auto& l) { return l.find("stopped (test)") != std::string::npos; }));
+}
+
+// Safety under virtual time: a controller that goes silent loses control,
+// and the driver stops the vehicle it was driving.
+TEST_F(AttachedHost, ItsPrimitiveDriverStopsWhenTheControllerGoesSilent) {
+  HostConfig config;
+  config.components = {ComponentSpec{"primitive_driver", 33, 1, 0, "", {{"command_timeout_s", "0"}}, 0, {}}};
+  auto host = attach(config);
+  ASSERT_NE(host, nullptr);
+  const Address driver_address{1, 1, 33, 1};
+  rt::Component& driver = *host->node().find(driver_address);
+  send(driver_address, msg::RequestComponentControl{{255}});
+  ASSERT_TRUE(testing::run_until(time, [&] { return driver.control().is_controller(kTester); }, 1s));
+  msg::SetWrenchEffort effort;
+  effort.propulsive_linear_effort_x_percent = 60;
+  send(driver_address, effort);
+  ASSERT_TRUE(testing::run_until(time, [&] { return host->vehicle()->applied_effort().propulsive_linear.x > 0; }, 1s));
+  testing::run_for(time, 2s);
+  EXPECT_GT(host->vehicle()->applied_effort().propulsive_linear.x, 0);  // no command timeout configured
+  testing::run_for(time, 2s);  // 4 s of silence > the 3 s controller timeout
+  EXPECT_FALSE(driver.control().is_controller(kTester));
+  EXPECT_EQ(host->vehicle()->applied_effort().propulsive_linear.x, 0);
+}
+
+TEST(NodeHostAttach, ARealClearpathPlatformNeedsAnOpenedHost) {
+  rt::VirtualTime time;
+  testing::MemoryNetwork network(time, time);
+  HostConfig config = loopback_config();
+  config.platform.kind = PlatformSettings::Kind::clearpath;
+  auto host = NodeHost::attach(config, network.attach(1, 1), time, time);
+  ASSERT_FALSE(host);
+  EXPECT_NE(host.error().message().find("NodeHost::open"), std::string::npos) << host.error().message();
 }
 
 class EmergencyHolds : public ::testing::Test {

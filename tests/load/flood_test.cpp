@@ -245,7 +245,7 @@ TEST(NodeUnderFlood, EveryTableStaysBoundedTheHeapFlatAndTheOcuAnsweredAndInCont
   ocu::SessionOptions options;
   options.self = kOcu;
   options.authority = 255;  // no flooded request can take control over it
-  options.to = {node.link().local_endpoint()};
+  options.to = {node.udp_link()->local_endpoint()};
   options.bind = transport::Ipv4Endpoint{kLoopback, 0};
   auto session = ocu::OcuSession::open(options, &io);
   ASSERT_TRUE(session) << session.error().message();
@@ -266,7 +266,7 @@ TEST(NodeUnderFlood, EveryTableStaysBoundedTheHeapFlatAndTheOcuAnsweredAndInCont
 
   auto* manager = dynamic_cast<components::NodeManager*>(node.node().find(kManager));
   ASSERT_NE(manager, nullptr);
-  const auto& link = node.link();
+  const auto& link = *node.udp_link();
   const auto& routes = transport::RouteTableOptions{};
   std::vector<std::size_t> heap;
   // 32,768 different datagrams (far more sources than any table holds),
@@ -286,7 +286,7 @@ TEST(NodeUnderFlood, EveryTableStaysBoundedTheHeapFlatAndTheOcuAnsweredAndInCont
   for (int checkpoint = 1; checkpoint <= kCheckpoints; ++checkpoint) {
     for (int i = 0; i < datagrams / kCheckpoints; ++i) {
       const Prepared& datagram = pool[next++ % pool.size()];
-      node.link().receive_datagram(datagram.from, datagram.bytes);
+      node.udp_link()->receive_datagram(datagram.from, datagram.bytes);
       if (i % 512 == 0) io.poll();  // the node drains its queue, timers run, the OCU's socket is read
     }
     io.poll();

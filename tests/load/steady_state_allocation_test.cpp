@@ -83,7 +83,7 @@ class SteadyStateNode : public ::testing::Test {
     auto opened = NodeHost::open(config, io_);
     ASSERT_TRUE(opened) << opened.error().message();
     host_ = std::move(*opened);
-    node_at_ = udp::endpoint(asio::ip::address_v4(kNodeAddress), host_->link().local_endpoint().port);
+    node_at_ = udp::endpoint(asio::ip::address_v4(kNodeAddress), host_->udp_link()->local_endpoint().port);
     asker_.open(udp::v4());
     asker_.bind(udp::endpoint(asio::ip::address_v4(kAskerAddress), 0));
     asker_.non_blocking(true);

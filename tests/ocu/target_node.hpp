@@ -101,11 +101,11 @@ class TargetNode {
     }
   }
 
-  jaus::transport::Ipv4Endpoint endpoint() const { return host_->link().local_endpoint(); }
+  jaus::transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
   // The network goes quiet (cable pulled, process frozen): nothing in or out.
-  void go_silent() { host_->link().close(); }
+  void go_silent() { host_->udp_link()->close(); }
   jaus::node::Node& node() { return host_->node(); }
-  jaus::transport::UdpLink& link() { return host_->link(); }
+  jaus::transport::UdpLink& link() { return *host_->udp_link(); }
   jaus::components::Communicator& communicator() { return *communicator_; }
   PoseSensor& pose_sensor() { return *pose_; }
   jaus::components::PrimitiveDriver& driver() { return *driver_; }
@@ -115,7 +115,7 @@ class TargetNode {
     const auto& refused = driver_->counters();
     return driver_->driver_counters().efforts_applied + refused.refused_wrong_state + refused.refused_not_controller;
   }
-  jaus::transport::AsioRuntime& runtime() { return host_->runtime(); }
+  jaus::rt::Clock& clock() { return host_->clock(); }
 
  private:
   std::unique_ptr<jaus::host::NodeHost> host_;

@@ -156,8 +156,8 @@ TEST_F(TwoNodes, FindEachOther) {
   EXPECT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();
   EXPECT_TRUE(subsystem_list_shows(kManagerB, 1, true)) << b->output();
   // We speak JUDP to B (our static peer entry) and OPC to A: each answers in kind.
-  EXPECT_EQ(node_host->link().routes().route(2, 1)->framing, transport::Framing::judp);
-  EXPECT_EQ(node_host->link().routes().route(1, 1)->framing, transport::Framing::opc);
+  EXPECT_EQ(node_host->udp_link()->routes().route(2, 1)->framing, transport::Framing::judp);
+  EXPECT_EQ(node_host->udp_link()->routes().route(1, 1)->framing, transport::Framing::opc);
 }
 
 TEST_F(TwoNodes, TheOcuControlsAComponentOfTheOtherNodeAndHoldsIt) {

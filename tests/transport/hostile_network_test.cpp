@@ -380,11 +380,11 @@ TEST(HostileNetworkNodes, ARealNodeAnswersTheChallengeAndGetsItsReply) {
   std::vector<std::uint8_t> packet(kHeaderSize);
   encode_header_unchecked(h, std::span<std::uint8_t, kHeaderSize>(packet.data(), kHeaderSize));
   packet.push_back(2);  // Query Identification of the subsystem
-  ocu->link().send_to(node->link().local_endpoint(), Framing::opc, packet);
+  ocu->udp_link()->send_to(node->udp_link()->local_endpoint(), Framing::opc, packet);
   const auto deadline = std::chrono::steady_clock::now() + 10s;
   while (!answered && std::chrono::steady_clock::now() < deadline) io.run_for(5ms);
   EXPECT_TRUE(answered);
-  const auto& c = node->link().counters().amplification;
+  const auto& c = node->udp_link()->counters().amplification;
   EXPECT_EQ(c.endpoints_verified, 1u);
   EXPECT_GE(c.replies_held, 1u);
   EXPECT_EQ(c.challenges_sent, 1u);

@@ -96,7 +96,7 @@ class UdpNodeTest : public ::testing::Test {
     });
     ASSERT_TRUE(opened) << opened.error().message();
     node_host = std::move(*opened);
-    link = &node_host->link();
+    link = node_host->udp_link();
     node = &node_host->node();
     manager = dynamic_cast<components::NodeManager*>(node->find(kManager));
     ASSERT_NE(manager, nullptr);

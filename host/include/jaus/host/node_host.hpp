@@ -1,7 +1,9 @@
-// One JAUS node on the network, built from a configuration: the UDP link, the
-// node and its components on the caller's io_context, with the io_context's
-// clock and timers (AsioRuntime). jausd is a NodeHost with signal handling;
-// the OCU is a NodeHost with one more component; tests host nodes the same way.
+// One JAUS node built from a configuration: the node and its components,
+// either opened on the network (a UDP link on the caller's io_context, with
+// the io_context's clock and timers, AsioRuntime) or attached to a link,
+// clock and scheduler the caller injects (a memory link under virtual time in
+// tests). jausd is an opened NodeHost with signal handling; the OCU is a
+// NodeHost with one more component; tests host nodes the same way.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -52,14 +54,22 @@ struct HostConfig {
 
 class NodeHost {
  public:
-  // Sees every JAUS message the link hands the node, before the node does
-  // (tools watch heartbeats addressed to broadcast IDs this way).
+  // Sees every JAUS message the UDP link hands the node, before the node does
+  // (tools watch heartbeats addressed to broadcast IDs this way). Opened hosts only.
   using Watcher = std::function<void(const PacketView& packet)>;
 
   // Opens the link, builds the node and every configured component, and starts
   // receiving. The error is one line, e.g. "127.0.0.1:3794 is already in use".
   static Expected<std::unique_ptr<NodeHost>> open(HostConfig config, boost::asio::io_context& io,
                                                   rt::LogFn log = {});
+  // The same node and components on `link`, `clock` and `scheduler`, which
+  // outlive the host; no io_context, no socket. The caller delivers what the
+  // link receives to node() (e.g. MemoryLink::deliver_to(host->node())), so
+  // watch() sees nothing. Frames are encoded on the scheduler (no thread), a
+  // clearpath_sim platform runs on the clock and scheduler, and a real
+  // Clearpath platform (it needs an io_context) is refused.
+  static Expected<std::unique_ptr<NodeHost>> attach(HostConfig config, node::Link& link, rt::Clock& clock,
+                                                    rt::Scheduler& scheduler, rt::LogFn log = {});
   // stop("host destroyed").
   ~NodeHost();
   NodeHost(const NodeHost&) = delete;
@@ -102,13 +112,15 @@ class NodeHost {
   const HostConfig& config() const { return config_; }
   node::Node& node() { return *node_; }
   const node::Node& node() const { return *node_; }
-  transport::UdpLink& link() { return *link_; }
-  const transport::UdpLink& link() const { return *link_; }
-  transport::AsioRuntime& runtime() { return runtime_; }
+  // The UDP link of an opened host; nullptr for an attached one.
+  transport::UdpLink* udp_link() { return udp_link_.get(); }
+  const transport::UdpLink* udp_link() const { return udp_link_.get(); }
+  rt::Clock& clock() { return *clock_; }
+  rt::Scheduler& scheduler() { return *scheduler_; }
   // The simulated hardware, when a configured component needs it.
   components::SimulatedVehicle* vehicle() { return vehicle_.get(); }
   components::SimulatedCameras* cameras() { return cameras_.get(); }
-  components::ThreadFrameWorker* frame_worker() { return frame_worker_.get(); }
+  components::FrameWorker* frame_worker() { return frame_worker_.get(); }
   components::SimulatedArm* arm() { return arm_.get(); }
   // The Clearpath platform, when the configuration names one: its client
   // (ClearpathLink or, for clearpath_sim, sim::LoopbackClient) and the
@@ -121,12 +133,16 @@ class NodeHost {
   bridge::ClearpathArm* clearpath_arm() { return clearpath_arm_.get(); }
 
  private:
-  NodeHost(HostConfig config, boost::asio::io_context& io, rt::LogFn log);
+  NodeHost(HostConfig config, rt::LogFn log);
+  // What open() and attach() share: the node on `link`, then the hardware
+  // and the components.
+  void make_node(node::Link& link);
+  Expected<void> add_components();
   // Makes the backend of a hardware interface (rt::Backends names) once, on
   // the configured platform, and offers it in backends_; an interface the
   // platform lacks is left out (the kind that needs it says so).
-  Expected<void> provide(std::string_view interface, boost::asio::io_context& io);
-  void open_platform(boost::asio::io_context& io);
+  Expected<void> provide(std::string_view interface);
+  void open_platform();
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
   bool latch_configured(const std::string& name) const;  // a latch this configuration makes
@@ -134,8 +150,12 @@ class NodeHost {
   void persist_emergency_holds();
 
   HostConfig config_;
-  transport::AsioRuntime runtime_;
   rt::LogFn log_;
+  // An opened host's loop and runtime; an attached host has neither.
+  boost::asio::io_context* io_ = nullptr;
+  std::unique_ptr<transport::AsioRuntime> asio_runtime_;
+  rt::Clock* clock_ = nullptr;
+  rt::Scheduler* scheduler_ = nullptr;
   // Lifetimes: the emergency latches of the components with hardware are the
   // host's, made before and destroyed after every component and backend, so
   // nothing that outlives a component (the platform's e-stop, the holds
@@ -150,11 +170,13 @@ class NodeHost {
   bool persist_posted_ = false;
   bool persisting_fails_ = false;  // the last write failed (said once per streak)
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
-  std::unique_ptr<transport::UdpLink> link_;
-  // The visual sensor's frames are captured and encoded on this thread, off
-  // the loop; stop() (and so the destructor) joins it before the components
-  // and cameras go, dropping what is queued.
-  std::unique_ptr<components::ThreadFrameWorker> frame_worker_;
+  std::unique_ptr<transport::UdpLink> udp_link_;  // an opened host's
+  // The visual sensor's frames are captured and encoded off the loop: on a
+  // thread of their own in an opened host (stop(), and so the destructor,
+  // joins it before the components and cameras go, dropping what is
+  // queued), on the scheduler in an attached one.
+  std::unique_ptr<components::FrameWorker> frame_worker_;
+  components::ThreadFrameWorker* frame_thread_ = nullptr;  // frame_worker_, when it is a thread
   // Declared before the node: components refer to them, so they outlive them.
   std::unique_ptr<components::SimulatedVehicle> vehicle_;
   std::unique_ptr<components::SimulatedCameras> cameras_;
