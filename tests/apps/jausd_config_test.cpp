@@ -455,7 +455,7 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
                "service_connections, liveness, transport, emergency_scope, state_directory, vehicle, platform, clearpath, "
                "cameras, manipulator, "
-               "components, logging)");
+               "plugins, components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
                "unknown key 'sub_system' in identification (known: subsystem, subsystem_name, subsystem_type, "
                "node, node_name, node_type)");

@@ -4,15 +4,32 @@
 # package, configuration, man pages and docs where GNUInstallDirs says; then
 # example_component (a component of its own on jaus::runtime, and a program
 # on jaus::conform, the top of the library graph) is configured with
-# find_package(jaus) against that prefix only, built and run.
+# find_package(jaus) against that prefix only, built and run; its wheel
+# odometer, built as a component plugin (jaus_add_component_plugin), is
+# loaded into the installed jausd from a YAML on 127.0.0.80 and answers the
+# installed jausctl; jausd stops on SIGTERM with exit 0.
 # Usage: install_and_build_component.sh BUILD_DIR EXAMPLE_SOURCE_DIR VERSION
 set -euo pipefail
 build=$1 example=$2 version=$3
 work=$(mktemp -d "${TMPDIR:-/tmp}/jaus-package-install.XXXXXX")
-trap 'rm -rf "$work"' EXIT
+jausd_pid=""
+cleanup() {
+  if [ -n "$jausd_pid" ]; then kill -KILL "$jausd_pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
 prefix=$work/prefix
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# Waits up to $1 seconds for the command after it to succeed.
+wait_for() {
+  local seconds=$1; shift
+  local deadline=$((SECONDS + seconds))
+  until "$@"; do
+    [ "$SECONDS" -lt "$deadline" ] || return 1
+    sleep 0.2
+  done
+}
 
 cmake --install "$build" --prefix "$prefix" > "$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
 
@@ -22,6 +39,7 @@ for path in bin/jausd bin/jausctl bin/clearpath-sim bin/jaus-conform \
   "$libdir"/libjaus_runtime.a "$libdir"/libjaus_core.a "$libdir"/libjaus_base.a \
   "$libdir"/cmake/jaus/jausConfig.cmake "$libdir"/cmake/jaus/jausConfigVersion.cmake "$libdir"/cmake/jaus/jausTargets.cmake \
   include/jaus/runtime/component.hpp include/jaus/base/version.hpp include/jaus/components/visual_sensor.hpp \
+  include/jaus/runtime/component_plugin.hpp include/jaus/testing/memory_link.hpp "$libdir"/cmake/jaus/jausPlugin.cmake \
   share/man/man1/jausd.1.gz share/man/man1/jausctl.1.gz share/man/man1/clearpath-sim.1.gz share/man/man1/jaus-conform.1.gz \
   share/doc/jaus-node/README.md share/doc/jaus-node/CHANGELOG.md share/doc/jaus-node/docs/configuration.md \
   lib/systemd/system/jausd.service; do
@@ -44,4 +62,54 @@ cmake -S "$example" -B "$work/example" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMA
 cmake --build "$work/example" > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "building example_component"; }
 "$work/example/example_component" || fail "example_component"
 "$work/example/count_conformance_cases" || fail "count_conformance_cases (jaus::conform from the installed tree)"
+
+# The plugin: it links no jaus library (jausd carries the one copy).
+plugin=$work/example/libwheel_odometer.so
+[ -f "$plugin" ] || fail "jaus_add_component_plugin built no $plugin"
+if readelf -d "$plugin" | grep -q 'NEEDED.*jaus'; then fail "$plugin links a jaus library"; fi
+nm -D --defined-only "$plugin" | grep -q ' T jaus_component_plugin$' || fail "$plugin does not export jaus_component_plugin"
+# Loaded by the installed jausd from a YAML naming it (relative to the YAML) and its kind.
+cat > "$work/example/odometer.yaml" <<YAML
+plugins:
+  - libwheel_odometer.so
+components:
+  - kind: node_manager
+  - kind: wheel_odometer
+    name: wheel odometer
+    options:
+      speed_mps: 1.5
+      yaw_rate_rps: 0.25
+YAML
+"$prefix/bin/jausd" --config "$work/example/odometer.yaml" --check-config ||
+  fail "installed jausd rejects the plugin's configuration"
+printf 'plugins: [libwheel_odometer.so]\ncomponents:\n  - kind: node_manager\n  - kind: wheel_odometer\n    options:\n      speed_mps: 99\n' \
+  > "$work/example/bad_option.yaml"
+status=0
+"$prefix/bin/jausd" --config "$work/example/bad_option.yaml" --check-config 2> "$work/bad_option.err" || status=$?
+[ "$status" -eq 2 ] && grep -q "bad_option.yaml:6: wheel_odometer option 'speed_mps' must be" "$work/bad_option.err" ||
+  { cat "$work/bad_option.err"; fail "the plugin's option check: exit $status"; }
+
+"$prefix/bin/jausd" --config "$work/example/odometer.yaml" --bind 127.0.0.80:3794 > "$work/jausd.log" 2>&1 &
+jausd_pid=$!
+wait_for 60 grep -q 'listening on 127.0.0.80:3794' "$work/jausd.log" || { cat "$work/jausd.log"; fail "jausd did not start"; }
+grep -q "plugin 'example_wheel_odometer' (.*libwheel_odometer.so): component kinds wheel_odometer" "$work/jausd.log" ||
+  { cat "$work/jausd.log"; fail "jausd did not log the plugin and its kinds"; }
+query() {
+  "$prefix/bin/jausctl" query 1.1.42.1 "Query Velocity State" --pv 41 \
+    --to 127.0.0.80 --bind 127.0.0.80:0 --timeout 2 > "$work/reply.json" 2> "$work/jausctl.err"
+}
+wait_for 60 query || { cat "$work/jausctl.err" "$work/jausd.log"; fail "no answer to Query Velocity State"; }
+grep -q '"name":"Report Velocity State"' "$work/reply.json" || { cat "$work/reply.json"; fail "not a Report Velocity State"; }
+grep -q '"velocity_x_mps":1.5' "$work/reply.json" || { cat "$work/reply.json"; fail "not the odometer's speed"; }
+echo "jausctl: $(cut -c1-200 "$work/reply.json")"
+
+kill -TERM "$jausd_pid"
+# A stop that hangs is killed after 30 s (and fails below with 137).
+(sleep 30 && kill -KILL "$jausd_pid") > /dev/null 2>&1 &
+watchdog=$!
+status=0
+wait "$jausd_pid" || status=$?
+kill "$watchdog" 2> /dev/null || true
+jausd_pid=""
+[ "$status" -eq 0 ] || { cat "$work/jausd.log"; fail "jausd exited $status after SIGTERM"; }
 echo "PASS"

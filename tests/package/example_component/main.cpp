@@ -1,7 +1,8 @@
 // Runs the example's wheel odometer on a node of its own (1.1) and asks it,
 // from an operator component on a second node (1.2), for its velocity state,
-// both nodes on one virtual clock joined by an in-memory link. Exit 0 when
-// the report carries what the odometer measured; 1 otherwise, saying why.
+// both nodes on one virtual clock joined by the installed jaus::testing
+// memory network. Exit 0 when the report carries what the odometer measured;
+// 1 otherwise, saying why.
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -11,24 +12,11 @@
 #include "jaus/base/version.hpp"
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/node/node.hpp"
+#include "jaus/testing/memory_link.hpp"
+#include "jaus/testing/virtual_time.hpp"
 #include "wheel_odometer.hpp"
 
 namespace {
-
-// Delivers each packet to the other node on the next turn of the clock, as a network would.
-class MemoryLink final : public jaus::node::Link {
- public:
-  explicit MemoryLink(jaus::rt::VirtualTime& time) : time_(time) {}
-  void connect(jaus::node::Node& peer) { peer_ = &peer; }
-  void transmit(const jaus::Header&, std::span<const std::uint8_t> packet) override {
-    auto copy = std::make_shared<std::vector<std::uint8_t>>(packet.begin(), packet.end());
-    time_.call_at(time_.now(), [peer = peer_, copy] { peer->receive_bytes(*copy); });
-  }
-
- private:
-  jaus::rt::VirtualTime& time_;
-  jaus::node::Node* peer_ = nullptr;
-};
 
 // The operator's side: sends the query and keeps the report.
 class Operator final : public jaus::rt::Component {
@@ -45,14 +33,16 @@ class Operator final : public jaus::rt::Component {
 
 int main() {
   jaus::rt::VirtualTime time;
-  MemoryLink robot_link(time), operator_link(time);
+  jaus::testing::MemoryNetwork network(time, time);
+  auto& robot_link = network.attach(1, 1);
+  auto& operator_link = network.attach(1, 2);
   jaus::node::NodeConfig robot_config, station_config;
   robot_config.node = 1;
   station_config.node = 2;
   jaus::node::Node robot(robot_config, time, time, robot_link);
   jaus::node::Node station(station_config, time, time, operator_link);
-  robot_link.connect(station);
-  operator_link.connect(robot);
+  robot_link.deliver_to(robot);
+  operator_link.deliver_to(station);
 
   const jaus::Address odometer_address{1, 1, 42, 1};
   jaus::rt::ComponentConfig odometer_config, operator_config;
@@ -65,7 +55,7 @@ int main() {
 
   odometer.measured(1.5, 0.25);
   op.ask(odometer_address);
-  time.advance(std::chrono::seconds(1));
+  jaus::testing::run_until(time, [&] { return op.report.has_value(); }, std::chrono::seconds(1));
 
   if (!op.report) {
     std::cerr << "example_component: no Report Velocity State from " << odometer_address.to_string() << "\n";
