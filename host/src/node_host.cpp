@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <csignal>
 
-#include "jaus/clearpath/link.hpp"
-#include "jaus/clearpath/sim/loopback_client.hpp"
 
 namespace jaus::host {
 
@@ -18,7 +16,6 @@ NodeHost::NodeHost(HostConfig config, rt::LogFn log)
 
 Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asio::io_context& io, rt::LogFn log) {
   std::unique_ptr<NodeHost> h(new NodeHost(std::move(config), std::move(log)));
-  h->io_ = &io;
   h->asio_runtime_ = std::make_unique<transport::AsioRuntime>(io);
   h->clock_ = h->asio_runtime_.get();
   h->scheduler_ = h->asio_runtime_.get();
@@ -36,22 +33,18 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   h->udp_link_->pin_routes_while([node = h->node_.get()](std::uint8_t subsystem, std::uint8_t node_id) {
     return node->holds_state_for(subsystem, node_id);
   });
-  if (auto added = h->add_components(); !added) return unexpected(added.error());
+  if (auto added = h->add_components(&io); !added) return unexpected(added.error());
   h->udp_link_->start();
   return h;
 }
 
 Expected<std::unique_ptr<NodeHost>> NodeHost::attach(HostConfig config, node::Link& link, rt::Clock& clock,
                                                      rt::Scheduler& scheduler, rt::LogFn log) {
-  if (config.platform.kind == PlatformSettings::Kind::clearpath)
-    return unexpected(make_error(ErrorCode::invalid_argument,
-                                 "a Clearpath platform at an endpoint needs an opened host (NodeHost::open, on an "
-                            "io_context); an attached host takes model or clearpath_sim"));
   std::unique_ptr<NodeHost> h(new NodeHost(std::move(config), std::move(log)));
   h->clock_ = &clock;
   h->scheduler_ = &scheduler;
   h->make_node(link);
-  if (auto added = h->add_components(); !added) return unexpected(added.error());
+  if (auto added = h->add_components(nullptr); !added) return unexpected(added.error());
   return h;
 }
 
@@ -59,13 +52,20 @@ void NodeHost::make_node(node::Link& link) {
   node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, link, log_);
 }
 
-Expected<void> NodeHost::add_components() {
+Expected<void> NodeHost::add_components(boost::asio::io_context* io) {
+  auto platform = make_platform(config_.platform, SimulationSettings{config_.vehicle, config_.cameras, config_.arm},
+                                PlatformEnvironment{*clock_, *scheduler_, io, log_});
+  if (!platform) return unexpected(platform.error());
+  platform_ = std::move(*platform);
   // The hardware the configured components need (each kind says which
   // interfaces), each made once on the configured platform.
   for (const auto& spec : config_.components)
     if (const ComponentKind* kind = find_component_kind(spec.kind))
       for (const std::string_view interface : kind->needs)
-        if (auto provided = provide(interface); !provided) return unexpected(provided.error());
+        if (auto provided = platform_->provide(interface, backends_); !provided)
+          return unexpected(provided.error());
+  std::vector<rt::EmergencyLatch*> estop_latches;  // of the components the platform's e-stop holds
+  rt::EmergencyLatch* driver_latch = nullptr;      // the platform's emergency flag mirrors it
   restore_emergency_holds();
   for (const auto& spec : config_.components) {
     auto component = make_component(spec, config_.settings, *node_, backends_);
@@ -79,19 +79,17 @@ Expected<void> NodeHost::add_components() {
       rt::EmergencyLatch& latch = latch_for(spec);
       (*component)->share_emergency(latch);
       // The platform's emergency flag mirrors the latch of what drives the vehicle.
-      if (needs(components::Drive::kInterface)) driver_latch_ = &latch;
-      // Every component on the Clearpath platform is held by its e-stop.
-      const bool on_platform = std::any_of(platform_interfaces_.begin(), platform_interfaces_.end(), needs);
-      if (on_platform &&
-          std::find(platform_latches_.begin(), platform_latches_.end(), &latch) == platform_latches_.end())
-        platform_latches_.push_back(&latch);
+      if (needs(components::Drive::kInterface)) driver_latch = &latch;
+      // Every component on the platform's e-stop is held by it.
+      const bool on_estop = std::any_of(kind.needs.begin(), kind.needs.end(),
+                                        [&](std::string_view interface) { return platform_->on_estop(interface); });
+      if (on_estop && std::find(estop_latches.begin(), estop_latches.end(), &latch) == estop_latches.end())
+        estop_latches.push_back(&latch);
     }
     node_->add(std::move(*component));
   }
   persist_emergency_holds();
-  if (clearpath_vehicle_)
-    platform_emergency_ =
-        std::make_unique<bridge::PlatformEmergencyMirror>(*clearpath_vehicle_, platform_latches_, driver_latch_);
+  platform_->follow_emergencies(std::move(estop_latches), driver_latch);
   return {};
 }
 
@@ -190,7 +188,7 @@ std::size_t NodeHost::clear_emergency_holds_locally(const std::string& why) {
     log_(rt::LogLevel::warn, "emergency holds cleared locally (" + why + "), " + name + ": " + held);
   }
   // What an earlier run left on the platform is ours to clear too; a hardware stop stays.
-  if (clearpath_vehicle_) clearpath_vehicle_->reclaim_safety_bits();
+  if (platform_) platform_->reclaim_stops();
   if (cleared == 0) log_(rt::LogLevel::info, "local clear of emergency holds (" + why + "): none held");
   return cleared;
 }
@@ -200,100 +198,9 @@ const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) con
   return it == latches_.end() ? nullptr : it->second.get();
 }
 
-// The platform's backend of each hardware interface: `model` makes the
-// components' own simulations (vehicle, cameras, arm), `clearpath` and
-// `clearpath_sim` the bridge's backends on one PlatformConnection (the
-// images stay the simulated cameras'; a camera mount or an arm joint not
-// mapped to the platform stays simulated).
-Expected<void> NodeHost::provide(std::string_view interface) {
-  const bool model = config_.platform.kind == PlatformSettings::Kind::model;
-  if (interface == components::Drive::kInterface || interface == components::PoseSource::kInterface) {
-    if (vehicle_ || clearpath_vehicle_) return {};
-    components::Drive* drive = nullptr;
-    components::PoseSource* pose = nullptr;
-    if (model) {
-      vehicle_ = std::make_unique<components::SimulatedVehicle>(config_.vehicle, *clock_);
-      drive = vehicle_.get();
-      pose = vehicle_.get();
-    } else {
-      open_platform();
-      clearpath_vehicle_ = std::make_unique<bridge::ClearpathVehicle>(*platform_, config_.platform.vehicle);
-      drive = clearpath_vehicle_.get();
-      pose = clearpath_vehicle_.get();
-      platform_interfaces_.push_back(components::Drive::kInterface);
-      platform_interfaces_.push_back(components::PoseSource::kInterface);
-    }
-    backends_.offer<components::Drive>(drive);
-    backends_.offer<components::PoseSource>(pose);
-  } else if (interface == components::Cameras::kInterface) {
-    if (cameras_) return {};
-    // The images are always the simulated cameras'; their mounts may be the platform's.
-    cameras_ = std::make_unique<components::SimulatedCameras>(config_.cameras, *clock_);
-    backends_.offer<components::Cameras>(cameras_.get());
-    backends_.offer<components::Cameras>("camera_images", cameras_.get());
-    if (io_ != nullptr) {
-      // Frames are encoded on a thread of their own; boost::asio::post (not
-      // AsioRuntime::post, which is the loop's alone) brings each back.
-      auto thread = std::make_unique<components::ThreadFrameWorker>(
-          [io = io_](std::function<void()> fn) { boost::asio::post(*io, std::move(fn)); });
-      frame_thread_ = thread.get();
-      frame_worker_ = std::move(thread);
-    } else {
-      frame_worker_ = std::make_unique<components::ScheduledFrameWorker>(*scheduler_, *clock_);
-    }
-    backends_.offer<components::FrameWorker>(frame_worker_.get());
-    const auto& mounts = config_.platform.cameras;
-    if (!model && !mounts.mounts.empty()) {
-      if (auto ok = bridge::check_clearpath_cameras_config(config_.cameras.cameras, mounts); !ok) return unexpected(ok.error());
-      open_platform();
-      clearpath_cameras_ = std::make_unique<bridge::ClearpathCameras>(*platform_, *scheduler_, *cameras_, mounts);
-      backends_.offer<components::Cameras>(clearpath_cameras_.get());
-      platform_interfaces_.push_back(components::Cameras::kInterface);
-    }
-  } else if (interface == components::ManipulatorArm::kInterface) {
-    if (arm_ || clearpath_arm_) return {};
-    const auto& joints = config_.platform.arm;
-    if (!model && !joints.joints.empty()) {
-      if (auto ok = bridge::check_clearpath_arm_config(config_.arm, joints); !ok) return unexpected(ok.error());
-      open_platform();
-      clearpath_arm_ = std::make_unique<bridge::ClearpathArm>(*platform_, *scheduler_, config_.arm, joints);
-      backends_.offer<components::ManipulatorArm>(clearpath_arm_.get());
-      platform_interfaces_.push_back(components::ManipulatorArm::kInterface);
-    } else {
-      arm_ = std::make_unique<components::SimulatedArm>(config_.arm, *clock_);
-      backends_.offer<components::ManipulatorArm>(arm_.get());
-    }
-  }
-  // Anything else this platform does not have: the kind that needs it says so.
-  return {};
-}
-
-// The Clearpath platform's client: a link that reopens with backoff and never
-// fails the node (a missing port is a link down, which the components report
-// as Failure), or the simulated platform in this process.
-void NodeHost::open_platform() {
-  if (platform_) return;
-  const auto& p = config_.platform;
-  if (p.kind == PlatformSettings::Kind::clearpath_sim) {
-    clearpath::sim::LoopbackConfig loopback;
-    loopback.platform = p.sim;
-    loopback.client = p.client;
-    loopback.period = std::chrono::milliseconds(5);
-    platform_client_ = std::make_unique<clearpath::sim::LoopbackClient>(*clock_, *scheduler_, loopback);
-    log_(rt::LogLevel::info, "Clearpath platform: simulated in process");
-  } else {
-    // attach() refuses a real platform: an opened host has the io_context.
-    auto link = std::make_unique<clearpath::ClearpathLink>(*io_, *clock_, *scheduler_, p.endpoint, p.client);
-    link->start();
-    platform_link_ = link.get();
-    platform_client_ = std::move(link);
-  }
-  platform_ = std::make_unique<bridge::PlatformConnection>(*platform_client_, *clock_, log_);
-}
-
 NodeHost::~NodeHost() {
   stop("host destroyed");
-  if (frame_thread_ != nullptr) frame_thread_->stop();  // a host that never fully opened: before its cameras go
+  if (platform_) platform_->stop();  // a host that never fully opened: its frame thread, before its cameras go
 }
 
 namespace {
@@ -357,13 +264,11 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
-  // No frame is wanted after Shutdown: the worker's thread ends here, before
-  // anything it was given could go.
-  if (frame_thread_ != nullptr) frame_thread_->stop();
+  // No frame is wanted after Shutdown (a frame thread ends here, before
+  // anything it was given could go), and the stop's zero setpoint goes out
+  // now, before a process exits without running its io_context again.
+  if (platform_) platform_->stop();
   persist_emergency_holds();  // a change still waiting for the loop
-  // ...and the stop's zero setpoint goes out now, before a process exits
-  // without running its io_context again.
-  if (platform_link_ != nullptr) platform_link_->flush();
   const auto& n = node_->counters();
   if (!udp_link_) {
     log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(n.delivered) + " messages delivered");

@@ -109,10 +109,11 @@ int main(int argc, char** argv) {
   }
   auto& node = **opened;
   WrittenOutputs written;
-  node.platform_link()->on_written([&](std::span<const std::uint8_t> frame) { written.frame(frame); });
+  auto& clearpath = *node.platform_as<host::ClearpathPlatform>();
+  clearpath.link()->on_written([&](std::span<const std::uint8_t> frame) { written.frame(frame); });
   components::PrimitiveDriverOptions options;
   options.command_timeout = rt::Duration::zero();  // efforts come one at a time, at the benchmark's pace
-  node.emplace<components::PrimitiveDriver>(node.component_config("primitive_driver", 33), *node.clearpath_vehicle(),
+  node.emplace<components::PrimitiveDriver>(node.component_config("primitive_driver", 33), *clearpath.vehicle(),
                                             options);
   auto work = asio::make_work_guard(io);
   std::thread node_thread([&] { io.run(); });

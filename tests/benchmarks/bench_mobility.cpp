@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   auto& node = **opened;
-  TimedDrive drive(*node.vehicle());
+  TimedDrive drive(*node.platform_as<host::ModelPlatform>()->vehicle());
   components::PrimitiveDriverOptions options;
   options.command_timeout = rt::Duration::zero();  // efforts come one at a time, at the benchmark's pace
   auto& driver =

@@ -74,7 +74,7 @@ class OurKindsConform : public KindConformance, public ::testing::WithParamInter
 TEST_P(OurKindsConform, EveryApplicableCasePassesAndThoseOfItsKindRun) {
   const OurComponent& tested = GetParam();
   std::vector<double> arm_before;
-  if (tested.address == kManipulator) arm_before = ours->host().arm()->positions();
+  if (tested.address == kManipulator) arm_before = ours->host().platform_as<host::ModelPlatform>()->arm()->positions();
   const auto results = run(tested.address);
   ASSERT_EQ(results.size(), all_cases().size() - 1);  // all but the silent-requester case
   for (const auto& r : results) {
@@ -86,12 +86,12 @@ TEST_P(OurKindsConform, EveryApplicableCasePassesAndThoseOfItsKindRun) {
   // Left as found: nobody in control (once the last Release arrives), the
   // vehicle not driven, the arm back.
   EXPECT_TRUE(released(component_at(tested.address)));
-  const components::WrenchEffort effort = ours->host().vehicle()->applied_effort();
+  const components::WrenchEffort effort = ours->host().platform_as<host::ModelPlatform>()->vehicle()->applied_effort();
   EXPECT_EQ(effort.propulsive_linear, components::Axes{});
   EXPECT_EQ(effort.propulsive_rotational, components::Axes{});
   if (!arm_before.empty()) {
     io.run_for(300ms);  // the last restoring Set Joint Positions reaches its target
-    const auto arm_after = ours->host().arm()->positions();
+    const auto arm_after = ours->host().platform_as<host::ModelPlatform>()->arm()->positions();
     ASSERT_EQ(arm_after.size(), arm_before.size());
     for (std::size_t j = 0; j < arm_before.size(); ++j) EXPECT_NEAR(arm_after[j], arm_before[j], 0.01) << j;
   }

@@ -215,7 +215,7 @@ TEST(ComponentKinds, AKindRegisteredByATestIsHostedLikeTheBuiltInOnes) {
     EXPECT_EQ(kind.period_s, 2.5);
     ASSERT_NE((*host)->node().find(Address{1, 1, 201, 1}), nullptr);
     EXPECT_EQ((*host)->node().find(Address{1, 1, 201, 1})->name(), "test_beacon");
-    EXPECT_NE((*host)->vehicle(), nullptr);  // its pose source, made because it needs one
+    EXPECT_NE((*host)->backends().find<components::PoseSource>(), nullptr);  // made because it needs one
     EXPECT_NE((*host)->emergency_latch("1.1.201.1"), nullptr);
     (*host)->stop("test");
 
@@ -349,11 +349,14 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   auto host = NodeHost::open(config, io);
   ASSERT_TRUE(host) << host.error().message();
   NodeHost& h = **host;
-  ASSERT_NE(h.clearpath_vehicle(), nullptr);
-  EXPECT_EQ(h.vehicle(), nullptr);  // no direct simulation
-  EXPECT_NE(h.clearpath_arm(), nullptr);
-  EXPECT_EQ(h.arm(), nullptr);
-  EXPECT_EQ(h.clearpath_cameras(), nullptr);  // no mount mapped: the cameras stay simulated
+  auto* clearpath = h.platform_as<ClearpathPlatform>();
+  ASSERT_NE(clearpath, nullptr);
+  ASSERT_NE(clearpath->vehicle(), nullptr);
+  EXPECT_EQ(clearpath->simulated().vehicle(), nullptr);  // no direct simulation
+  EXPECT_NE(clearpath->arm(), nullptr);
+  EXPECT_EQ(clearpath->simulated().arm(), nullptr);
+  EXPECT_EQ(clearpath->cameras(), nullptr);  // no mount mapped: the cameras stay simulated
+  EXPECT_NE(clearpath->simulated().cameras(), nullptr);
   auto* driver = h.node().find(Address{1, 1, 33, 1});
   auto* pose = h.node().find(Address{1, 1, 38, 1});
   ASSERT_TRUE(driver && pose);
@@ -366,7 +369,7 @@ TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   ASSERT_TRUE(run_until([&] { return driver->state() == rt::PrimaryStatus::ready && pose->state() == rt::PrimaryStatus::ready; }));
 
   // Someone presses the platform's e-stop.
-  auto* platform = dynamic_cast<clearpath::sim::LoopbackClient*>(h.platform_client());
+  auto* platform = dynamic_cast<clearpath::sim::LoopbackClient*>(clearpath->client());
   ASSERT_NE(platform, nullptr);
   const auto press = [&](bool on) { platform->platform().press(clearpath::sim::HardwareInput::estop, on, h.clock().now()); };
   press(true);
@@ -473,12 +476,33 @@ TEST_F(AttachedHost, ItsPrimitiveDriverStopsWhenTheControllerGoesSilent) {
   msg::SetWrenchEffort effort;
   effort.propulsive_linear_effort_x_percent = 60;
   send(driver_address, effort);
-  ASSERT_TRUE(testing::run_until(time, [&] { return host->vehicle()->applied_effort().propulsive_linear.x > 0; }, 1s));
+  auto* vehicle = host->platform_as<ModelPlatform>()->vehicle();
+  ASSERT_NE(vehicle, nullptr);
+  ASSERT_TRUE(testing::run_until(time, [&] { return vehicle->applied_effort().propulsive_linear.x > 0; }, 1s));
   testing::run_for(time, 2s);
-  EXPECT_GT(host->vehicle()->applied_effort().propulsive_linear.x, 0);  // no command timeout configured
+  EXPECT_GT(vehicle->applied_effort().propulsive_linear.x, 0);  // no command timeout configured
   testing::run_for(time, 2s);  // 4 s of silence > the 3 s controller timeout
   EXPECT_FALSE(driver.control().is_controller(kTester));
-  EXPECT_EQ(host->vehicle()->applied_effort().propulsive_linear.x, 0);
+  EXPECT_EQ(vehicle->applied_effort().propulsive_linear.x, 0);
+}
+
+// clearpath_sim on the host's clock and scheduler: the platform's e-stop holds
+// the driver in Emergency, in virtual time.
+TEST_F(AttachedHost, OnASimulatedClearpathPlatformItsEstopHoldsTheDriver) {
+  HostConfig config;
+  config.platform.kind = PlatformSettings::Kind::clearpath_sim;
+  config.components = {ComponentSpec{"primitive_driver", 33, 1, 0, "", {}, 0, {}}};
+  auto host = attach(config);
+  ASSERT_NE(host, nullptr);
+  auto& clearpath = *host->platform_as<ClearpathPlatform>();
+  auto* loopback = dynamic_cast<clearpath::sim::LoopbackClient*>(clearpath.client());
+  ASSERT_NE(loopback, nullptr);
+  rt::Component& driver = *host->node().find(Address{1, 1, 33, 1});
+  ASSERT_TRUE(testing::run_until(time, [&] { return driver.state() == rt::PrimaryStatus::ready; }, 5s));
+  loopback->platform().press(clearpath::sim::HardwareInput::estop, true, time.now());
+  EXPECT_TRUE(testing::run_until(time, [&] { return driver.state() == rt::PrimaryStatus::emergency; }, 5s));
+  loopback->platform().press(clearpath::sim::HardwareInput::estop, false, time.now());
+  EXPECT_TRUE(testing::run_until(time, [&] { return driver.state() == rt::PrimaryStatus::ready; }, 5s));
 }
 
 TEST(NodeHostAttach, ARealClearpathPlatformNeedsAnOpenedHost) {

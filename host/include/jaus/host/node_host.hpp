@@ -15,17 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "jaus/bridge/clearpath_vehicle.hpp"
-#include "jaus/bridge/platform_connection.hpp"
-#include "jaus/bridge/platform_emergency.hpp"
-#include "jaus/clearpath/client.hpp"
-#include "jaus/clearpath/link.hpp"
-#include "jaus/components/frame_worker.hpp"
-#include "jaus/components/simulated_arm.hpp"
-#include "jaus/components/simulated_cameras.hpp"
+#include "jaus/components/arm_config.hpp"
+#include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/host/emergency_holds.hpp"
+#include "jaus/host/clearpath_platform.hpp"
+#include "jaus/host/model_platform.hpp"
 #include "jaus/host/platform.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
@@ -117,32 +113,24 @@ class NodeHost {
   const transport::UdpLink* udp_link() const { return udp_link_.get(); }
   rt::Clock& clock() { return *clock_; }
   rt::Scheduler& scheduler() { return *scheduler_; }
-  // The simulated hardware, when a configured component needs it.
-  components::SimulatedVehicle* vehicle() { return vehicle_.get(); }
-  components::SimulatedCameras* cameras() { return cameras_.get(); }
-  components::FrameWorker* frame_worker() { return frame_worker_.get(); }
-  components::SimulatedArm* arm() { return arm_.get(); }
-  // The Clearpath platform, when the configuration names one: its client
-  // (ClearpathLink or, for clearpath_sim, sim::LoopbackClient) and the
-  // bridge's backend of the mobility components.
-  clearpath::Client* platform_client() { return platform_client_.get(); }
-  clearpath::ClearpathLink* platform_link() { return platform_link_; }  // a real link (not clearpath_sim)
-  bridge::PlatformConnection* platform() { return platform_.get(); }
-  bridge::ClearpathVehicle* clearpath_vehicle() { return clearpath_vehicle_.get(); }
-  bridge::ClearpathCameras* clearpath_cameras() { return clearpath_cameras_.get(); }
-  bridge::ClearpathArm* clearpath_arm() { return clearpath_arm_.get(); }
+  // The platform the components' hardware is on: a ModelPlatform or a
+  // ClearpathPlatform (make_platform), whose typed accessors reach each
+  // backend; backends() is what the components were made with, by interface.
+  Platform& platform() { return *platform_; }
+  // The platform as its class (nullptr when it is another), e.g.
+  // platform_as<ModelPlatform>()->vehicle().
+  template <class P>
+  P* platform_as() {
+    return dynamic_cast<P*>(platform_.get());
+  }
+  const rt::Backends& backends() const { return backends_; }
 
  private:
   NodeHost(HostConfig config, rt::LogFn log);
   // What open() and attach() share: the node on `link`, then the hardware
   // and the components.
   void make_node(node::Link& link);
-  Expected<void> add_components();
-  // Makes the backend of a hardware interface (rt::Backends names) once, on
-  // the configured platform, and offers it in backends_; an interface the
-  // platform lacks is left out (the kind that needs it says so).
-  Expected<void> provide(std::string_view interface);
-  void open_platform();
+  Expected<void> add_components(boost::asio::io_context* io);  // io: an opened host's
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
   bool latch_configured(const std::string& name) const;  // a latch this configuration makes
@@ -151,8 +139,7 @@ class NodeHost {
 
   HostConfig config_;
   rt::LogFn log_;
-  // An opened host's loop and runtime; an attached host has neither.
-  boost::asio::io_context* io_ = nullptr;
+  // An opened host's runtime on its io_context; an attached host has none.
   std::unique_ptr<transport::AsioRuntime> asio_runtime_;
   rt::Clock* clock_ = nullptr;
   rt::Scheduler* scheduler_ = nullptr;
@@ -161,8 +148,6 @@ class NodeHost {
   // nothing that outlives a component (the platform's e-stop, the holds
   // file) keeps a pointer to one. By name: "vehicle" or an address.
   std::map<std::string, std::unique_ptr<rt::EmergencyLatch>> latches_;
-  std::vector<rt::EmergencyLatch*> platform_latches_;  // of components on the Clearpath platform
-  rt::EmergencyLatch* driver_latch_ = nullptr;         // the platform's emergency flag mirrors it
   std::optional<std::filesystem::path> holds_file_;
   PersistedHolds restored_holds_;
   bool holds_unreadable_ = false;
@@ -171,25 +156,9 @@ class NodeHost {
   bool persisting_fails_ = false;  // the last write failed (said once per streak)
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> udp_link_;  // an opened host's
-  // The visual sensor's frames are captured and encoded off the loop: on a
-  // thread of their own in an opened host (stop(), and so the destructor,
-  // joins it before the components and cameras go, dropping what is
-  // queued), on the scheduler in an attached one.
-  std::unique_ptr<components::FrameWorker> frame_worker_;
-  components::ThreadFrameWorker* frame_thread_ = nullptr;  // frame_worker_, when it is a thread
-  // Declared before the node: components refer to them, so they outlive them.
-  std::unique_ptr<components::SimulatedVehicle> vehicle_;
-  std::unique_ptr<components::SimulatedCameras> cameras_;
-  std::unique_ptr<components::SimulatedArm> arm_;
-  std::unique_ptr<clearpath::Client> platform_client_;
-  clearpath::ClearpathLink* platform_link_ = nullptr;  // platform_client_, when it is a real link
-  std::unique_ptr<bridge::PlatformConnection> platform_;
-  std::unique_ptr<bridge::ClearpathVehicle> clearpath_vehicle_;
-  std::unique_ptr<bridge::ClearpathCameras> clearpath_cameras_;
-  std::unique_ptr<bridge::ClearpathArm> clearpath_arm_;
-  std::unique_ptr<bridge::PlatformEmergencyMirror> platform_emergency_;  // the platform's stops <-> the latches
-  rt::Backends backends_;  // what the components are made with: the above, by interface
-  std::vector<std::string_view> platform_interfaces_;  // those of backends_ the Clearpath platform carries
+  // Declared before the node: components refer to its backends, so they outlive them.
+  std::unique_ptr<Platform> platform_;
+  rt::Backends backends_;  // what the components are made with: the platform's, by interface
   std::unique_ptr<node::Node> node_;
   Watcher watcher_;
   bool stopped_ = false;

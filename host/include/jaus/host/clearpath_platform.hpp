@@ -1,0 +1,73 @@
+// A Clearpath platform through the bridge: the mobility components drive and
+// read it (ClearpathVehicle), the camera mounts and arm joints the
+// configuration maps to it move on it, all on one PlatformConnection. Its
+// e-stop holds every component on it, and the driver's JAUS Emergency sets
+// its emergency flag (bridge::PlatformEmergencyMirror). What it lacks stays
+// simulated (a ModelPlatform): the images, the arm when no joint is mapped.
+// Simulated in process (sim::LoopbackClient, on the host's clock and
+// scheduler) or real (ClearpathLink, on the host's io_context): only the
+// client differs. The client is opened when a component first needs the
+// platform: a configuration that puts nothing on it opens nothing.
+#pragma once
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "jaus/bridge/clearpath_arm.hpp"
+#include "jaus/bridge/clearpath_cameras.hpp"
+#include "jaus/bridge/clearpath_vehicle.hpp"
+#include "jaus/bridge/platform_connection.hpp"
+#include "jaus/bridge/platform_emergency.hpp"
+#include "jaus/clearpath/client.hpp"
+#include "jaus/clearpath/link.hpp"
+#include "jaus/host/model_platform.hpp"
+#include "jaus/host/platform.hpp"
+
+namespace jaus::host {
+
+class ClearpathPlatform final : public Platform {
+ public:
+  // settings.kind: clearpath_sim, or clearpath with environment.io set.
+  ClearpathPlatform(PlatformSettings settings, SimulationSettings simulation, PlatformEnvironment environment);
+  ~ClearpathPlatform() override;
+  ClearpathPlatform(const ClearpathPlatform&) = delete;
+  ClearpathPlatform& operator=(const ClearpathPlatform&) = delete;
+
+  Expected<void> provide(std::string_view interface, rt::Backends& backends) override;
+  bool on_estop(std::string_view interface) const override;
+  void follow_emergencies(std::vector<rt::EmergencyLatch*> on_estop, rt::EmergencyLatch* driver) override;
+  void reclaim_stops() override;
+  void stop() override;
+
+  // Once opened (nullptr before): the client, a ClearpathLink or a
+  // sim::LoopbackClient, and the bridge's connection on it.
+  clearpath::Client* client() { return client_.get(); }
+  clearpath::ClearpathLink* link() { return link_; }  // a real link (not clearpath_sim)
+  bridge::PlatformConnection* connection() { return connection_.get(); }
+  // The bridge's backends, once a component needs them (nullptr until then,
+  // and for a mount or arm the configuration maps nothing to).
+  bridge::ClearpathVehicle* vehicle() { return vehicle_.get(); }
+  bridge::ClearpathCameras* cameras() { return cameras_.get(); }
+  bridge::ClearpathArm* arm() { return arm_.get(); }
+  // What stays simulated: the cameras' images, an arm not on the platform.
+  ModelPlatform& simulated() { return simulated_; }
+
+ private:
+  bridge::PlatformConnection& connect();  // opens the client and the connection, once
+
+  PlatformSettings settings_;
+  SimulationSettings simulation_;
+  PlatformEnvironment environment_;
+  ModelPlatform simulated_;
+  std::unique_ptr<clearpath::Client> client_;
+  clearpath::ClearpathLink* link_ = nullptr;  // client_, when it is a real link
+  std::unique_ptr<bridge::PlatformConnection> connection_;
+  std::unique_ptr<bridge::ClearpathVehicle> vehicle_;
+  std::unique_ptr<bridge::ClearpathCameras> cameras_;
+  std::unique_ptr<bridge::ClearpathArm> arm_;
+  std::unique_ptr<bridge::PlatformEmergencyMirror> emergency_mirror_;  // the platform's stops <-> the latches
+  std::vector<std::string_view> on_estop_;  // the interfaces provided on the platform
+};
+
+}  // namespace jaus::host
