@@ -9,6 +9,8 @@
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <CLI/CLI.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <csignal>
 #include <iostream>
 
 #include "host_config.hpp"
@@ -28,6 +30,48 @@ struct CommandLine {
   int node = 0;
   std::string log_level;
   bool check_config = false;
+};
+
+// jausd's signals (the host installs none). Every signal that asks a process
+// to end (systemctl stop, Ctrl-C, Ctrl-\, a closed terminal) ends it the same
+// orderly way: the host stops (every component's stop path run), then the
+// loop ends. SIGUSR1 is the local clear of emergency holds: only someone on
+// the vehicle can send it.
+class Signals {
+ public:
+  Signals(boost::asio::io_context& io, jaus::host::NodeHost& host)
+      : io_(io), host_(host), stop_(io, SIGINT, SIGTERM, SIGHUP), local_clear_(io, SIGUSR1) {
+    stop_.add(SIGQUIT);
+    stop_.async_wait([this](const boost::system::error_code& ec, int signal) {
+      if (ec) return;
+      host_.stop(name(signal));
+      io_.stop();
+    });
+    wait_for_local_clear();
+  }
+
+ private:
+  static std::string name(int signal) {
+    switch (signal) {
+      case SIGINT: return "SIGINT";
+      case SIGTERM: return "SIGTERM";
+      case SIGHUP: return "SIGHUP";
+      case SIGQUIT: return "SIGQUIT";
+      default: return "signal " + std::to_string(signal);
+    }
+  }
+  void wait_for_local_clear() {
+    local_clear_.async_wait([this](const boost::system::error_code& ec, int) {
+      if (ec || host_.stopped()) return;
+      host_.clear_emergency_holds_locally("SIGUSR1");
+      wait_for_local_clear();
+    });
+  }
+
+  boost::asio::io_context& io_;
+  jaus::host::NodeHost& host_;
+  boost::asio::signal_set stop_;
+  boost::asio::signal_set local_clear_;
 };
 
 // The command line wins over the file; the result is checked again.
@@ -113,8 +157,9 @@ int main(int argc, char** argv) {
   logger->info("configuration {}", source);
   for (const auto& plugin : jausd::plugin_summaries(config)) logger->info("{}", plugin);
   for (const auto& warning : warnings) logger->warn("{}", warning);
+  Signals signals(io, **host);
   // Safety: NodeHost::run ends with every component's stop path run
   // (platform commanded to stop, the zero setpoint flushed), whether a stop
   // signal or an exception ended the loop.
-  return drain_logs_at_exit.exiting_with((*host)->run(io) ? kExitFailure : kExitOk);
+  return drain_logs_at_exit.exiting_with((*host)->run(io) ? kExitOk : kExitFailure);
 }

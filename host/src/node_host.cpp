@@ -1,9 +1,6 @@
 #include "jaus/host/node_host.hpp"
 
-#include <boost/asio/post.hpp>
-#include <boost/asio/signal_set.hpp>
 #include <algorithm>
-#include <csignal>
 
 
 namespace jaus::host {
@@ -203,52 +200,24 @@ NodeHost::~NodeHost() {
   if (platform_) platform_->stop();  // a host that never fully opened: its frame thread, before its cameras go
 }
 
-namespace {
-std::string signal_name(int signal) {
-  switch (signal) {
-    case SIGINT: return "SIGINT";
-    case SIGTERM: return "SIGTERM";
-    case SIGHUP: return "SIGHUP";
-    case SIGQUIT: return "SIGQUIT";
-    default: return "signal " + std::to_string(signal);
-  }
-}
-}  // namespace
-
-std::optional<std::string> NodeHost::run(boost::asio::io_context& io) {
-  // Every signal that asks a process to end (systemctl stop, Ctrl-C, Ctrl-\,
-  // a closed terminal) ends it the same orderly way.
-  boost::asio::signal_set signals(io, SIGINT, SIGTERM, SIGHUP);
-  signals.add(SIGQUIT);
-  signals.async_wait([&](const boost::system::error_code& ec, int signal) {
-    if (ec) return;
-    stop(signal_name(signal));
-    io.stop();
-  });
-  // The local clear of emergency holds: only someone on the vehicle can send it.
-  boost::asio::signal_set local_clear(io, SIGUSR1);
-  std::function<void()> wait_for_local_clear = [&] {
-    local_clear.async_wait([&](const boost::system::error_code& ec, int) {
-      if (ec || stopped_) return;
-      clear_emergency_holds_locally("SIGUSR1");
-      wait_for_local_clear();
-    });
-  };
-  wait_for_local_clear();
-  std::optional<std::string> failure;
+Expected<void> NodeHost::run(boost::asio::io_context& io) {
+  std::string failure;
   try {
     io.run();
   } catch (const std::exception& e) {
     // Nothing in the libraries throws, but should anything escape the loop
     // (memory exhausted, a bug), the platform still stops before the exit.
     failure = e.what();
-    log_(rt::LogLevel::error, "event loop failed: " + *failure + "; stopping");
   } catch (...) {
     failure = "unknown exception";
-    log_(rt::LogLevel::error, "event loop failed: unknown exception; stopping");
   }
-  stop(failure ? "exception: " + *failure : std::string("event loop ended"));
-  return failure;
+  if (failure.empty()) {
+    stop("event loop ended");
+    return {};
+  }
+  log_(rt::LogLevel::error, "event loop failed: " + failure + "; stopping");
+  stop("exception: " + failure);
+  return unexpected(make_error(ErrorCode::interrupted, failure));
 }
 
 rt::ComponentConfig NodeHost::component_config(std::string name, std::uint8_t component, std::uint8_t instance) const {

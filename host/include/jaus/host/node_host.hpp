@@ -2,8 +2,8 @@
 // either opened on the network (a UDP link on the caller's io_context, with
 // the io_context's clock and timers, AsioRuntime) or attached to a link,
 // clock and scheduler the caller injects (a memory link under virtual time in
-// tests). jausd is an opened NodeHost with signal handling; the OCU is a
-// NodeHost with one more component; tests host nodes the same way.
+// tests). jausd is an opened NodeHost and the signals that stop it; the OCU
+// is a NodeHost with one more component; tests host nodes the same way.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -88,7 +88,7 @@ class NodeHost {
   void stop(const std::string& why);
   bool stopped() const { return stopped_; }
 
-  // The local clear of emergency holds (SIGUSR1 in run()): every Set
+  // The local clear of emergency holds (jausd's SIGUSR1): every Set
   // Emergency holder of every latch is cleared, logged with what each held,
   // and the platform's emergency flag left by an earlier run is reclaimed.
   // The platform's own stops stay until it reports them clear. Returns how
@@ -97,13 +97,13 @@ class NodeHost {
   // The latch a component with hardware follows (nullptr for the others).
   const rt::EmergencyLatch* emergency_latch(const std::string& name) const;
 
-  // Runs `io` (the one the host was opened on) until a stop signal (SIGINT,
-  // SIGTERM, SIGHUP, SIGQUIT), io.stop() or an exception escaping a handler;
-  // SIGUSR1 is the local clear of emergency holds.
+  // Runs `io` (the one the host was opened on) until io.stop() or an
+  // exception escaping a handler. Signals are the app's (jausd installs
+  // them: a stop signal is stop() then io.stop(), SIGUSR1 the local clear).
   // Safety: whatever ends the loop, stop() runs before this returns, so every
-  // component's stop path (platform commanded to stop) has run. Returns the
-  // exception's message when one ended the loop.
-  std::optional<std::string> run(boost::asio::io_context& io);
+  // component's stop path (platform commanded to stop) has run. The error:
+  // the exception that ended the loop.
+  Expected<void> run(boost::asio::io_context& io);
 
   const HostConfig& config() const { return config_; }
   node::Node& node() { return *node_; }
