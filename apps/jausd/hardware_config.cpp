@@ -3,9 +3,9 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <set>
 
 #include "jaus/components/camera.hpp"
+#include "jaus/components/camera_rules.hpp"
 
 namespace jausd {
 
@@ -130,7 +130,7 @@ CameraConfig camera(const YAML::Node& node, std::size_t index) {
           if (!std::filesystem::is_directory(c.image_directory, ec))
             fail(e.value_line(), "'image_directory' " + jaus::quoted(c.image_directory) + " is not a directory");
         }}});
-  if (auto problem = check_cameras(VisualSensorConfig{{c}})) fail(line, *problem);
+  if (auto ok = jaus::components::check_cameras_config(VisualSensorConfig{{c}}); !ok) fail(line, ok.error().message());
   return c;
 }
 
@@ -258,7 +258,7 @@ void read_cameras(const Entry& section, VisualSensorConfig& cameras) {
       fail(line_of(items[i]), "duplicate camera id " + std::to_string(c.id) + first_at(it->second));
     cameras.cameras.push_back(c);
   }
-  if (auto problem = check_cameras(cameras)) fail(section.key_line, *problem);
+  if (auto ok = jaus::components::check_cameras_config(cameras); !ok) fail(section.key_line, ok.error().message());
 }
 
 void read_manipulator(const Entry& section, ArmConfig& arm) {
@@ -287,41 +287,8 @@ void read_manipulator(const Entry& section, ArmConfig& arm) {
           for (std::size_t i = 0; i < items.size(); ++i) arm.joints.push_back(joint(items[i], i));
           if (arm.joints.empty() || arm.joints.size() > 255) e.must_be("a list of 1..255 joints");
         }}});
-  if (auto problem = check_arm(arm)) fail(section.key_line, *problem);
-}
-
-std::optional<std::string> check_cameras(const VisualSensorConfig& config) {
-  if (config.cameras.empty() || config.cameras.size() > 255) return "'cameras' must list 1..255 cameras";
-  std::set<int> ids;
-  for (const auto& c : config.cameras) {
-    const std::string who = "camera " + std::to_string(c.id) + " (" + c.name + "): ";
-    if (c.id == 0) return who + "'id' must be 1..255";
-    if (!ids.insert(c.id).second) return "duplicate camera id " + std::to_string(c.id);
-    if (c.name.empty() || c.name.size() > 15 || !printable(c.name)) return who + "'name' must be 1..15 printable ASCII characters";
-    if (c.description.size() > 50 || !printable(c.description)) return who + "'description' must be at most 50 printable ASCII characters";
-    for (const auto& [axis, name] : {std::pair{&c.pan, "pan"}, std::pair{&c.tilt, "tilt"}, std::pair{&c.zoom, "zoom"}})
-      if (axis->min > axis->max || axis->max_rate < 0)
-        return who + "'" + name + "' needs min <= max and a max rate >= 0";
-    if (c.zoom.min < 0 || c.zoom.max > 100) return who + "'zoom' is a percent of the lens range, 0..100";
-    if (!(c.narrowest_horizontal_fov_rad > 0 && c.narrowest_horizontal_fov_rad <= c.widest_horizontal_fov_rad &&
-          c.widest_horizontal_fov_rad <= kPi))
-      return who + "'field_of_view_deg' needs 0 < narrowest <= widest <= 180";
-    if (c.min_width > c.width || c.width > c.max_width || c.min_height > c.height || c.height > c.max_height)
-      return who + "'width' and 'height' must be within min_width..max_width and min_height..max_height";
-    if (c.min_frame_rate_fps > c.frame_rate_fps || c.frame_rate_fps > c.max_frame_rate_fps)
-      return who + "'frame_rate_fps' must be within min_frame_rate_fps..max_frame_rate_fps";
-    if (c.image_formats.empty() || c.image_formats.size() > 4) return who + "'formats' must list 1..4 of png, jpeg";
-    std::set<std::uint8_t> formats;
-    for (auto f : c.image_formats)
-      if ((f != kPng && f != kJpeg) || !formats.insert(f).second) return who + "'formats' must list png and/or jpeg, once each";
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> check_arm(const ArmConfig& arm) {
   // The component's rules, so jausd refuses at load what the manipulator would refuse to run.
-  if (auto runnable = jaus::components::check_arm_config(arm); !runnable) return runnable.error().message();
-  return std::nullopt;
+  if (auto ok = jaus::components::check_arm_config(arm); !ok) fail(section.key_line, ok.error().message());
 }
 
 }  // namespace jausd

@@ -2,15 +2,15 @@
 // sensor's cameras and the primitive manipulator's arm, in the units a user
 // writes (degrees, percent) read into the components' own configuration
 // (SI units). Errors are thrown as yaml_reader::Failure with their line, like
-// every section. docs/configuration.md is the reference.
+// every section; the rules are the components' (check_cameras_config,
+// check_arm_config), which also check values set in code. docs/configuration.md
+// is the reference.
 #pragma once
-
-#include <optional>
-#include <string>
 
 #include "config_reader.hpp"
 #include "jaus/components/arm_config.hpp"
 #include "jaus/components/camera_config.hpp"
+#include "jaus/components/camera_rules.hpp"
 
 namespace jausd {
 
@@ -21,9 +21,5 @@ jaus::components::ArmConfig default_arm();
 
 void read_cameras(const yaml_reader::Entry& section, jaus::components::VisualSensorConfig& cameras);
 void read_manipulator(const yaml_reader::Entry& section, jaus::components::ArmConfig& arm);
-
-// The first problem with values however they were set (file or code), or nothing.
-std::optional<std::string> check_cameras(const jaus::components::VisualSensorConfig& cameras);
-std::optional<std::string> check_arm(const jaus::components::ArmConfig& arm);
 
 }  // namespace jausd

@@ -284,8 +284,9 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (!one_of(c.log_level, kLogLevels))
     return Issue{0, "'level' must be one of " + join(kLogLevels) + ", got " + jaus::quoted(c.log_level)};
   if (auto issue = check_transport(c.transport, lines)) return issue;
-  if (auto problem = check_cameras(c.cameras)) return Issue{lines.cameras, *problem};
-  if (auto problem = check_arm(c.manipulator)) return Issue{lines.manipulator, *problem};
+  if (auto ok = jaus::components::check_cameras_config(c.cameras); !ok) return Issue{lines.cameras, ok.error().message()};
+  if (auto ok = jaus::components::check_arm_config(c.manipulator); !ok)
+    return Issue{lines.manipulator, ok.error().message()};
   // The simulated Clearpath platform steers as the vehicle is configured, and
   // refuses the other kind's commands: the two must agree.
   const bool ackermann_drive = drive_mode(c.clearpath, c.vehicle.steering) == jaus::bridge::DriveMode::ackermann;

@@ -14,7 +14,7 @@
 #include "jaus/components/arm_config.hpp"
 #include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
-#include "jaus/host/platform.hpp"
+#include "jaus/host/platform_settings.hpp"
 
 namespace jausd {
 
