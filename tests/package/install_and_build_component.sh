@@ -100,7 +100,9 @@ query() {
 }
 wait_for 60 query || { cat "$work/jausctl.err" "$work/jausd.log"; fail "no answer to Query Velocity State"; }
 grep -q '"name":"Report Velocity State"' "$work/reply.json" || { cat "$work/reply.json"; fail "not a Report Velocity State"; }
-grep -q '"velocity_x_mps":1.5' "$work/reply.json" || { cat "$work/reply.json"; fail "not the odometer's speed"; }
+# Scaled integers on the wire: 1.5 and 0.25 to within their resolution.
+grep -Eq '"velocity_x_mps":1\.(5|49999)' "$work/reply.json" && grep -Eq '"yaw_rate_rps":0\.(25|24999)' "$work/reply.json" ||
+  { cat "$work/reply.json"; fail "not what the odometer measured (speed_mps 1.5, yaw_rate_rps 0.25)"; }
 echo "jausctl: $(cut -c1-200 "$work/reply.json")"
 
 kill -TERM "$jausd_pid"
