@@ -6,6 +6,9 @@
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <CLI/CLI.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <csignal>
 #include <fstream>
 #include <iostream>
 
@@ -54,6 +57,29 @@ bool write_file(const std::string& path, const std::string& text) {
   return false;
 }
 
+// SIGINT and SIGTERM ask the session to stop, each time: the case under way
+// cleans up (releases control, terminates its service connections; that only
+// sends, it never waits), the cases left fail as interrupted, and the summary
+// and reports are written as usual.
+class StopOnSignals {
+ public:
+  StopOnSignals(boost::asio::io_context& io, jaus::ocu::OcuSession& session)
+      : signals_(io, SIGINT, SIGTERM), session_(session) {
+    arm();
+  }
+
+ private:
+  void arm() {
+    signals_.async_wait([this](const boost::system::error_code& ec, int) {
+      if (ec) return;  // cancelled: the run is over
+      session_.request_stop();
+      arm();
+    });
+  }
+  boost::asio::signal_set signals_;
+  jaus::ocu::OcuSession& session_;
+};
+
 int run(const Options& o) {
   using namespace jaus;
   auto to = transport::parse_endpoint(o.to);
@@ -77,9 +103,10 @@ int run(const Options& o) {
     if (!bind) return bad_usage("--bind " + o.bind + ": " + bind.error().message());
     session_options.bind = *bind;
   }
-  auto session = ocu::OcuSession::open(session_options);
+  boost::asio::io_context io;  // the session's, and the signals'
+  auto session = ocu::OcuSession::open(session_options, &io);
   if (!session) return bad_usage(session.error().message());
-  (*session)->stop_on_signals();
+  const StopOnSignals signals(io, **session);
   const auto reply_timeout = std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(o.timeout_s));
   const auto wait = std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(o.wait_s));
 

@@ -299,9 +299,9 @@ CaseOutcome silent_requester(CaseContext& c) {
       return fail("no report on the service connection before the silence, in " + ocu::seconds_text(c.reply_timeout));
     }
   }
-  if (auto error = c.silence_second()) {
+  if (auto silenced = c.silence_second(); !silenced) {
     clean_up(controlled, true);
-    return fail(error->message());
+    return fail(silenced.error().message());
   }
   const auto silent_since = c.session.clock().now() - c.started;
   const auto last_report = [&] {

@@ -215,6 +215,10 @@ CaseOutcome queries_in_every_state(CaseContext& c) {
       if (!state) return fail("after Standby, " + state.error().message());
       if (!wrong.empty()) return fail("in Standby, " + wrong);
       if (*state == msg::PrimaryStatus::standby) states += ", Standby";
+      // A round trip: the Resume is acted on before the Set Emergency below,
+      // which a node may otherwise take first (its priority is higher), to
+      // return to Standby when cleared.
+      (void)primary_status(c);
     }
   }
   send(c, msg::SetEmergency{{1}}, priority::kSafetyCritical);

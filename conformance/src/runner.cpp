@@ -1,13 +1,8 @@
 #include "jaus/conform/runner.hpp"
 
 #include <algorithm>
-#include <array>
-
-#include <boost/asio/ip/udp.hpp>
 
 #include "jaus/messages/discovery_messages.hpp"
-#include "jaus/transport/framing.hpp"
-#include "jaus/transport/udp_link.hpp"
 #include "jaus/wire/codecs.hpp"
 
 namespace jaus::conform {
@@ -44,55 +39,13 @@ Address second_ocu_address(const Address& runner) {
   return Address{runner.subsystem, static_cast<std::uint8_t>(runner.node % 254 + 1), runner.component, runner.instance};
 }
 
-namespace {
-
-// The silent second OCU's port, kept bound so that what the component still
-// sends it is seen (and the datagrams are not refused by the host): heard,
-// never answered. Shared with its pending receive, which may complete after
-// the case (cancelled) when the io_context next runs.
-struct DeafPort : std::enable_shared_from_this<DeafPort> {
-  using udp = boost::asio::ip::udp;
-  DeafPort(boost::asio::io_context& io, CaseContext& context) : socket(io), c(&context) {}
-
-  void receive() {
-    socket.async_receive_from(boost::asio::buffer(datagram), from,
-                              [self = shared_from_this()](const boost::system::error_code& ec, std::size_t size) {
-                                if (ec || !self->c) return;  // closed: the case is over
-                                self->heard(std::span(self->datagram).first(size));
-                                self->receive();
-                              });
-  }
-  void heard(std::span<const std::uint8_t> bytes) {
-    auto unframed = transport::unframe(bytes);
-    if (!unframed || unframed->packet.header.source != c->target()) return;
-    const auto& packet = unframed->packet;
-    c->exchange.push_back(Exchanged{false,
-                                    packet.header,
-                                    {packet.payload.begin(), packet.payload.end()},
-                                    c->session.clock().now() - c->started,
-                                    true});
-  }
-  void close() {
-    c = nullptr;
-    boost::system::error_code ignored;
-    socket.close(ignored);
-  }
-
-  udp::socket socket;
-  CaseContext* c;
-  std::array<std::uint8_t, transport::kMaxDatagramSize> datagram{};
-  udp::endpoint from;
-};
-
-}  // namespace
-
 struct SecondOcu {
   std::unique_ptr<ocu::OcuSession> session;
   ocu::OcuSession::ListenerId recorder = 0;
-  std::shared_ptr<DeafPort> deaf;  // set when silenced
+  std::unique_ptr<DeafEndpoint> deaf;  // set when silenced
 
   ~SecondOcu() {
-    if (deaf) deaf->close();
+    deaf.reset();  // before the session it hears for
     if (session) session->unlisten(recorder);
   }
 };
@@ -100,10 +53,11 @@ struct SecondOcu {
 Expected<ocu::OcuSession*> CaseContext::second() {
   if (second_ocu && !second_ocu->deaf) return second_ocu->session.get();
   second_ocu.reset();  // a silenced one gives way to a fresh one at its address
+  if (!ocus)
+    return unexpected(make_error(ErrorCode::invalid_argument, "a second OCU: the run was given no way to open one"));
   ocu::SessionOptions options = session.options();
   options.self = second_ocu_address(session.self());
-  options.bind.port = 0;  // the runner's address, a port of its own
-  auto opened = ocu::OcuSession::open(options, &session.io_context());
+  auto opened = ocus->open(std::move(options));
   if (!opened) return unexpected(make_error(opened.error().code, "a second OCU: " + opened.error().message()));
   auto second = std::make_shared<SecondOcu>();
   second->session = std::move(*opened);
@@ -115,19 +69,20 @@ Expected<ocu::OcuSession*> CaseContext::second() {
   return second_ocu->session.get();
 }
 
-std::optional<Error> CaseContext::silence_second() {
-  if (!second_ocu || second_ocu->deaf) return make_error(ErrorCode::invalid_argument, "no second OCU to silence");
-  auto& link = second_ocu->session->link();
-  const transport::Ipv4Endpoint port = link.local_endpoint();
-  link.close();
-  auto deaf = std::make_shared<DeafPort>(session.io_context(), *this);
-  boost::system::error_code ec;
-  deaf->socket.open(DeafPort::udp::v4(), ec);
-  if (!ec) deaf->socket.bind(DeafPort::udp::endpoint(boost::asio::ip::address_v4(port.address), port.port), ec);
-  if (ec) return make_error(ErrorCode::io, "the silent OCU's port " + transport::to_string(port) + ": " + ec.message());
-  deaf->receive();
-  second_ocu->deaf = std::move(deaf);
-  return std::nullopt;
+Expected<void> CaseContext::silence_second() {
+  if (!second_ocu || second_ocu->deaf)
+    return unexpected(make_error(ErrorCode::invalid_argument, "no second OCU to silence"));
+  auto deaf = ocus->silence(*second_ocu->session, [this](const PacketView& packet) {
+    if (packet.header.source != target()) return;
+    exchange.push_back(Exchanged{false,
+                                 packet.header,
+                                 {packet.payload.begin(), packet.payload.end()},
+                                 session.clock().now() - started,
+                                 true});
+  });
+  if (!deaf) return unexpected(deaf.error());
+  second_ocu->deaf = std::move(*deaf);
+  return {};
 }
 
 std::size_t RunReport::count(Verdict verdict) const {
@@ -175,10 +130,10 @@ Expected<ComponentUnderTest> learn_component(ocu::OcuSession& session, const Add
                                         {msg::ReportIdentification::code}, reply_timeout);
   if (!identification) return unexpected(identification.error());
   msg::ReportIdentification id{};
-  if (!wire::decode_payload_into(identification->payload, id, dialect, kHeaderSize)) component.name = id.identification;
+  if (wire::decode_payload_into(identification->payload, id, dialect, kHeaderSize)) component.name = id.identification;
   auto services = session.request(address, msg::QueryServices{}, {msg::ReportServices::code}, reply_timeout);
   msg::ReportServices report{};
-  if (services && !wire::decode_payload_into(services->payload, report, dialect, kHeaderSize)) {
+  if (services && wire::decode_payload_into(services->payload, report, dialect, kHeaderSize)) {
     take_services(component, report.services);
   } else if (discovery) {
     // Some nodes answer Query Services only at the node manager.
@@ -200,6 +155,9 @@ std::vector<Address> discovered_components(const ocu::Discovery& discovery) {
 std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnderTest& component,
                                   const std::vector<const ConformanceCase*>& cases, const RunOptions& options,
                                   const ResultListener& on_result) {
+  // jaus-conform's other OCUs: on UDP beside its session.
+  std::unique_ptr<OcuFactory> udp_ocus = !options.ocus && session.on_udp() ? udp_ocu_factory(session) : nullptr;
+  OcuFactory* ocus = options.ocus ? options.ocus : udp_ocus.get();
   std::vector<CaseResult> results;
   for (const ConformanceCase* test_case : cases) {
     if (!options.only.empty() && std::string_view(test_case->id).find(options.only) == std::string_view::npos) continue;
@@ -211,7 +169,7 @@ std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnder
                !why.empty()) {
       result.outcome = {Verdict::skip, "does not apply: " + why};
     } else {
-      CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now()};
+      CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now(), ocus};
       // What the component sends the runner during the case, for the report.
       const auto recorder = session.listen([&](const ocu::Received& r) {
         if (r.header.source == component.address)

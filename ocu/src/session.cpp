@@ -1,8 +1,6 @@
 #include "jaus/ocu/session.hpp"
 
-#include <boost/asio/signal_set.hpp>
 #include <algorithm>
-#include <csignal>
 #include <stdexcept>
 
 #include "jaus/components/node_manager.hpp"
@@ -31,11 +29,6 @@ jaus::components::NodeManagerConfig ocu_identity() {
 }
 
 }  // namespace
-
-struct OcuSession::Signals {
-  explicit Signals(boost::asio::io_context& io) : set(io, SIGINT, SIGTERM) {}
-  boost::asio::signal_set set;
-};
 
 jaus::Error no_reply_error(const jaus::Address& from, jaus::rt::Duration timeout) {
   return jaus::make_error(jaus::ErrorCode::timeout, "no reply from " + from.to_string() + " within " + seconds_text(timeout));
@@ -142,10 +135,6 @@ boost::asio::io_context& OcuSession::io_context() {
 }
 
 OcuSession::~OcuSession() {
-  if (signals_) {
-    boost::system::error_code ignored;
-    signals_->set.cancel(ignored);
-  }
   // While the link is open: the OCU component's service connections are
   // terminated on the wire, not left to time out on the provider.
   if (host_) host_->stop(kExits);
@@ -212,22 +201,6 @@ bool OcuSession::run_until(const std::function<bool()>& done, jaus::rt::Duration
     if (io_->stopped()) io_->restart();
     io_->run_one_for(std::min(deadline - now, kRunSlice));
   }
-}
-
-void OcuSession::stop_on_signals() {
-  if (signals_ || !io_) return;
-  signals_ = std::make_unique<Signals>(*io_);
-  // Every signal interrupts; the commands' clean-up only sends (it never
-  // waits), so a second Ctrl-C is never needed.
-  struct Rearm {
-    OcuSession* session;
-    void operator()(const boost::system::error_code& ec, int) const {
-      if (ec) return;  // cancelled: the session is gone
-      session->request_stop();
-      session->signals_->set.async_wait(*this);
-    }
-  };
-  signals_->set.async_wait(Rearm{this});
 }
 
 jaus::Expected<Received> OcuSession::await_reply(const jaus::Address& from,

@@ -62,14 +62,16 @@ struct CaseOutcome {
 };
 
 struct SecondOcu;  // runner.cpp
+class OcuFactory;  // ocu_factory.hpp
 
 // The runner's second OCU: its own node (the runner's node ID + 1, so
 // 254.2.40.1 beside 254.1.40.1: one node ID on two ports would look like a
-// spoofed claim), the same peers and dialect, on the runner's io_context.
+// spoofed claim), the same peers and dialect, opened by the run's OcuFactory.
 Address second_ocu_address(const Address& runner);
 
 // What a case works with: the session, the component under test, the
-// profile, the budget for every reply it waits for, and the exchange so far.
+// profile, the budget for every reply it waits for, the exchange so far, and
+// where other OCUs come from.
 struct CaseContext {
   ocu::OcuSession& session;
   const ComponentUnderTest& component;
@@ -77,6 +79,7 @@ struct CaseContext {
   rt::Duration reply_timeout = std::chrono::seconds(1);
   std::vector<Exchanged> exchange;
   rt::TimePoint started{};
+  OcuFactory* ocus = nullptr;  // null: no second OCU can be opened
   std::shared_ptr<SecondOcu> second_ocu{};  // opened by second(), closed when the case ends
 
   const Address& target() const { return component.address; }
@@ -86,10 +89,10 @@ struct CaseContext {
   // After silence_second(), the next call opens a fresh one at the same
   // address (to clean up what the silent one left).
   Expected<ocu::OcuSession*> second();
-  // The second OCU falls silent: its link closes, so it neither sends (no
-  // heartbeats, no answers to liveness queries) nor answers; what still
-  // reaches its port is heard and recorded (second, received), never answered.
-  std::optional<Error> silence_second();
+  // The second OCU falls silent: it neither sends (no heartbeats, no
+  // answers to liveness queries) nor answers; what still
+  // reaches it is heard and recorded (second, received), never answered.
+  Expected<void> silence_second();
 };
 
 struct ConformanceCase {

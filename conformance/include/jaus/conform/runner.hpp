@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "jaus/conform/conformance_case.hpp"
+#include "jaus/conform/ocu_factory.hpp"
 #include "jaus/ocu/discovery.hpp"
 
 namespace jaus::conform {
@@ -20,6 +21,10 @@ struct RunOptions {
   // Leaves out the cases whose id contains this text (a slow case already
   // run elsewhere); empty: none.
   std::string skip;
+  // Where the cases' other OCUs come from. Null: on UDP beside the session
+  // (jaus-conform's); an attached session then has none, and the cases that
+  // need a second requester fail saying so.
+  OcuFactory* ocus = nullptr;
 };
 
 struct CaseResult;

@@ -144,10 +144,6 @@ class OcuSession {
   void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
   void interrupt() { request_stop(); }
   bool interrupted() const { return interrupted_.load(std::memory_order_relaxed); }
-  // Deprecated, for jaus-conform until it handles its signals itself:
-  // SIGINT and SIGTERM request a stop. Applications install their own
-  // handler (jausctl: ocu_command.cpp) and call request_stop().
-  void stop_on_signals();
 
   // The first message from `from` (255s match any ID) with one of `codes`
   // (any code when empty). Errors: timeout ("no reply from 1.1.33.1 within
@@ -174,8 +170,6 @@ class OcuSession {
   std::unique_ptr<boost::asio::io_context> owned_io_;
   boost::asio::io_context* io_ = nullptr;
   std::unique_ptr<jaus::host::NodeHost> host_;
-  struct Signals;  // stop_on_signals(), deprecated
-  std::unique_ptr<Signals> signals_;
   // Attached: the environment and the node (declared after it: gone first).
   SessionEnvironment environment_;
   std::unique_ptr<jaus::node::Node> own_node_;
