@@ -2,7 +2,8 @@
 // suites see failing only against a silent address or a component that never
 // confirms: here each fails, with its reason, against a component broken the
 // one way it looks for (broken_components.hpp; for the robustness cases a
-// component that never checks a payload, lenient_peer.hpp).
+// component that never checks a payload, lenient_peer.hpp), on a memory
+// network under virtual time.
 #include <gtest/gtest.h>
 
 #include "broken_components.hpp"
@@ -31,13 +32,13 @@ void PrintTo(const Flawed& f, std::ostream* out) { *out << f.name; }
 class FlawedComponentsFail : public ::testing::TestWithParam<Flawed> {
  protected:
   void SetUp() override {
-    broken = std::make_unique<test::BrokenNode>(io);
-    auto opened = test::open_session(io, {broken->endpoint()});
+    broken = std::make_unique<test::BrokenNode>(net.time, net.network);
+    auto opened = net.open_session();
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
 
-  boost::asio::io_context io;
+  test::VirtualNetwork net;
   std::unique_ptr<test::BrokenNode> broken;
   std::unique_ptr<ocu::OcuSession> session;
 };
@@ -46,7 +47,7 @@ TEST_P(FlawedComponentsFail, TheCaseThatLooksForTheFlawFailsSayingWhy) {
   const Flawed& flawed = GetParam();
   std::unique_ptr<ocu::OcuSession> other;
   if (flawed.controlled_by_another) {
-    auto opened = test::open_session(io, {broken->endpoint()}, Address{254, 7, 40, 1});
+    auto opened = net.open_session(Address{254, 7, 40, 1});
     ASSERT_TRUE(opened) << opened.error().message();
     other = std::move(*opened);
     other->send(flawed.address, msg::RequestComponentControl{{255}});
@@ -55,7 +56,7 @@ TEST_P(FlawedComponentsFail, TheCaseThatLooksForTheFlawFailsSayingWhy) {
   }
   RunOptions options;
   options.only = std::string(flawed.case_id);
-  const auto results = test::run_on(*session, flawed.address, options);
+  const auto results = net.run_on(*session, flawed.address, options);
   ASSERT_EQ(results.size(), 1u) << describe(results);
   EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
   EXPECT_NE(results[0].outcome.detail.find(flawed.says), std::string::npos) << results[0].outcome.detail;
@@ -90,13 +91,13 @@ INSTANTIATE_TEST_SUITE_P(
 // The robustness cases, against a component that answers an unknown code,
 // a Query Identification cut short, and acts on an overlong Set Emergency.
 TEST(RobustnessCases, EachFailsAgainstAComponentThatNeverChecksAPayload) {
-  boost::asio::io_context io;
-  test::LenientPeer lenient(io);
-  auto session = test::open_session(io, {lenient.endpoint()});
+  test::VirtualNetwork net;
+  test::LenientPeer lenient(net.time, net.network);
+  auto session = net.open_session();
   ASSERT_TRUE(session) << session.error().message();
   RunOptions run;
   run.only = "robust.";
-  const auto results = test::run_on(**session, test::LenientPeer::kAddress, run);
+  const auto results = net.run_on(**session, test::LenientPeer::kAddress, run);
   ASSERT_EQ(results.size(), robustness_cases().size()) << describe(results);
   const std::pair<std::string_view, std::string_view> expected[] = {
       {"robust.unknown_code", "answered an unknown code with 0x4002"},

@@ -1,5 +1,5 @@
 // Components broken on purpose, each in a way a conformance case must catch,
-// on a node of their own (subsystem 3, 127.0.0.1, an ephemeral port):
+// on a node of their own (subsystem 3, node 1, on a memory network):
 //   3.1.50.1 obeys anyone: a Reset from a non-controller puts it in Failure;
 //   3.1.51.1 never confirms a service connection (it provides Report Global Pose);
 //   3.1.52.1 echoes the presence vector it is asked for, whatever it has
@@ -20,16 +20,12 @@
 //   per-kind cases (broken_kind_components.hpp).
 #pragma once
 
-#include <utility>  // Boost 1.74's Asio headers need it first
-
-#include <boost/asio/io_context.hpp>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 #include "broken_kind_components.hpp"
-#include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
+#include "memory_node.hpp"
 #include "target_node.hpp"
 
 namespace jaus::conform::test {
@@ -308,37 +304,28 @@ class FirstClearEnds final : public rt::Component {
 
 class BrokenNode {
  public:
-  explicit BrokenNode(boost::asio::io_context& io) {
-    host::HostConfig config;
-    config.node.subsystem = 3;
-    config.node.node = 1;
-    config.link.bind = transport::Ipv4Endpoint{jausctl::test::kLoopback, 0};
-    config.settings.identity.subsystem_name = "broken";
-    config.settings.identity.node_name = "broken";
-    auto host = host::NodeHost::open(config, io);
-    if (!host) throw std::runtime_error(host.error().message());
-    host_ = std::move(*host);
-    host_->emplace<ObeysAnyone>(host_->component_config("obeys anyone", kObeysAnyone.component));
-    host_->emplace<NeverConfirms>(host_->component_config("never confirms", kNeverConfirms.component));
-    host_->emplace<EchoesPresence>(host_->component_config("echoes presence", kEchoesPresence.component));
+  BrokenNode(rt::VirtualTime& time, testing::MemoryNetwork& network) : node_(time, network, node_config()) {
+    node_.emplace<ObeysAnyone>("obeys anyone", kObeysAnyone.component);
+    node_.emplace<NeverConfirms>("never confirms", kNeverConfirms.component);
+    node_.emplace<EchoesPresence>("echoes presence", kEchoesPresence.component);
     add<HandMadeControl>("anyone takes over", kAnyoneTakesOver, ControlFlaw::anyone_takes_over);
     add<HandMadeControl>("never taken over", kNeverTakenOver, ControlFlaw::never_taken_over);
     add<HandMadeControl>("anyone releases", kAnyoneReleases, ControlFlaw::anyone_releases);
     add<HandMadeControl>("keeps silent controller", kKeepsSilentController, ControlFlaw::keeps_silent_controller);
-    host_->emplace<FirstClearEnds>(host_->component_config("first clear ends", kFirstClearEnds.component));
+    node_.emplace<FirstClearEnds>("first clear ends", kFirstClearEnds.component);
     add<HandMadeConnections>("activates inform", kActivatesInform, ConnectionFlaw::activates_inform);
     add<HandMadeConnections>("slow reports", kSlowReports, ConnectionFlaw::slow_reports);
     add<HandMadeConnections>("ignores terminate", kIgnoresTerminate, ConnectionFlaw::ignores_terminate);
     add<HandMadeConnections>("accepts any connection", kAcceptsAnyConnection, ConnectionFlaw::accepts_anything);
-    auto own_authority = host_->component_config("grants below own authority", kGrantsBelowOwnAuthority.component);
+    auto own_authority = node_.component_config("grants below own authority", kGrantsBelowOwnAuthority.component);
     own_authority.authority = kOwnAuthority;
-    host_->emplace<HandMadeControl>(std::move(own_authority), ControlFlaw::ignores_own_authority);
+    node_.add<HandMadeControl>(std::move(own_authority), ControlFlaw::ignores_own_authority);
     add<HandMadeControl>("ignores release", kIgnoresRelease, ControlFlaw::ignores_release);
     add<HandMadeControl>("refuses renewal", kRefusesRenewal, ControlFlaw::refuses_renewal);
     add<HandMadeControl>("keeps first authority", kKeepsFirstAuthority, ControlFlaw::keeps_first_authority);
-    host_->emplace<IgnoresStandby>(host_->component_config("ignores standby", kIgnoresStandby.component));
-    host_->emplace<AnswersWrongly>(host_->component_config("answers wrongly", kAnswersWrongly.component));
-    host_->emplace<SilentInStandby>(host_->component_config("silent in standby", kSilentInStandby.component));
+    node_.emplace<IgnoresStandby>("ignores standby", kIgnoresStandby.component);
+    node_.emplace<AnswersWrongly>("answers wrongly", kAnswersWrongly.component);
+    node_.emplace<SilentInStandby>("silent in standby", kSilentInStandby.component);
     add<BrokenDriver>("driver obeys anyone", kDriverObeysAnyone, DriverFlaw::obeys_anyone);
     add<BrokenDriver>("driver forgets effort", kDriverForgetsEffort, DriverFlaw::forgets_effort);
     add<BrokenDriver>("driver keeps effort", kDriverKeepsEffortOnStop, DriverFlaw::keeps_effort_on_stop);
@@ -358,16 +345,21 @@ class BrokenNode {
                       DriverFlaw::keeps_effort_on_takeover);
     add<BrokenArm>("arm keeps moving on release", kArmKeepsMovingOnRelease, ArmFlaw::keeps_moving_on_release);
   }
-  transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
-  host::NodeHost& host() { return *host_; }
+  node::Node& node() { return node_.node(); }
 
  private:
+  static node::NodeConfig node_config() {
+    node::NodeConfig config;
+    config.subsystem = 3;
+    config.node = 1;
+    return config;
+  }
   template <class C, class Flaw>
   void add(const char* name, const Address& at, Flaw flaw) {
-    host_->emplace<C>(host_->component_config(name, at.component), flaw);
+    node_.emplace<C>(name, at.component, flaw);
   }
 
-  std::unique_ptr<host::NodeHost> host_;
+  test_support::MemoryNode node_;
 };
 
 }  // namespace jaus::conform::test

@@ -1,20 +1,16 @@
 // Node managers broken on purpose, each in a way a discovery case must catch,
-// each on a node of its own (subsystem 10 + its flaw's number, node 1,
-// 127.0.0.1, an ephemeral port) with one more component that answers
+// each on a node of its own (subsystem 10 + its flaw's number, node 1, on a
+// memory network) with one more component that answers
 // (component 50, "worker"). Otherwise each answers as a node manager should:
 // identification at every level, configuration, services, subsystem list,
 // and an Event to each Create Event subscriber when the node changes.
 #pragma once
 
-#include <utility>  // Boost 1.74's Asio headers need it first
-
-#include <boost/asio/io_context.hpp>
 #include <map>
 #include <memory>
-#include <stdexcept>
 
-#include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
+#include "memory_node.hpp"
 #include "jaus/runtime/node_directory.hpp"
 
 namespace jaus::conform::test {
@@ -124,24 +120,22 @@ class BrokenNodeManager final : public rt::Component, public rt::ConfigurationOb
 
 class BrokenDiscoveryNode {
  public:
-  BrokenDiscoveryNode(boost::asio::io_context& io, NodeManagerFlaw flaw) {
-    host::HostConfig config;
-    config.node.subsystem = subsystem_of(flaw);
-    config.node.node = 1;
-    config.link.bind = transport::Ipv4Endpoint{0x7F000001, 0};
-    config.settings.identity.subsystem_name = "broken discovery";
-    config.settings.identity.node_name = "broken discovery";
-    auto host = host::NodeHost::open(config, io);
-    if (!host) throw std::runtime_error(host.error().message());
-    host_ = std::move(*host);
-    host_->emplace<BrokenNodeManager>(host_->component_config("broken node manager", 1), host_->node(), flaw);
-    host_->emplace<Worker>(host_->component_config("worker", kWorkerComponent));
+  BrokenDiscoveryNode(rt::VirtualTime& time, testing::MemoryNetwork& network, NodeManagerFlaw flaw)
+      : node_(time, network, node_config(flaw)) {
+    node_.emplace<BrokenNodeManager>("broken node manager", 1, node_.node(), flaw);
+    node_.emplace<Worker>("worker", kWorkerComponent);
   }
-  transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
-  host::NodeHost& host() { return *host_; }
+  node::Node& node() { return node_.node(); }
 
  private:
-  std::unique_ptr<host::NodeHost> host_;
+  static node::NodeConfig node_config(NodeManagerFlaw flaw) {
+    node::NodeConfig config;
+    config.subsystem = subsystem_of(flaw);
+    config.node = 1;
+    return config;
+  }
+
+  test_support::MemoryNode node_;
 };
 
 }  // namespace jaus::conform::test

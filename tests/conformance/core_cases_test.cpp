@@ -3,7 +3,8 @@
 // with its reason and exchange, against a component broken on purpose (one
 // that obeys anyone, one that never confirms a service connection, one that
 // echoes the presence vector it is asked for), and against an address where
-// nothing answers. The cases run as jaus-conform runs them (runner.hpp).
+// nothing answers. The cases run as jaus-conform runs them (runner.hpp), on
+// a memory network under virtual time.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -12,14 +13,13 @@
 #include "case_results.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
-#include "target_node.hpp"
+#include "virtual_target.hpp"
 
 namespace jaus::conform {
 namespace {
 
 using namespace std::chrono_literals;
 using jausctl::test::kCommunicator;
-using jausctl::test::kLoopback;
 using jausctl::test::kNobody;
 using jausctl::test::kPoseSensor;
 using jausctl::test::kTargetManager;
@@ -29,9 +29,9 @@ using test::result_of;
 class Conformance : public ::testing::Test {
  protected:
   void SetUp() override {
-    target = std::make_unique<jausctl::test::TargetNode>(io);
-    broken = std::make_unique<test::BrokenNode>(io);
-    auto opened = test::open_session(io, {target->endpoint(), broken->endpoint()});
+    target = std::make_unique<jausctl::test::VirtualTarget>(net.time, net.network, jausctl::test::TargetOptions{});
+    broken = std::make_unique<test::BrokenNode>(net.time, net.network);
+    auto opened = net.open_session();
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
@@ -39,21 +39,19 @@ class Conformance : public ::testing::Test {
   std::vector<CaseResult> run(const Address& address, std::string only = {}) {
     RunOptions options;
     options.only = std::move(only);
-    // The silent-requester case takes some 6 s a component (a controller
-    // timeout and a liveness timeout on the real clock): it runs on three
-    // components in multi_requester_cases_test.cpp, not again here.
+    // The silent-requester case runs on three components in
+    // multi_requester_cases_test.cpp, not again here.
     options.skip = "control.silent_requester";
-    return test::run_on(*session, address, options);
+    return net.run_on(*session, address, options);
   }
 
-  boost::asio::io_context io;
-  std::unique_ptr<jausctl::test::TargetNode> target;
+  test::VirtualNetwork net;
+  std::unique_ptr<jausctl::test::VirtualTarget> target;
   std::unique_ptr<test::BrokenNode> broken;
   std::unique_ptr<ocu::OcuSession> session;
 };
 
-// One component per test, so that ctest runs them side by side (each waits
-// on its service connections for some seconds).
+// One component per test.
 class OurNodeConforms : public Conformance, public ::testing::WithParamInterface<Address> {};
 
 TEST_P(OurNodeConforms, EveryApplicableCasePasses) {
@@ -98,7 +96,7 @@ TEST_F(Conformance, TheOpenjausProfileSkipsWhatThatImplementationIsDocumentedToD
   RunOptions options;
   options.profile = Profile::openjaus;
   options.only = "core.";
-  const auto results = run_cases(*session, *component, all_cases(), options);
+  const auto results = run_cases(*session, *component, all_cases(), net.on_this_network(options));
   ASSERT_EQ(results.size(), core_cases().size());
   for (const auto& r : results) {
     if (r.test_case->id == std::string_view("core.refused_without_control")) {
@@ -171,7 +169,7 @@ TEST_F(Conformance, CasesThatDoNotApplyAreSkippedWithWhy) {
   unknown.address = kCommunicator;
   RunOptions options;
   options.only = "sc.";
-  const auto results = run_cases(*session, unknown, all_cases(), options);
+  const auto results = run_cases(*session, unknown, all_cases(), net.on_this_network(options));
   ASSERT_EQ(results.size(), service_connection_cases().size());
   for (const auto& r : results) {
     EXPECT_EQ(r.outcome.verdict, Verdict::skip);
@@ -186,7 +184,7 @@ TEST_F(Conformance, EveryCaseFailsWithTheReasonWhenNothingAnswers) {
   RunOptions options;
   options.reply_timeout = 200ms;
   options.only = "core.";
-  const auto results = run_cases(*session, nobody, all_cases(), options);
+  const auto results = run_cases(*session, nobody, all_cases(), net.on_this_network(options));
   ASSERT_EQ(results.size(), core_cases().size());
   for (const auto& r : results) {
     EXPECT_EQ(r.outcome.verdict, Verdict::fail) << describe(results);

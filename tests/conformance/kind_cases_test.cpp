@@ -4,7 +4,8 @@
 // the component is left as found (nobody in control, the vehicle not driven,
 // the arm where it was); each case is seen failing, with its reason,
 // against a component broken the way it looks for; and each says why it
-// does not apply to a component of another kind.
+// does not apply to a component of another kind. On a memory network under
+// virtual time.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,9 +25,9 @@ using namespace test;
 class KindConformance : public ::testing::Test {
  protected:
   void SetUp() override {
-    ours = std::make_unique<KindNode>(io);
-    broken = std::make_unique<BrokenNode>(io);
-    auto opened = open_session(io, {ours->endpoint(), broken->endpoint()});
+    ours = std::make_unique<KindNode>(net.time, net.network);
+    broken = std::make_unique<BrokenNode>(net.time, net.network);
+    auto opened = net.open_session();
     ASSERT_TRUE(opened) << opened.error().message();
     session = std::move(*opened);
   }
@@ -34,15 +35,14 @@ class KindConformance : public ::testing::Test {
   std::vector<CaseResult> run(const Address& address, std::string only = {}) {
     RunOptions options;
     options.only = std::move(only);
-    // The silent-requester case takes some 6 s a component (a controller
-    // timeout and a liveness timeout on the real clock): it runs on three
-    // components in multi_requester_cases_test.cpp, not again here.
+    // The silent-requester case runs on three components in
+    // multi_requester_cases_test.cpp, not again here.
     options.skip = "control.silent_requester";
-    return run_on(*session, address, options);
+    return net.run_on(*session, address, options);
   }
 
-  // Nobody controls `component` within a generous deadline: the runner's
-  // last Release Component Control may still be on its way.
+  // Nobody controls `component` once the runner's last Release Component
+  // Control, maybe still on its way, has arrived.
   bool released(const rt::Component& component) {
     return session->run_until([&] { return !component.control().controller().has_value(); }, 3s);
   }
@@ -53,7 +53,7 @@ class KindConformance : public ::testing::Test {
     return *found;
   }
 
-  boost::asio::io_context io;
+  VirtualNetwork net;
   std::unique_ptr<KindNode> ours;
   std::unique_ptr<BrokenNode> broken;
   std::unique_ptr<ocu::OcuSession> session;
@@ -90,7 +90,7 @@ TEST_P(OurKindsConform, EveryApplicableCasePassesAndThoseOfItsKindRun) {
   EXPECT_EQ(effort.propulsive_linear, components::Axes{});
   EXPECT_EQ(effort.propulsive_rotational, components::Axes{});
   if (!arm_before.empty()) {
-    io.run_for(300ms);  // the last restoring Set Joint Positions reaches its target
+    session->run_for(300ms);  // the last restoring Set Joint Positions reaches its target
     const auto arm_after = ours->host().platform_as<host::ModelPlatform>()->arm()->positions();
     ASSERT_EQ(arm_after.size(), arm_before.size());
     for (std::size_t j = 0; j < arm_before.size(); ++j) EXPECT_NEAR(arm_after[j], arm_before[j], 0.01) << j;
@@ -128,7 +128,7 @@ TEST_P(BrokenKindsFail, TheCaseThatLooksForTheFlawFailsSayingWhy) {
   EXPECT_NE(results[0].outcome.detail.find(b.says), std::string::npos) << results[0].outcome.detail;
   EXPECT_FALSE(results[0].exchange.empty());
   // Whatever it did, it is left with nobody in control.
-  auto* component = broken->host().node().find(b.address);
+  auto* component = broken->node().find(b.address);
   ASSERT_NE(component, nullptr);
   EXPECT_TRUE(released(*component));
 }

@@ -1,17 +1,16 @@
 // A node of ours with one component of each kind the per-kind cases test,
-// in process on 127.0.0.1 and an ephemeral port (subsystem 1): primitive
-// driver, global pose sensor (with local pose), velocity state sensor,
-// visual sensor and primitive manipulator, on the components' own simulated
-// vehicle, two cameras and a three-joint arm.
+// a node host attached to a link of a memory network under virtual time
+// (subsystem 1, node 1): primitive driver, global pose sensor (with local
+// pose), velocity state sensor, visual sensor and primitive manipulator, on
+// the components' own simulated vehicle, two cameras and a three-joint arm.
 #pragma once
 
-#include <utility>  // Boost 1.74's Asio headers need it first
-
-#include <boost/asio/io_context.hpp>
 #include <memory>
 #include <stdexcept>
 
+#include "jaus/base/virtual_time.hpp"
 #include "jaus/host/node_host.hpp"
+#include "jaus/testing/memory_link.hpp"
 
 namespace jaus::conform::test {
 
@@ -24,11 +23,10 @@ inline const Address kManipulator{1, 1, 49, 1};
 
 class KindNode {
  public:
-  explicit KindNode(boost::asio::io_context& io) {
+  KindNode(rt::VirtualTime& time, testing::MemoryNetwork& network) : link_(network.attach(1, 1)) {
     host::HostConfig config;
     config.node.subsystem = 1;
     config.node.node = 1;
-    config.link.bind = transport::Ipv4Endpoint{0x7F000001, 0};
     config.settings.identity.subsystem_name = "kinds";
     config.settings.identity.node_name = "kinds";
     auto spec = [](const char* kind, const Address& at, std::map<std::string, std::string> options = {}) {
@@ -46,14 +44,22 @@ class KindNode {
     second.id = 2;
     config.cameras.cameras = {components::CameraConfig{}, second};
     config.arm.joints.assign(3, components::JointConfig{});
-    auto host = host::NodeHost::open(config, io);
+    auto host = host::NodeHost::attach(config, link_, time, time);
     if (!host) throw std::runtime_error(host.error().message());
     host_ = std::move(*host);
+    link_.deliver_to(host_->node());
   }
-  transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
+  ~KindNode() {
+    host_.reset();  // stopped while its link still carries the last messages
+    link_.on_receive({});
+    link_.set_connected(false);
+  }
+  KindNode(const KindNode&) = delete;
+  KindNode& operator=(const KindNode&) = delete;
   host::NodeHost& host() { return *host_; }
 
  private:
+  testing::MemoryLink& link_;
   std::unique_ptr<host::NodeHost> host_;
 };
 

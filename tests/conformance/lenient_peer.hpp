@@ -1,5 +1,5 @@
-// A component scripted over a plain UDP socket (6.1.40.1 on loopback) that
-// never checks a payload, the flaw the robustness cases look for: it
+// A component scripted on a memory network link (6.1.40.1) that never
+// checks a payload, the flaw the robustness cases look for: it
 // answers Query Identification with or without its query type, acts on a
 // Set Emergency of any size, and answers any message it does not know with
 // Report Component Status. Otherwise it answers what learn_component() and
@@ -7,15 +7,16 @@
 // until a Clear Emergency.
 #pragma once
 
-#include "scripted_udp_peer.hpp"
+#include "scripted_memory_peer.hpp"
 
 namespace jaus::conform::test {
 
-class LenientPeer final : public jausctl::test::ScriptedUdpPeer {
+class LenientPeer final : public test_support::ScriptedMemoryPeer {
  public:
   static constexpr Address kAddress{6, 1, 40, 1};
 
-  explicit LenientPeer(boost::asio::io_context& io) : ScriptedUdpPeer(io) {}
+  LenientPeer(rt::VirtualTime& time, testing::MemoryNetwork& network)
+      : ScriptedMemoryPeer(time, network, kAddress.subsystem, kAddress.node) {}
 
  private:
   void on_packet(const Header& h, std::span<const std::uint8_t>) override {

@@ -14,33 +14,42 @@
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
-#include <boost/asio/steady_timer.hpp>
+#include <chrono>
 #include <map>
+#include <type_traits>
 #include <vector>
 
+#include "scripted_memory_peer.hpp"
 #include "scripted_udp_peer.hpp"
 
 namespace jausctl::test {
 
-class Ra33Peer final : public ScriptedUdpPeer {
+template <class Peer>
+class Ra33PeerOn final : public Peer {
  public:
   static constexpr std::uint8_t kSubsystem = 1;
   static constexpr jaus::Address kManager{kSubsystem, 1, 1, 1};
   static constexpr jaus::Address kCommunicator{kSubsystem, 1, 35, 1};
   static constexpr const char* kName = "ra33-vehicle";
 
-  explicit Ra33Peer(boost::asio::io_context& io) : ScriptedUdpPeer(io), timer_(io) {}
+  explicit Ra33PeerOn(boost::asio::io_context& io)
+    requires std::is_same_v<Peer, ScriptedUdpPeer>
+      : Peer(io) {}
+  Ra33PeerOn(jaus::rt::VirtualTime& time, jaus::testing::MemoryNetwork& network)
+    requires std::is_same_v<Peer, jaus::test_support::ScriptedMemoryPeer>
+      : Peer(time, network, kSubsystem, 1) {}
 
   // Starts the 1 Hz heartbeats to `to` (its configured peers).
-  void heartbeat_to(std::vector<jaus::transport::Ipv4Endpoint> to) {
-    heartbeat_to_ = std::move(to);
+  void heartbeat_to(std::vector<jaus::transport::Ipv4Endpoint> to)
+    requires std::is_same_v<Peer, ScriptedUdpPeer>
+  {
+    this->set_peers(std::move(to));
     heartbeat();
   }
+  // On a memory network: to whoever the heartbeats' addresses reach.
+  void start_heartbeats() { heartbeat(); }
   // Gone without a word (power cut): nothing in or out.
-  void go_silent() {
-    timer_.cancel();
-    close();
-  }
+  void go_silent() { this->close(); }
 
   // What it accepted and what it dropped (addressed to another subsystem).
   std::vector<jaus::Header> accepted;
@@ -66,47 +75,42 @@ class Ra33Peer final : public ScriptedUdpPeer {
         const auto q = jaus::wire::decode_payload<QueryIdentification>(payload);
         if (!q) return;
         if (self == kManager && q->query_type == identification::kSubsystem)
-          return reply(self, h.source, ReportIdentification{{q->query_type, 0, 10001, kName}});
+          return this->reply(self, h.source, ReportIdentification{{q->query_type, 0, 10001, kName}});
         if (self == kManager && q->query_type == identification::kNode)
-          return reply(self, h.source, ReportIdentification{{q->query_type, 0, 40001, "ra33-node"}});
+          return this->reply(self, h.source, ReportIdentification{{q->query_type, 0, 40001, "ra33-node"}});
         if (q->query_type == identification::kComponent)
-          return reply(self, h.source,
+          return this->reply(self, h.source,
                        ReportIdentification{{q->query_type, 0, 0, self == kManager ? "NodeManager" : "Communicator"}});
         return;
       }
       case QueryConfiguration::code:
         if (self != kManager) return;
-        return reply(self, h.source, ReportConfiguration{{{{1, {{1, 1}, {35, 1}}}}}});
+        return this->reply(self, h.source, ReportConfiguration{{{{1, {{1, 1}, {35, 1}}}}}});
       case QuerySubsystemList::code: {
         if (self != kManager) return;
         ReportSubsystemList list;
         list.subsystems.push_back(kManager);
         for (const auto& [subsystem, address] : heard_)
           if (subsystem != kSubsystem) list.subsystems.push_back(address);
-        return reply(self, h.source, list);
+        return this->reply(self, h.source, list);
       }
       case QueryServices::code:
-        return reply(self, h.source, ReportServices{});
+        return this->reply(self, h.source, ReportServices{});
       default:
         return;
     }
   }
 
   void heartbeat() {
-    for (const auto& peer : heartbeat_to_) {
-      const Endpoint endpoint(boost::asio::ip::address_v4(peer.address), peer.port);
-      send(kManager, jaus::Address{kSubsystem, 255, 1, 1}, jaus::msg::ReportHeartbeatPulse{}, endpoint);
-      send(kCommunicator, jaus::Address{255, 255, 1, 1}, jaus::msg::ReportHeartbeatPulse{}, endpoint);
-    }
-    timer_.expires_after(std::chrono::seconds(1));
-    timer_.async_wait([this](const boost::system::error_code& ec) {
-      if (!ec) heartbeat();
-    });
+    this->send_to_peers(kManager, jaus::Address{kSubsystem, 255, 1, 1}, jaus::msg::ReportHeartbeatPulse{});
+    this->send_to_peers(kCommunicator, jaus::Address{255, 255, 1, 1}, jaus::msg::ReportHeartbeatPulse{});
+    this->after(std::chrono::seconds(1), [this] { heartbeat(); });
   }
 
-  boost::asio::steady_timer timer_;
-  std::vector<jaus::transport::Ipv4Endpoint> heartbeat_to_;
   std::map<std::uint8_t, jaus::Address> heard_;  // by subsystem: who spoke for it
 };
+
+using Ra33Peer = Ra33PeerOn<ScriptedUdpPeer>;
+using Ra33MemoryPeer = Ra33PeerOn<jaus::test_support::ScriptedMemoryPeer>;
 
 }  // namespace jausctl::test

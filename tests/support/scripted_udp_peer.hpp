@@ -1,14 +1,18 @@
 // A JAUS peer scripted over a plain UDP socket on loopback (an ephemeral
 // port), for tests that need a node our code did not make: it hands each
 // packet that unframes to on_packet() and sends messages in the OPC framing,
-// replies to the endpoint the last packet came from.
+// replies to the endpoint the last packet came from, and sends to its peers
+// (set_peers). The same protected interface as ScriptedMemoryPeer
+// (scripted_memory_peer.hpp), so a script runs on either.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <array>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -20,7 +24,7 @@ namespace jausctl::test {
 
 class ScriptedUdpPeer {
  public:
-  explicit ScriptedUdpPeer(boost::asio::io_context& io) : socket_(io) {
+  explicit ScriptedUdpPeer(boost::asio::io_context& io) : socket_(io), timer_(io) {
     namespace ip = boost::asio::ip;
     socket_.open(ip::udp::v4());
     socket_.bind(ip::udp::endpoint(ip::make_address_v4("127.0.0.1"), 0));
@@ -34,21 +38,38 @@ class ScriptedUdpPeer {
     const auto e = socket_.local_endpoint();
     return jaus::transport::Ipv4Endpoint{e.address().to_v4().to_uint(), e.port()};
   }
+  // Where send_to_peers() sends.
+  void set_peers(std::vector<jaus::transport::Ipv4Endpoint> peers) { peers_ = std::move(peers); }
 
  protected:
   using Endpoint = boost::asio::ip::udp::endpoint;
 
   virtual void on_packet(const jaus::Header& header, std::span<const std::uint8_t> payload) = 0;
 
-  // Nothing in or out from now on.
+  // Nothing in or out from now on, timer included.
   void close() {
+    timer_.cancel();
     boost::system::error_code ignored;
     socket_.close(ignored);
+  }
+
+  // Runs `action` once `delay` has passed, unless closed by then; one
+  // action pending at a time (a later call replaces it).
+  void after(std::chrono::steady_clock::duration delay, std::function<void()> action) {
+    timer_.expires_after(delay);
+    timer_.async_wait([action = std::move(action)](const boost::system::error_code& ec) {
+      if (!ec) action();
+    });
   }
 
   template <class M>
   void reply(const jaus::Address& from, const jaus::Address& to, const M& message) {
     send(from, to, message, from_);
+  }
+
+  template <class M>
+  void send_to_peers(const jaus::Address& from, const jaus::Address& to, const M& message) {
+    for (const auto& peer : peers_) send(from, to, message, Endpoint(boost::asio::ip::address_v4(peer.address), peer.port));
   }
 
   template <class M>
@@ -83,6 +104,8 @@ class ScriptedUdpPeer {
   }
 
   boost::asio::ip::udp::socket socket_;
+  boost::asio::steady_timer timer_;
+  std::vector<jaus::transport::Ipv4Endpoint> peers_;
   Endpoint from_;
   std::array<std::uint8_t, 9000> buffer_{};
 };

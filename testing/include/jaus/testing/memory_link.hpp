@@ -39,6 +39,10 @@ class MemoryLink final : public node::Link {
     receiver_ = [&node](std::span<const std::uint8_t> packet) { node.receive_bytes(packet); };
   }
   void on_receive(Receiver receiver) { receiver_ = std::move(receiver); }
+  // Sees every packet the node hands this link, the header it wrote with it,
+  // whether or not the link is connected: a test reads what its node sent.
+  using Tap = std::function<void(const Header& header, std::span<const std::uint8_t> packet)>;
+  void on_transmit(Tap tap) { tap_ = std::move(tap); }
 
   // The cable pulled (false): nothing leaves or arrives, in flight included.
   void set_connected(bool connected) { connected_ = connected; }
@@ -51,6 +55,10 @@ class MemoryLink final : public node::Link {
 
   // node::Link.
   void transmit(const Header& header, std::span<const std::uint8_t> packet) override;
+  // What a UDP node's static peers get: the packet reaches every other link,
+  // whatever its destination names (a node sending its own subsystem's
+  // heartbeats to each endpoint it is configured with).
+  void transmit_to_every_link(const Header& header, std::span<const std::uint8_t> packet);
 
  private:
   friend class MemoryNetwork;
@@ -71,6 +79,7 @@ class MemoryLink final : public node::Link {
   std::uint8_t node_;
   bool connected_ = true;
   Receiver receiver_;
+  Tap tap_;
   std::uint64_t sent_ = 0;
   std::uint64_t received_ = 0;
 };
@@ -95,10 +104,11 @@ class MemoryNetwork {
  private:
   friend class MemoryLink;
 
-  void carry(const MemoryLink& from, const Header& header, std::span<const std::uint8_t> packet) {
+  void carry(const MemoryLink& from, const Header& header, std::span<const std::uint8_t> packet,
+             bool to_every_link = false) {
     std::shared_ptr<const std::vector<std::uint8_t>> bytes;
     for (const auto& link : links_) {
-      if (link.get() == &from || !link->reached_by(header.destination)) continue;
+      if (link.get() == &from || (!to_every_link && !link->reached_by(header.destination))) continue;
       if (!bytes) bytes = std::make_shared<const std::vector<std::uint8_t>>(packet.begin(), packet.end());
       // Packets already in flight when the network goes are dropped.
       std::weak_ptr<const char> alive = alive_;
@@ -116,9 +126,17 @@ class MemoryNetwork {
 };
 
 inline void MemoryLink::transmit(const Header& header, std::span<const std::uint8_t> packet) {
+  if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
   network_.carry(*this, header, packet);
+}
+
+inline void MemoryLink::transmit_to_every_link(const Header& header, std::span<const std::uint8_t> packet) {
+  if (tap_) tap_(header, packet);
+  if (!connected_) return;
+  ++sent_;
+  network_.carry(*this, header, packet, true);
 }
 
 }  // namespace jaus::testing

@@ -1,8 +1,10 @@
-// A JAUS node for jausctl's OCU to talk to, in-process, on a node host: node
-// manager 1.1.1.1, communicator 1.1.35.1 (controllable) and a pose sensor 1.1.38.1 that
-// answers Query Global Pose and provides Report Global Pose on service
-// connections, behind a UDP link on 127.0.0.1 and an ephemeral port; on
-// request a primitive driver 1.1.33.1 on the host's simulated vehicle.
+// A JAUS node for an OCU (jausctl's, the conformance runner's) to talk to,
+// in-process, on a node host: node manager 1.1.1.1, communicator 1.1.35.1
+// (controllable) and a pose sensor 1.1.38.1 that answers Query Global Pose
+// and provides Report Global Pose on service connections, behind a UDP link
+// on 127.0.0.1 and an ephemeral port; on request a primitive driver 1.1.33.1
+// on the host's simulated vehicle. virtual_target.hpp: the same on a memory
+// network.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
