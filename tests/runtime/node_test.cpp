@@ -1,35 +1,32 @@
 // The node: routing between local components and the network, priority
-// dispatch, ACK/NAK, large data sets, liveness. Two nodes are joined by an
-// in-memory link under virtual time.
+// dispatch, ACK/NAK, large data sets, liveness. Two nodes are joined by a
+// jaus::testing memory network under virtual time.
 #include "harness.hpp"
 #include "jaus/base/hex.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/components/node_manager.hpp"
+#include "jaus/testing/memory_link.hpp"
 
 namespace jaus::test {
 namespace {
 
 using namespace std::chrono_literals;
 
-class MemoryLink : public node::Link {
+// What a node handed its link, in order (the link is jaus::testing's: nodes
+// on one memory network, a packet arriving 1 ms after it left).
+class Sent {
  public:
-  explicit MemoryLink(rt::VirtualTime& t) : time(t) {}
-  void transmit(const Header& header, std::span<const std::uint8_t> packet) override {
-    EXPECT_EQ(header, *decode_header(packet));  // the node hands over the header it wrote
-    packets.emplace_back(packet.begin(), packet.end());
-    if (peer && connected) {
-      std::vector<std::uint8_t> copy(packet.begin(), packet.end());
-      time.call_at(time.now() + 1ms, [this, copy] { peer->receive_bytes(copy); });
-    }
+  explicit Sent(testing::MemoryLink& link) {
+    link.on_transmit([this](const Header& header, std::span<const std::uint8_t> packet) {
+      EXPECT_EQ(header, *decode_header(packet));  // the node hands over the header it wrote
+      packets.emplace_back(packet.begin(), packet.end());
+    });
   }
   std::vector<Header> headers() const {
     std::vector<Header> out;
     for (const auto& p : packets) out.push_back(*decode_header(p));
     return out;
   }
-  rt::VirtualTime& time;
-  node::Node* peer = nullptr;
-  bool connected = true;
   std::vector<std::vector<std::uint8_t>> packets;
 };
 
@@ -56,7 +53,7 @@ rt::ComponentConfig config_for(const Address& address, const char* name) {
 
 class NodeTest : public ::testing::Test {
  protected:
-  NodeTest() : link_a(time), link_b(time) {
+  NodeTest() {
     node::NodeConfig ca;
     ca.subsystem = 1;
     ca.node = 1;
@@ -65,8 +62,8 @@ class NodeTest : public ::testing::Test {
     cb.node = 1;
     a = std::make_unique<node::Node>(ca, time, time, link_a, [this](rt::LogLevel, const std::string& l) { logs.push_back(l); });
     b = std::make_unique<node::Node>(cb, time, time, link_b, [this](rt::LogLevel, const std::string& l) { logs.push_back(l); });
-    link_a.peer = b.get();
-    link_b.peer = a.get();
+    link_a.deliver_to(*a);
+    link_b.deliver_to(*b);
     driver = static_cast<TestDriver*>(&a->add(std::make_unique<TestDriver>(config_for(kDriver, "driver"), a->environment())));
     ocu = static_cast<ImageSink*>(&b->add(std::make_unique<ImageSink>(config_for(kOcu, "ocu"), b->environment())));
   }
@@ -97,7 +94,10 @@ class NodeTest : public ::testing::Test {
 
   static inline const Address kOcu{2, 1, 40, 1};
   rt::VirtualTime time;
-  MemoryLink link_a, link_b;
+  testing::MemoryNetwork network{time, time, 1ms};
+  testing::MemoryLink& link_a = network.attach(1, 1);
+  testing::MemoryLink& link_b = network.attach(2, 1);
+  Sent sent_a{link_a}, sent_b{link_b};
   std::vector<std::string> logs;
   std::unique_ptr<node::Node> a, b;
   TestDriver* driver = nullptr;
@@ -109,13 +109,13 @@ TEST_F(NodeTest, RoutesBetweenNodesAndStampsSequenceNumbers) {
   ocu->send_to(kDriver, msg::QueryComponentControl{});
   time.advance(10ms);
   EXPECT_TRUE(driver->control().is_controller(kOcu));
-  const auto sent = link_b.headers();
+  const auto sent = sent_b.headers();
   ASSERT_EQ(sent.size(), 2u);
   EXPECT_EQ(sent[0].sequence, 0);
   EXPECT_EQ(sent[1].sequence, 1);
   // The replies came back over a's link.
   std::size_t confirms = 0;
-  for (const auto& h : link_a.headers()) confirms += h.command_code == msg::ConfirmComponentControl::code;
+  for (const auto& h : sent_a.headers()) confirms += h.command_code == msg::ConfirmComponentControl::code;
   EXPECT_EQ(confirms, 1u);
   EXPECT_TRUE(b->liveness().find_component(kDriver).has_value());
 }
@@ -133,14 +133,14 @@ TEST_F(NodeTest, BroadcastReachesEveryLocalComponentButTheSender) {
 }
 
 TEST_F(NodeTest, SafetyCriticalMessagesOvertakeQueuedOnes) {
-  link_a.packets.clear();
+  sent_a.packets.clear();
   a->receive_bytes(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
   a->receive_bytes(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6));
   a->receive_bytes(packet_of(kOcu, kDriver, msg::SetEmergency{}, 12));
   time.advance(1ms);
   // Both status reports were produced after the emergency was handled.
   std::size_t in_emergency = 0;
-  for (const auto& p : link_a.packets) {
+  for (const auto& p : sent_a.packets) {
     auto view = decode_packet(p);
     if (view->header.command_code != msg::ReportComponentStatus::code) continue;
     auto report = wire::decode_payload<msg::ReportComponentStatus>(view->payload);
@@ -150,12 +150,12 @@ TEST_F(NodeTest, SafetyCriticalMessagesOvertakeQueuedOnes) {
 }
 
 TEST_F(NodeTest, AnswersAckRequestsWithAckOrNak) {
-  link_a.packets.clear();
+  sent_a.packets.clear();
   a->receive_bytes(packet_of(kOcu, kDriver, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
   a->receive_bytes(packet_of(kOcu, Address{1, 1, 50, 1}, msg::QueryComponentStatus{}, 6, AckNak::ack_requested));
   time.advance(1ms);
   std::vector<AckNak> replies;
-  for (const auto& h : link_a.headers())
+  for (const auto& h : sent_a.headers())
     if (h.command_code == msg::QueryComponentStatus::code) replies.push_back(h.ack_nak);
   EXPECT_EQ(replies, (std::vector<AckNak>{AckNak::ack, AckNak::nak}));
   EXPECT_EQ(a->counters().acks_sent, 1u);
@@ -163,7 +163,7 @@ TEST_F(NodeTest, AnswersAckRequestsWithAckOrNak) {
 }
 
 TEST_F(NodeTest, RetransmitsItsOwnAckRequestsABoundedNumberOfTimes) {
-  link_b.connected = false;  // nothing reaches node a
+  link_b.set_connected(false);  // nothing reaches node a
   std::vector<std::uint8_t> payload(8);
   Header h;
   h.command_code = msg::QueryComponentStatus::code;
@@ -173,7 +173,7 @@ TEST_F(NodeTest, RetransmitsItsOwnAckRequestsABoundedNumberOfTimes) {
   b->send(h, {});
   time.advance(10s);
   std::size_t transmissions = 0;
-  for (const auto& sent : link_b.headers()) transmissions += sent.command_code == msg::QueryComponentStatus::code;
+  for (const auto& sent : sent_b.headers()) transmissions += sent.command_code == msg::QueryComponentStatus::code;
   EXPECT_EQ(transmissions, 3u);
   EXPECT_TRUE(logged("no ACK for 0x2002 to 1.1.33.1 after 3 transmissions"));
 }
@@ -184,10 +184,10 @@ TEST_F(NodeTest, LargePayloadsTravelAsLargeDataSets) {
   for (std::size_t i = 0; i < image.data.size(); ++i) image.data[i] = static_cast<std::uint8_t>(i * 7);
   auto* camera = static_cast<ImageSink*>(
       &a->add(std::make_unique<ImageSink>(config_for(Address{1, 1, 37, 1}, "camera"), a->environment())));
-  link_a.packets.clear();
+  sent_a.packets.clear();
   camera->send_to(kOcu, image);
   time.advance(10ms);
-  const auto sent = link_a.headers();
+  const auto sent = sent_a.headers();
   ASSERT_EQ(sent.size(), 3u);
   EXPECT_EQ(sent[0].data_flag, DataFlag::first);
   EXPECT_EQ(sent[1].data_flag, DataFlag::middle);
@@ -230,7 +230,7 @@ TEST_F(NodeTest, SilentPeersLoseControlAndServiceConnections) {
   time.advance(100ms);
   ASSERT_TRUE(patient.control().is_controller(kOcu));
   ASSERT_EQ(patient.service_connections().active(), 1u);
-  link_b.connected = false;  // the OCU's node falls silent
+  link_b.set_connected(false);  // the OCU's node falls silent
   time.advance(4s);  // the component's 3 s are over, its node's 5 s are not
   EXPECT_TRUE(patient.control().is_controller(kOcu));
   time.advance(2s);
@@ -288,27 +288,29 @@ TEST_F(NodeTest, ShutdownStopsThePlatformDropsControlAndEndsServiceConnections) 
   ASSERT_TRUE(a->find(watched_address)->control().is_controller(kOcu));
   ASSERT_EQ(a->find(watched_address)->service_connections().active(), 1u);
   stops.clear();
-  link_a.packets.clear();
+  sent_a.packets.clear();
   a->shutdown("test over");
   EXPECT_FALSE(stops.empty());  // the platform was commanded to stop
   EXPECT_TRUE(a->local_components().empty());
   bool told_controller = false;
-  for (const auto& h : link_a.headers())
+  for (const auto& h : sent_a.headers())
     told_controller |= h.command_code == msg::RejectComponentControl::code && h.destination == kOcu;
   EXPECT_TRUE(told_controller);
-  const std::size_t sent = link_a.packets.size();
+  const std::size_t sent = sent_a.packets.size();
   time.advance(2s);  // no reports (or anything else) after the shutdown
-  EXPECT_EQ(link_a.packets.size(), sent);
+  EXPECT_EQ(sent_a.packets.size(), sent);
 }
 
 TEST(NodeWithManager, PeersDiscoverEachOtherFromHeartbeats) {
   rt::VirtualTime time;
-  MemoryLink link_a(time), link_b(time);
+  testing::MemoryNetwork network(time, time, 1ms);
   node::NodeConfig ca, cb;
   cb.subsystem = 2;
+  auto& link_a = network.attach(ca.subsystem, ca.node);
+  auto& link_b = network.attach(cb.subsystem, cb.node);
   node::Node a(ca, time, time, link_a), b(cb, time, time, link_b);
-  link_a.peer = &b;
-  link_b.peer = &a;
+  link_a.deliver_to(a);
+  link_b.deliver_to(b);
   for (auto* n : {&a, &b}) {
     rt::ComponentConfig config;
     config.name = "node manager";
@@ -330,9 +332,11 @@ namespace {
 // the subsystem timeout, it leaves the list, with another Event.
 TEST(NodeWithManager, SubsystemsFoundAndLostChangeTheListWithAnEvent) {
   rt::VirtualTime time;
-  MemoryLink link(time);
+  testing::MemoryNetwork network(time, time, 1ms);
   node::NodeConfig config;
   config.subsystem = 2;
+  auto& link = network.attach(config.subsystem, config.node);
+  Sent sent(link);
   node::Node node(config, time, time, link);
   rt::ComponentConfig manager_config;
   manager_config.name = "node manager";
@@ -353,7 +357,7 @@ TEST(NodeWithManager, SubsystemsFoundAndLostChangeTheListWithAnEvent) {
   };
   const auto events_to = [&](const Address& requester) {
     std::vector<std::vector<Address>> lists;
-    for (const auto& p : link.packets) {
+    for (const auto& p : sent.packets) {
       const auto h = *decode_header(p);
       if (h.command_code != msg::Event::code || h.destination != requester) continue;
       const auto event = wire::decode_payload<msg::Event>(std::span(p).subspan(kHeaderSize));
