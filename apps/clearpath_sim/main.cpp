@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
   boost::asio::io_context io;
   jaus::transport::AsioRuntime runtime(io);  // the clock and scheduler a node runs on
   sim::SimServer server(io, runtime, runtime, endpoint, platform, faults);
-  if (const auto error = server.start()) {
-    std::cerr << "error: " << error->message() << '\n';
+  if (const auto started = server.start(); !started) {
+    std::cerr << "error: " << started.error().message() << '\n';
     return 1;
   }
   if (endpoint.kind == sim::ServerEndpoint::Kind::pty) std::cout << "pty: " << server.pty_path() << std::endl;

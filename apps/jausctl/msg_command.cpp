@@ -24,13 +24,12 @@ jaus::wire::Dialect parse_dialect(const std::string& name) {
 }
 
 int decode(const std::string& hex, const std::string& dialect) {
-  std::vector<std::uint8_t> bytes;
-  std::string why;
-  if (!jaus::parse_hex(hex, bytes, why)) {
-    std::cerr << "jausctl msg decode: bad hex: " << why << "\n";
+  const auto bytes = jaus::parse_hex(hex);
+  if (!bytes) {
+    std::cerr << "jausctl msg decode: bad hex: " << bytes.error().message() << "\n";
     return kExitBadInput;
   }
-  auto json = jaus::msg::message_to_json(bytes, parse_dialect(dialect));
+  auto json = jaus::msg::message_to_json(*bytes, parse_dialect(dialect));
   if (!json) {
     std::cerr << "jausctl msg decode: " << json.error().message() << "\n";
     return kExitBadInput;

@@ -41,11 +41,11 @@ std::pair<double, double> reachable(const components::JointConfig& joint, const 
   return {std::max(joint.min_position, a), std::min(joint.max_position, b)};
 }
 
-Expected<bool> refusal(ErrorCode code, std::string why) { return unexpected(make_error(code, std::move(why))); }
+Expected<void> refusal(ErrorCode code, std::string why) { return unexpected(make_error(code, std::move(why))); }
 
 }  // namespace
 
-Expected<bool> check_clearpath_arm_config(const ArmConfig& arm, const ClearpathArmConfig& config) {
+Expected<void> check_clearpath_arm_config(const ArmConfig& arm, const ClearpathArmConfig& config) {
   const auto bad = [](std::string why) { return refusal(ErrorCode::invalid_argument, "Clearpath arm: " + why); };
   if (auto ok = components::check_arm_config(arm); !ok) return bad(ok.error().message());
   if (config.joints.size() != arm.joints.size())
@@ -70,7 +70,7 @@ Expected<bool> check_clearpath_arm_config(const ArmConfig& arm, const ClearpathA
       return bad(label + ": limits [" + text(joint.min_position) + ", " + text(joint.max_position) +
                  "] rad are beyond Clearpath's [-pi, pi] with this sign and offset");
   }
-  return true;
+  return {};
 }
 
 struct ClearpathArm::State {
@@ -186,14 +186,14 @@ struct ClearpathArm::State {
     return q;
   }
 
-  Expected<bool> refuse(ErrorCode code, std::string why) {
+  Expected<void> refuse(ErrorCode code, std::string why) {
     ++counters.refused;
     platform.log(rt::LogLevel::info, "Clearpath arm: command refused: " + why);
     return refusal(code, std::move(why));
   }
 
   // The common checks of a motion command; the ramp's starting point set.
-  Expected<bool> check(const std::vector<double>& values, const char* what, bool positions_check) {
+  Expected<void> check(const std::vector<double>& values, const char* what, bool positions_check) {
     if (config_error) return refuse(config_error->code, config_error->message());
     if (values.size() != joints.size())
       return refuse(ErrorCode::out_of_range, std::string(what) + " for " + std::to_string(values.size()) +
@@ -222,7 +222,7 @@ struct ClearpathArm::State {
       for (std::size_t i = 0; i < joints.size(); ++i) joints[i].setpoint = (*q)[i];
     synced = true;
     stream->clear();  // a new command supersedes what has not gone out (homing too)
-    return true;
+    return {};
   }
 
   void start_timer() {
@@ -324,7 +324,7 @@ ClearpathArm::~ClearpathArm() = default;
 
 const ArmConfig& ClearpathArm::geometry() const { return state_->geometry; }
 
-Expected<bool> ClearpathArm::move_to_positions(const std::vector<double>& positions) {
+Expected<void> ClearpathArm::move_to_positions(const std::vector<double>& positions) {
   State& s = *state_;
   if (auto ok = s.check(positions, "position", true); !ok) return ok;
   for (std::size_t i = 0; i < s.joints.size(); ++i) {
@@ -334,10 +334,10 @@ Expected<bool> ClearpathArm::move_to_positions(const std::vector<double>& positi
   }
   s.motion = Motion::positions;
   s.start_timer();
-  return true;
+  return {};
 }
 
-Expected<bool> ClearpathArm::move_at_velocities(const std::vector<double>& velocities) {
+Expected<void> ClearpathArm::move_at_velocities(const std::vector<double>& velocities) {
   State& s = *state_;
   if (auto ok = s.check(velocities, "velocity", false); !ok) return ok;
   for (std::size_t i = 0; i < s.joints.size(); ++i) {
@@ -347,10 +347,10 @@ Expected<bool> ClearpathArm::move_at_velocities(const std::vector<double>& veloc
   }
   s.motion = Motion::velocities;
   s.start_timer();
-  return true;
+  return {};
 }
 
-Expected<bool> ClearpathArm::apply_efforts(const std::vector<double>&) {
+Expected<void> ClearpathArm::apply_efforts(const std::vector<double>&) {
   return state_->refuse(ErrorCode::refused,
                         "joint efforts: the Clearpath protocol has no joint effort command (use positions or velocities)");
 }

@@ -125,9 +125,9 @@ std::string mount_label(const ClearpathMountConfig& m) {
 
 }  // namespace
 
-Expected<bool> check_clearpath_cameras_config(const std::vector<CameraConfig>& cameras,
+Expected<void> check_clearpath_cameras_config(const std::vector<CameraConfig>& cameras,
                                               const ClearpathCamerasConfig& config) {
-  const auto bad = [](std::string why) -> Expected<bool> {
+  const auto bad = [](std::string why) -> Expected<void> {
     return unexpected(make_error(ErrorCode::invalid_argument, std::move(why)));
   };
   if (config.data_rate_hz < 1 || config.data_rate_hz > 100)
@@ -158,17 +158,17 @@ Expected<bool> check_clearpath_cameras_config(const std::vector<CameraConfig>& c
     if (!no_zoom && !(factor_ok(m.zoom_min_factor) && factor_ok(m.zoom_max_factor)))
       return bad(label + ": zoom factors " + text(m.zoom_min_factor) + ", " + text(m.zoom_max_factor) +
                  " must both be 0 (no zoom) or both in (0, 320]");
-    const auto unreachable = [&](const char* name, const MountAxis& axis, const AngleMap& map) -> std::optional<std::string> {
-      if (!axis.movable()) return std::nullopt;
+    const auto check_reach = [&](const char* name, const MountAxis& axis, const AngleMap& map) -> Expected<void> {
+      if (!axis.movable()) return {};
       const auto [lo, hi] = reachable(axis, map);
-      if (lo < hi) return std::nullopt;
-      return label + ": " + name + " limits [" + text(axis.min) + ", " + text(axis.max) +
-             "] rad are beyond the mount's +-180 deg with this sign and offset";
+      if (lo < hi) return {};
+      return bad(label + ": " + name + " limits [" + text(axis.min) + ", " + text(axis.max) +
+                 "] rad are beyond the mount's +-180 deg with this sign and offset");
     };
-    if (auto why = unreachable("pan", camera->pan, AngleMap{m.pan_sign, m.pan_offset_deg})) return bad(*why);
-    if (auto why = unreachable("tilt", camera->tilt, AngleMap{m.tilt_sign, m.tilt_offset_deg})) return bad(*why);
+    if (auto ok = check_reach("pan", camera->pan, AngleMap{m.pan_sign, m.pan_offset_deg}); !ok) return ok;
+    if (auto ok = check_reach("tilt", camera->tilt, AngleMap{m.tilt_sign, m.tilt_offset_deg}); !ok) return ok;
   }
-  return true;
+  return {};
 }
 
 struct ClearpathCameras::State {

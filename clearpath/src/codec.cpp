@@ -67,10 +67,11 @@ Expected<Envelope> decode(const Frame& frame, Direction direction) {
   return Envelope{frame.header, std::move(*message)};
 }
 
-std::optional<Error> check_ranges(const AnyMessage& message) {
+Expected<void> check_ranges(const AnyMessage& message) {
   detail::RangeChecker checker;
   visit([&](const auto& m) { std::remove_cvref_t<decltype(m)>::describe(m, checker); }, message);
-  return checker.error;
+  if (checker.error) return unexpected(std::move(*checker.error));
+  return {};
 }
 
 }  // namespace jaus::clearpath

@@ -16,16 +16,15 @@ using Json = nlohmann::ordered_json;
 template <class M>
 Expected<Json, Error> payload_to_json(std::span<const std::uint8_t> payload, wire::Dialect dialect) {
   M message{};
-  if (auto error = wire::decode_payload_into(payload, message, dialect, kHeaderSize))
-    return unexpected(std::move(*error));
+  if (auto decoded = wire::decode_payload_into(payload, message, dialect, kHeaderSize); !decoded)
+    return unexpected(decoded.error());
   return wire::fields_to_json<Json>(message);
 }
 
 template <class M>
 Expected<Bytes, Error> payload_from_json(const Json& fields, wire::Dialect dialect) {
   M message{};
-  std::string why;
-  if (!wire::fields_from_json<Json>(fields, message, why)) return unexpected(Error{ErrorCode::json, 0, {}, why});
+  if (auto filled = wire::fields_from_json<Json>(fields, message); !filled) return unexpected(filled.error());
   // Large enough for any single-packet payload; Report Image may be larger.
   Bytes out(64 * 1024);
   for (;;) {

@@ -84,8 +84,8 @@ int main(int argc, char** argv) {
   cp::sim::PlatformConfig platform;
   platform.bandwidth_bytes_per_second = cp::sim::kSerialBytesPerSecond;
   cp::sim::SimServer server(sim_io, sim_runtime, sim_runtime, endpoint, platform);
-  if (const auto error = server.start()) {
-    std::fprintf(stderr, "bench_bridge: %s\n", error->message().c_str());
+  if (const auto started = server.start(); !started) {
+    std::fprintf(stderr, "bench_bridge: %s\n", started.error().message().c_str());
     return 1;
   }
   auto sim_work = asio::make_work_guard(sim_io);

@@ -73,9 +73,9 @@ TEST(ClearpathPackedDateTime, AnInvalidPackedValueStaysVisibleAsItsNumber) {
   EXPECT_EQ(back->get<cp::FirmwareInfo>().write_time, 0xFFFFFFFFu);
   // Out of the document's ranges, which the range check (encode, simulator) reports.
   const auto range = cp::check_ranges(cp::AnyMessage{info});
-  ASSERT_TRUE(range);
-  EXPECT_NE(range->message().find("write_time"), std::string::npos) << range->message();
-  EXPECT_FALSE(cp::check_ranges(cp::AnyMessage{cp::FirmwareInfo{0, 0, 0, 0, kWriteTime}}));
+  ASSERT_FALSE(range);
+  EXPECT_NE(range.error().message().find("write_time"), std::string::npos) << range.error().message();
+  EXPECT_TRUE(cp::check_ranges(cp::AnyMessage{cp::FirmwareInfo{0, 0, 0, 0, kWriteTime}}));
 }
 
 TEST(ClearpathPackedDateTime, BadTextIsRejectedNamingTheField) {

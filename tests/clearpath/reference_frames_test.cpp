@@ -248,20 +248,20 @@ TEST(ClearpathRanges, OutOfRangeFieldsAreNamed) {
   v.translational = 1.0;
   v.acceleration = -1.0;  // a magnitude: [0, 320]
   const auto e = cp::check_ranges(cp::AnyMessage{v});
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->code, jaus::ErrorCode::out_of_range);
-  EXPECT_EQ(e->field, "acceleration");
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().code, jaus::ErrorCode::out_of_range);
+  EXPECT_EQ(e.error().field, "acceleration");
 
   cp::SetDifferentialControl c;
   c.right.stiction = 150;
   const auto nested = cp::check_ranges(cp::AnyMessage{c});
-  ASSERT_TRUE(nested);
-  EXPECT_EQ(nested->field, "right.stiction");
+  ASSERT_FALSE(nested);
+  EXPECT_EQ(nested.error().field, "right.stiction");
 
   cp::ResetProcessor reset;
   reset.passcode = 1;
-  EXPECT_TRUE(cp::check_ranges(cp::AnyMessage{reset}));
-  EXPECT_FALSE(cp::check_ranges(cp::AnyMessage{cp::ResetProcessor{}}));
+  EXPECT_FALSE(cp::check_ranges(cp::AnyMessage{reset}));
+  EXPECT_TRUE(cp::check_ranges(cp::AnyMessage{cp::ResetProcessor{}}));
 }
 
 TEST(ClearpathEncode, UnrepresentableValuesAreErrors) {

@@ -48,7 +48,8 @@ TEST(ClearpathRoundTrip, EveryTypeWithRandomInRangeValues) {
     for (int i = 0; i < kSamplesPerType; ++i) {
       cp::AnyMessage message = *cp::make_message(info.type);
       cp::testing::randomize(message, rng);
-      ASSERT_FALSE(cp::check_ranges(message)) << cp::check_ranges(message)->message();
+      const auto in_range = cp::check_ranges(message);
+      ASSERT_TRUE(in_range) << in_range.error().message();
 
       const cp::Envelope sent{{0, timestamp++, static_cast<std::uint8_t>(i % 2), info.type}, message};
       const auto bytes = cp::encode(sent);

@@ -7,10 +7,9 @@ namespace jaus {
 namespace {
 
 std::vector<std::uint8_t> hex(std::string_view text) {
-  std::vector<std::uint8_t> out;
-  std::string why;
-  EXPECT_TRUE(parse_hex(text, out, why)) << why;
-  return out;
+  auto out = parse_hex(text);
+  EXPECT_TRUE(out) << out.error().message();
+  return out ? *out : std::vector<std::uint8_t>{};
 }
 
 TEST(Header, DecodesEveryField) {

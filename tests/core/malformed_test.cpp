@@ -16,10 +16,9 @@ namespace {
 using msg::Bytes;
 
 Bytes hex(std::string_view text) {
-  Bytes out;
-  std::string why;
-  EXPECT_TRUE(parse_hex(text, out, why)) << why;
-  return out;
+  auto out = parse_hex(text);
+  EXPECT_TRUE(out) << out.error().message();
+  return out ? *out : Bytes{};
 }
 
 // Decodes as the tools do; must never crash, may succeed or fail.

@@ -15,10 +15,9 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 Json decode_fields(const std::string& hex) {
-  Bytes bytes;
-  std::string why;
-  EXPECT_TRUE(parse_hex(hex, bytes, why)) << why;
-  auto json = message_to_json(bytes);
+  const auto bytes = parse_hex(hex);
+  EXPECT_TRUE(bytes) << bytes.error().message();
+  auto json = message_to_json(bytes ? *bytes : Bytes{});
   EXPECT_TRUE(json) << json.error().message();
   return json ? (*json)["fields"] : Json();
 }
@@ -49,10 +48,9 @@ TEST(NamedValues, DiscreteDevicesShowTheirBitsAndGearsByName) {
   EXPECT_EQ(fields["gear"], 131);         // a reverse gear: a range, not a name
   EXPECT_EQ(fields["transfer_case"], 2);  // low range
   // And back to the same bytes: the whole decoded message, header included.
-  Bytes bytes;
-  std::string why;
-  ASSERT_TRUE(parse_hex(kDiscreteDevices, bytes, why));
-  auto message = message_to_json(bytes);
+  const auto bytes = parse_hex(kDiscreteDevices);
+  ASSERT_TRUE(bytes);
+  auto message = message_to_json(*bytes);
   ASSERT_TRUE(message);
   EXPECT_EQ((*message)["fields"], fields);
   EXPECT_EQ(encode_hex(*message), kDiscreteDevices);
@@ -209,20 +207,27 @@ TEST(NamedValues, WiderBitFieldsAreNumbersOrTheirNames) {
   EXPECT_EQ(kWide.to_json<Json>(0x0531), Json::parse(R"({"enabled":true,"mode":"auto","level":5})"));
   EXPECT_EQ(kWide.to_json<Json>(0x8050), Json::parse(R"({"enabled":false,"mode":5,"level":0,"other_bits":32768})"));
   std::uint16_t v = 0;
-  std::string why;
-  ASSERT_TRUE(kWide.from_json(Json::parse(R"({"mode":"auto","level":7})"), v, why)) << why;
+  // The reason a JSON value is refused: ErrorCode::json, its detail the words.
+  const auto refusal = [&](const Json& j) {
+    const auto r = kWide.from_json(j, v);
+    EXPECT_FALSE(r);
+    if (r) return std::string();
+    EXPECT_EQ(r.error().code, ErrorCode::json);
+    return r.error().detail;
+  };
+  auto r = kWide.from_json(Json::parse(R"({"mode":"auto","level":7})"), v);
+  ASSERT_TRUE(r) << r.error().message();
   EXPECT_EQ(v, 0x0730);
-  ASSERT_TRUE(kWide.from_json(Json::parse(R"({"mode":9})"), v, why)) << why;
+  r = kWide.from_json(Json::parse(R"({"mode":9})"), v);
+  ASSERT_TRUE(r) << r.error().message();
   EXPECT_EQ(v, 0x0090);
-  ASSERT_TRUE(kWide.from_json(Json(0x1234), v, why)) << why;
+  r = kWide.from_json(Json(0x1234), v);
+  ASSERT_TRUE(r) << r.error().message();
   EXPECT_EQ(v, 0x1234);
-  EXPECT_FALSE(kWide.from_json(Json::parse(R"({"level":8})"), v, why));
-  EXPECT_NE(why.find("'level': 8 does not fit (at most 7)"), std::string::npos) << why;
-  EXPECT_FALSE(kWide.from_json(Json::parse(R"({"mode":"manual"})"), v, why));
-  EXPECT_NE(why.find("'mode': unknown name 'manual' (expected one of: off, auto, or a number)"), std::string::npos)
-      << why;
-  EXPECT_FALSE(kWide.from_json(Json("enabled"), v, why));
-  EXPECT_NE(why.find("expected an object {enabled, mode, level, other_bits} or a number"), std::string::npos) << why;
+  EXPECT_EQ(refusal(Json::parse(R"({"level":8})")), "'level': 8 does not fit (at most 7)");
+  EXPECT_EQ(refusal(Json::parse(R"({"mode":"manual"})")),
+            "'mode': unknown name 'manual' (expected one of: off, auto, or a number)");
+  EXPECT_EQ(refusal(Json("enabled")), "expected an object {enabled, mode, level, other_bits} or a number");
   // The walkers' view of the description.
   ASSERT_EQ(kWide.flag_fields().size(), 3u);
   EXPECT_EQ(kWide.flag_fields()[1].width, 4);

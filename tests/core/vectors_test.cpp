@@ -306,16 +306,15 @@ class OpenJausVectors : public ::testing::TestWithParam<Vector> {};
 
 TEST_P(OpenJausVectors, DecodeToTheValuesTheyWereGiven) {
   const Vector& v = GetParam();
-  std::vector<std::uint8_t> bytes;
-  std::string why;
-  ASSERT_TRUE(parse_hex(v.hex, bytes, why)) << why;
-  auto packet = decode_packet(bytes);
+  const auto bytes = parse_hex(v.hex);
+  ASSERT_TRUE(bytes) << bytes.error().message();
+  auto packet = decode_packet(*bytes);
   ASSERT_TRUE(packet) << packet.error().message();
   const auto fields = parse_fields(v.fields);
   expect_header(fields.at("_hdr").get<std::string>(), packet->header, v.code);
   EXPECT_EQ(packet->header.command_code, std::stoul(v.code, nullptr, 16));
 
-  auto ours = msg::message_to_json(bytes, wire::Dialect::openjaus);
+  auto ours = msg::message_to_json(*bytes, wire::Dialect::openjaus);
   ASSERT_TRUE(ours) << v.code << ": " << ours.error().message();
   const Json expected = expected_fields(v.code, fields, (*ours)["fields"]);
   // Every field we decoded is covered by one of theirs.

@@ -17,10 +17,9 @@ std::vector<std::uint8_t> framed(Framing framing, const std::vector<std::uint8_t
 }
 
 std::vector<std::uint8_t> bytes_of(const std::string& hex) {
-  std::vector<std::uint8_t> out;
-  std::string why;
-  EXPECT_TRUE(parse_hex(hex, out, why)) << why;
-  return out;
+  auto out = parse_hex(hex);
+  EXPECT_TRUE(out) << out.error().message();
+  return out ? *out : std::vector<std::uint8_t>{};
 }
 
 TEST(Framing, EveryVectorUnframesInBothFramings) {

@@ -38,10 +38,9 @@ const Address kManager{1, 1, 1, 1};
 const Address kOcu{2, 1, 40, 1};
 
 std::vector<std::uint8_t> bytes_of(const std::string& hex) {
-  std::vector<std::uint8_t> out;
-  std::string why;
-  EXPECT_TRUE(parse_hex(hex, out, why)) << why;
-  return out;
+  auto out = parse_hex(hex);
+  EXPECT_TRUE(out) << out.error().message();
+  return out ? *out : std::vector<std::uint8_t>{};
 }
 
 template <class M>

@@ -28,9 +28,10 @@ std::vector<ReferenceFrame> reference_frames() {
     const auto first = line.find("  ");
     const auto last = line.rfind("  ");
     ReferenceFrame frame{line.substr(0, first), line.find("dir=p2h") != std::string::npos, {}};
-    std::string why;
-    if (first == std::string::npos || last == first || !jaus::parse_hex(line.substr(last + 2), frame.bytes, why))
-      throw std::runtime_error("bad reference frame line: " + line);
+    if (first == std::string::npos || last == first) throw std::runtime_error("bad reference frame line: " + line);
+    auto bytes = jaus::parse_hex(line.substr(last + 2));
+    if (!bytes) throw std::runtime_error("bad reference frame line: " + line + ": " + bytes.error().message());
+    frame.bytes = std::move(*bytes);
     out.push_back(std::move(frame));
   }
   return out;

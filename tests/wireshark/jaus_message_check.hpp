@@ -70,9 +70,8 @@ inline std::vector<std::string> check_jaus_message(TsharkSession& session, const
     inner_code = static_cast<std::uint16_t>(fields["report_code"].get<std::uint16_t>() - 0x2000);
   }
   if (!inner_hex.empty()) {
-    std::vector<std::uint8_t> payload;
-    std::string why;
-    jaus::parse_hex(inner_hex, payload, why);
+    const auto parsed = jaus::parse_hex(inner_hex);
+    const std::vector<std::uint8_t> payload = parsed ? *parsed : std::vector<std::uint8_t>{};
     const Json inner = session.jausctl_json(
         {"msg", "decode", inner_message_hex(message, inner_code, payload), "--dialect", dialect}, failure);
     if (inner.is_null()) return {"inner message: " + failure};

@@ -33,9 +33,9 @@ TEST(TsharkJausVectors, EveryVectorInBothFramingsShowsWhatJausctlDecodes) {
   std::vector<std::vector<std::uint8_t>> messages;
   PcapWriter pcap((session.dir() / "vectors.pcap").string());
   for (const auto& v : all_vectors()) {
-    std::vector<std::uint8_t> bytes;
-    std::string why;
-    ASSERT_TRUE(jaus::parse_hex(v.hex, bytes, why)) << v.code << ": " << why;
+    const auto parsed = jaus::parse_hex(v.hex);
+    ASSERT_TRUE(parsed) << v.code << ": " << parsed.error().message();
+    const auto& bytes = *parsed;
     messages.push_back(bytes);
     pcap.add(ocu, node, opc(bytes));
     pcap.add(node, ocu, judp(bytes));

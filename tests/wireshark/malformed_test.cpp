@@ -12,10 +12,9 @@ namespace jaus::test {
 namespace {
 
 std::vector<std::uint8_t> bytes_of(const std::string& hex) {
-  std::vector<std::uint8_t> out;
-  std::string why;
-  if (!jaus::parse_hex(hex, out, why)) throw std::runtime_error(why);
-  return out;
+  auto out = jaus::parse_hex(hex);
+  if (!out) throw std::runtime_error(out.error().message());
+  return std::move(*out);
 }
 
 // OPC prefix + a header (priority 6, version 2, 1.1.33.1 <- 2.1.40.1) with `code` and `payload`.

@@ -94,7 +94,7 @@ Expected<std::unique_ptr<UdpLink>> UdpLink::open(asio::io_context& io, rt::Clock
   return link;
 }
 
-Expected<bool> UdpLink::bind_sockets() {
+Expected<void> UdpLink::bind_sockets() {
   const auto failed = [](std::string what) { return unexpected(make_error(ErrorCode::io, std::move(what))); };
   boost::system::error_code ec;
   main_ = std::make_unique<Socket>(io_);
@@ -108,18 +108,18 @@ Expected<bool> UdpLink::bind_sockets() {
   if (ec) return failed("cannot make the socket non-blocking: " + ec.message());
   local_port_ = main_->socket.local_endpoint(ec).port();
 
-  if (!options_.multicast) return true;
+  if (!options_.multicast) return {};
   const Ipv4Endpoint group = *options_.multicast;
   if (!group.is_multicast()) return failed(to_string(group) + " is not a multicast address (224.0.0.0/4)");
   const auto interface = asio::ip::address_v4(options_.bind.address);
   // Multicast is best effort: a host without a multicast route still talks to
   // its known and static peers.
-  auto degrade = [&](const std::string& what, const boost::system::error_code& error) {
+  auto degrade = [&](const std::string& what, const boost::system::error_code& error) -> Expected<void> {
     log_(rt::LogLevel::warn, "multicast " + to_string(group) + ": " + what + ": " + error.message() +
                                  "; broadcasts go to known peers only");
     options_.multicast.reset();
     multicast_.reset();
-    return true;
+    return {};
   };
   if (!options_.bind.is_any()) main_->socket.set_option(asio::ip::multicast::outbound_interface(interface), ec);
   if (!ec) main_->socket.set_option(asio::ip::multicast::enable_loopback(true), ec);
@@ -131,7 +131,7 @@ Expected<bool> UdpLink::bind_sockets() {
     // The main socket already receives everything sent to its port.
     main_->socket.set_option(asio::ip::multicast::join_group(group_address), ec);
     if (ec) return degrade("cannot join", ec);
-    return true;
+    return {};
   }
   // A socket bound to one address does not see the group's datagrams: a
   // second socket, bound to the group, receives them. Several nodes on one
@@ -142,7 +142,7 @@ Expected<bool> UdpLink::bind_sockets() {
   if (!ec) multicast_->socket.bind(to_asio(group), ec);
   if (!ec) multicast_->socket.set_option(asio::ip::multicast::join_group(group_address, interface), ec);
   if (ec) return degrade("cannot receive", ec);
-  return true;
+  return {};
 }
 
 UdpLink::~UdpLink() { close(); }

@@ -81,7 +81,7 @@ int run_encode(bool allow_out_of_range) {
   auto envelope = cp::envelope_from_json(json);
   if (!envelope) return bad_input(envelope.error().message());
   if (!allow_out_of_range) {
-    if (const auto range = cp::check_ranges(envelope->message)) return bad_input(range->message());
+    if (const auto range = cp::check_ranges(envelope->message); !range) return bad_input(range.error().message());
   }
   auto bytes = cp::encode(*envelope);
   if (!bytes) return bad_input(bytes.error().message());

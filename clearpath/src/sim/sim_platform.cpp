@@ -142,7 +142,7 @@ void SimPlatform::handle(const Frame& frame, rt::TimePoint now, std::vector<std:
   if (!supports(type)) return acknowledge(kAckTypeNotSupported);
   const auto decoded = decode_payload(type, frame.payload, Direction::to_platform);
   if (!decoded) return acknowledge(kAckBadFormat);
-  if (check_ranges(*decoded)) return acknowledge(kAckOutOfRange);
+  if (!check_ranges(*decoded)) return acknowledge(kAckOutOfRange);
 
   if (kind == MessageKind::command) {
     const std::uint16_t result = apply_command(*decoded, now);

@@ -25,8 +25,8 @@ SimServer::~SimServer() {
   stop();
 }
 
-std::optional<Error> SimServer::start() {
-  const auto fail = [](std::string why) { return make_error(ErrorCode::io, std::move(why)); };
+Expected<void> SimServer::start() {
+  const auto fail = [](std::string why) { return unexpected(make_error(ErrorCode::io, std::move(why))); };
   error_code ec;
   switch (endpoint_.kind) {
     case ServerEndpoint::Kind::udp: {
@@ -64,7 +64,7 @@ std::optional<Error> SimServer::start() {
   running_ = true;
   start_read();
   on_tick();
-  return std::nullopt;
+  return {};
 }
 
 void SimServer::stop() {

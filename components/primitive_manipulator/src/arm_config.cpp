@@ -7,7 +7,7 @@
 namespace jaus::components {
 
 namespace {
-Expected<bool> invalid(std::string why) { return unexpected(make_error(ErrorCode::invalid_argument, std::move(why))); }
+Expected<void> invalid(std::string why) { return unexpected(make_error(ErrorCode::invalid_argument, std::move(why))); }
 bool finite(double v) { return std::isfinite(v); }
 
 // The ranges of Part 3's manipulator messages (docs/messages.md): joint
@@ -31,7 +31,7 @@ std::string joint_label(const ArmConfig& config, std::size_t index) {
                                       : "joint " + std::to_string(index + 1);
 }
 
-Expected<bool> check_joint_config(const JointConfig& j, const std::string& label) {
+Expected<void> check_joint_config(const JointConfig& j, const std::string& label) {
   const std::string who = label + ": ";
   for (double v : {j.link_length_m, j.twist_angle_rad, j.offset, j.min_position, j.max_position, j.max_velocity,
                    j.max_effort, j.initial_position})
@@ -49,10 +49,10 @@ Expected<bool> check_joint_config(const JointConfig& j, const std::string& label
   if (!(j.max_effort > 0)) return invalid(who + "the maximum torque or force must be > 0");
   if (j.link_length_m < 0 || j.link_length_m > kMaxLinkLength)
     return invalid(who + "the link length must be 0..65.535 m");
-  return true;
+  return {};
 }
 
-Expected<bool> check_arm_config(const ArmConfig& config) {
+Expected<void> check_arm_config(const ArmConfig& config) {
   if (config.joints.empty() || config.joints.size() > 255)
     return invalid("an arm has 1 to 255 joints, not " + std::to_string(config.joints.size()));
   for (std::size_t i = 0; i < config.joints.size(); ++i)
@@ -66,7 +66,7 @@ Expected<bool> check_arm_config(const ArmConfig& config) {
   if (!finite(q2) || q2 < 1e-6) return invalid("the arm's base quaternion must be a non-zero rotation");
   if (!(config.update_rate_hz >= 1 && config.update_rate_hz <= 1000))
     return invalid("the arm's update rate must be 1..1000 Hz");
-  return true;
+  return {};
 }
 
 }  // namespace jaus::components

@@ -305,7 +305,7 @@ void PrimitiveManipulator::end_motion() {
   twist_.reset();
 }
 
-bool PrimitiveManipulator::command_arm(const Header& h, std::string_view what, const Expected<bool>& result,
+bool PrimitiveManipulator::command_arm(const Header& h, std::string_view what, const Expected<void>& result,
                                        Motion motion) {
   if (!result) {
     refuse(h, what, {Refusal::arm, "the arm: " + result.error().message()});
@@ -522,7 +522,7 @@ void PrimitiveManipulator::control_tick() {
     }
   } else if (twist_) {
     auto rates = twist_rates(*twist_, /*strict=*/false);
-    auto moved = rates ? arm_.move_at_velocities(*rates) : Expected<bool>(unexpected(rates.error()));
+    auto moved = rates ? arm_.move_at_velocities(*rates) : Expected<void>(unexpected(rates.error()));
     if (!moved) {
       log_repeated({"end-effector velocities ended by the arm", kNoteworthyBurst}, LogLevel::error,
                    [&] { return "end-effector velocity ended: " + moved.error().message(); });

@@ -13,11 +13,11 @@ namespace {
 constexpr double kMinUpdateRateHz = 0.1;
 constexpr double kMaxUpdateRateHz = 10000;  // beyond this, catching up on a long gap costs too many steps
 
-Expected<bool> refused(std::string why) { return unexpected(make_error(ErrorCode::out_of_range, std::move(why))); }
+Expected<void> refused(std::string why) { return unexpected(make_error(ErrorCode::out_of_range, std::move(why))); }
 
 // A wrong count, or the first value outside [low(i), high(i)] (with the wire's slack), refused.
 template <class Low, class High>
-Expected<bool> check(const ArmConfig& config, const std::vector<double>& values, const char* what, Low low,
+Expected<void> check(const ArmConfig& config, const std::vector<double>& values, const char* what, Low low,
                      High high) {
   if (values.size() != config.joints.size())
     return refused(std::string(what) + " for " + std::to_string(values.size()) + " joints; the arm has " +
@@ -30,7 +30,7 @@ Expected<bool> check(const ArmConfig& config, const std::vector<double>& values,
       return refused(why.str());
     }
   }
-  return true;
+  return {};
 }
 
 }  // namespace
@@ -143,7 +143,7 @@ SimulatedArm::~SimulatedArm() = default;
 
 const ArmConfig& SimulatedArm::geometry() const { return state_->config; }
 
-Expected<bool> SimulatedArm::move_to_positions(const std::vector<double>& positions) {
+Expected<void> SimulatedArm::move_to_positions(const std::vector<double>& positions) {
   const ArmConfig& c = state_->config;
   auto ok = check(
       c, positions, "position", [&](std::size_t i) { return c.joints[i].min_position; },
@@ -154,10 +154,10 @@ Expected<bool> SimulatedArm::move_to_positions(const std::vector<double>& positi
   state_->command = positions;
   for (std::size_t i = 0; i < positions.size(); ++i)
     state_->command[i] = std::clamp(positions[i], c.joints[i].min_position, c.joints[i].max_position);
-  return true;
+  return {};
 }
 
-Expected<bool> SimulatedArm::move_at_velocities(const std::vector<double>& velocities) {
+Expected<void> SimulatedArm::move_at_velocities(const std::vector<double>& velocities) {
   const ArmConfig& c = state_->config;
   auto ok = check(
       c, velocities, "velocity", [&](std::size_t i) { return -c.joints[i].max_velocity; },
@@ -168,10 +168,10 @@ Expected<bool> SimulatedArm::move_at_velocities(const std::vector<double>& veloc
   state_->command = velocities;
   for (std::size_t i = 0; i < velocities.size(); ++i)
     state_->command[i] = std::clamp(velocities[i], -c.joints[i].max_velocity, c.joints[i].max_velocity);
-  return true;
+  return {};
 }
 
-Expected<bool> SimulatedArm::apply_efforts(const std::vector<double>& efforts_percent) {
+Expected<void> SimulatedArm::apply_efforts(const std::vector<double>& efforts_percent) {
   auto ok = check(
       state_->config, efforts_percent, "effort", [](std::size_t) { return -100.0; },
       [](std::size_t) { return 100.0; });
@@ -180,7 +180,7 @@ Expected<bool> SimulatedArm::apply_efforts(const std::vector<double>& efforts_pe
   state_->mode = Mode::efforts;
   state_->command = efforts_percent;
   for (double& e : state_->command) e = std::clamp(e, -100.0, 100.0);
-  return true;
+  return {};
 }
 
 void SimulatedArm::hold() {

@@ -28,7 +28,7 @@ std::vector<std::uint8_t> read_head(const fs::path& file, std::size_t bytes) {
 
 }  // namespace
 
-Expected<bool> ImageDirectory::scan() {
+Expected<void> ImageDirectory::scan() {
   std::error_code ec;
   fs::directory_iterator it(path_, ec);
   if (ec) return unexpected(io_error("image directory " + path_ + ": " + ec.message()));
@@ -41,7 +41,7 @@ Expected<bool> ImageDirectory::scan() {
   }
   std::sort(found.begin(), found.end());
   files_ = std::move(found);
-  return true;
+  return {};
 }
 
 const std::vector<std::filesystem::path>& ImageDirectory::files() {

@@ -31,7 +31,47 @@ std::string_view to_string(ErrorCode code) {
   return "unknown error";
 }
 
-bool has_position(ErrorCode code) { return code <= ErrorCode::json; }
+std::string_view to_string(ErrorDomain domain) {
+  switch (domain) {
+    case ErrorDomain::codec: return "codec";
+    case ErrorDomain::io_time: return "I/O and time";
+    case ErrorDomain::usage: return "usage";
+    case ErrorDomain::peer: return "peer";
+  }
+  return "unknown domain";
+}
+
+// Every code listed, so a new code without a domain fails to compile (-Wswitch).
+ErrorDomain domain(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::truncated:
+    case ErrorCode::trailing_bytes:
+    case ErrorCode::data_size_mismatch:
+    case ErrorCode::data_size_too_large:
+    case ErrorCode::unsupported_version:
+    case ErrorCode::bad_data_flag:
+    case ErrorCode::reserved_presence_bits:
+    case ErrorCode::count_out_of_range:
+    case ErrorCode::count_mismatch:
+    case ErrorCode::bad_value:
+    case ErrorCode::out_of_range:
+    case ErrorCode::string_too_long:
+    case ErrorCode::unknown_message:
+    case ErrorCode::output_too_small:
+    case ErrorCode::payload_too_large:
+    case ErrorCode::bad_frame:
+    case ErrorCode::json: return ErrorDomain::codec;
+    case ErrorCode::io:
+    case ErrorCode::timeout:
+    case ErrorCode::interrupted: return ErrorDomain::io_time;
+    case ErrorCode::invalid_argument: return ErrorDomain::usage;
+    case ErrorCode::refused:
+    case ErrorCode::malformed: return ErrorDomain::peer;
+  }
+  return ErrorDomain::usage;  // not reached: every code is listed
+}
+
+bool has_position(ErrorCode code) { return domain(code) == ErrorDomain::codec; }
 
 std::string Error::message() const {
   if (!has_position(code)) return detail.empty() ? std::string(to_string(code)) : detail;

@@ -22,8 +22,8 @@ int hex_value(char c) {
 }
 }  // namespace
 
-bool parse_hex(std::string_view text, std::vector<std::uint8_t>& out, std::string& why) {
-  out.clear();
+Expected<std::vector<std::uint8_t>> parse_hex(std::string_view text) {
+  std::vector<std::uint8_t> out;
   if (text.size() >= 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) text.remove_prefix(2);
   int high = -1;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -31,8 +31,8 @@ bool parse_hex(std::string_view text, std::vector<std::uint8_t>& out, std::strin
     if (c == ' ' || c == '\t' || c == '\n' || c == '\r') continue;
     const int v = hex_value(c);
     if (v < 0) {
-      why = std::string("'") + c + "' at position " + std::to_string(i) + " is not a hex digit";
-      return false;
+      return unexpected(make_error(ErrorCode::invalid_argument,
+                                   std::string("'") + c + "' at position " + std::to_string(i) + " is not a hex digit"));
     }
     if (high < 0) {
       high = v;
@@ -41,11 +41,8 @@ bool parse_hex(std::string_view text, std::vector<std::uint8_t>& out, std::strin
       high = -1;
     }
   }
-  if (high >= 0) {
-    why = "odd number of hex digits";
-    return false;
-  }
-  return true;
+  if (high >= 0) return unexpected(make_error(ErrorCode::invalid_argument, "odd number of hex digits"));
+  return out;
 }
 
 }  // namespace jaus

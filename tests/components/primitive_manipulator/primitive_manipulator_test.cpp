@@ -499,9 +499,9 @@ class HomingArm final : public components::ManipulatorArm {
  public:
   HomingArm(components::ArmConfig config, const rt::Clock& clock) : arm_(std::move(config), clock) {}
   const components::ArmConfig& geometry() const override { return arm_.geometry(); }
-  Expected<bool> move_to_positions(const std::vector<double>& p) override { return arm_.move_to_positions(p); }
-  Expected<bool> move_at_velocities(const std::vector<double>& v) override { return arm_.move_at_velocities(v); }
-  Expected<bool> apply_efforts(const std::vector<double>& e) override { return arm_.apply_efforts(e); }
+  Expected<void> move_to_positions(const std::vector<double>& p) override { return arm_.move_to_positions(p); }
+  Expected<void> move_at_velocities(const std::vector<double>& v) override { return arm_.move_at_velocities(v); }
+  Expected<void> apply_efforts(const std::vector<double>& e) override { return arm_.apply_efforts(e); }
   void hold() override {
     calls.push_back("hold");
     arm_.hold();

@@ -89,7 +89,7 @@ struct ClearpathArmConfig {
 // joints are angles), no Clearpath joint twice, signs +-1, finite offsets,
 // and each joint's limits reachable within +-pi after mapping, the rates in
 // range. The error names the first offending joint.
-Expected<bool> check_clearpath_arm_config(const components::ArmConfig& arm, const ClearpathArmConfig& config);
+Expected<void> check_clearpath_arm_config(const components::ArmConfig& arm, const ClearpathArmConfig& config);
 
 struct ClearpathArmCounters {
   std::uint64_t commands_sent = 0;    // 0x1010 and 0x1013 handed to the client
@@ -111,9 +111,9 @@ class ClearpathArm final : public components::ManipulatorArm {
   ClearpathArm& operator=(const ClearpathArm&) = delete;
 
   const components::ArmConfig& geometry() const override;
-  Expected<bool> move_to_positions(const std::vector<double>& positions) override;
-  Expected<bool> move_at_velocities(const std::vector<double>& velocities) override;
-  Expected<bool> apply_efforts(const std::vector<double>& efforts_percent) override;
+  Expected<void> move_to_positions(const std::vector<double>& positions) override;
+  Expected<void> move_at_velocities(const std::vector<double>& velocities) override;
+  Expected<void> apply_efforts(const std::vector<double>& efforts_percent) override;
   void hold() override;
   std::optional<components::JointSample> sample() const override;
   // Home Joint (0x1013) for every mapped joint; ends any ramp. Logged and

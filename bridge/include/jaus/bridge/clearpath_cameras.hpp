@@ -86,7 +86,7 @@ struct ClearpathCamerasConfig {
 // [-180, 180] deg, zoom factors both 0 or both in (0, 320], the rates and
 // tolerances in range, and each movable pan/tilt axis' limits reachable
 // within the mount's +-180 deg. The error names the first offending entry.
-Expected<bool> check_clearpath_cameras_config(const std::vector<components::CameraConfig>& cameras,
+Expected<void> check_clearpath_cameras_config(const std::vector<components::CameraConfig>& cameras,
                                               const ClearpathCamerasConfig& config);
 
 struct ClearpathCamerasCounters {

@@ -33,8 +33,8 @@ Expected<std::vector<std::uint8_t>> encode(const Envelope& envelope);
 Expected<std::size_t> append_encoded(std::vector<std::uint8_t>& out, const Envelope& envelope);
 Expected<Envelope> decode(const Frame& frame, Direction direction);
 
-// The first field outside the range the document gives it (out_of_range),
-// or nullopt. Decoding never checks ranges; a platform does before acting.
-std::optional<Error> check_ranges(const AnyMessage& message);
+// Succeeds, or fails with the first field outside the range the document
+// gives it (out_of_range). Decoding never checks ranges; a platform does before acting.
+Expected<void> check_ranges(const AnyMessage& message);
 
 }  // namespace jaus::clearpath

@@ -10,8 +10,11 @@
 
 namespace jaus {
 
+// Grouped by domain (see ErrorDomain); the order is kept stable so a code's
+// number never changes meaning.
 enum class ErrorCode : std::uint8_t {
-  // Codecs (JAUS wire and Clearpath frames): the error has an offset and maybe a field.
+  // --- codec: bytes and JSON being read or written (JAUS wire, Clearpath frames);
+  //     the error has an offset and maybe a field.
   truncated,              // fewer bytes than the field needs
   trailing_bytes,         // bytes left after the last field
   data_size_mismatch,     // JAUS header data size disagrees with the datagram
@@ -29,16 +32,29 @@ enum class ErrorCode : std::uint8_t {
   payload_too_large,      // payload larger than one packet or frame can carry (detail: the limit)
   bad_frame,              // bytes that are not one well-formed frame (Clearpath; a JAUS datagram's framing)
   json,                   // JSON input malformed or of the wrong type
-  // Everything else: the detail is the whole story, one line.
+  // --- I/O and time: the detail is the whole story, one line.
   io,                     // a socket, port or file cannot be opened, bound or used
   timeout,                // no answer within the time given
   interrupted,            // stopped by a signal or by the caller
+  // --- usage and configuration
   invalid_argument,       // a value given by the user or the configuration that cannot be used
+  // --- peers: what another node answered or sent
   refused,                // the peer answered no
   malformed,              // a message from a peer that does not decode (the detail says which, and why)
 };
 
+// The groups above: what kind of thing went wrong, for callers that react to a
+// kind rather than to one code (retry on io_time, report usage to the user, ...).
+enum class ErrorDomain : std::uint8_t {
+  codec,   // bytes or JSON; the error says where (offset, field)
+  io_time, // io, timeout, interrupted
+  usage,   // invalid_argument: the user's or the configuration's value
+  peer,    // refused, malformed: another node's answer
+};
+
 std::string_view to_string(ErrorCode code);
+std::string_view to_string(ErrorDomain domain);
+ErrorDomain domain(ErrorCode code);
 // True for the codec errors, which say where in the bytes they happened.
 bool has_position(ErrorCode code);
 

@@ -7,13 +7,15 @@
 #include <string_view>
 #include <vector>
 
+#include "jaus/base/expected.hpp"
+
 namespace jaus {
 
 // Upper-case, no separators.
 std::string to_hex(std::span<const std::uint8_t> bytes);
 
-// Accepts upper or lower case; spaces and a leading "0x" are ignored. On
-// failure `why` says where ("odd number of hex digits", "'G' at position 4 ...").
-bool parse_hex(std::string_view text, std::vector<std::uint8_t>& out, std::string& why);
+// Accepts upper or lower case; spaces and a leading "0x" are ignored. A failure
+// (invalid_argument) says where ("odd number of hex digits", "'G' at position 4 ...").
+Expected<std::vector<std::uint8_t>> parse_hex(std::string_view text);
 
 }  // namespace jaus

@@ -13,8 +13,8 @@
 
 #define JAUS_JSON_CODEC_INSTANCES(extern_or_not, Body)                                                          \
   extern_or_not template nlohmann::ordered_json wire::fields_to_json<nlohmann::ordered_json, Body>(const Body&); \
-  extern_or_not template bool wire::fields_from_json<nlohmann::ordered_json, Body>(const nlohmann::ordered_json&, \
-                                                                                   Body&, std::string&);
+  extern_or_not template Expected<void> wire::fields_from_json<nlohmann::ordered_json, Body>(                 \
+      const nlohmann::ordered_json&, Body&);
 #define JAUS_DECLARE_JSON_CODEC(Body) JAUS_JSON_CODEC_INSTANCES(extern, Body)
 // In the catalogue file of the body's group: the codec and its JSON form.
 #define JAUS_DEFINE_CODEC(Body) JAUS_CODEC_INSTANCES(, Body) JAUS_JSON_CODEC_INSTANCES(, Body)

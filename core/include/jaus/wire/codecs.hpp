@@ -7,7 +7,8 @@
 //   value_type                                    the member's type (engineering units)
 //   encode(const value_type&, ByteWriter&, Context&)
 //   decode(ByteReader&, value_type&, Context&)
-//   to_json<Json>(const value_type&) / from_json<Json>(const Json&, value_type&, std::string& why)
+//   to_json<Json>(const value_type&) / from_json<Json>(const Json&, value_type&) -> Expected<void>
+//     (a failure is ErrorCode::json whose detail says why and, for nested values, where)
 // JSON members are templates so that this header does not pull in a JSON library.
 //
 // A codec whose field always takes the same number of bytes, and whose decode
@@ -34,6 +35,7 @@
 
 #include "jaus/core/address.hpp"
 #include "jaus/core/byte_io.hpp"
+#include "jaus/base/expected.hpp"
 #include "jaus/base/hex.hpp"
 #include "jaus/core/scaled_integer.hpp"
 #include "jaus/core/time_stamp.hpp"
@@ -68,46 +70,40 @@ inline std::string number_text(double v) {
   return text;
 }
 
+// A JSON value its field cannot take: the detail says why.
+inline Unexpected<Error> json_error(std::string why) { return unexpected(Error{ErrorCode::json, 0, {}, std::move(why)}); }
+// The same error one level up: `where` ("'poses'", "[2]") is put before its detail.
+inline Unexpected<Error> json_error_in(const std::string& where, const Error& inner) {
+  return json_error(where + ": " + inner.detail);
+}
+
 template <class Json, std::integral T>
-bool integer_from_json(const Json& j, T& out, std::string& why) {
-  if (!j.is_number_integer()) {
-    why = "expected an integer";
-    return false;
-  }
+Expected<void> integer_from_json(const Json& j, T& out) {
+  if (!j.is_number_integer()) return json_error("expected an integer");
   if (j.is_number_unsigned()) {
     const auto v = j.template get<std::uint64_t>();
-    if (v > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) {
-      why = "out of range for its wire type";
-      return false;
-    }
+    if (v > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) return json_error("out of range for its wire type");
     out = static_cast<T>(v);
-    return true;
+    return {};
   }
   const auto v = j.template get<std::int64_t>();
   if constexpr (std::is_unsigned_v<T>) {
-    if (v < 0 || static_cast<std::uint64_t>(v) > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) {
-      why = "out of range for its wire type";
-      return false;
-    }
+    if (v < 0 || static_cast<std::uint64_t>(v) > static_cast<std::uint64_t>(std::numeric_limits<T>::max()))
+      return json_error("out of range for its wire type");
   } else {
     if (v < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
-        v > static_cast<std::int64_t>(std::numeric_limits<T>::max())) {
-      why = "out of range for its wire type";
-      return false;
-    }
+        v > static_cast<std::int64_t>(std::numeric_limits<T>::max()))
+      return json_error("out of range for its wire type");
   }
   out = static_cast<T>(v);
-  return true;
+  return {};
 }
 
 template <class Json>
-bool real_from_json(const Json& j, double& out, std::string& why) {
-  if (!j.is_number()) {
-    why = "expected a number";
-    return false;
-  }
+Expected<void> real_from_json(const Json& j, double& out) {
+  if (!j.is_number()) return json_error("expected a number");
   out = j.template get<double>();
-  return true;
+  return {};
 }
 
 inline constexpr char kHexDigits[] = "0123456789ABCDEF";
@@ -138,7 +134,7 @@ struct Int {
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
-  bool from_json(const Json& j, T& v, std::string& why) const { return detail::integer_from_json(j, v, why); }
+  Expected<void> from_json(const Json& j, T& v) const { return detail::integer_from_json(j, v); }
 };
 
 // IEEE 754 Float or Double.
@@ -152,11 +148,11 @@ struct Real {
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
-  bool from_json(const Json& j, T& v, std::string& why) const {
+  Expected<void> from_json(const Json& j, T& v) const {
     double d = 0;
-    if (!detail::real_from_json(j, d, why)) return false;
+    if (auto read = detail::real_from_json(j, d); !read) return read;
     v = static_cast<T>(d);
-    return true;
+    return {};
   }
 };
 
@@ -214,7 +210,7 @@ struct Scaled {
   template <class Json>
   Json to_json(const double& v) const { return Json(v); }
   template <class Json>
-  bool from_json(const Json& j, double& v, std::string& why) const { return detail::real_from_json(j, v, why); }
+  Expected<void> from_json(const Json& j, double& v) const { return detail::real_from_json(j, v); }
 };
 
 // An integer with a fixed unit factor and no limits (value = raw * factor),
@@ -243,7 +239,7 @@ struct Linear {
   template <class Json>
   Json to_json(const double& v) const { return Json(v); }
   template <class Json>
-  bool from_json(const Json& j, double& v, std::string& why) const { return detail::real_from_json(j, v, why); }
+  Expected<void> from_json(const Json& j, double& v) const { return detail::real_from_json(j, v); }
 };
 
 // ASCII text in a fixed-length field, NUL padded. With `accept_shorter`, a
@@ -277,17 +273,11 @@ struct Text {
   template <class Json>
   Json to_json(const std::string& v) const { return Json(v); }
   template <class Json>
-  bool from_json(const Json& j, std::string& v, std::string& why) const {
-    if (!j.is_string()) {
-      why = "expected a string";
-      return false;
-    }
+  Expected<void> from_json(const Json& j, std::string& v) const {
+    if (!j.is_string()) return detail::json_error("expected a string");
     v = j.template get<std::string>();
-    if (v.size() > N) {
-      why = "longer than " + std::to_string(N) + " characters";
-      return false;
-    }
-    return true;
+    if (v.size() > N) return detail::json_error("longer than " + std::to_string(N) + " characters");
+    return {};
   }
 };
 
@@ -314,29 +304,20 @@ struct Time {
                 {"millisecond", v.millisecond}};
   }
   template <class Json>
-  bool from_json(const Json& j, TimeStamp& v, std::string& why) const {
-    if (!j.is_object()) {
-      why = "expected {day, hour, minute, second, millisecond}";
-      return false;
-    }
+  Expected<void> from_json(const Json& j, TimeStamp& v) const {
+    if (!j.is_object()) return detail::json_error("expected {day, hour, minute, second, millisecond}");
     for (const auto& [key, value] : j.items()) {
-      bool ok = true;
-      if (key == "day") ok = detail::integer_from_json(value, v.day, why);
-      else if (key == "hour") ok = detail::integer_from_json(value, v.hour, why);
-      else if (key == "minute") ok = detail::integer_from_json(value, v.minute, why);
-      else if (key == "second") ok = detail::integer_from_json(value, v.second, why);
-      else if (key == "millisecond") ok = detail::integer_from_json(value, v.millisecond, why);
-      else {
-        why = "unknown time stamp part '" + key + "'";
-        return false;
-      }
-      if (!ok) return false;
+      Expected<void> part;
+      if (key == "day") part = detail::integer_from_json(value, v.day);
+      else if (key == "hour") part = detail::integer_from_json(value, v.hour);
+      else if (key == "minute") part = detail::integer_from_json(value, v.minute);
+      else if (key == "second") part = detail::integer_from_json(value, v.second);
+      else if (key == "millisecond") part = detail::integer_from_json(value, v.millisecond);
+      else return detail::json_error("unknown time stamp part '" + key + "'");
+      if (!part) return part;
     }
-    if (!v.pack()) {
-      why = "time stamp part out of range";
-      return false;
-    }
-    return true;
+    if (!v.pack()) return detail::json_error("time stamp part out of range");
+    return {};
   }
 };
 
@@ -373,29 +354,21 @@ struct Date {
   template <class Json>
   Json to_json(const DateStamp& v) const { return Json{{"year", v.year}, {"month", v.month}, {"day", v.day}}; }
   template <class Json>
-  bool from_json(const Json& j, DateStamp& v, std::string& why) const {
-    if (!j.is_object()) {
-      why = "expected {year, month, day}";
-      return false;
-    }
+  Expected<void> from_json(const Json& j, DateStamp& v) const {
+    if (!j.is_object()) return detail::json_error("expected {year, month, day}");
     for (const auto& [key, value] : j.items()) {
-      bool ok = true;
-      if (key == "year") ok = detail::integer_from_json(value, v.year, why);
-      else if (key == "month") ok = detail::integer_from_json(value, v.month, why);
-      else if (key == "day") ok = detail::integer_from_json(value, v.day, why);
-      else {
-        why = "unknown date stamp part '" + key + "'";
-        return false;
-      }
-      if (!ok) return false;
+      Expected<void> part;
+      if (key == "year") part = detail::integer_from_json(value, v.year);
+      else if (key == "month") part = detail::integer_from_json(value, v.month);
+      else if (key == "day") part = detail::integer_from_json(value, v.day);
+      else return detail::json_error("unknown date stamp part '" + key + "'");
+      if (!part) return part;
     }
     // Bit ranges are checked when encoding, per dialect: the openjaus dialect
     // reads month 16 from its 0-based 15, which the RA form cannot carry.
-    if (v.day > 31 || v.month > 16 || v.year < 2000 || v.year > 2127) {
-      why = "date stamp part out of range (year 2000-2127, month 0-16, day 0-31)";
-      return false;
-    }
-    return true;
+    if (v.day > 31 || v.month > 16 || v.year < 2000 || v.year > 2127)
+      return detail::json_error("date stamp part out of range (year 2000-2127, month 0-16, day 0-31)");
+    return {};
   }
 };
 
@@ -438,17 +411,17 @@ struct Bytes {
     return Json(jaus::to_hex(v));
   }
   template <class Json>
-  bool from_json(const Json& j, value_type& v, std::string& why) const;
+  Expected<void> from_json(const Json& j, value_type& v) const;
 };
 
 template <class SizeT>
 template <class Json>
-bool Bytes<SizeT>::from_json(const Json& j, value_type& v, std::string& why) const {
-  if (!j.is_string()) {
-    why = "expected a hex string";
-    return false;
-  }
-  return jaus::parse_hex(j.template get<std::string>(), v, why);
+Expected<void> Bytes<SizeT>::from_json(const Json& j, value_type& v) const {
+  if (!j.is_string()) return detail::json_error("expected a hex string");
+  auto bytes = jaus::parse_hex(j.template get<std::string>());
+  if (!bytes) return detail::json_error(bytes.error().detail);
+  v = std::move(*bytes);
+  return {};
 }
 
 // An address as four bytes in the order subsystem, node, component, instance
@@ -472,14 +445,11 @@ struct AddressCodec {
   template <class Json>
   Json to_json(const Address& v) const { return Json(v.to_string()); }
   template <class Json>
-  bool from_json(const Json& j, Address& v, std::string& why) const {
+  Expected<void> from_json(const Json& j, Address& v) const {
     const auto parsed = j.is_string() ? Address::parse(j.template get<std::string>()) : std::nullopt;
-    if (!parsed) {
-      why = "expected an address \"S.N.C.I\"";
-      return false;
-    }
+    if (!parsed) return detail::json_error("expected an address \"S.N.C.I\"");
     v = *parsed;
-    return true;
+    return {};
   }
 };
 
@@ -542,32 +512,24 @@ struct EventLimitCodec {
     return Json{{"type", std::string(EventLimit::kTypeNames[v.type])}, {"bits", v.bits}};
   }
   template <class Json>
-  bool from_json(const Json& j, EventLimit& v, std::string& why) const {
-    if (!j.is_object() || !j.contains("type") || !j.contains("bits")) {
-      why = "expected {type, bits}";
-      return false;
-    }
+  Expected<void> from_json(const Json& j, EventLimit& v) const {
+    if (!j.is_object() || !j.contains("type") || !j.contains("bits")) return detail::json_error("expected {type, bits}");
     const auto& type = j.at("type");
     if (type.is_string()) {
       const auto name = type.template get<std::string>();
       const auto* names = std::begin(EventLimit::kTypeNames);
       const auto* found = std::find(names, std::end(EventLimit::kTypeNames), name);
-      if (found == std::end(EventLimit::kTypeNames)) {
-        why = "unknown event limit type '" + name +
-              "' (expected one of: byte, short_integer, integer, long_integer, "
-              "unsigned_short, unsigned_integer, unsigned_long, float32, float64, rgb, or 0-9)";
-        return false;
-      }
+      if (found == std::end(EventLimit::kTypeNames))
+        return detail::json_error("unknown event limit type '" + name +
+                                  "' (expected one of: byte, short_integer, integer, long_integer, "
+                                  "unsigned_short, unsigned_integer, unsigned_long, float32, float64, rgb, or 0-9)");
       v.type = static_cast<std::uint8_t>(found - names);
-    } else if (!detail::integer_from_json(type, v.type, why)) {
-      return false;
+    } else if (auto read = detail::integer_from_json(type, v.type); !read) {
+      return read;
     }
-    if (!detail::integer_from_json(j.at("bits"), v.bits, why)) return false;
-    if (EventLimit::size_of(v.type) == 0) {
-      why = "unknown event limit type";
-      return false;
-    }
-    return true;
+    if (auto read = detail::integer_from_json(j.at("bits"), v.bits); !read) return read;
+    if (EventLimit::size_of(v.type) == 0) return detail::json_error("unknown event limit type");
+    return {};
   }
 };
 
@@ -609,7 +571,7 @@ struct Dimension {
   template <class Json>
   Json to_json(const T& v) const { return Json(v); }
   template <class Json>
-  bool from_json(const Json& j, T& v, std::string& why) const { return detail::integer_from_json(j, v, why); }
+  Expected<void> from_json(const Json& j, T& v) const { return detail::integer_from_json(j, v); }
 };
 
 namespace detail {

@@ -212,19 +212,14 @@ struct Array {
     return out;
   }
   template <class Json>
-  bool from_json(const Json& j, value_type& v, std::string& why) const {
-    if (!j.is_array()) {
-      why = "expected an array";
-      return false;
-    }
+  Expected<void> from_json(const Json& j, value_type& v) const {
+    if (!j.is_array()) return detail::json_error("expected an array");
     v.resize(j.size());
     for (std::size_t i = 0; i < j.size(); ++i) {
-      if (!elem.template from_json<Json>(j[i], v[i], why)) {
-        why = "[" + std::to_string(i) + "]: " + why;
-        return false;
-      }
+      if (auto element = elem.template from_json<Json>(j[i], v[i]); !element)
+        return detail::json_error_in("[" + std::to_string(i) + "]", element.error());
     }
-    return true;
+    return {};
   }
 };
 
@@ -254,7 +249,7 @@ struct Records {
   template <class Json>
   Json to_json(const value_type& v) const;
   template <class Json>
-  bool from_json(const Json& j, value_type& v, std::string& why) const;
+  Expected<void> from_json(const Json& j, value_type& v) const;
 };
 
 // A body has a fixed layout when every field's codec has a fixed size: its
@@ -507,48 +502,44 @@ Json fields_to_json(const Body& body) {
 }
 
 // Fills `body` from a JSON object. Unknown keys and missing required fields
-// are errors; `why` names the field.
+// are errors (ErrorCode::json); the detail names the field.
 template <class Json, class Body>
-bool fields_from_json(const Json& j, Body& body, std::string& why) {
-  if (!j.is_object()) {
-    why = "expected a JSON object";
-    return false;
-  }
+Expected<void> fields_from_json(const Json& j, Body& body) {
+  if (!j.is_object()) return detail::json_error("expected a JSON object");
   std::size_t known = 0;
-  bool ok = true;
+  Expected<void> result;
   std::apply(
       [&](const auto&... f) {
         (([&] {
            using F = std::decay_t<decltype(f)>;
            if constexpr (!is_presence_vector<F>::value) {
-             if (!ok) return;
+             if (!result) return;
              const std::string key(f.name);
              const auto it = j.find(key);
              if (it == j.end()) {
                if constexpr (F::is_optional) {
                  (body.*f.member).reset();
                } else {
-                 why = "'" + key + "' is missing";
-                 ok = false;
+                 result = detail::json_error("'" + key + "' is missing");
                }
                return;
              }
              ++known;
-             std::string inner;
+             Expected<void> field;
              if constexpr (F::is_optional) {
                auto& member = body.*f.member;
                member.emplace();
-               ok = f.codec.template from_json<Json>(*it, *member, inner);
+               field = f.codec.template from_json<Json>(*it, *member);
              } else {
-               ok = f.codec.template from_json<Json>(*it, body.*f.member, inner);
+               field = f.codec.template from_json<Json>(*it, body.*f.member);
              }
-             if (!ok) why = "'" + key + "': " + inner;
+             if (!field) result = detail::json_error_in("'" + key + "'", field.error());
            }
          }()),
          ...);
       },
       Body::describe());
-  if (ok && known != j.size()) {
+  if (result && known != j.size()) {
     for (const auto& item : j.items()) {
       bool is_known = false;
       std::apply([&](const auto&... f) {
@@ -557,13 +548,10 @@ bool fields_from_json(const Json& j, Body& body, std::string& why) {
             else return f.name == item.key();
           }()), ...);
       }, Body::describe());
-      if (!is_known) {
-        why = "unknown field '" + item.key() + "'";
-        return false;
-      }
+      if (!is_known) return detail::json_error("unknown field '" + item.key() + "'");
     }
   }
-  return ok;
+  return result;
 }
 
 template <class Count, class Record>
@@ -576,19 +564,14 @@ Json Records<Count, Record>::to_json(const value_type& v) const {
 
 template <class Count, class Record>
 template <class Json>
-bool Records<Count, Record>::from_json(const Json& j, value_type& v, std::string& why) const {
-  if (!j.is_array()) {
-    why = "expected an array of objects";
-    return false;
-  }
+Expected<void> Records<Count, Record>::from_json(const Json& j, value_type& v) const {
+  if (!j.is_array()) return detail::json_error("expected an array of objects");
   v.resize(j.size());
   for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!fields_from_json<Json>(j[i], v[i], why)) {
-      why = "[" + std::to_string(i) + "]: " + why;
-      return false;
-    }
+    if (auto record = fields_from_json<Json>(j[i], v[i]); !record)
+      return detail::json_error_in("[" + std::to_string(i) + "]", record.error());
   }
-  return true;
+  return {};
 }
 
 }  // namespace jaus::wire

@@ -64,28 +64,24 @@ inline std::string values_doc(std::span<const NamedValue> names) {
 }
 constexpr std::uint64_t bits_mask(const NamedBits& b) { return ((std::uint64_t{1} << b.width) - 1) << b.first_bit; }
 
-// A name or a number of at most `max`; why names the valid names.
+// A name or a number of at most `max`; a failure names the valid names.
 template <class Json>
-bool named_value_from_json(const Json& j, std::span<const NamedValue> names, std::uint64_t max, std::uint64_t& out,
-                           std::string& why) {
+Expected<void> named_value_from_json(const Json& j, std::span<const NamedValue> names, std::uint64_t max,
+                                     std::uint64_t& out) {
   if (j.is_string()) {
     const auto name = j.template get<std::string>();
     if (const auto* n = find_name(names, name)) {
       out = n->value;
-      return true;
+      return {};
     }
-    why = "unknown name '" + name + "' (expected one of: " + name_list(names) + ", or a number)";
-    return false;
+    return json_error("unknown name '" + name + "' (expected one of: " + name_list(names) + ", or a number)");
   }
-  if (!integer_from_json(j, out, why)) {
-    if (!j.is_number()) why = "expected a name (" + name_list(names) + ") or a number";
-    return false;
+  if (auto number = integer_from_json(j, out); !number) {
+    if (!j.is_number()) return json_error("expected a name (" + name_list(names) + ") or a number");
+    return number;
   }
-  if (out > max) {
-    why = std::to_string(out) + " does not fit (at most " + std::to_string(max) + ")";
-    return false;
-  }
-  return true;
+  if (out > max) return json_error(std::to_string(out) + " does not fit (at most " + std::to_string(max) + ")");
+  return {};
 }
 }  // namespace detail
 
@@ -114,11 +110,11 @@ struct Enum {
     return Json(v);
   }
   template <class Json>
-  bool from_json(const Json& j, T& v, std::string& why) const {
+  Expected<void> from_json(const Json& j, T& v) const {
     std::uint64_t raw = 0;
-    if (!detail::named_value_from_json(j, names, std::numeric_limits<T>::max(), raw, why)) return false;
+    if (auto read = detail::named_value_from_json(j, names, std::numeric_limits<T>::max(), raw); !read) return read;
     v = static_cast<T>(raw);
-    return true;
+    return {};
   }
 };
 
@@ -170,47 +166,40 @@ struct Flags {
   }
 
   template <class Json>
-  bool from_json(const Json& j, T& v, std::string& why) const {
-    if (j.is_number()) return detail::integer_from_json(j, v, why);
-    if (!j.is_object()) {
-      why = "expected an object {" + field_names() + "} or a number";
-      return false;
-    }
+  Expected<void> from_json(const Json& j, T& v) const {
+    if (j.is_number()) return detail::integer_from_json(j, v);
+    if (!j.is_object()) return detail::json_error("expected an object {" + field_names() + "} or a number");
     std::uint64_t raw = 0;
     for (const auto& [key, value] : j.items()) {
+      const std::string where = "'" + key + "'";
       if (key == kOtherBits) {
         T other{};
-        if (!detail::integer_from_json(value, other, why)) return prefix(why, key);
-        if ((other & covered()) != 0) {
-          why = "'other_bits' overlaps the named bits";
-          return false;
-        }
+        if (auto read = detail::integer_from_json(value, other); !read) return detail::json_error_in(where, read.error());
+        if ((other & covered()) != 0) return detail::json_error("'other_bits' overlaps the named bits");
         raw |= other;
         continue;
       }
       const NamedBits* field = nullptr;
       for (const auto& f : fields)
         if (f.name == key) field = &f;
-      if (field == nullptr) {
-        why = "unknown bit field '" + key + "' (expected: " + field_names() + ")";
-        return false;
-      }
+      if (field == nullptr)
+        return detail::json_error("unknown bit field '" + key + "' (expected: " + field_names() + ")");
       std::uint64_t part = 0;
       if (field->width == 1) {
         if (value.is_boolean()) {
           part = value.template get<bool>() ? 1 : 0;
-        } else if (!detail::integer_from_json(value, part, why) || part > 1) {
-          why = "'" + key + "': expected true or false";
-          return false;
+        } else if (!detail::integer_from_json(value, part) || part > 1) {
+          return detail::json_error(where + ": expected true or false");
         }
-      } else if (!detail::named_value_from_json(value, field->values, (std::uint64_t{1} << field->width) - 1, part,
-                                                why)) {
-        return prefix(why, key);
+      } else if (auto read = detail::named_value_from_json(value, field->values,
+                                                           (std::uint64_t{1} << field->width) - 1, part);
+                 !read) {
+        return detail::json_error_in(where, read.error());
       }
       raw |= part << field->first_bit;
     }
     v = static_cast<T>(raw);
-    return true;
+    return {};
   }
 
  private:
@@ -218,10 +207,6 @@ struct Flags {
     std::string out;
     for (const auto& f : fields) out += std::string(f.name) + ", ";
     return out + std::string(kOtherBits);
-  }
-  static bool prefix(std::string& why, const std::string& key) {
-    why = "'" + key + "': " + why;
-    return false;
   }
 };
 

@@ -148,7 +148,7 @@ class UdpLink final : public node::Link {
   struct Socket;
   UdpLink(boost::asio::io_context& io, rt::Clock& clock, rt::Scheduler& scheduler, UdpLinkOptions options,
           rt::LogFn log);
-  Expected<bool> bind_sockets();
+  Expected<void> bind_sockets();
   void receive_next(Socket& socket);
   void on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
   // Counts a dropped datagram and writes its line, limited per reason; the

@@ -15,7 +15,7 @@
 
 #include <boost/asio.hpp>
 
-#include "jaus/base/error.hpp"
+#include "jaus/base/expected.hpp"
 #include "jaus/base/time.hpp"
 #include "jaus/clearpath/sim/fault_injector.hpp"
 #include "jaus/clearpath/sim/sim_platform.hpp"
@@ -39,7 +39,7 @@ class SimServer {
   SimServer& operator=(const SimServer&) = delete;
 
   // Opens the endpoint; an io error says which and why.
-  std::optional<Error> start();
+  Expected<void> start();
   void stop();
 
   const std::string& pty_path() const { return pty_path_; }

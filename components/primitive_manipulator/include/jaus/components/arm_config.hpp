@@ -49,10 +49,10 @@ struct ArmConfig {
 // non-zero quaternion, an update rate of 1..1000 Hz. The one source of these
 // rules: jausd's configuration reader reports the same error at its line.
 // The error names the first offending joint ("joint 2 (elbow): ...").
-Expected<bool> check_arm_config(const ArmConfig& config);
+Expected<void> check_arm_config(const ArmConfig& config);
 
 // One joint's part of those rules; `label` names it in the error.
-Expected<bool> check_joint_config(const JointConfig& joint, const std::string& label);
+Expected<void> check_joint_config(const JointConfig& joint, const std::string& label);
 
 // "joint 3 (elbow)" (1-based, as Part 3 counts joints); "joint 3" without a name.
 std::string joint_label(const JointConfig& joint, std::size_t index);

@@ -49,13 +49,13 @@ class ManipulatorArm {
   // error says which joint. A new command replaces the previous one.
   //
   // Each joint toward its position at its speed limit, then holds it there.
-  virtual Expected<bool> move_to_positions(const std::vector<double>& positions) = 0;
+  virtual Expected<void> move_to_positions(const std::vector<double>& positions) = 0;
   // Each joint at its velocity (within max_velocity) until told otherwise;
   // a joint stops at its position limits.
-  virtual Expected<bool> move_at_velocities(const std::vector<double>& velocities) = 0;
+  virtual Expected<void> move_at_velocities(const std::vector<double>& velocities) = 0;
   // Each joint with an effort, percent of its max_effort (-100..100); what an
   // effort does is the backend's (the simulated arm documents its model).
-  virtual Expected<bool> apply_efforts(const std::vector<double>& efforts_percent) = 0;
+  virtual Expected<void> apply_efforts(const std::vector<double>& efforts_percent) = 0;
   // Safety: hold every joint where it is now (for an arm, zero effort is not
   // a stop: it would fall). Called on every stop of the component (Standby,
   // Emergency, control loss, command timeout, Reset, Shutdown); never fails.

@@ -128,7 +128,7 @@ class PrimitiveManipulator final : public rt::Component {
   // motion, end-effector velocity, command timeout) before a new command.
   void end_motion();
   // Hands a command to the arm; a refusal by the backend holds the arm.
-  bool command_arm(const Header& h, std::string_view what, const Expected<bool>& result, Motion motion);
+  bool command_arm(const Header& h, std::string_view what, const Expected<void>& result, Motion motion);
   void start_trajectory(JointTrajectory trajectory, Motion motion);
   void control_tick();
   void schedule_control_tick();

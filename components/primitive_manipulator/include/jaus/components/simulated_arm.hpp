@@ -33,9 +33,9 @@ class SimulatedArm final : public ManipulatorArm {
   SimulatedArm& operator=(const SimulatedArm&) = delete;
 
   const ArmConfig& geometry() const override;
-  Expected<bool> move_to_positions(const std::vector<double>& positions) override;
-  Expected<bool> move_at_velocities(const std::vector<double>& velocities) override;
-  Expected<bool> apply_efforts(const std::vector<double>& efforts_percent) override;
+  Expected<void> move_to_positions(const std::vector<double>& positions) override;
+  Expected<void> move_at_velocities(const std::vector<double>& velocities) override;
+  Expected<void> apply_efforts(const std::vector<double>& efforts_percent) override;
   void hold() override;
   std::optional<JointSample> sample() const override;
 

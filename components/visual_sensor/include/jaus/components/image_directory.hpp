@@ -25,7 +25,7 @@ class ImageDirectory {
   const std::vector<std::filesystem::path>& files();
 
  private:
-  Expected<bool> scan();
+  Expected<void> scan();
 
   std::string path_;
   std::vector<std::filesystem::path> files_;
