@@ -4,11 +4,11 @@
 // restart the motion; a component not Ready at the start gets nothing; with
 // --resume-when-ready it pauses and resumes. The driver counts the Set
 // Wrench Efforts that reach it; the OCU's own count shows that none went out
-// after it learnt the state (one in flight may still arrive, refused). On
-// the real clock, each step acts on what has happened (efforts applied, a
-// line printed), never at a fixed time.
+// after it learnt the state (one in flight may still arrive, refused).
+// Under virtual time (virtual_fixture.hpp); each step acts on what has
+// happened (efforts applied, a line printed), never at a fixed time.
 #include "jaus/ocu/control_hold.hpp"
-#include "ocu_fixture.hpp"
+#include "virtual_fixture.hpp"
 
 namespace jausctl::test {
 namespace {
@@ -18,7 +18,7 @@ constexpr const char* kEmergencyStop =
     "jausctl control: 1.1.33.1 entered Emergency: stopped sending Set Wrench Effort; not resuming "
     "(see --resume-when-ready)\n";
 
-class ControlStreamTest : public OcuTest {
+class ControlStreamTest : public VirtualOcuTest {
  protected:
   void SetUp() override {
     TargetOptions options;
@@ -48,12 +48,9 @@ class ControlStreamTest : public OcuTest {
   jaus::msg::PrimaryStatus driver_state() const { return target->driver().state(); }
   bool controlled() const { return target->driver().control().controller().has_value(); }
 
-  // Runs the io_context for `d`: long enough for a command that would still
-  // come to have come (the tool streams at 20 Hz).
-  void run_for(jaus::rt::Duration d) {
-    if (context.stopped()) context.restart();
-    context.run_for(d);
-  }
+  // Lets `d` of virtual time pass: long enough for a command that would
+  // still come to have come (the tool streams at 20 Hz).
+  void run_for(jaus::rt::Duration d) { jaus::testing::run_for(time, d); }
 };
 
 TEST_F(ControlStreamTest, NoCommandGoesOutAfterTheOcuLearntOfTheEmergency) {

@@ -68,46 +68,41 @@ struct TargetOptions {
   bool primitive_driver = false;                          // host kDriver too
 };
 
-class TargetNode {
+// The target's node host configuration, on whatever carries it: the link
+// settings are the socket target's own.
+inline jaus::host::HostConfig target_config(const TargetOptions& options) {
+  jaus::host::HostConfig config;
+  config.node.subsystem = options.subsystem;
+  config.node.liveness.node_timeout = options.subsystem_timeout;
+  config.node.liveness.subsystem_timeout = options.subsystem_timeout;
+  config.settings.defaults.controller_timeout = options.controller_timeout;
+  config.settings.defaults.reject_refused_requests = options.reject_refused;
+  config.settings.identity.subsystem_name = "test-vehicle";
+  config.settings.identity.node_name = "test-node";
+  config.components = {jaus::host::ComponentSpec{"node_manager", kTargetManager.component, 1, 0, "node manager", {}, 0, {}},
+                       jaus::host::ComponentSpec{"communicator", kCommunicator.component, 1, 0, "communicator", {}, 0, {}}};
+  if (options.primitive_driver)
+    config.components.push_back(
+        jaus::host::ComponentSpec{"primitive_driver", kDriver.component, 1, 0, "primitive driver", {}, 0, {}});
+  return config;
+}
+
+// What the tests read and drive in a target's host: the communicator, the
+// pose sensor (added to the host here) and the primitive driver, if any.
+class TargetComponents {
  public:
-  explicit TargetNode(boost::asio::io_context& io, TargetOptions options = {}) {
-    jaus::host::HostConfig config;
-    config.node.subsystem = options.subsystem;
-    config.link.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
-    // The node an OCU talks to also bridges to the other subsystems it hears
-    // (the cross-subsystem discovery tests reach a peer through it).
-    config.link.relay = true;
-    for (const auto& peer : options.peers) config.link.peers.push_back({peer, jaus::transport::Framing::opc});
-    config.node.liveness.node_timeout = options.subsystem_timeout;
-    config.node.liveness.subsystem_timeout = options.subsystem_timeout;
-    config.settings.defaults.controller_timeout = options.controller_timeout;
-    config.settings.defaults.reject_refused_requests = options.reject_refused;
-    config.settings.identity.subsystem_name = "test-vehicle";
-    config.settings.identity.node_name = "test-node";
-    config.components = {jaus::host::ComponentSpec{"node_manager", kTargetManager.component, 1, 0, "node manager", {}, 0, {}},
-                         jaus::host::ComponentSpec{"communicator", kCommunicator.component, 1, 0, "communicator", {}, 0, {}}};
-    if (options.primitive_driver)
-      config.components.push_back(
-          jaus::host::ComponentSpec{"primitive_driver", kDriver.component, 1, 0, "primitive driver", {}, 0, {}});
-    auto host = jaus::host::NodeHost::open(config, io);
-    if (!host) throw std::runtime_error(host.error().message());
-    host_ = std::move(*host);
+  TargetComponents(jaus::host::NodeHost& host, const TargetOptions& options) {
     communicator_ = dynamic_cast<jaus::components::Communicator*>(
-        host_->node().find(jaus::Address{options.subsystem, 1, kCommunicator.component, 1}));
+        host.node().find(jaus::Address{options.subsystem, 1, kCommunicator.component, 1}));
     if (!communicator_) throw std::runtime_error("the target hosts no communicator");
-    pose_ = &host_->emplace<PoseSensor>(host_->component_config("pose sensor", kPoseSensor.component));
+    pose_ = &host.emplace<PoseSensor>(host.component_config("pose sensor", kPoseSensor.component));
     if (options.primitive_driver) {
       driver_ = dynamic_cast<jaus::components::PrimitiveDriver*>(
-          host_->node().find(jaus::Address{options.subsystem, 1, kDriver.component, 1}));
+          host.node().find(jaus::Address{options.subsystem, 1, kDriver.component, 1}));
       if (!driver_) throw std::runtime_error("the target hosts no primitive driver");
     }
   }
 
-  jaus::transport::Ipv4Endpoint endpoint() const { return host_->udp_link()->local_endpoint(); }
-  // The network goes quiet (cable pulled, process frozen): nothing in or out.
-  void go_silent() { host_->udp_link()->close(); }
-  jaus::node::Node& node() { return host_->node(); }
-  jaus::transport::UdpLink& link() { return *host_->udp_link(); }
   jaus::components::Communicator& communicator() { return *communicator_; }
   PoseSensor& pose_sensor() { return *pose_; }
   jaus::components::PrimitiveDriver& driver() { return *driver_; }
@@ -117,13 +112,42 @@ class TargetNode {
     const auto& refused = driver_->counters();
     return driver_->driver_counters().efforts_applied + refused.refused_wrong_state + refused.refused_not_controller;
   }
-  jaus::rt::Clock& clock() { return host_->clock(); }
 
  private:
-  std::unique_ptr<jaus::host::NodeHost> host_;
   jaus::components::Communicator* communicator_ = nullptr;
   PoseSensor* pose_ = nullptr;
   jaus::components::PrimitiveDriver* driver_ = nullptr;
+};
+
+// The host, made before the components the tests reach in it.
+struct TargetHost {
+  std::unique_ptr<jaus::host::NodeHost> host;
+};
+
+class TargetNode : private TargetHost, public TargetComponents {
+ public:
+  explicit TargetNode(boost::asio::io_context& io, TargetOptions options = {})
+      : TargetHost{open_host(io, options)}, TargetComponents(*host, options) {}
+
+  jaus::transport::Ipv4Endpoint endpoint() const { return host->udp_link()->local_endpoint(); }
+  // The network goes quiet (cable pulled, process frozen): nothing in or out.
+  void go_silent() { host->udp_link()->close(); }
+  jaus::node::Node& node() { return host->node(); }
+  jaus::transport::UdpLink& link() { return *host->udp_link(); }
+  jaus::rt::Clock& clock() { return host->clock(); }
+
+ private:
+  static std::unique_ptr<jaus::host::NodeHost> open_host(boost::asio::io_context& io, const TargetOptions& options) {
+    jaus::host::HostConfig config = target_config(options);
+    config.link.bind = jaus::transport::Ipv4Endpoint{kLoopback, 0};
+    // The node an OCU talks to also bridges to the other subsystems it hears
+    // (the cross-subsystem discovery tests reach a peer through it).
+    config.link.relay = true;
+    for (const auto& peer : options.peers) config.link.peers.push_back({peer, jaus::transport::Framing::opc});
+    auto opened = jaus::host::NodeHost::open(config, io);
+    if (!opened) throw std::runtime_error(opened.error().message());
+    return std::move(*opened);
+  }
 };
 
 }  // namespace jausctl::test
