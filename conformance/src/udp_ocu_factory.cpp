@@ -17,7 +17,7 @@ namespace {
 // after the endpoint is gone (cancelled) when the io_context next runs.
 struct DeafPort : std::enable_shared_from_this<DeafPort> {
   using udp = boost::asio::ip::udp;
-  DeafPort(boost::asio::io_context& io, OcuFactory::Heard heard) : socket(io), heard(std::move(heard)) {}
+  DeafPort(boost::asio::io_context& io, OcuFactory::Heard on_heard) : socket(io), heard(std::move(on_heard)) {}
 
   void receive() {
     socket.async_receive_from(boost::asio::buffer(datagram), from,
