@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace jaus::host {
 
 NodeHost::NodeHost(HostConfig config, rt::LogFn log)
