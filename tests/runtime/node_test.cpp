@@ -352,7 +352,7 @@ TEST(NodeWithManager, SubsystemsFoundAndLostChangeTheListWithAnEvent) {
     h.source = from;
     h.destination = to;
     h.data_size = static_cast<std::uint16_t>(*size);
-    encode_header_unchecked(h, std::span(bytes).first<kHeaderSize>());
+    encode_header_unchecked(h, std::span(bytes).template first<kHeaderSize>());
     node.receive_bytes(std::span(bytes).first(kHeaderSize + *size));
   };
   const auto events_to = [&](const Address& requester) {
