@@ -11,20 +11,21 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
+# The component folders components/CMakeLists.txt lists (a new kind is
+# installed without naming it here): library jaus_<folder>, headers in
+# components/<folder>/include.
+get_property(jaus_component_folders GLOBAL PROPERTY JAUS_COMPONENT_FOLDERS)
+list(TRANSFORM jaus_component_folders PREPEND jaus_ OUTPUT_VARIABLE jaus_component_libraries)
+list(TRANSFORM jaus_component_folders PREPEND components/ OUTPUT_VARIABLE jaus_component_include_dirs)
+
 # The libraries of docs/architecture.md, in dependency order.
 set(JAUS_EXPORTED_LIBRARIES
-    jaus_base jaus_core jaus_runtime
-    jaus_node_manager jaus_communicator jaus_vehicle jaus_primitive_driver jaus_global_pose_sensor
-    jaus_velocity_state_sensor jaus_primitive_manipulator jaus_visual_sensor
+    jaus_base jaus_core jaus_runtime ${jaus_component_libraries}
     jaus_transport jaus_clearpath jaus_clearpath_sim jaus_clearpath_asio jaus_bridge
     jaus_host jaus_ocu jaus_conform)
 
 # The folders whose include/ holds public headers (all under jaus/, no two alike).
-set(JAUS_PUBLIC_INCLUDE_DIRS
-    core runtime transport host ocu conformance clearpath bridge
-    components/node_manager components/communicator components/vehicle components/primitive_driver
-    components/global_pose_sensor components/velocity_state_sensor components/primitive_manipulator
-    components/visual_sensor)
+set(JAUS_PUBLIC_INCLUDE_DIRS core runtime transport host ocu conformance clearpath bridge ${jaus_component_include_dirs})
 
 # jaus::plugin_api: what a component plugin compiles against (the headers,
 # C++20, the header-only libraries they include) and nothing it links: jausd

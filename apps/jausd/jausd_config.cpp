@@ -313,9 +313,10 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
 
 }  // namespace
 
-std::optional<std::string> validate(const JausdConfig& config) {
-  if (auto issue = check(config, SourceLines{})) return issue->what;
-  return std::nullopt;
+jaus::Expected<void> validate(const JausdConfig& config) {
+  if (auto issue = check(config, SourceLines{}))
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, issue->what));
+  return {};
 }
 
 // ---------------------------------------------------------------- YAML reader

@@ -135,7 +135,8 @@ ConfigResult load_config_string(std::string_view yaml, std::string_view name,
 std::vector<std::string> plugin_summaries(const JausdConfig& config);
 
 // Every range and cross-field rule on the values (a loaded file passes; run
-// it again after command-line overrides). The first problem, or nothing.
-std::optional<std::string> validate(const JausdConfig& config);
+// it again after command-line overrides). Good, or the first problem
+// (invalid_argument, the whole sentence in its message).
+jaus::Expected<void> validate(const JausdConfig& config);
 
 }  // namespace jausd

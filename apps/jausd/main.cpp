@@ -75,10 +75,12 @@ class Signals {
 };
 
 // The command line wins over the file; the result is checked again.
-std::optional<std::string> apply_overrides(jausd::JausdConfig& config, const CommandLine& cl) {
+jaus::Expected<void> apply_overrides(jausd::JausdConfig& config, const CommandLine& cl) {
   if (!cl.bind.empty()) {
     auto endpoint = jaus::transport::parse_endpoint(cl.bind);
-    if (!endpoint) return "--bind: " + endpoint.error().message();
+    if (!endpoint)
+      return jaus::unexpected(
+          jaus::make_error(jaus::ErrorCode::invalid_argument, "--bind: " + endpoint.error().message()));
     config.transport.bind = *endpoint;
   }
   if (cl.subsystem != 0) config.subsystem = static_cast<std::uint8_t>(cl.subsystem);
@@ -128,8 +130,8 @@ int main(int argc, char** argv) {
     }
     config = std::move(*loaded);
   }
-  if (auto problem = apply_overrides(config, cl)) {
-    std::cerr << source << ": " << *problem << "\n";
+  if (auto applied = apply_overrides(config, cl); !applied) {
+    std::cerr << source << ": " << applied.error().message() << "\n";
     return kExitBadInput;
   }
   const auto warnings = jausd::posture_warnings(config);

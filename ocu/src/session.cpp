@@ -38,16 +38,16 @@ OcuSession::OcuSession(SessionOptions options) : options_(std::move(options)) {
   if (!options_.log) options_.log = jaus::rt::silent_log();
 }
 
-std::optional<jaus::Error> OcuSession::check_address(const jaus::Address& self) {
+jaus::Expected<void> OcuSession::check_address(const jaus::Address& self) {
   if (!self.is_valid() || self.is_broadcast() || self.component == kNodeManagerComponent)
-    return jaus::make_error(jaus::ErrorCode::invalid_argument,
-                            "the OCU's address " + self.to_string() +
-                                " must be a real component (no 0 or 255; component 1 is its node manager)");
-  return std::nullopt;
+    return jaus::unexpected(jaus::make_error(
+        jaus::ErrorCode::invalid_argument,
+        "the OCU's address " + self.to_string() + " must be a real component (no 0 or 255; component 1 is its node manager)"));
+  return {};
 }
 
 jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions options, boost::asio::io_context* io) {
-  if (auto error = check_address(options.self)) return unexpected(std::move(*error));
+  if (auto checked = check_address(options.self); !checked) return unexpected(checked.error());
   const jaus::Address self = options.self;
   std::unique_ptr<OcuSession> s(new OcuSession(std::move(options)));
   if (!io) {
@@ -78,7 +78,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
 }
 
 jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::attach(SessionOptions options, SessionEnvironment environment) {
-  if (auto error = check_address(options.self)) return unexpected(std::move(*error));
+  if (auto checked = check_address(options.self); !checked) return unexpected(checked.error());
   if (!environment.clock || !environment.scheduler || !environment.link || !environment.connect || !environment.wait)
     return unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument,
                                        "an attached OCU session needs a clock, a scheduler, a link, connect and wait"));

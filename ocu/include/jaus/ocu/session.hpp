@@ -159,7 +159,7 @@ class OcuSession {
 
  private:
   explicit OcuSession(SessionOptions options);
-  static std::optional<jaus::Error> check_address(const jaus::Address& self);
+  static jaus::Expected<void> check_address(const jaus::Address& self);
   void add_ocu_component();
   void receive_packet(std::span<const std::uint8_t> bytes);  // an attached session's link
   void observe(const jaus::PacketView& packet);
