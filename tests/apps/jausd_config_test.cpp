@@ -642,10 +642,10 @@ TEST(JausdConfigErrors, Peers) {
 TEST(JausdConfigErrors, ComponentKinds) {
   expect_error("components:\n  - kind: node_manager\n  - kind: world_model_vector_store\n", 3,
                "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
-               "primitive_driver, global_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
+               "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
   expect_error("components:\n  - kind: node_manager\n  - id: 35\n", 3,
                "a component needs a 'kind' (one of node_manager, communicator, primitive_driver, "
-               "global_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
+               "global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
 }
 
 TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
@@ -661,6 +661,29 @@ TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
   expect_error("components:\n  - kind: node_manager\n  - kind: primitive_driver\n    options:\n"
                "      brake: 50\n",
                5, "unknown option 'brake' for primitive_driver (known: command_timeout_s, stop_brake_percent)");
+}
+
+// The local pose sensor (issue 30): configured by its kind, at its RA ID, its
+// one option checked at the option's line; its origin is the vehicle's
+// start, not an option of its own.
+TEST(JausdConfig, ALocalPoseSensorIsConfiguredByItsKind) {
+  const auto c = expect_ok("components:\n  - kind: node_manager\n  - kind: local_pose_sensor\n    options:\n"
+                           "      stale_after_s: 0.5\n");
+  ASSERT_EQ(c.components.size(), 2u);
+  EXPECT_EQ(c.components[1].kind, "local_pose_sensor");
+  EXPECT_EQ(c.components[1].id, 41);
+  EXPECT_EQ(c.components[1].instance, 1);
+  EXPECT_EQ(c.components[1].options.at("stale_after_s"), "0.5");
+  EXPECT_EQ(c.components[1].line, 3);
+  expect_error("components:\n  - kind: node_manager\n  - kind: local_pose_sensor\n    options:\n"
+               "      stale_after_s: 61\n",
+               5, "local_pose_sensor option 'stale_after_s' must be a number > 0 and <= 60, got '61'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: local_pose_sensor\n    options:\n"
+               "      origin: 10\n",
+               5, "unknown option 'origin' for local_pose_sensor (known: stale_after_s)");
+  expect_error("components:\n  - kind: node_manager\n  - kind: local_pose_sensor\n    options:\n"
+               "      local_pose: true\n",
+               5, "unknown option 'local_pose' for local_pose_sensor (known: stale_after_s)");
 }
 
 TEST(JausdConfig, VehicleKeysAreRead) {
@@ -1122,7 +1145,7 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
             "duplicate component id 35 instance 1");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "world_model_vector_store"; }),
             "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
-            "primitive_driver, global_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
+            "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[2].options["stop_brake_percent"] = "150"; }),
             "primitive_driver option 'stop_brake_percent' must be a number 0..100, got '150'");
   EXPECT_EQ(broken([](JausdConfig& c) { c.vehicle.update_rate_hz = 0; }),
@@ -1138,7 +1161,7 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
 // ------------------------------------------------------------ registry
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
-  ASSERT_EQ(component_kinds().size(), 7u);
+  ASSERT_EQ(component_kinds().size(), 8u);
   EXPECT_EQ(component_kinds()[0].name, "node_manager");
   EXPECT_EQ(component_kinds()[0].default_id, 1);
   EXPECT_EQ(component_kinds()[1].name, "communicator");
@@ -1147,12 +1170,14 @@ TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
   EXPECT_EQ(component_kinds()[2].default_id, 33);
   EXPECT_EQ(component_kinds()[3].name, "global_pose_sensor");
   EXPECT_EQ(component_kinds()[3].default_id, 38);
-  EXPECT_EQ(component_kinds()[4].name, "velocity_state_sensor");
-  EXPECT_EQ(component_kinds()[4].default_id, 42);
-  EXPECT_EQ(component_kinds()[5].name, "visual_sensor");
-  EXPECT_EQ(component_kinds()[5].default_id, 37);
-  EXPECT_EQ(component_kinds()[6].name, "primitive_manipulator");
-  EXPECT_EQ(component_kinds()[6].default_id, 49);
+  EXPECT_EQ(component_kinds()[4].name, "local_pose_sensor");
+  EXPECT_EQ(component_kinds()[4].default_id, 41);
+  EXPECT_EQ(component_kinds()[5].name, "velocity_state_sensor");
+  EXPECT_EQ(component_kinds()[5].default_id, 42);
+  EXPECT_EQ(component_kinds()[6].name, "visual_sensor");
+  EXPECT_EQ(component_kinds()[6].default_id, 37);
+  EXPECT_EQ(component_kinds()[7].name, "primitive_manipulator");
+  EXPECT_EQ(component_kinds()[7].default_id, 49);
   ASSERT_NE(find_component_kind("communicator"), nullptr);
   EXPECT_TRUE(find_component_kind("communicator")->options.empty());
   ASSERT_NE(find_component_kind("primitive_manipulator"), nullptr);

@@ -1,11 +1,11 @@
-// The per-kind cases (primitive driver, pose and velocity sensors, visual
-// sensor, manipulator) against nodes in this process: on each component of a
-// node of ours every case applies to, every case of its kind passes and
-// the component is left as found (nobody in control, the vehicle not driven,
-// the arm where it was); each case is seen failing, with its reason,
-// against a component broken the way it looks for; and each says why it
-// does not apply to a component of another kind. On a memory network under
-// virtual time.
+// The per-kind cases (primitive driver, global and local pose and velocity
+// sensors, visual sensor, manipulator) against nodes in this process: on
+// each component of a node of ours every case applies to, every case of its
+// kind passes and the component is left as found (nobody in control, the
+// vehicle not driven, the arm where it was); each case is seen failing,
+// with its reason, against a component broken the way it looks for; and
+// each says why it does not apply to a component of another kind. On a
+// memory network under virtual time.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,6 +101,7 @@ INSTANTIATE_TEST_SUITE_P(
     Components, OurKindsConform,
     ::testing::Values(OurComponent{kDriver, {"driver."}},
                       OurComponent{kGlobalPoseSensor, {"sensor.global_pose.", "sensor.local_pose."}},
+                      OurComponent{kLocalPoseSensor, {"sensor.local_pose."}},
                       OurComponent{kVelocityStateSensor, {"sensor.velocity_state."}},
                       OurComponent{kVisualSensor, {"visual."}}, OurComponent{kManipulator, {"manipulator."}}),
     [](const ::testing::TestParamInfo<OurComponent>& p) {

@@ -1,8 +1,9 @@
 // A node of ours with one component of each kind the per-kind cases test,
 // a node host attached to a link of a memory network under virtual time
 // (subsystem 1, node 1): primitive driver, global pose sensor (with local
-// pose), velocity state sensor, visual sensor and primitive manipulator, on
-// the components' own simulated vehicle, two cameras and a three-joint arm.
+// pose), local pose sensor, velocity state sensor, visual sensor and
+// primitive manipulator, on the components' own simulated vehicle, two
+// cameras and a three-joint arm.
 #pragma once
 
 #include <memory>
@@ -18,6 +19,7 @@ inline const Address kKindManager{1, 1, 1, 1};
 inline const Address kDriver{1, 1, 33, 1};
 inline const Address kVisualSensor{1, 1, 37, 1};
 inline const Address kGlobalPoseSensor{1, 1, 38, 1};
+inline const Address kLocalPoseSensor{1, 1, 41, 1};
 inline const Address kVelocityStateSensor{1, 1, 42, 1};
 inline const Address kManipulator{1, 1, 49, 1};
 
@@ -35,6 +37,7 @@ class KindNode {
     config.components = {spec("node_manager", kKindManager),
                          spec("primitive_driver", kDriver),
                          spec("global_pose_sensor", kGlobalPoseSensor, {{"local_pose", "true"}}),
+                         spec("local_pose_sensor", kLocalPoseSensor),
                          spec("velocity_state_sensor", kVelocityStateSensor),
                          spec("visual_sensor", kVisualSensor),
                          spec("primitive_manipulator", kManipulator)};
