@@ -1,20 +1,8 @@
 #include "jaus/components/global_pose_sensor.hpp"
 
-namespace jaus::components {
+#include "jaus/components/pose_reports.hpp"
 
-namespace {
-// Attitude, as both poses carry it; angles wrapped to (-pi, pi], the range
-// their fields encode (a yaw of 3pi/2 would otherwise be clamped to pi).
-template <class Pose>
-void set_attitude(Pose& pose, const PoseSample& sample) {
-  if (!sample.attitude) return;
-  pose.roll_rad = wrap_angle(sample.attitude->roll);
-  pose.pitch_rad = wrap_angle(sample.attitude->pitch);
-  pose.yaw_rad = wrap_angle(sample.attitude->yaw);
-  // An RMS goes with its value: the RMS of an absent attitude means nothing.
-  pose.attitude_rms_rad = sample.attitude_rms_rad;
-}
-}  // namespace
+namespace jaus::components {
 
 GlobalPoseSensor::GlobalPoseSensor(rt::ComponentConfig config, rt::Environment env, PoseSource& source,
                                    GlobalPoseSensorOptions options)
@@ -33,31 +21,10 @@ GlobalPoseSensor::GlobalPoseSensor(rt::ComponentConfig config, rt::Environment e
   }
 }
 
-msg::ReportGlobalPose GlobalPoseSensor::global_pose(const PoseSample& sample) {
-  msg::ReportGlobalPose pose;
-  if (sample.position) {
-    pose.latitude_deg = sample.position->latitude_deg;
-    pose.longitude_deg = sample.position->longitude_deg;
-    pose.elevation_m = sample.position->altitude_m;
-    pose.position_rms_m = sample.position_rms_m;
-  }
-  set_attitude(pose, sample);
-  // When the sample was taken, not when it is reported.
-  pose.time_stamp = time_stamp_of(sample.taken_utc);
-  return pose;
-}
+// The reports are the vehicle's pose reports (pose_reports.hpp), shared with
+// the local pose sensor.
+msg::ReportGlobalPose GlobalPoseSensor::global_pose(const PoseSample& sample) { return global_pose_report(sample); }
 
-msg::ReportLocalPose GlobalPoseSensor::local_pose(const PoseSample& sample) {
-  msg::ReportLocalPose pose;
-  if (sample.local_position) {
-    pose.x_m = sample.local_position->x_m;
-    pose.y_m = sample.local_position->y_m;
-    pose.z_m = sample.local_position->z_m;
-    pose.position_rms_m = sample.position_rms_m;
-  }
-  set_attitude(pose, sample);
-  pose.time_stamp = time_stamp_of(sample.taken_utc);
-  return pose;
-}
+msg::ReportLocalPose GlobalPoseSensor::local_pose(const PoseSample& sample) { return local_pose_report(sample); }
 
 }  // namespace jaus::components

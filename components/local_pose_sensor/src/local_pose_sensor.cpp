@@ -1,5 +1,7 @@
 #include "jaus/components/local_pose_sensor.hpp"
 
+#include "jaus/components/pose_reports.hpp"
+
 namespace jaus::components {
 
 LocalPoseSensor::LocalPoseSensor(rt::ComponentConfig config, rt::Environment env, PoseSource& source,
@@ -18,25 +20,7 @@ LocalPoseSensor::LocalPoseSensor(rt::ComponentConfig config, rt::Environment env
   serve<msg::QueryLocalPose>(available_fields(local), local);
 }
 
-msg::ReportLocalPose LocalPoseSensor::local_pose(const PoseSample& sample) {
-  msg::ReportLocalPose pose;
-  if (sample.local_position) {
-    pose.x_m = sample.local_position->x_m;
-    pose.y_m = sample.local_position->y_m;
-    pose.z_m = sample.local_position->z_m;
-    // An RMS goes with its value: without a local position it means nothing here.
-    pose.position_rms_m = sample.position_rms_m;
-  }
-  if (sample.attitude) {
-    // Wrapped to (-pi, pi], the range the fields encode.
-    pose.roll_rad = wrap_angle(sample.attitude->roll);
-    pose.pitch_rad = wrap_angle(sample.attitude->pitch);
-    pose.yaw_rad = wrap_angle(sample.attitude->yaw);
-    pose.attitude_rms_rad = sample.attitude_rms_rad;
-  }
-  // When the sample was taken, not when it is reported.
-  pose.time_stamp = time_stamp_of(sample.taken_utc);
-  return pose;
-}
+// The global pose sensor's Local Pose is the same report (pose_reports.hpp).
+msg::ReportLocalPose LocalPoseSensor::local_pose(const PoseSample& sample) { return local_pose_report(sample); }
 
 }  // namespace jaus::components
