@@ -11,22 +11,7 @@
 set -euo pipefail
 build=$1 version=$2
 work=$(mktemp -d "${TMPDIR:-/tmp}/jaus-package-deb.XXXXXX")
-jausd_pid=""
-cleanup() {
-  if [ -n "$jausd_pid" ]; then kill -KILL "$jausd_pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-# Waits up to $1 seconds for the command after it to succeed.
-wait_for() {
-  local seconds=$1; shift
-  local deadline=$((SECONDS + seconds))
-  until "$@"; do
-    [ "$SECONDS" -lt "$deadline" ] || return 1
-    sleep 0.2
-  done
-}
+source "$(dirname "$0")/jausd_process.sh"  # cleanup at exit, fail, wait_for, stop_jausd
 
 cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work/out" > "$work/cpack.log" 2>&1 ||
   { cat "$work/cpack.log"; fail "cpack"; }
@@ -123,14 +108,6 @@ wait_for 60 query || { cat "$work/jausctl.err" "$work/jausd.log"; fail "no answe
 grep -q '"name":"Report Identification"' "$work/reply.json" || { cat "$work/reply.json"; fail "not a Report Identification"; }
 echo "jausctl: $(cut -c1-160 "$work/reply.json")"
 
-kill -TERM "$jausd_pid"
-# A stop that hangs is killed after 30 s (and fails below with 137).
-(sleep 30 && kill -KILL "$jausd_pid") > /dev/null 2>&1 &
-watchdog=$!
-status=0
-wait "$jausd_pid" || status=$?
-kill "$watchdog" 2> /dev/null || true
-jausd_pid=""
-[ "$status" -eq 0 ] || { cat "$work/jausd.log"; fail "jausd exited $status after SIGTERM"; }
+stop_jausd
 grep -q 'stop\|shut' "$work/jausd.log" || { cat "$work/jausd.log"; fail "jausd logged no orderly stop"; }
 echo "PASS"

@@ -12,24 +12,8 @@
 set -euo pipefail
 build=$1 example=$2 version=$3
 work=$(mktemp -d "${TMPDIR:-/tmp}/jaus-package-install.XXXXXX")
-jausd_pid=""
-cleanup() {
-  if [ -n "$jausd_pid" ]; then kill -KILL "$jausd_pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/jausd_process.sh"  # cleanup at exit, fail, wait_for, stop_jausd
 prefix=$work/prefix
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
-# Waits up to $1 seconds for the command after it to succeed.
-wait_for() {
-  local seconds=$1; shift
-  local deadline=$((SECONDS + seconds))
-  until "$@"; do
-    [ "$SECONDS" -lt "$deadline" ] || return 1
-    sleep 0.2
-  done
-}
 
 cmake --install "$build" --prefix "$prefix" > "$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
 
@@ -105,13 +89,5 @@ grep -Eq '"velocity_x_mps":1\.(5|49999)' "$work/reply.json" && grep -Eq '"yaw_ra
   { cat "$work/reply.json"; fail "not what the odometer measured (speed_mps 1.5, yaw_rate_rps 0.25)"; }
 echo "jausctl: $(cut -c1-200 "$work/reply.json")"
 
-kill -TERM "$jausd_pid"
-# A stop that hangs is killed after 30 s (and fails below with 137).
-(sleep 30 && kill -KILL "$jausd_pid") > /dev/null 2>&1 &
-watchdog=$!
-status=0
-wait "$jausd_pid" || status=$?
-kill "$watchdog" 2> /dev/null || true
-jausd_pid=""
-[ "$status" -eq 0 ] || { cat "$work/jausd.log"; fail "jausd exited $status after SIGTERM"; }
+stop_jausd
 echo "PASS"
