@@ -104,6 +104,23 @@ msg::PlatformSpecificationsBody to_specifications_body(const PlatformSpecificati
   return b;
 }
 
+PlatformSpecifications from_specifications_body(const msg::PlatformSpecificationsBody& b) {
+  PlatformSpecifications s;
+  s.name = b.mobility_platform_name.value_or("");
+  s.front_m = b.front_m;
+  s.back_m = b.back_m;
+  s.right_m = b.right_m;
+  s.left_m = b.left_m;
+  s.bottom_m = b.bottom_m;
+  s.top_m = b.top_m;
+  s.wheel_base_m = b.wheel_base_m;
+  s.track_width_m = b.track_width_m;
+  s.turning_radius_m = b.turning_radius_m;
+  s.max_velocity_x_mps = b.max_velocity_x_mps;
+  s.max_yaw_rate_rps = b.max_yaw_rate_rps;
+  return s;
+}
+
 msg::PlatformOperationalDataBody to_operational_data_body(const OperationalData& d) {
   msg::PlatformOperationalDataBody b;
   b.engine_temperature_c = clamped(d.engine_temperature_c, -75, 180);

@@ -82,6 +82,8 @@ msg::WrenchEffortBody to_wrench_effort_body(const WrenchEffort& effort, std::uin
 DiscreteDevices to_discrete_devices(const msg::DiscreteDevicesBody& body, const DeviceSet& has);
 msg::DiscreteDevicesBody to_discrete_devices_body(const DiscreteDevices& devices, const DeviceSet& has);
 msg::PlatformSpecificationsBody to_specifications_body(const PlatformSpecifications& specs);
+// What a client of a primitive driver reads back (the drivers above it): the fields the Drive's terms have.
+PlatformSpecifications from_specifications_body(const msg::PlatformSpecificationsBody& body);
 msg::PlatformOperationalDataBody to_operational_data_body(const OperationalData& data);
 
 }  // namespace jaus::components
