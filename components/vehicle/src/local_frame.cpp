@@ -25,4 +25,11 @@ GeoPosition LocalFrame::to_geo(const LocalPosition& ned) const {
   return geo;
 }
 
+LocalPosition LocalFrame::to_local(const GeoPosition& geo) const {
+  Vector3 enu;
+  geodesy_->local.Forward(geo.latitude_deg, geo.longitude_deg, geo.altitude_m, enu.x, enu.y, enu.z);
+  const Vector3 ned = enu_to_ned(enu);
+  return LocalPosition{ned.x, ned.y, ned.z};
+}
+
 }  // namespace jaus::components

@@ -2,7 +2,8 @@
 // (GeographicLib's LocalCartesian), in JAUS's axes: x north, y east, z down,
 // metres from the datum. The one place a local position becomes latitude,
 // longitude and altitude: the simulated vehicle and the Clearpath bridge's
-// dead reckoning both use it.
+// dead reckoning both use it, and the global drivers project their routes
+// into one.
 #pragma once
 
 #include <memory>
@@ -20,6 +21,10 @@ class LocalFrame {
 
   const GeoPosition& datum() const { return datum_; }
   GeoPosition to_geo(const LocalPosition& ned) const;
+  // The inverse of to_geo: where `geo` lies in this frame (the global
+  // waypoint and path segment drivers follow a global route in a frame whose
+  // datum is the vehicle's position when the route starts).
+  LocalPosition to_local(const GeoPosition& geo) const;
 
  private:
   struct Geodesy;
