@@ -13,6 +13,12 @@ namespace {
 // Gains are finite and not negative; these bounds only keep a typo out.
 constexpr double kMaxHeadingGain = 50;  // (rad/s) per rad, per rad*s, per rad/s
 constexpr double kMaxSpeedGain = 1000;  // percent per m/s, per m, per m/s^2
+// Speed 0: the heading counts as reached once the vehicle has stopped
+// turning too, or the stop would carry it past the tolerance (a drive with
+// more turn per percent than its specifications say, or a slow one).
+constexpr double kSettledYawRateRps = 0.1;
+
+bool settled(const PoseSample& pose) { return !pose.rates_rps || std::abs(pose.rates_rps->z) <= kSettledYawRateRps; }
 
 Expected<void> read_gains(const KindOptions& options, std::string_view prefix, double max, guidance::PidGains& gains) {
   const std::string p(prefix);
@@ -86,7 +92,7 @@ MobilityDriver::Step VectorDriver::step(const PoseSample& pose, double dt_s) {
   const double speed = std::min(speed_mps_, vehicle.max_speed_mps);
   if (speed == 0) {
     if (vehicle.steering == Steering::ackermann) return Step::arrived("speed 0 (an Ackermann vehicle cannot turn at rest)");
-    if (std::abs(guidance::heading_error(*heading_rad_, heading)) <= options_.heading_tolerance_rad)
+    if (std::abs(guidance::heading_error(*heading_rad_, heading)) <= options_.heading_tolerance_rad && settled(pose))
       return Step::arrived("speed 0, heading reached");
   }
   WrenchEffort effort = heading_loop_->effort(*heading_rad_, heading, speed, dt_s);
