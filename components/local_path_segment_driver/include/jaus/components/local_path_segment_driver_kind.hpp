@@ -1,0 +1,12 @@
+// The local path segment driver as a component kind (jaus/runtime/component_kind.hpp).
+#pragma once
+
+#include "jaus/runtime/component_kind.hpp"
+
+namespace jaus::components {
+
+// Options: path_segment_driver_option_keys() (path_segment_driver.hpp).
+// Needs a pose source with a local frame (refused otherwise, saying why).
+const rt::ComponentKind& local_path_segment_driver_kind();
+
+}  // namespace jaus::components
