@@ -30,7 +30,8 @@ std::optional<Profile> parse_profile(std::string_view text) {
 std::vector<const ConformanceCase*> all_cases() {
   std::vector<const ConformanceCase*> all;
   for (auto suite : {core_cases(), control_cases(), service_connection_cases(), robustness_cases(), discovery_cases(),
-                     primitive_driver_cases(), sensor_cases(), visual_sensor_cases(), manipulator_cases()})
+                     primitive_driver_cases(), sensor_cases(), visual_sensor_cases(), manipulator_cases(),
+                     mobility_driver_cases()})
     for (const auto& c : suite) all.push_back(&c);
   return all;
 }

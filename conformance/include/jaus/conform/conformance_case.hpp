@@ -115,6 +115,7 @@ std::span<const ConformanceCase> primitive_driver_cases();    // components that
 std::span<const ConformanceCase> sensor_cases();              // pose and velocity state sensors
 std::span<const ConformanceCase> visual_sensor_cases();       // cameras: selection, formats, images
 std::span<const ConformanceCase> manipulator_cases();         // joint counts, refusals, hold on stop
+std::span<const ConformanceCase> mobility_driver_cases();     // vector, waypoint and path segment drivers
 // Every case of every suite, in order.
 std::vector<const ConformanceCase*> all_cases();
 
