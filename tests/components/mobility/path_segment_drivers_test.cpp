@@ -217,7 +217,7 @@ INSTANTIATE_TEST_SUITE_P(PlatformsAndDrivetrains, ThreeSegmentPath,
                                            NodeCase{PlatformUnderTest::model, Steering::ackermann},
                                            NodeCase{PlatformUnderTest::clearpath_sim, Steering::differential},
                                            NodeCase{PlatformUnderTest::clearpath_sim, Steering::ackermann}),
-                         [](const auto& info) { return case_name(info.param); });
+                         [](const auto& p) { return case_name(p.param); });
 
 class GlobalThreeSegmentPath : public ::testing::TestWithParam<NodeCase> {};
 
@@ -229,7 +229,7 @@ TEST_P(GlobalThreeSegmentPath, GlobalSegmentsAreFollowedWithinTheStatedCrossTrac
 INSTANTIATE_TEST_SUITE_P(OnePlatformPerDrivetrain, GlobalThreeSegmentPath,
                          ::testing::Values(NodeCase{PlatformUnderTest::model, Steering::differential},
                                            NodeCase{PlatformUnderTest::clearpath_sim, Steering::ackermann}),
-                         [](const auto& info) { return case_name(info.param); });
+                         [](const auto& p) { return case_name(p.param); });
 
 // ---- what each kind does, either frame --------------------------------------------
 
@@ -417,6 +417,27 @@ TEST_P(PathSegmentDriverTest, ResumeStartsStandbyPausesAndResumeContinuesFromThe
   EXPECT_LE(session_.distance_to_end(), kArrivalTolerance_m);
 }
 
+TEST_P(PathSegmentDriverTest, ASegmentAppendedToAPausedRouteExtendsItsPathFromTheSameStart) {
+  const std::vector<SegmentPoints> first_two(kThreeSegments.begin(), kThreeSegments.begin() + 2);
+  const auto origin = *node_.pose().local_position;
+  session_.start(first_two);
+  ASSERT_TRUE(drive_until_progress(2.5));
+  const auto p0 = driver().pursuit()->path().segments().front().p0;
+  const double two_segments_m = driver().pursuit()->path().length_m();
+  session_.standby();
+  session_.send_segment(2, kThreeSegments[2], origin);
+  EXPECT_EQ(count(), 3);
+  session_.resume();
+  ASSERT_TRUE(node_.run_until([&] { return moving(node_); }, 3s));
+  EXPECT_EQ(driver().pursuit()->path().segments().size(), 3u);
+  EXPECT_EQ(driver().pursuit()->path().segments().front().p0, p0);
+  EXPECT_GT(driver().pursuit()->path().length_m(), two_segments_m + 5);
+  EXPECT_GT(driver().pursuit()->progress_m(), 2.0);  // from the vehicle's nearest point, not the start
+  EXPECT_LE(session_.drive_to_end(), kMaxCrossTrack_m);
+  EXPECT_TRUE(driver().route_finished());
+  EXPECT_LE(session_.distance_to_end(), kArrivalTolerance_m);
+}
+
 TEST_P(PathSegmentDriverTest, TravelSpeedLimitsTheRouteAndZeroHoldsItStill) {
   ASSERT_TRUE(session_.control());
   node_.send(driver_address(), msg::SetTravelSpeed{{0.3}});
@@ -505,7 +526,7 @@ TEST_P(PathSegmentDriverTest, StandbyOnTheDriverCommandsZeroAndStopsTheVehicle) 
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, PathSegmentDriverTest, ::testing::Values(kGlobalDriver, kLocalDriver),
-                         [](const auto& info) { return info.param == kGlobalDriver ? "global" : "local"; });
+                         [](const auto& p) { return p.param == kGlobalDriver ? "global" : "local"; });
 
 // ---- the kinds ----------------------------------------------------------------------
 
