@@ -143,6 +143,15 @@ class GlobalVectorDriverTest : public ::testing::TestWithParam<Param> {
 TEST_P(GlobalVectorDriverTest, ReachesAndHoldsAHeading90DegreesOffAndTheSpeed) {
   ASSERT_NEAR(v_.heading(), 0, 0.01);  // starts facing north
   v_.node_.send(kGlobalVectorDriver, global_vector(0.6, pi / 2));
+  // The turn: within 5 s, never more than 0.05 rad past east.
+  double overshoot = 0;
+  const auto past_east = [&] {
+    overshoot = std::max(overshoot, components::wrap_angle(v_.heading() - pi / 2));
+    return false;
+  };
+  ASSERT_TRUE(v_.node_.run_until([&] { return past_east() || v_.on(pi / 2, 0.6); }, 5s));
+  v_.node_.run_until(past_east, 3s);  // and after
+  EXPECT_LT(overshoot, 0.05);
   v_.reaches_and_holds(pi / 2, 0.6);
   // Through the primitive driver, with the driver's own authority.
   const auto& controller = v_.node_.primitive_driver().control().controller();
@@ -195,6 +204,35 @@ TEST_P(GlobalVectorDriverTest, ReportGlobalVectorEchoesTheCommandWithinThePresen
   EXPECT_TRUE(r->heading_rad);
   EXPECT_FALSE(r->speed_mps);
   EXPECT_FALSE(r->altitude_m);
+}
+
+TEST_P(GlobalVectorDriverTest, ReportGlobalVectorOnAServiceConnectionFollowsTheCommand) {
+  std::vector<msg::ReportGlobalVector> reports;
+  const auto listening = v_.node_.op().listen([&](const ocu::Received& r) {
+    msg::ReportGlobalVector report{};
+    if (r.header.command_code == msg::ReportGlobalVector::code && r.header.source == kGlobalVectorDriver &&
+        wire::decode_payload_into(r.payload, report, wire::Dialect::ra, kHeaderSize))
+      reports.push_back(report);
+  });
+  const auto confirm = v_.node_.ask<msg::ConfirmServiceConnection>(
+      kGlobalVectorDriver, msg::CreateServiceConnection{{msg::ReportGlobalVector::code, 10,
+                                                         components::global_vector_field::kSpeed |
+                                                             components::global_vector_field::kHeading}});
+  ASSERT_TRUE(confirm);
+  ASSERT_EQ(confirm->response_code, 0) << "created";
+  v_.node_.run_for(500ms);
+  ASSERT_FALSE(reports.empty());
+  EXPECT_EQ(reports.back().speed_mps, 0.0);
+  msg::SetGlobalVector m = global_vector(0.4, 1.0);
+  m.altitude_m = 10;
+  v_.node_.send(kGlobalVectorDriver, m);
+  v_.node_.run_for(500ms);
+  const auto& last = reports.back();
+  ASSERT_TRUE(last.speed_mps && last.heading_rad);
+  EXPECT_NEAR(*last.speed_mps, 0.4, kSpeedResolution);
+  EXPECT_NEAR(*last.heading_rad, 1.0, kHeadingResolution);
+  EXPECT_FALSE(last.altitude_m);  // not asked for
+  v_.node_.op().unlisten(listening);
 }
 
 TEST_P(GlobalVectorDriverTest, ASetWithoutAHeadingHoldsTheVehiclesAndLaterOnesKeepTheCommandedOne) {
