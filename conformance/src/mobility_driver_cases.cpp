@@ -463,13 +463,13 @@ struct VectorDriver {
     const auto set = V::moving(kHeadingRad);
     send(c, set);
     auto report = ask<typename V::Report>(c, V::query());
-    if (!report) return fail("after Set " + std::string(V::kName) + ", " + report.error().message());
+    if (!report) return fail("after " + std::string(V::Set::name) + ", " + report.error().message());
     const auto want = on_the_wire(set);
     const double want_speed = V::set_speed(want), want_heading = V::set_heading(want);
     const double speed = V::speed(*report), heading = V::heading(*report);
     constexpr double kSame = 1e-9;  // both went through the same encoding
     if (!(std::fabs(speed - want_speed) <= kSame) || !(std::fabs(heading - want_heading) <= kSame))
-      return fail("Set " + std::string(V::kName) + " " + vector_text(want_speed, want_heading) + " reported as " +
+      return fail(std::string(V::Set::name) + " " + vector_text(want_speed, want_heading) + " reported as " +
                   vector_text(speed, heading));
     return pass(std::string(V::kName) + " " + vector_text(speed, heading) + " set and reported; then speed 0 and Standby");
   }
@@ -493,11 +493,11 @@ struct VectorDriver {
       // Stopped again: speed 0 and Standby from its controller, or Standby alone.
       ControlHeld control(c);
       StopVectorOnExit stop(c, heading);
-      return fail("Set " + std::string(V::kName) + " from a non-controller (controller " + controller->to_string() +
+      return fail(std::string(V::Set::name) + " from a non-controller (controller " + controller->to_string() +
                   ") executed: reported " + vector_text(V::speed(*after), V::heading(*after)) +
                   "; stopped again with speed 0 and Standby");
     }
-    return pass("Set " + std::string(V::kName) + " from a non-controller: " +
+    return pass(std::string(V::Set::name) + " from a non-controller: " +
                 (after ? "report unchanged" : "no report before or after"));
   }
 };
