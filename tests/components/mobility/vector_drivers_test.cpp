@@ -67,7 +67,11 @@ host::HostConfig vehicle_config(const DriveNodeOptions& options) {
 }
 
 DriveNodeOptions vehicle_options(const Param& p, const std::string& kind) {
-  return DriveNodeOptions{.platform = std::get<0>(p), .steering = std::get<1>(p), .drivers = {kind}};
+  DriveNodeOptions options;
+  options.platform = std::get<0>(p);
+  options.steering = std::get<1>(p);
+  options.drivers = {kind};
+  return options;
 }
 
 // A vehicle node with one vector driver kind, Ready, the operator its controller.
