@@ -42,7 +42,15 @@ std::vector<ComponentSpec> JausdConfig::default_components() {
           ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}},
           ComponentSpec{"velocity_state_sensor", 42, 1, 0, "velocity_state_sensor", {}, 0, {}},
           ComponentSpec{"visual_sensor", 37, 1, 0, "visual_sensor", {}, 0, {}},
-          ComponentSpec{"primitive_manipulator", 49, 1, 0, "primitive_manipulator", {}, 0, {}}};
+          ComponentSpec{"primitive_manipulator", 49, 1, 0, "primitive_manipulator", {}, 0, {}},
+          // The drivers above the primitive driver, each with authority 1:
+          // below an operator's, who takes the primitive driver over at once.
+          ComponentSpec{"global_vector_driver", 34, 1, 1, "global_vector_driver", {}, 0, {}},
+          ComponentSpec{"local_vector_driver", 44, 1, 1, "local_vector_driver", {}, 0, {}},
+          ComponentSpec{"global_waypoint_driver", 45, 1, 1, "global_waypoint_driver", {}, 0, {}},
+          ComponentSpec{"local_waypoint_driver", 46, 1, 1, "local_waypoint_driver", {}, 0, {}},
+          ComponentSpec{"global_path_segment_driver", 47, 1, 1, "global_path_segment_driver", {}, 0, {}},
+          ComponentSpec{"local_path_segment_driver", 48, 1, 1, "local_path_segment_driver", {}, 0, {}}};
 }
 
 jaus::components::VisualSensorConfig JausdConfig::default_cameras() { return jausd::default_cameras(); }

@@ -148,7 +148,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_TRUE(c.transport.control_from_local);  // [local]: safe by default
   EXPECT_TRUE(c.transport.verify_endpoints);
   EXPECT_EQ(c.transport.max_peers, 256u);
-  ASSERT_EQ(c.components.size(), 7u);
+  ASSERT_EQ(c.components.size(), 13u);
   EXPECT_EQ(c.components[0].kind, "node_manager");
   EXPECT_EQ(c.components[0].id, 1);
   EXPECT_EQ(c.components[0].instance, 1);
@@ -167,6 +167,16 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.components[5].id, 37);
   EXPECT_EQ(c.components[6].kind, "primitive_manipulator");
   EXPECT_EQ(c.components[6].id, 49);
+  // The drivers above the primitive driver, each with authority 1 (below an operator's).
+  const std::pair<const char*, int> drivers[] = {{"global_vector_driver", 34},       {"local_vector_driver", 44},
+                                                 {"global_waypoint_driver", 45},     {"local_waypoint_driver", 46},
+                                                 {"global_path_segment_driver", 47}, {"local_path_segment_driver", 48}};
+  for (std::size_t i = 0; i < std::size(drivers); ++i) {
+    EXPECT_EQ(c.components[7 + i].kind, drivers[i].first);
+    EXPECT_EQ(c.components[7 + i].id, drivers[i].second);
+    EXPECT_EQ(c.components[7 + i].instance, 1);
+    EXPECT_EQ(c.components[7 + i].authority, 1) << drivers[i].first;
+  }
   expect_default_hardware(c);
   // Options written in the default file are their defaults.
   for (const auto& spec : c.components) EXPECT_TRUE(jaus::host::check_component_options(spec)) << spec.kind;
@@ -642,10 +652,14 @@ TEST(JausdConfigErrors, Peers) {
 TEST(JausdConfigErrors, ComponentKinds) {
   expect_error("components:\n  - kind: node_manager\n  - kind: world_model_vector_store\n", 3,
                "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
-               "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
+               "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, "
+               "global_vector_driver, local_vector_driver, global_waypoint_driver, local_waypoint_driver, "
+               "local_path_segment_driver, global_path_segment_driver, visual_sensor, primitive_manipulator)");
   expect_error("components:\n  - kind: node_manager\n  - id: 35\n", 3,
                "a component needs a 'kind' (one of node_manager, communicator, primitive_driver, "
-               "global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
+               "global_pose_sensor, local_pose_sensor, velocity_state_sensor, "
+               "global_vector_driver, local_vector_driver, global_waypoint_driver, local_waypoint_driver, "
+               "local_path_segment_driver, global_path_segment_driver, visual_sensor, primitive_manipulator)");
 }
 
 TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
@@ -1145,7 +1159,9 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
             "duplicate component id 35 instance 1");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "world_model_vector_store"; }),
             "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
-            "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, primitive_manipulator)");
+            "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, "
+               "global_vector_driver, local_vector_driver, global_waypoint_driver, local_waypoint_driver, "
+               "local_path_segment_driver, global_path_segment_driver, visual_sensor, primitive_manipulator)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[2].options["stop_brake_percent"] = "150"; }),
             "primitive_driver option 'stop_brake_percent' must be a number 0..100, got '150'");
   EXPECT_EQ(broken([](JausdConfig& c) { c.vehicle.update_rate_hz = 0; }),
@@ -1161,23 +1177,18 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
 // ------------------------------------------------------------ registry
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
-  ASSERT_EQ(component_kinds().size(), 8u);
-  EXPECT_EQ(component_kinds()[0].name, "node_manager");
-  EXPECT_EQ(component_kinds()[0].default_id, 1);
-  EXPECT_EQ(component_kinds()[1].name, "communicator");
-  EXPECT_EQ(component_kinds()[1].default_id, 35);
-  EXPECT_EQ(component_kinds()[2].name, "primitive_driver");
-  EXPECT_EQ(component_kinds()[2].default_id, 33);
-  EXPECT_EQ(component_kinds()[3].name, "global_pose_sensor");
-  EXPECT_EQ(component_kinds()[3].default_id, 38);
-  EXPECT_EQ(component_kinds()[4].name, "local_pose_sensor");
-  EXPECT_EQ(component_kinds()[4].default_id, 41);
-  EXPECT_EQ(component_kinds()[5].name, "velocity_state_sensor");
-  EXPECT_EQ(component_kinds()[5].default_id, 42);
-  EXPECT_EQ(component_kinds()[6].name, "visual_sensor");
-  EXPECT_EQ(component_kinds()[6].default_id, 37);
-  EXPECT_EQ(component_kinds()[7].name, "primitive_manipulator");
-  EXPECT_EQ(component_kinds()[7].default_id, 49);
+  // In the order of components/CMakeLists.txt's folders.
+  const std::pair<const char*, int> kinds[] = {
+      {"node_manager", 1},           {"communicator", 35},           {"primitive_driver", 33},
+      {"global_pose_sensor", 38},    {"local_pose_sensor", 41},      {"velocity_state_sensor", 42},
+      {"global_vector_driver", 34},  {"local_vector_driver", 44},    {"global_waypoint_driver", 45},
+      {"local_waypoint_driver", 46}, {"local_path_segment_driver", 48}, {"global_path_segment_driver", 47},
+      {"visual_sensor", 37},         {"primitive_manipulator", 49}};
+  ASSERT_EQ(component_kinds().size(), std::size(kinds));
+  for (std::size_t i = 0; i < std::size(kinds); ++i) {
+    EXPECT_EQ(component_kinds()[i].name, kinds[i].first);
+    EXPECT_EQ(component_kinds()[i].default_id, kinds[i].second) << kinds[i].first;
+  }
   ASSERT_NE(find_component_kind("communicator"), nullptr);
   EXPECT_TRUE(find_component_kind("communicator")->options.empty());
   ASSERT_NE(find_component_kind("primitive_manipulator"), nullptr);
