@@ -32,8 +32,14 @@ const Address kLocalVectorDriver{1, 1, 44, 1};
 constexpr double kHeadingTolerance = 0.1;
 constexpr double kSpeedTolerance = 0.1;
 constexpr double kMaxSpeed = 1.0;  // the vehicle's (VehicleSettings default)
-// One step of the wire's scaled speed (0..10000 m/s in 16 bits) and heading (+-pi in 16 bits).
-constexpr double kSpeedResolution = 10'000.0 / 65'535;
+// Set Global Vector carries the speed in steps of 10000/65535 m/s (Part 3's
+// 0..10000 m/s in 16 bits: 0.15 m/s): the tests command whole steps, so what
+// is sent is what the driver follows. The heading's step is 2 pi / 65535.
+constexpr double kSpeedStep = 10'000.0 / 65'535;
+constexpr double kSlow = 3 * kSpeedStep;    // 0.46 m/s
+constexpr double kCruise = 4 * kSpeedStep;  // 0.61 m/s
+constexpr double kFast = 5 * kSpeedStep;    // 0.76 m/s
+constexpr double kExact = 1e-6;
 constexpr double kHeadingResolution = 2 * pi / 65'535;
 
 msg::SetGlobalVector global_vector(std::optional<double> speed_mps, std::optional<double> heading_rad) {
@@ -125,10 +131,10 @@ class GlobalVectorDriverTest : public ::testing::TestWithParam<Param> {
     return v_.node_.ask<msg::ReportGlobalVector>(kGlobalVectorDriver, msg::QueryGlobalVector{{presence}});
   }
   bool ackermann() const { return std::get<1>(GetParam()) == Steering::ackermann; }
-  // Driving east at 0.5 m/s, held.
+  // Driving east at kSlow, held.
   void driving_east() {
-    v_.node_.send(kGlobalVectorDriver, global_vector(0.5, pi / 2));
-    v_.reaches_and_holds(pi / 2, 0.5, 15s, 500ms);
+    v_.node_.send(kGlobalVectorDriver, global_vector(kSlow, pi / 2));
+    v_.reaches_and_holds(pi / 2, kSlow, 15s, 500ms);
   }
   void nothing_restarts() {
     const auto efforts = v_.driver().mobility_counters().efforts_sent;
@@ -146,25 +152,25 @@ class GlobalVectorDriverTest : public ::testing::TestWithParam<Param> {
 
 TEST_P(GlobalVectorDriverTest, ReachesAndHoldsAHeading90DegreesOffAndTheSpeed) {
   ASSERT_NEAR(v_.heading(), 0, 0.01);  // starts facing north
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.6, pi / 2));
+  v_.node_.send(kGlobalVectorDriver, global_vector(kCruise, pi / 2));
   // The turn: within 5 s, never more than 0.05 rad past east.
   double overshoot = 0;
   const auto past_east = [&] {
     overshoot = std::max(overshoot, components::wrap_angle(v_.heading() - pi / 2));
     return false;
   };
-  ASSERT_TRUE(v_.node_.run_until([&] { return past_east() || v_.on(pi / 2, 0.6); }, 5s));
+  ASSERT_TRUE(v_.node_.run_until([&] { return past_east() || v_.on(pi / 2, kCruise); }, 5s));
   v_.node_.run_until(past_east, 3s);  // and after
   EXPECT_LT(overshoot, 0.05);
-  v_.reaches_and_holds(pi / 2, 0.6);
+  v_.reaches_and_holds(pi / 2, kCruise);
   // Through the primitive driver, with the driver's own authority.
   const auto& controller = v_.node_.primitive_driver().control().controller();
   ASSERT_TRUE(controller);
   EXPECT_EQ(controller->address, kGlobalVectorDriver);
   EXPECT_EQ(controller->authority, 1);
   // A left turn back to north-west: the short way, the other side.
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.6, -pi / 4));
-  v_.reaches_and_holds(-pi / 4, 0.6);
+  v_.node_.send(kGlobalVectorDriver, global_vector(kCruise, -pi / 4));
+  v_.reaches_and_holds(-pi / 4, kCruise);
   EXPECT_EQ(v_.driver().commands(), 2u);
   EXPECT_EQ(v_.driver().mobility_counters().control_losses, 0u);
 }
@@ -175,7 +181,7 @@ TEST_P(GlobalVectorDriverTest, ASpeedBeyondTheVehiclesIsDrivenAtItsMaximum) {
   // The command stays what was asked.
   const auto r = report();
   ASSERT_TRUE(r && r->speed_mps);
-  EXPECT_NEAR(*r->speed_mps, 3.0, kSpeedResolution);
+  EXPECT_NEAR(*r->speed_mps, 3.0, kSpeedStep);
 }
 
 TEST_P(GlobalVectorDriverTest, ReportGlobalVectorEchoesTheCommandWithinThePresenceAsked) {
@@ -194,7 +200,8 @@ TEST_P(GlobalVectorDriverTest, ReportGlobalVectorEchoesTheCommandWithinThePresen
   v_.node_.run_for(200ms);
   r = report();
   ASSERT_TRUE(r && r->speed_mps && r->heading_rad && r->altitude_m && r->roll_rad && r->pitch_rad);
-  EXPECT_NEAR(*r->speed_mps, 0.4, kSpeedResolution);
+  // 0.4 m/s lies between two steps: the driver holds and echoes the step it received.
+  EXPECT_NEAR(*r->speed_mps, kSlow, kExact);
   EXPECT_NEAR(*r->heading_rad, 1.0, kHeadingResolution);
   EXPECT_NEAR(*r->altitude_m, 120, 0.01);  // stored and echoed, not followed
   EXPECT_NEAR(*r->roll_rad, 0.1, kHeadingResolution);
@@ -227,13 +234,13 @@ TEST_P(GlobalVectorDriverTest, ReportGlobalVectorOnAServiceConnectionFollowsTheC
   v_.node_.run_for(500ms);
   ASSERT_FALSE(reports.empty());
   EXPECT_EQ(reports.back().speed_mps, 0.0);
-  msg::SetGlobalVector m = global_vector(0.4, 1.0);
+  msg::SetGlobalVector m = global_vector(kSlow, 1.0);
   m.altitude_m = 10;
   v_.node_.send(kGlobalVectorDriver, m);
   v_.node_.run_for(500ms);
   const auto& last = reports.back();
   ASSERT_TRUE(last.speed_mps && last.heading_rad);
-  EXPECT_NEAR(*last.speed_mps, 0.4, kSpeedResolution);
+  EXPECT_NEAR(*last.speed_mps, kSlow, kExact);
   EXPECT_NEAR(*last.heading_rad, 1.0, kHeadingResolution);
   EXPECT_FALSE(last.altitude_m);  // not asked for
   v_.node_.op().unlisten(listening);
@@ -241,21 +248,21 @@ TEST_P(GlobalVectorDriverTest, ReportGlobalVectorOnAServiceConnectionFollowsTheC
 
 TEST_P(GlobalVectorDriverTest, ASetWithoutAHeadingHoldsTheVehiclesAndLaterOnesKeepTheCommandedOne) {
   // The first Set has no heading: the vehicle's (north) is kept.
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.5, std::nullopt));
-  v_.reaches_and_holds(0, 0.5, 10s, 1s);
+  v_.node_.send(kGlobalVectorDriver, global_vector(kSlow, std::nullopt));
+  v_.reaches_and_holds(0, kSlow, 10s, 1s);
   auto r = report();
   ASSERT_TRUE(r && r->heading_rad);
   EXPECT_NEAR(*r->heading_rad, 0, 0.02);
   // A heading alone: the speed is kept.
   v_.node_.send(kGlobalVectorDriver, global_vector(std::nullopt, pi / 2));
-  v_.reaches_and_holds(pi / 2, 0.5);
+  v_.reaches_and_holds(pi / 2, kSlow);
   // A speed alone: the heading is kept.
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.8, std::nullopt));
-  v_.reaches_and_holds(pi / 2, 0.8);
+  v_.node_.send(kGlobalVectorDriver, global_vector(kFast, std::nullopt));
+  v_.reaches_and_holds(pi / 2, kFast);
   r = report();
   ASSERT_TRUE(r && r->heading_rad && r->speed_mps);
   EXPECT_NEAR(*r->heading_rad, pi / 2, kHeadingResolution);
-  EXPECT_NEAR(*r->speed_mps, 0.8, kSpeedResolution);
+  EXPECT_NEAR(*r->speed_mps, kFast, kExact);
 }
 
 TEST_P(GlobalVectorDriverTest, ASetFromAnyoneButTheControllerIsRefused) {
@@ -264,7 +271,7 @@ TEST_P(GlobalVectorDriverTest, ASetFromAnyoneButTheControllerIsRefused) {
   v_.node_.run_for(200ms);
   ASSERT_FALSE(v_.node_.find(kGlobalVectorDriver)->control().controller());
   const auto refused = v_.node_.find(kGlobalVectorDriver)->counters().refused_not_controller;
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.5, pi / 2));
+  v_.node_.send(kGlobalVectorDriver, global_vector(kSlow, pi / 2));
   v_.node_.run_for(3s);
   EXPECT_EQ(v_.node_.find(kGlobalVectorDriver)->counters().refused_not_controller, refused + 1);
   EXPECT_EQ(v_.driver().commands(), 0u);
@@ -338,7 +345,7 @@ TEST_P(GlobalVectorDriverTest, StandbyStopsTheVehicleAndResumeDoesNotRestartIt) 
   EXPECT_TRUE(v_.node_.run_until([&] { return v_.stopped(); }, 5s));
   // Standby refuses a Set (Ready only) ...
   const auto refused = v_.node_.find(kGlobalVectorDriver)->counters().refused_wrong_state;
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.5, pi / 2));
+  v_.node_.send(kGlobalVectorDriver, global_vector(kSlow, pi / 2));
   v_.node_.run_for(500ms);
   EXPECT_EQ(v_.node_.find(kGlobalVectorDriver)->counters().refused_wrong_state, refused + 1);
   // ... and Resume only makes it Ready again.
@@ -347,12 +354,12 @@ TEST_P(GlobalVectorDriverTest, StandbyStopsTheVehicleAndResumeDoesNotRestartIt) 
       [&] { return v_.node_.state_of(kGlobalVectorDriver) == rt::PrimaryStatus::ready; }, 1s));
   nothing_restarts();
   // A new Set drives again.
-  v_.node_.send(kGlobalVectorDriver, global_vector(0.5, 0));
-  v_.reaches_and_holds(0, 0.5, 15s, 500ms);
+  v_.node_.send(kGlobalVectorDriver, global_vector(kSlow, 0));
+  v_.reaches_and_holds(0, kSlow, 15s, 500ms);
 }
 
 TEST_P(GlobalVectorDriverTest, ResetForgetsTheCommand) {
-  msg::SetGlobalVector m = global_vector(0.5, 1.0);
+  msg::SetGlobalVector m = global_vector(kSlow, 1.0);
   m.altitude_m = 50;
   v_.node_.send(kGlobalVectorDriver, m);
   ASSERT_TRUE(v_.node_.run_until([&] { return v_.moving(); }, 3s));
