@@ -147,6 +147,7 @@ class WaypointDriver : public MobilityDriver {
   // The remaining waypoints, from the active one, in the route's frame.
   Expected<void> make_pursuit() {
     if (!limits()) return unexpected(make_error(ErrorCode::invalid_argument, "no vehicle limits"));
+    if (list_.empty()) return unexpected(make_error(ErrorCode::invalid_argument, "no waypoints"));
     first_ = std::min(active_, list_.size() - 1);
     std::vector<guidance::Point2> points;
     for (std::size_t i = first_; i < list_.size(); ++i) points.push_back(frame_->point(list_.elements()[i]));
