@@ -51,6 +51,19 @@ msg::SetGlobalVector global_vector(std::optional<double> speed_mps, std::optiona
 
 double angle_off(double a, double b) { return std::abs(components::wrap_angle(a - b)); }
 
+// Hears every message to the operator while alive (a failed assertion leaves no dangling listener).
+class Listening {
+ public:
+  Listening(ocu::OcuSession& op, ocu::OcuSession::Listener listener) : op_(op), id_(op.listen(std::move(listener))) {}
+  ~Listening() { op_.unlisten(id_); }
+  Listening(const Listening&) = delete;
+  Listening& operator=(const Listening&) = delete;
+
+ private:
+  ocu::OcuSession& op_;
+  ocu::OcuSession::ListenerId id_;
+};
+
 using Param = std::tuple<PlatformUnderTest, Steering>;
 
 std::string param_name(const ::testing::TestParamInfo<Param>& info) {
@@ -219,7 +232,7 @@ TEST_P(GlobalVectorDriverTest, ReportGlobalVectorEchoesTheCommandWithinThePresen
 
 TEST_P(GlobalVectorDriverTest, ReportGlobalVectorOnAServiceConnectionFollowsTheCommand) {
   std::vector<msg::ReportGlobalVector> reports;
-  const auto listening = v_.node_.op().listen([&](const ocu::Received& r) {
+  const Listening listening(v_.node_.op(), [&](const ocu::Received& r) {
     msg::ReportGlobalVector report{};
     if (r.header.command_code == msg::ReportGlobalVector::code && r.header.source == kGlobalVectorDriver &&
         wire::decode_payload_into(r.payload, report, wire::Dialect::ra, kHeaderSize))
@@ -243,7 +256,6 @@ TEST_P(GlobalVectorDriverTest, ReportGlobalVectorOnAServiceConnectionFollowsTheC
   EXPECT_NEAR(*last.speed_mps, kSlow, kExact);
   EXPECT_NEAR(*last.heading_rad, 1.0, kHeadingResolution);
   EXPECT_FALSE(last.altitude_m);  // not asked for
-  v_.node_.op().unlisten(listening);
 }
 
 TEST_P(GlobalVectorDriverTest, ASetWithoutAHeadingHoldsTheVehiclesAndLaterOnesKeepTheCommandedOne) {
@@ -412,6 +424,21 @@ TEST_P(LocalVectorDriverTest, ReachesAHeadingFromTheLocalXAxisAndTheSpeedAndEcho
   ASSERT_TRUE(r);
   EXPECT_NEAR(r->speed_mps, 0.6, 1e-3);
   EXPECT_NEAR(r->heading_rad, pi / 2, kHeadingResolution);
+  // The same report on a service connection.
+  std::optional<msg::ReportLocalVector> streamed;
+  const Listening listening(v_.node_.op(), [&](const ocu::Received& received) {
+    msg::ReportLocalVector report{};
+    if (received.header.command_code == msg::ReportLocalVector::code &&
+        wire::decode_payload_into(received.payload, report, wire::Dialect::ra, kHeaderSize))
+      streamed = report;
+  });
+  const auto confirm = v_.node_.ask<msg::ConfirmServiceConnection>(
+      kLocalVectorDriver, msg::CreateServiceConnection{{msg::ReportLocalVector::code, 5, 0}});
+  ASSERT_TRUE(confirm);
+  EXPECT_EQ(confirm->response_code, 0) << "created";
+  v_.node_.run_for(500ms);
+  ASSERT_TRUE(streamed);
+  EXPECT_EQ(*streamed, *r);
   // Standby: stopped, and the commanded speed is 0.
   v_.node_.send(kLocalVectorDriver, msg::Standby{});
   ASSERT_TRUE(v_.node_.run_until([&] { return !v_.driver().driving(); }, 1s));
