@@ -20,14 +20,16 @@ constexpr double kSettledYawRateRps = 0.1;
 
 bool settled(const PoseSample& pose) { return !pose.rates_rps || std::abs(pose.rates_rps->z) <= kSettledYawRateRps; }
 
-Expected<void> read_gains(const KindOptions& options, std::string_view prefix, double max, guidance::PidGains& gains) {
+// The options <prefix>_kp, _ki, _kd over `gains`.
+Expected<guidance::PidGains> read_gains(const KindOptions& options, std::string_view prefix, double max,
+                                        guidance::PidGains gains) {
   const std::string p(prefix);
   for (auto [suffix, gain] : {std::pair{"_kp", &gains.kp}, std::pair{"_ki", &gains.ki}, std::pair{"_kd", &gains.kd}}) {
     const auto value = number_option(options, p + suffix, 0, max, *gain);
     if (!value) return unexpected(value.error());
     *gain = *value;
   }
-  return {};
+  return gains;
 }
 
 }  // namespace
@@ -47,8 +49,12 @@ Expected<VectorDriverOptions> vector_driver_options(const KindOptions& options) 
   const auto tolerance = number_option(options, "heading_tolerance_rad", 0.001, 0.5, o.heading_tolerance_rad);
   if (!tolerance) return unexpected(tolerance.error());
   o.heading_tolerance_rad = *tolerance;
-  if (auto ok = read_gains(options, "heading", kMaxHeadingGain, o.heading_gains); !ok) return unexpected(ok.error());
-  if (auto ok = read_gains(options, "speed", kMaxSpeedGain, o.speed_gains); !ok) return unexpected(ok.error());
+  const auto heading = read_gains(options, "heading", kMaxHeadingGain, o.heading_gains);
+  if (!heading) return unexpected(heading.error());
+  o.heading_gains = *heading;
+  const auto speed = read_gains(options, "speed", kMaxSpeedGain, o.speed_gains);
+  if (!speed) return unexpected(speed.error());
+  o.speed_gains = *speed;
   return o;
 }
 

@@ -9,9 +9,9 @@
 //     is 0 and the commanded heading is the vehicle's heading when the first
 //     Set arrives. Every Set engages (drives until told otherwise);
 //   - a commanded speed of 0 with the heading within heading_tolerance_rad
-//     ends the motion as an arrival (zero below, control of the primitive
-//     driver released); an Ackermann vehicle cannot turn at rest, so speed 0
-//     arrives at once;
+//     (and the vehicle no longer turning) ends the motion as an arrival
+//     (zero below, control of the primitive driver released); an Ackermann
+//     vehicle cannot turn at rest, so speed 0 arrives at once;
 //   - every other end of a motion (Standby, Emergency, Reset, the primitive
 //     driver lost, a stale pose) sets the commanded speed to 0: nothing
 //     restarts the vehicle but a new Set; Reset forgets the command whole.
