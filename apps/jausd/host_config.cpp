@@ -45,6 +45,8 @@ jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
   b.max_yaw_rate_rps = v.max_yaw_rate_rps;
   b.max_acceleration_mps2 = v.max_acceleration_mps2;
   b.track_width_m = v.specifications.track_width_m.value_or(0.55);
+  b.wheel_base_m = v.wheel_base_m;
+  b.max_steering_rad = v.max_steering_rad;
   b.specifications = v.specifications;
   b.datum = v.start;
   b.datum_heading_rad = v.start_heading_rad;

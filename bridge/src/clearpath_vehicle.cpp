@@ -450,7 +450,26 @@ components::PlatformSpecifications ClearpathVehicle::specifications() const {
   if (s.max_forward_mps) max_speed = std::min(max_speed, *s.max_forward_mps);
   if (!spec.max_velocity_x_mps) spec.max_velocity_x_mps = max_speed;
   if (!spec.track_width_m) spec.track_width_m = s.config.track_width_m;
-  if (!spec.max_yaw_rate_rps && s.config.drive != DriveMode::ackermann) spec.max_yaw_rate_rps = s.config.max_yaw_rate_rps;
+  // What 100 % propulsive rotational z really does, for those who steer by
+  // these figures (the drivers above the primitive driver; guidance::limits_from):
+  switch (s.config.drive) {
+    case DriveMode::differential_output:
+      // Open loop: L = X + Z, R = X - Z, so 100 % Z turns the wheels at the
+      // full speed either way: 2 max_speed / track width (3.6 rad/s for 1 m/s
+      // on 0.55 m), not the closed-loop modes' max_yaw_rate_rps.
+      if (!spec.max_yaw_rate_rps && s.config.track_width_m > 0)
+        spec.max_yaw_rate_rps = 2 * max_speed / s.config.track_width_m;
+      break;
+    case DriveMode::differential_speeds:
+    case DriveMode::velocity:
+      if (!spec.max_yaw_rate_rps) spec.max_yaw_rate_rps = s.config.max_yaw_rate_rps;
+      break;
+    case DriveMode::ackermann:
+      if (!spec.wheel_base_m) spec.wheel_base_m = s.config.wheel_base_m;
+      if (!spec.turning_radius_m && std::tan(s.config.max_steering_rad) > 0)
+        spec.turning_radius_m = *spec.wheel_base_m / std::tan(s.config.max_steering_rad);
+      break;
+  }
   return spec;
 }
 

@@ -148,6 +148,34 @@ TEST(ClearpathVehicle, DifferentialSpeedsStayWithinThePlatformsLimits) {
   EXPECT_DOUBLE_EQ(*rig.vehicle.specifications().max_velocity_x_mps, 1.0);
 }
 
+// Report Platform Specifications says what 100 % rotational z does: the
+// drivers above the primitive driver steer by it (guidance::limits_from).
+TEST(ClearpathVehicle, SpecificationsSayWhatFullRotationalEffortDoes) {
+  bridge::ClearpathVehicleConfig open_loop;  // differential_output
+  open_loop.max_speed_mps = 1.0;
+  open_loop.track_width_m = 0.5;
+  Rig differential(open_loop);
+  // Both wheels at full speed either way: 2 * 1 m/s / 0.5 m.
+  EXPECT_DOUBLE_EQ(*differential.vehicle.specifications().max_yaw_rate_rps, 4.0);
+  EXPECT_FALSE(differential.vehicle.specifications().turning_radius_m);
+
+  bridge::ClearpathVehicleConfig closed_loop;
+  closed_loop.drive = bridge::DriveMode::differential_speeds;
+  closed_loop.max_yaw_rate_rps = 0.7;
+  Rig speeds(closed_loop);
+  EXPECT_DOUBLE_EQ(*speeds.vehicle.specifications().max_yaw_rate_rps, 0.7);
+
+  bridge::ClearpathVehicleConfig steered;
+  steered.drive = bridge::DriveMode::ackermann;
+  steered.wheel_base_m = 1.2;
+  steered.max_steering_rad = 0.5;
+  Rig ackermann(steered, sim::Drive::ackermann);
+  const auto spec = ackermann.vehicle.specifications();
+  EXPECT_DOUBLE_EQ(*spec.wheel_base_m, 1.2);
+  EXPECT_NEAR(*spec.turning_radius_m, 1.2 / std::tan(0.5), 1e-9);
+  EXPECT_FALSE(spec.max_yaw_rate_rps);
+}
+
 TEST(ClearpathVehicle, AckermannSteersLeftPositive) {
   bridge::ClearpathVehicleConfig config;
   config.drive = bridge::DriveMode::ackermann;

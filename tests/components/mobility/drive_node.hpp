@@ -80,6 +80,8 @@ inline host::HostConfig drive_node_config(const DriveNodeOptions& o) {
     p.vehicle.max_yaw_rate_rps = v.max_yaw_rate_rps;
     p.vehicle.max_acceleration_mps2 = v.max_acceleration_mps2;
     p.vehicle.track_width_m = v.specifications.track_width_m.value_or(0.55);
+    p.vehicle.wheel_base_m = v.wheel_base_m;
+    p.vehicle.max_steering_rad = v.max_steering_rad;
     p.vehicle.specifications = v.specifications;
     p.vehicle.datum = v.start;
     p.vehicle.datum_heading_rad = v.start_heading_rad;

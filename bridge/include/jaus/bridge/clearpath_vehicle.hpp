@@ -69,6 +69,11 @@ struct ClearpathVehicleConfig {
   double max_yaw_rate_rps = 1.0;       // closed loop: at 100 % propulsive rotational z
   double max_acceleration_mps2 = 1.0;  // closed loop: the commands' acceleration
   double track_width_m = 0.55;         // wheel speeds from a yaw rate; heading from the encoders
+  // Ackermann: the wheel base and the front wheels' angle at 100 % propulsive
+  // rotational z, for Report Platform Specifications' turning radius (what
+  // the drivers above the primitive driver steer by).
+  double wheel_base_m = 0.5;
+  double max_steering_rad = 0.5;
   bool gear = false;                   // the platform has Change Gear (0x0212)
   DeviceOutput main_power, parking_brake, horn;
   // As the client's ClientConfig::setpoint_max_age: how long the platform
