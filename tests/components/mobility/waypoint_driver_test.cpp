@@ -364,9 +364,9 @@ TEST_P(WaypointSafetyTest, StandbyOnTheDriverCommandsZeroAndStopsTheVehicle) {
 INSTANTIATE_TEST_SUITE_P(KindsAndPlatforms, WaypointSafetyTest,
                          ::testing::Combine(::testing::Values(PlatformUnderTest::model, PlatformUnderTest::clearpath_sim),
                                             ::testing::Values(Kind::global, Kind::local)),
-                         [](const auto& info) {
-                           return platform_name(std::get<0>(info.param)) +
-                                  (std::get<1>(info.param) == Kind::global ? "_global" : "_local");
+                         [](const auto& instance) {
+                           return platform_name(std::get<0>(instance.param)) +
+                                  (std::get<1>(instance.param) == Kind::global ? "_global" : "_local");
                          });
 
 }  // namespace

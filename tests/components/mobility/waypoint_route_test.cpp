@@ -83,9 +83,9 @@ TEST_P(WaypointSquareTest, FourLocalWaypointsAreEachReachedInOrderAndTheRouteFin
 INSTANTIATE_TEST_SUITE_P(Vehicles, WaypointSquareTest,
                          ::testing::Combine(::testing::Values(PlatformUnderTest::model, PlatformUnderTest::clearpath_sim),
                                             ::testing::Values(Steering::differential, Steering::ackermann)),
-                         [](const auto& info) {
-                           return platform_name(std::get<0>(info.param)) + "_" +
-                                  (std::get<1>(info.param) == Steering::ackermann ? "ackermann" : "differential");
+                         [](const auto& instance) {
+                           return platform_name(std::get<0>(instance.param)) + "_" +
+                                  (std::get<1>(instance.param) == Steering::ackermann ? "ackermann" : "differential");
                          });
 
 }  // namespace
