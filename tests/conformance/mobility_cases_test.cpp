@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "broken_mobility_components.hpp"
 #include "case_results.hpp"
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/conform/reports.hpp"
@@ -160,6 +161,55 @@ INSTANTIATE_TEST_SUITE_P(
         Driver{kLocalPathSegmentDriver, {"mobility.local_path_segment.", "mobility.travel_speed."},
                msg::QueryPathSegmentCount::code}),
     [](const ::testing::TestParamInfo<Driver>& p) { return "component_" + std::to_string(p.param.address.component); });
+
+// One driver broken one way, the case that must catch it, and what its
+// failure must say.
+struct Broken {
+  const char* name;
+  Address address;
+  std::string_view case_id;
+  std::string_view says;
+};
+
+void PrintTo(const Broken& b, std::ostream* out) { *out << b.name; }
+
+class BrokenMobilityFails : public ::testing::TestWithParam<Broken> {};
+
+TEST_P(BrokenMobilityFails, TheCaseThatLooksForTheFlawFailsSayingWhy) {
+  const Broken& b = GetParam();
+  VirtualNetwork net;
+  test::BrokenMobilityNode broken(net.time, net.network);
+  auto session = net.open_session();
+  ASSERT_TRUE(session) << session.error().message();
+  RunOptions options;
+  options.only = std::string(b.case_id);
+  const auto results = net.run_on(**session, b.address, options);
+  ASSERT_EQ(results.size(), 1u) << describe(results);
+  EXPECT_EQ(results[0].outcome.verdict, Verdict::fail) << describe(results);
+  EXPECT_NE(results[0].outcome.detail.find(b.says), std::string::npos) << results[0].outcome.detail;
+  // Whatever it did, it is left with nobody in control.
+  auto* component = broken.node().find(b.address);
+  ASSERT_NE(component, nullptr);
+  EXPECT_TRUE((*session)->run_until([&] { return !component->control().controller().has_value(); }, 3s));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Flaws, BrokenMobilityFails,
+    ::testing::Values(
+        Broken{"WaypointsObeyAnyone", test::kWaypointsObeyAnyone, "mobility.local_waypoint.non_controller_ignored",
+               "after a new waypoint 0 from a non-controller (controller 0.0.0.0), waypoint 0 reported as "},
+        Broken{"WaypointsDropYaw", test::kWaypointsDropYaw, "mobility.local_waypoint.count_and_echo",
+               "waypoint 0 reported as "},
+        Broken{"WaypointsAppendPastEnd", test::kWaypointsAppendPastEnd, "mobility.local_waypoint.numbering",
+               "waypoint 4 sent with 3 loaded: counted 4 (a number past the end must be refused)"},
+        Broken{"WaypointsKeepOldList", test::kWaypointsKeepOldList, "mobility.local_waypoint.numbering",
+               "a new waypoint 0 with 3 loaded: counted 3, not 1 (element 0 starts a new list)"},
+        Broken{"VectorObeysAnyone", test::kVectorObeysAnyone, "mobility.local_vector.non_controller_ignored",
+               "Set Local Vector from a non-controller (controller 0.0.0.0) executed: reported 0.100 m/s heading "
+               "1.000 rad; stopped again with speed 0 and Standby"},
+        Broken{"VectorForgetsSpeed", test::kVectorForgetsSpeed, "mobility.local_vector.echo",
+               "Set Local Vector 0.100 m/s heading 0.500 rad reported as 0.000 m/s heading 0.500 rad"}),
+    [](const ::testing::TestParamInfo<Broken>& p) { return std::string(p.param.name); });
 
 // Each mobility case says why it does not apply to a component of another
 // kind (the primitive driver), and each driver kind runs only its own.
