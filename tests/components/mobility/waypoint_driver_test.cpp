@@ -268,6 +268,46 @@ TEST_F(WaypointDriverTest, ResetClearsTheListAndTheTravelSpeed) {
   EXPECT_FALSE(driver().driving());
 }
 
+TEST_F(WaypointDriverTest, AReplacedWaypointIsDrivenToFromTheNextStep) {
+  ASSERT_TRUE(op_.prepare(kLocalWaypointDriver));
+  op_.send_local({{10, 0}});
+  ASSERT_TRUE(op_.resume(kLocalWaypointDriver));
+  ASSERT_TRUE(node_.run_until([&] { return op_.position().x_m > 2; }, 10s));
+  op_.send_local({{4, 4}}, 0);  // number 0 is a new list: it halts
+  EXPECT_FALSE(driver().driving());
+  ASSERT_TRUE(op_.standby(kLocalWaypointDriver));
+  op_.send_local({{4, -4}}, 1);  // appended
+  op_.send_local({{10, 0}}, 1);  // replaced before it is driven
+  ASSERT_TRUE(op_.resume(kLocalWaypointDriver));
+  ASSERT_TRUE(node_.run_until([&] { return driver().active_waypoint() == 1; }, 20s));
+  op_.send_local({{4, 8}}, 1);  // replaced while it is the active one
+  const RouteRecord r = drive_route(node_, op_, driver(), {{4, 4}, {4, 8}}, 30s);
+  ASSERT_TRUE(driver().route_finished());
+  EXPECT_LE(r.closest_m[1], 0.5);
+  EXPECT_LE(distance(op_.position(), {4, 8}), 1.0);
+}
+
+// The global driver's frame has its datum where the vehicle is when the
+// route starts: a route loaded after the vehicle has moved is still driven
+// to the waypoints' own latitude and longitude.
+TEST_F(WaypointDriverTest, AGlobalRouteIsDrivenToItsLatitudeAndLongitudeFromWhereverTheVehicleIs) {
+  ASSERT_TRUE(op_.prepare(kLocalWaypointDriver));
+  op_.send_local({{5, 3}});
+  ASSERT_TRUE(op_.resume(kLocalWaypointDriver));
+  ASSERT_TRUE(node_.run_until([&] { return op_.local_driver().route_finished() && !driver().driving(); }, 20s));
+  ASSERT_TRUE(node_.run_until([&] { return stopped(); }, 5s));
+  ASSERT_GT(distance(op_.position(), {0, 0}), 5);
+  auto& global = op_.global_driver();
+  ASSERT_TRUE(op_.prepare(kGlobalWaypointDriver));
+  const std::vector<Point> route = {{8, 0}, {2, -4}};  // in the vehicle's start frame
+  op_.send_global(route);
+  ASSERT_TRUE(op_.resume(kGlobalWaypointDriver));
+  const RouteRecord r = drive_route(node_, op_, global, route, 40s);
+  ASSERT_TRUE(global.route_finished());
+  EXPECT_LE(r.closest_m[0], 0.5);
+  EXPECT_LE(r.closest_m[1], 0.5);
+}
+
 class SmallListTest : public WaypointDriverTest {
  protected:
   SmallListTest() : WaypointDriverTest({{"max_waypoints", "3"}}) {}
