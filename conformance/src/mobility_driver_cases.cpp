@@ -7,9 +7,9 @@
 // Safety first, as in the primitive driver cases:
 //   - a list is loaded in Standby and never resumed (loading never moves a
 //     vehicle; a driver that would start a route on loading in Ready cannot
-//     here), and every list case ends with Reset while it still holds
-//     control (ResetOnExit), so nothing a case loaded is driven by a later
-//     Resume;
+//     here), and every list case that loaded something ends with Reset
+//     under control (ResetOnExit), so nothing it loaded is driven by a
+//     later Resume;
 //   - a vector case commands at most a crawl (0.1 m/s; the global vector
 //     speed 0, its smallest step on the wire being 0.15 m/s) and ends, however
 //     it ends, commanding speed 0 and Standby (StopVectorOnExit) before it
@@ -152,21 +152,26 @@ struct LocalPathSegments {
   static std::uint16_t count(const ReportCount& r) { return r.path_segment_count; }
 };
 
-// Reset when the case ends, however it ends, under control taken for it
-// (declared before the case's own ControlHeld, it runs after that one's
-// release): whatever the case loaded is cleared, so no later Resume drives it.
+// Reset when the case ends, however it ends, once it may have loaded
+// something (arm()), under control taken for it (declared before the case's
+// own ControlHeld, it runs after that one's release): whatever the case
+// loaded is cleared, so no later Resume drives it. A case that loaded
+// nothing leaves the state it found alone.
 class ResetOnExit {
  public:
   explicit ResetOnExit(CaseContext& c) : c_(c) {}
   ~ResetOnExit() {
+    if (!armed_) return;
     ControlHeld control(c_);
     send(c_, msg::Reset{});
   }
   ResetOnExit(const ResetOnExit&) = delete;
   ResetOnExit& operator=(const ResetOnExit&) = delete;
+  void arm() { armed_ = true; }
 
  private:
   CaseContext& c_;
+  bool armed_ = false;
 };
 
 // Puts the controlled driver in Standby, where loading cannot move anything
@@ -259,6 +264,7 @@ struct ListDriver {
     ResetOnExit reset(c);
     ControlHeld control(c);
     if (auto verdict = unless_in_standby(c, control)) return *verdict;
+    reset.arm();
     if (auto wrong = load(c, 0, 1, 0); !wrong.empty()) return fail(wrong);
     if (auto wrong = load(c, 1, kListLength, 0); !wrong.empty()) return fail(wrong);
     for (std::uint16_t n = 0; n < kListLength; ++n)
@@ -274,6 +280,7 @@ struct ListDriver {
     ResetOnExit reset(c);
     ControlHeld control(c);
     if (auto verdict = unless_in_standby(c, control)) return *verdict;
+    reset.arm();
     if (auto wrong = load(c, 0, kListLength, 0); !wrong.empty()) return fail(wrong);
     const std::uint16_t past_end = kListLength + 1;
     send(c, L::element(past_end, 0));
@@ -306,6 +313,7 @@ struct ListDriver {
     {
       ControlHeld control(c);
       if (auto verdict = unless_in_standby(c, control)) return *verdict;
+      reset.arm();
       if (auto wrong = load(c, 0, 1, 0); !wrong.empty()) return fail(wrong);
     }
     auto controller = current_controller(c);
@@ -356,6 +364,7 @@ CaseOutcome travel_speed_echo(CaseContext& c) {
   ResetOnExit reset(c);
   ControlHeld control(c);
   if (auto verdict = unless_in_standby(c, control)) return *verdict;
+  reset.arm();
   std::string seen;
   for (const double mps : {0.3, 0.7}) {
     send(c, travel_speed(mps));
