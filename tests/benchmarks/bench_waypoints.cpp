@@ -22,7 +22,7 @@ constexpr double kTravelSpeed = 0.8;
 
 void run(PlatformUnderTest platform, Steering steering, bool global) {
   const auto options = waypoint_node_options(platform, steering);
-  DriveNode node(options, waypoint_node_config(options));
+  DriveNode node(options);
   WaypointOperator op(node);
   if (!node.wait_ready()) {
     std::printf("%-14s %-12s %-6s not ready: %s\n", platform_name(platform).c_str(),

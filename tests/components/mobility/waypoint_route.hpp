@@ -50,20 +50,6 @@ inline std::string component_states(DriveNode& node) {
   return text;
 }
 
-// drive_node_config, with the Clearpath platform's Ackermann geometry in its
-// Report Platform Specifications (the bridge reports only what it is
-// configured with, and an Ackermann driver above needs the turning radius
-// and wheel base, as a real vehicle's configuration gives them).
-inline host::HostConfig waypoint_node_config(const DriveNodeOptions& options) {
-  host::HostConfig c = drive_node_config(options);
-  if (options.platform == PlatformUnderTest::clearpath_sim && options.steering == components::Steering::ackermann) {
-    auto& spec = c.platform.vehicle.specifications;
-    spec.wheel_base_m = c.vehicle.wheel_base_m;
-    spec.turning_radius_m = c.vehicle.wheel_base_m / std::tan(c.vehicle.max_steering_rad);
-  }
-  return c;
-}
-
 class WaypointOperator {
  public:
   explicit WaypointOperator(DriveNode& node) : node_(node) {}

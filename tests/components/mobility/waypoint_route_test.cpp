@@ -24,7 +24,7 @@ class WaypointSquareTest : public ::testing::TestWithParam<Vehicle> {
  protected:
   WaypointSquareTest()
       : options_(waypoint_node_options(std::get<0>(GetParam()), std::get<1>(GetParam()))),
-        node_(options_, waypoint_node_config(options_)),
+        node_(options_),
         op_(node_) {
     EXPECT_TRUE(node_.wait_ready()) << component_states(node_);
   }
