@@ -25,12 +25,12 @@ Expected<WaypointDriverOptions> waypoint_driver_options(const rt::KindOptions& o
     double min, max;
     double* value;
   };
-  // Travel speed is Set Travel Speed's range (0..327.67 m/s); 0 is refused
-  // here only because a default of 0 would make every route stand still.
+  // Set Travel Speed may say 0 (hold still); as the default, 0 would make
+  // every route stand still. Above the vehicle's max speed the max is driven.
   const Number numbers[] = {
       {"lookahead_m", 0, 100, &o.pursuit.lookahead_m},
       {"arrival_tolerance_m", 0, 100, &o.pursuit.arrival_tolerance_m},
-      {"travel_speed_mps", 0, 327.67, &o.pursuit.travel_speed_mps},
+      {"travel_speed_mps", 0, 100, &o.pursuit.travel_speed_mps},
       {"max_deceleration_mps2", 0, 100, &o.pursuit.max_deceleration_mps2},
   };
   for (const auto& n : numbers) {
