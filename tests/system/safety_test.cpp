@@ -12,6 +12,7 @@
 #include <csignal>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "../benchmarks/bench_support.hpp"
@@ -301,6 +302,81 @@ TEST_F(Safety, SetEmergencyToTheDriverHoldsEveryMovingComponent) {
                               "254.74.40.9");
   EXPECT_EQ(clear->wait(20s), 0) << clear->output();
   EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+}
+
+// Issue 30 on real processes: a route of the local waypoint driver (8.1.46.1)
+// drives a separate clearpath-sim through the primitive driver. An operator
+// taking the primitive driver with a higher authority stops the vehicle at
+// once and nothing restarts it when the operator lets go; Set Emergency on
+// the primitive driver stops it and Clear Emergency does not restart it. The
+// route's own controller is a jausctl holding the waypoint driver; its
+// commands go with `jausctl send` under its ID from its host.
+TEST_F(Safety, AWaypointRouteStopsForAnOperatorAndForSetEmergencyAndNothingRestartsIt) {
+  start();
+  constexpr const char* kWaypointDriver = "8.1.46.1";
+  constexpr const char* kRouteHost = "127.0.0.75";
+  constexpr const char* kRouteOwner = "254.75.40.1";
+  auto owner = jausd->jausctl("route-owner", {"control", kWaypointDriver, "--authority", "5", "--for", "120"},
+                              std::string(kRouteHost) + ":3794", kRouteOwner);
+  const auto granted_until = std::chrono::steady_clock::now() + 20s;
+  while (!owner->output_contains("granted")) {
+    ASSERT_TRUE(owner->running()) << owner->output();
+    ASSERT_LT(std::chrono::steady_clock::now(), granted_until) << owner->output();
+    std::this_thread::sleep_for(100ms);
+  }
+  const auto route_command = [&](const std::string& json) {
+    auto child = jausd->jausctl("route-command", {"send", kWaypointDriver, json, "--timeout", "0.2"},
+                                std::string(kRouteHost) + ":0", kRouteOwner);
+    ASSERT_EQ(child->wait(20s), 0) << json << "\n" << child->output();
+  };
+  const auto driving_bits = [&]() -> std::optional<std::uint32_t> {
+    auto child = jausctl("route-status", {"status", kWaypointDriver, "--timeout", "1"}, "127.0.0.73:0");
+    if (child->wait(20s) != 0) return std::nullopt;
+    std::istringstream lines(child->output());
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line.front() == '{') {
+        const Json j = Json::parse(line, nullptr, false);
+        if (!j.is_discarded() && j.contains("secondary_status")) return j["secondary_status"].get<std::uint32_t>();
+      }
+    return std::nullopt;
+  };
+  constexpr std::uint32_t kDriving = 1u << 16, kLostControl = 1u << 18;
+  // A long straight route (40 m north), loaded in Standby, started by Resume.
+  const auto start_route = [&] {
+    route_command(R"({"name":"Standby"})");
+    route_command(R"({"name":"Set Travel Speed","fields":{"speed_mps":0.6}})");
+    route_command(R"({"name":"Set Local Waypoint","fields":{"waypoint_number":0,"x_m":40,"y_m":0}})");
+    route_command(R"({"name":"Resume"})");
+    ASSERT_TRUE(sim->wait_for(Simulator::moving, 15s)) << jausd->output();
+  };
+
+  // 1. An operator of higher authority takes the primitive driver mid-route.
+  start_route();
+  auto operator_hold = jausctl("operator", {"control", kDriver, "--authority", "10", "--for", "3"}, "127.0.0.76:0");
+  ASSERT_TRUE(sim->wait_for(Simulator::stopped, 5s)) << operator_hold->output() << jausd->output();
+  auto bits = driving_bits();
+  ASSERT_TRUE(bits) << last_failure;
+  EXPECT_FALSE(*bits & kDriving);
+  EXPECT_TRUE(*bits & kLostControl);
+  EXPECT_EQ(operator_hold->wait(20s), 0) << operator_hold->output();  // released at --for
+  const auto after_release = sim->states().size();
+  std::this_thread::sleep_for(3s);
+  EXPECT_TRUE(all_stopped_since(after_release)) << "the route restarted after the operator let go";
+  EXPECT_TRUE(jausd->output_contains("lost control of the primitive driver")) << jausd->output();
+
+  // 2. Set Emergency on the primitive driver mid-route; Clear Emergency restarts nothing.
+  start_route();
+  ASSERT_EQ(emergency("set", "254.74.40.9"), 0);
+  ASSERT_TRUE(sim->wait_for(Simulator::stopped, 5s)) << jausd->output();
+  ASSERT_EQ(emergency("clear", "254.74.40.9"), 0);
+  ASSERT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+  const auto after_clear = sim->states().size();
+  std::this_thread::sleep_for(3s);
+  EXPECT_TRUE(all_stopped_since(after_clear)) << "the route restarted after Clear Emergency";
+  bits = driving_bits();
+  ASSERT_TRUE(bits) << last_failure;
+  EXPECT_FALSE(*bits & kDriving);
+  EXPECT_TRUE(owner->running()) << owner->output();  // the route's owner still holds the waypoint driver
 }
 
 // An Ackermann platform keeps its steering angle when the operator lets go.

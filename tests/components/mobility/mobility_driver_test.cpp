@@ -145,7 +145,7 @@ TEST_P(MobilityDriverTest, APrimitiveDriverHeldByAnOperatorRefusesTheDriver) {
 
 INSTANTIATE_TEST_SUITE_P(Platforms, MobilityDriverTest,
                          ::testing::Values(PlatformUnderTest::model, PlatformUnderTest::clearpath_sim),
-                         [](const auto& info) { return platform_name(info.param); });
+                         [](const auto& test_param) { return platform_name(test_param.param); });
 
 }  // namespace
 }  // namespace jaus::test
