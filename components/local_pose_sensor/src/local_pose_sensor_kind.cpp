@@ -20,10 +20,8 @@ const rt::ComponentKind& local_pose_sensor_kind() {
         if (!options) return unexpected(options.error());
         // A sensor of local pose on a source known to have no local frame
         // would only ever report attitude: refused, saying why.
-        if (const auto sample = (*pose)->sample(); sample && !sample->local_position)
-          return unexpected(make_error(ErrorCode::invalid_argument,
-                                       "local_pose_sensor needs a pose source with a local frame "
-                                       "(vehicle.local_frame: true)"));
+        if (auto has_frame = require_local_frame(**pose, k.options.kind); !has_frame)
+          return unexpected(has_frame.error());
         return std::unique_ptr<rt::Component>(std::make_unique<LocalPoseSensor>(k.config, k.env, **pose, *options));
       },
   };

@@ -7,9 +7,12 @@
 // from other conventions happen once, in navigation_frames.hpp.
 #pragma once
 
-#include <string_view>
 #include <optional>
+#include <string>
+#include <string_view>
 
+#include "jaus/base/error.hpp"
+#include "jaus/base/expected.hpp"
 #include "jaus/base/time.hpp"
 #include "jaus/components/drive.hpp"
 #include "jaus/components/navigation_frames.hpp"
@@ -59,5 +62,16 @@ class PoseSource {
   // connections go no faster.
   virtual double update_rate_hz() const = 0;
 };
+
+// For a component whose figures are in the local frame (the local pose
+// sensor, the local waypoint and path segment drivers): a source known to
+// have no local frame (a sample without a local position) is refused, saying
+// why; a source with no sample yet is taken as it comes.
+inline Expected<void> require_local_frame(PoseSource& source, std::string_view kind) {
+  if (const auto sample = source.sample(); sample && !sample->local_position)
+    return unexpected(make_error(ErrorCode::invalid_argument,
+                                 std::string(kind) + " needs a pose source with a local frame (vehicle.local_frame: true)"));
+  return {};
+}
 
 }  // namespace jaus::components
