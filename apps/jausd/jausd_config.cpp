@@ -40,6 +40,7 @@ std::vector<ComponentSpec> JausdConfig::default_components() {
           ComponentSpec{"communicator", 35, 1, 0, "communicator", {}, 0, {}},
           ComponentSpec{"primitive_driver", 33, 1, 0, "primitive_driver", {}, 0, {}},
           ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}},
+          ComponentSpec{"local_pose_sensor", 41, 1, 0, "local_pose_sensor", {}, 0, {}},
           ComponentSpec{"velocity_state_sensor", 42, 1, 0, "velocity_state_sensor", {}, 0, {}},
           ComponentSpec{"visual_sensor", 37, 1, 0, "visual_sensor", {}, 0, {}},
           ComponentSpec{"primitive_manipulator", 49, 1, 0, "primitive_manipulator", {}, 0, {}},

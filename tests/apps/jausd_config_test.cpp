@@ -148,7 +148,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_TRUE(c.transport.control_from_local);  // [local]: safe by default
   EXPECT_TRUE(c.transport.verify_endpoints);
   EXPECT_EQ(c.transport.max_peers, 256u);
-  ASSERT_EQ(c.components.size(), 13u);
+  ASSERT_EQ(c.components.size(), 14u);
   EXPECT_EQ(c.components[0].kind, "node_manager");
   EXPECT_EQ(c.components[0].id, 1);
   EXPECT_EQ(c.components[0].instance, 1);
@@ -161,21 +161,23 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.components[2].id, 33);
   EXPECT_EQ(c.components[3].kind, "global_pose_sensor");
   EXPECT_EQ(c.components[3].id, 38);
-  EXPECT_EQ(c.components[4].kind, "velocity_state_sensor");
-  EXPECT_EQ(c.components[4].id, 42);
-  EXPECT_EQ(c.components[5].kind, "visual_sensor");
-  EXPECT_EQ(c.components[5].id, 37);
-  EXPECT_EQ(c.components[6].kind, "primitive_manipulator");
-  EXPECT_EQ(c.components[6].id, 49);
+  EXPECT_EQ(c.components[4].kind, "local_pose_sensor");
+  EXPECT_EQ(c.components[4].id, 41);
+  EXPECT_EQ(c.components[5].kind, "velocity_state_sensor");
+  EXPECT_EQ(c.components[5].id, 42);
+  EXPECT_EQ(c.components[6].kind, "visual_sensor");
+  EXPECT_EQ(c.components[6].id, 37);
+  EXPECT_EQ(c.components[7].kind, "primitive_manipulator");
+  EXPECT_EQ(c.components[7].id, 49);
   // The drivers above the primitive driver, each with authority 1 (below an operator's).
   const std::pair<const char*, int> drivers[] = {{"global_vector_driver", 34},       {"local_vector_driver", 44},
                                                  {"global_waypoint_driver", 45},     {"local_waypoint_driver", 46},
                                                  {"global_path_segment_driver", 47}, {"local_path_segment_driver", 48}};
   for (std::size_t i = 0; i < std::size(drivers); ++i) {
-    EXPECT_EQ(c.components[7 + i].kind, drivers[i].first);
-    EXPECT_EQ(c.components[7 + i].id, drivers[i].second);
-    EXPECT_EQ(c.components[7 + i].instance, 1);
-    EXPECT_EQ(c.components[7 + i].authority, 1) << drivers[i].first;
+    EXPECT_EQ(c.components[8 + i].kind, drivers[i].first);
+    EXPECT_EQ(c.components[8 + i].id, drivers[i].second);
+    EXPECT_EQ(c.components[8 + i].instance, 1);
+    EXPECT_EQ(c.components[8 + i].authority, 1) << drivers[i].first;
   }
   expect_default_hardware(c);
   // Options written in the default file are their defaults.
