@@ -50,9 +50,12 @@ template <class R>
 Expected<R> decode(CaseContext& c, const ocu::Received& received) {
   R report{};
   if (auto decoded = wire::decode_payload_into(received.payload, report, c.session.options().dialect, kHeaderSize);
-      !decoded)
-    return unexpected(
-        make_error(ErrorCode::malformed, std::string(R::name) + " does not decode: " + decoded.error().message()));
+      !decoded) {
+    std::string why(R::name);
+    why += " does not decode: ";
+    why += decoded.error().message();
+    return unexpected(make_error(ErrorCode::malformed, std::move(why)));
+  }
   return report;
 }
 

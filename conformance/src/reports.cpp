@@ -75,7 +75,8 @@ std::string exchange_text(const std::vector<Exchanged>& exchange) {
            message_name(e.header.command_code) + (e.sent ? " to " : " from ") +
            (e.sent ? e.header.destination : e.header.source).to_string() +
            (e.header.service_connection ? " (SC, sequence " + std::to_string(e.header.sequence) + ")" : "") +
-           (e.second ? std::string(e.sent ? " by " : " to ") + "the second OCU" : "") + ": " + hex(e.payload) + "\n";
+           (e.second ? std::string(e.sent ? " by the second OCU" : " to the second OCU") : std::string()) + ": " +
+           hex(e.payload) + "\n";
   }
   return out;
 }
