@@ -21,7 +21,8 @@ AckTracker::AckTracker(Options options) : options_(options) {
   options_.max_transmissions = std::max<std::uint32_t>(options_.max_transmissions, 1);
 }
 
-TrackResult AckTracker::track(const Header& sent, std::span<const std::uint8_t> payload, rt::TimePoint now) {
+TrackResult AckTracker::track(const Header& sent, std::span<const std::uint8_t> payload, rt::TimePoint now,
+                              std::optional<AckPolicy> policy) {
   if (sent.ack_nak != AckNak::ack_requested) return TrackResult::not_ack_requested;
   const AckKey key = ack_key_of_sent(sent);
   if (pending_.contains(key)) {
@@ -32,7 +33,9 @@ TrackResult AckTracker::track(const Header& sent, std::span<const std::uint8_t> 
     ++counters_.rejected;
     return TrackResult::full;
   }
-  pending_.emplace(key, Pending{sent, {payload.begin(), payload.end()}, 1, now + options_.retransmit_after});
+  AckPolicy chosen = policy.value_or(AckPolicy{options_.retransmit_after, options_.max_transmissions});
+  chosen.max_transmissions = std::max<std::uint32_t>(chosen.max_transmissions, 1);
+  pending_.emplace(key, Pending{sent, {payload.begin(), payload.end()}, chosen, 1, now + chosen.retransmit_after});
   ++counters_.tracked;
   return TrackResult::tracked;
 }
@@ -71,7 +74,7 @@ AckPoll AckTracker::poll(rt::TimePoint now) {
       ++it;
       continue;
     }
-    if (p.transmissions >= options_.max_transmissions) {
+    if (p.transmissions >= p.policy.max_transmissions) {
       due.failed.push_back({it->first, AckOutcome::exhausted, p.transmissions});
       ++counters_.exhausted;
       it = pending_.erase(it);
@@ -79,7 +82,7 @@ AckPoll AckTracker::poll(rt::TimePoint now) {
     }
     ++p.transmissions;
     // From `now`, not from the missed due time: a late poll must not cause a burst.
-    p.next_due = now + options_.retransmit_after;
+    p.next_due = now + p.policy.retransmit_after;
     due.retransmit.push_back({p.header, p.payload, p.transmissions});
     ++counters_.retransmissions;
     ++it;

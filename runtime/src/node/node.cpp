@@ -10,7 +10,8 @@
 namespace jaus::node {
 
 namespace {
-// How often liveness, reassembly timeouts and retransmissions are looked at.
+// How often liveness and reassembly timeouts are looked at (retransmissions
+// have their own timer).
 constexpr rt::Duration kHousekeepingPeriod = std::chrono::milliseconds(100);
 constexpr std::uint8_t kNodeManager = 1;
 constexpr std::uint8_t kCommunicator = 35;
@@ -33,6 +34,7 @@ Node::Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& 
 
 Node::~Node() {
   if (housekeeping_timer_ != rt::kNoTimer) scheduler_.cancel(housekeeping_timer_);
+  if (ack_timer_ != rt::kNoTimer) scheduler_.cancel(ack_timer_);
   components_.clear();  // before the queues they may still send into
 }
 
@@ -200,11 +202,14 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
   }
   // ACK and NAK answer our own ACK-requested messages.
   if (h.ack_nak == AckNak::ack || h.ack_nak == AckNak::nak) {
-    if (auto resolution = acks_.on_reply(h); resolution && resolution->outcome != AckOutcome::acknowledged)
+    const auto resolution = acks_.on_reply(h);
+    if (!resolution) return;
+    if (resolution->outcome != AckOutcome::acknowledged)
       lines_.write("packets to unresolved destinations dropped", rt::LogLevel::warn, [&] {
         return "0x" + wire::detail::hex_u32(h.command_code) + " to " + s.to_string() + " " +
                std::string(to_string(resolution->outcome));
       });
+    resolve(*resolution);  // last: the callback may send, or end the node
     return;
   }
   auto assembled = assembler_.feed(h, packet.payload, now);
@@ -264,9 +269,11 @@ void Node::drain() {
   while (auto message = inbound_.pop()) {
     const Header& h = message->header;
     bool delivered = false;
+    Address first_receiver;  // answers an ACK request: a broadcast's sender matches the ACK against it
     for (std::size_t i = 0; i < components_.size(); ++i) {
       rt::Component* c = components_[i].get();
       if (!h.destination.matches(c->address()) || c->address() == message->exclude) continue;
+      if (!delivered) first_receiver = c->address();
       c->receive(h, message->payload, config_.dialect, message->standing);
       delivered = true;
       ++counters_.delivered;
@@ -283,7 +290,8 @@ void Node::drain() {
                " from " + h.source.to_string();
       });
     }
-    if (h.ack_nak == AckNak::ack_requested && message->exclude == Address{}) answer_ack_request(h, delivered);
+    if (h.ack_nak == AckNak::ack_requested && message->exclude == Address{})
+      answer_ack_request(h, delivered ? std::optional<Address>(first_receiver) : std::nullopt);
     recycle_payload(std::move(message->payload));
   }
 }
@@ -306,10 +314,12 @@ void Node::recycle_payload(std::vector<std::uint8_t> payload) {
   spare_payloads_.push_back(std::move(payload));
 }
 
-void Node::answer_ack_request(const Header& h, bool delivered) {
-  const Address responder = h.destination.is_broadcast()
-                                ? Address{config_.subsystem, config_.node, kNodeManager, 1}
-                                : h.destination;
+void Node::answer_ack_request(const Header& h, std::optional<Address> receiver) {
+  const bool delivered = receiver.has_value();
+  // A broadcast no component here took may be another node's to take: a
+  // NAK from here would settle it at its sender before that node's ACK.
+  if (!delivered && h.destination.is_broadcast()) return;
+  const Address responder = delivered ? *receiver : h.destination;
   const auto reply = ack_reply_for(h, responder, delivered ? Delivery::delivered : Delivery::undeliverable);
   if (!reply) return;
   ++(delivered ? counters_.acks_sent : counters_.naks_sent);
@@ -341,6 +351,7 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
       });
       return;
     }
+    arm_ack_timer();
   }
   if (payload.size() <= kMaxPayloadSize) {
     transmit(h, payload);
@@ -370,6 +381,58 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
     ++counters_.packets_sent;
     link_.transmit(packet.header, std::span(tx_buffer_).first(*size));
   }
+}
+
+void Node::send_acknowledged(const Header& given, std::span<const std::uint8_t> payload, AckPolicy policy,
+                             AckCallback on_resolved) {
+  Header h = given;
+  h.ack_nak = AckNak::ack_requested;
+  if (!h.service_connection) h.sequence = sequences_.take({h.source, h.destination});
+  const AckKey key = ack_key_of_sent(h);
+  if (payload.size() > kMaxPayloadSize) {
+    ++counters_.send_failures;
+    lines_.write("ACK requests on large data sets refused", rt::LogLevel::warn, [&] {
+      return "0x" + wire::detail::hex_u32(h.command_code) + " to " + h.destination.to_string() +
+             " not sent: an ACK answers one packet, not a large data set";
+    });
+    resolve_soon(std::move(on_resolved), {key, AckOutcome::exhausted, 0});
+    return;
+  }
+  const std::size_t here = is_local(h.destination) ? local_matches(h.destination, h.source) : 0;
+  if (!reaches_elsewhere(h.destination)) {
+    if (here > 0) enqueue(Inbound{h, copy_payload(payload), h.source});
+    resolve_soon(std::move(on_resolved), {key, here > 0 ? AckOutcome::acknowledged : AckOutcome::refused, 0});
+    return;
+  }
+  if (acks_.track(h, payload, clock_.now(), policy) != TrackResult::tracked) {
+    ++counters_.send_failures;
+    lines_.write("too many messages awaiting ACK", rt::LogLevel::warn, [&] {
+      return "too many messages awaiting ACK: 0x" + wire::detail::hex_u32(h.command_code) + " to " +
+             h.destination.to_string() + " not sent";
+    });
+    resolve_soon(std::move(on_resolved), {key, AckOutcome::exhausted, 0});
+    return;
+  }
+  if (on_resolved) ack_callbacks_[key] = std::move(on_resolved);
+  if (here > 0) enqueue(Inbound{h, copy_payload(payload), h.source});
+  transmit(h, payload);
+  arm_ack_timer();
+}
+
+void Node::resolve(const AckResolution& resolution) {
+  const auto it = ack_callbacks_.find(resolution.key);
+  if (it == ack_callbacks_.end()) return;
+  // Out of the table before the call: the callback may send again.
+  AckCallback on_resolved = std::move(it->second);
+  ack_callbacks_.erase(it);
+  on_resolved(resolution);
+}
+
+void Node::resolve_soon(AckCallback on_resolved, const AckResolution& resolution) {
+  if (!on_resolved) return;
+  scheduler_.post([alive = std::weak_ptr<const char>(alive_), on_resolved = std::move(on_resolved), resolution] {
+    if (alive.lock()) on_resolved(resolution);
+  });
 }
 
 void Node::transmit(const Header& header, std::span<const std::uint8_t> payload) {
@@ -422,14 +485,36 @@ void Node::housekeeping() {
     });
   }
   if (assembler_.sets_in_progress() == 0) set_standings_.clear();  // sets discarded on the way
-  auto poll = acks_.poll(now);
+  schedule_housekeeping();
+}
+
+void Node::arm_ack_timer() {
+  const auto deadline = acks_.next_deadline();
+  if (!deadline) return;
+  if (ack_timer_ != rt::kNoTimer) {
+    if (ack_timer_due_ <= *deadline) return;
+    scheduler_.cancel(ack_timer_);
+  }
+  ack_timer_due_ = *deadline;
+  ack_timer_ = scheduler_.call_at(*deadline, [this] {
+    ack_timer_ = rt::kNoTimer;
+    service_acks();
+  });
+}
+
+void Node::service_acks() {
+  auto poll = acks_.poll(clock_.now());
   for (const auto& again : poll.retransmit) transmit(again.header, again.payload);
-  for (const auto& failed : poll.failed)
+  const std::weak_ptr<const char> alive = alive_;
+  for (const auto& failed : poll.failed) {
     lines_.write({"messages never acknowledged", rt::kNoteworthyBurst}, rt::LogLevel::warn, [&] {
       return "no ACK for 0x" + wire::detail::hex_u32(failed.key.command_code) + " to " + failed.key.peer.to_string() +
              " after " + std::to_string(failed.transmissions) + " transmissions";
     });
-  schedule_housekeeping();
+    resolve(failed);
+    if (alive.expired()) return;  // a callback ended the node
+  }
+  arm_ack_timer();
 }
 
 }  // namespace jaus::node

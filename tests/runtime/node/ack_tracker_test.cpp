@@ -201,6 +201,39 @@ TEST(AckTracker, SchedulesSeveralMessagesIndependently) {
   EXPECT_EQ(tracker.pending(), 1u);
 }
 
+TEST(AckTracker, AMessageMayCarryItsOwnPolicy) {
+  rt::VirtualTime time;
+  AckTracker tracker;  // the node-wide default stays 3 transmissions, 1 s apart
+  tracker.track(wrench_effort(1), {}, time.now(), AckPolicy{50ms, 4});
+  tracker.track(wrench_effort(2), {}, time.now());
+  EXPECT_EQ(tracker.next_deadline(), time.now() + 50ms);
+  std::vector<std::uint32_t> fast_transmissions;
+  for (int step = 1; step <= 4; ++step) {
+    time.advance(50ms);
+    const auto due = tracker.poll(time.now());
+    for (const auto& r : due.retransmit) fast_transmissions.push_back(r.transmission);
+    if (step < 4) {
+      EXPECT_TRUE(due.failed.empty());
+    } else {
+      ASSERT_EQ(due.failed.size(), 1u);  // 50 ms after the fourth transmission
+      EXPECT_EQ(due.failed[0].key.sequence, 1);
+      EXPECT_EQ(due.failed[0].transmissions, 4u);
+    }
+  }
+  EXPECT_EQ(fast_transmissions, (std::vector<std::uint32_t>{2, 3, 4}));
+  EXPECT_EQ(tracker.next_deadline(), rt::TimePoint{} + 1s);  // the default one, untouched
+  EXPECT_EQ(tracker.pending(), 1u);
+}
+
+TEST(AckTracker, APolicyOfZeroTransmissionsMeansOne) {
+  AckTracker tracker;
+  tracker.track(wrench_effort(1), {}, rt::TimePoint{}, AckPolicy{50ms, 0});
+  const auto due = tracker.poll(rt::TimePoint{} + 50ms);
+  EXPECT_TRUE(due.retransmit.empty());
+  ASSERT_EQ(due.failed.size(), 1u);
+  EXPECT_EQ(due.failed[0].transmissions, 1u);
+}
+
 TEST(AckTracker, OnlyAckRequestsAreTrackedAndOnlyAsManyAsAllowed) {
   AckTracker tracker({.max_pending = 2});
   Header plain = wrench_effort(1);

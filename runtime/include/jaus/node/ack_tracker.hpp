@@ -5,7 +5,8 @@
 //
 // Defaults: 3 transmissions 1 s apart, failure 1 s after the last one, so a
 // silent peer is given up after 3 s, the time after which the notes treat a
-// component as gone. Retransmissions repeat the packet exactly (same
+// component as gone. A message may carry its own AckPolicy instead (commands
+// that must arrive over a lossy link: every 50 ms, 10 times; issue 32). Retransmissions repeat the packet exactly (same
 // sequence number, which the ACK echoes, and same data flag: a flag of 4
 // would hide which part of a large data set the packet is).
 #pragma once
@@ -54,6 +55,14 @@ enum class TrackResult : std::uint8_t {
   full,               // max_pending reached: the caller should fail the send
 };
 
+// How one message is retransmitted: every `retransmit_after` until
+// answered, at most `max_transmissions` times (the first one included, at
+// least 1), given up `retransmit_after` after the last one.
+struct AckPolicy {
+  rt::Duration retransmit_after = std::chrono::seconds(1);
+  std::uint32_t max_transmissions = 3;  // first one included
+};
+
 // A message to send again, exactly as first sent.
 struct Retransmission {
   Header header;
@@ -87,8 +96,10 @@ class AckTracker {
   AckTracker() : AckTracker(Options{}) {}
   explicit AckTracker(Options options);
 
-  // Records a message just sent at `now` (its payload is copied for retransmission).
-  TrackResult track(const Header& sent, std::span<const std::uint8_t> payload, rt::TimePoint now);
+  // Records a message just sent at `now` (its payload is copied for
+  // retransmission), retransmitted per `policy`, or per the Options when none.
+  TrackResult track(const Header& sent, std::span<const std::uint8_t> payload, rt::TimePoint now,
+                    std::optional<AckPolicy> policy = {});
 
   // Settles the pending message a received ACK or NAK answers; nothing for
   // other messages and for answers to nothing pending (counted).
@@ -107,6 +118,7 @@ class AckTracker {
   struct Pending {
     Header header;
     std::vector<std::uint8_t> payload;
+    AckPolicy policy;
     std::uint32_t transmissions = 1;
     rt::TimePoint next_due{};
   };

@@ -9,17 +9,22 @@
 // the sender's node (full: a flood of new sources), since nothing would then
 // end the state its requests leave (issue 28; component.hpp says who may do
 // what). An ACK request is answered with ACK when some
-// local component took the message and NAK when none could.
+// local component took the message (from that component, so that the sender
+// of a broadcast can match it) and NAK when none could (a broadcast nobody
+// here took is not answered: another node may take it).
 // From a local component (send): the node stamps the sequence number (per
 // source and destination; service connection reports keep their own), splits
 // payloads over 4080 bytes into a large data set, delivers locally what is
 // addressed here and transmits what is addressed elsewhere, and retransmits
-// its own ACK-requested messages a bounded number of times.
+// its own ACK-requested messages a bounded number of times: per the node's
+// AckTracker::Options, or per message (send_acknowledged: commands that must
+// arrive over a lossy link), on a timer armed at the tracker's next deadline.
 #pragma once
 
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -74,6 +79,10 @@ struct NodeCounters {
   std::uint64_t send_failures = 0;       // a local message the node could not send
 };
 
+// How a message sent with send_acknowledged ended (AckResolution::outcome,
+// transmissions = how often it crossed the network, 0 when it never did).
+using AckCallback = std::function<void(const AckResolution&)>;
+
 class Node final : public rt::Outbox, public rt::NodeDirectory {
  public:
   Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& link, rt::LogFn log = {});
@@ -111,6 +120,25 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
 
   // rt::Outbox: a message from a local component.
   void send(const Header& header, std::span<const std::uint8_t> payload) override;
+  // Sends a message from a local component with an ACK request (the
+  // header's ack_nak is set here), retransmitted per `policy` until answered.
+  // `on_resolved` (may be empty) is called exactly once, never during this
+  // call and never after the node is destroyed; it may send again:
+  // - acknowledged / refused: the destination answered ACK / NAK. A
+  //   broadcast destination is settled by the first node that answers;
+  // - exhausted: every transmission went unanswered (called
+  //   policy.retransmit_after after the last one);
+  // - posted at once, transmissions 0, when nothing crosses a network:
+  //   acknowledged when the destination is on this node and some component
+  //   here matches it (local delivery is immediate and cannot be lost),
+  //   refused when none does; exhausted, nothing sent, when the message
+  //   cannot be tracked: more than 4080 bytes (a large data set; an ACK
+  //   answers one packet) or max_pending messages already awaiting an
+  //   answer (both counted as send_failures).
+  // A destination both here and elsewhere (a broadcast) is delivered here
+  // and settled by the network's first answer.
+  void send_acknowledged(const Header& header, std::span<const std::uint8_t> payload, AckPolicy policy,
+                         AckCallback on_resolved);
 
   // rt::NodeDirectory.
   std::vector<const rt::Component*> local_components() const override;
@@ -141,7 +169,15 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   std::vector<std::uint8_t> copy_payload(std::span<const std::uint8_t> payload);
   void recycle_payload(std::vector<std::uint8_t> payload);
   void transmit(const Header& header, std::span<const std::uint8_t> payload);
-  void answer_ack_request(const Header& header, bool delivered);
+  // ACK from `receiver`, the first local component that took the message;
+  // NAK when none did (not for a broadcast: another node may take it).
+  void answer_ack_request(const Header& header, std::optional<Address> receiver);
+  // Retransmissions and give-ups are timed by the tracker's next deadline,
+  // not by the housekeeping period: a 50 ms policy retransmits 50 ms later.
+  void arm_ack_timer();
+  void service_acks();
+  void resolve(const AckResolution& resolution);
+  void resolve_soon(AckCallback on_resolved, const AckResolution& resolution);
   void subsystems_changed();
   void schedule_housekeeping();
   void housekeeping();
@@ -173,6 +209,9 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   static constexpr std::size_t kMaxSetStandings = 64;
   std::map<LargeDataSetKey, rt::SenderStanding> set_standings_;
   AckTracker acks_;
+  std::map<AckKey, AckCallback> ack_callbacks_;  // of send_acknowledged messages still pending
+  rt::TimerId ack_timer_ = rt::kNoTimer;
+  rt::TimePoint ack_timer_due_{};
   LivenessTable liveness_;
   SequenceCounters sequences_;
   NodeCounters counters_;
