@@ -18,6 +18,7 @@ packages=(
   groff-base            # tests/package renders the generated man pages (groff -ww: no warning)
   lintian               # tests/package checks the jaus-node .deb with Debian's package checker
   tshark                # tests/wireshark runs the generated Wireshark dissector in tshark
+  iproute2 nftables     # tests/network: network namespaces, a bridge, veths (ip) and packet loss (nft)
 )
 
 missing=()

@@ -26,11 +26,13 @@ class ClearpathSimulator {
   using Json = nlohmann::json;
   enum class Line { udp, pty };
 
-  // `address` is the UDP address (port 7300) for Line::udp.
+  // `address` is the UDP address (port 7300) for Line::udp. `run_in` goes
+  // before the program (e.g. {"/usr/sbin/ip", "netns", "exec", NS}).
   ClearpathSimulator(Line line, const std::filesystem::path& dir, const std::string& name, std::string address,
-                     std::vector<std::string> more = {})
+                     std::vector<std::string> more = {}, std::vector<std::string> run_in = {})
       : line_(line), address_(std::move(address)) {
-    std::vector<std::string> args{CLEARPATH_SIM_PATH, "--status-every", "0.1", "--events", "--log-level", "warn"};
+    std::vector<std::string> args = std::move(run_in);
+    args.insert(args.end(), {CLEARPATH_SIM_PATH, "--status-every", "0.1", "--events", "--log-level", "warn"});
     if (line == Line::udp) args.insert(args.end(), {"--udp", address_ + ":7300"});
     else args.push_back("--pty");
     args.insert(args.end(), more.begin(), more.end());

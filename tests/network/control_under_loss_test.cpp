@@ -1,0 +1,98 @@
+// Control of veh1's primitive driver from the `ocu` namespace with 10 % of
+// the UDP datagrams on the OCU's link dropped each way
+// (JAUS_NETWORK_LOSS_PERCENT=30 reruns it at 30 %): an in-process OCU holds
+// the driver for 60 s sending Set Wrench Effort at 10 Hz (ControlHold::
+// send_while_held) and the simulator's true state shows the vehicle moving;
+// then 100 Set Emergency sent with ocu::send_must_arrive (ACK requested,
+// retransmitted until ACKed): each is ACKed, the driver is then in
+// Emergency, and the ACK times' p99 is at most 200 ms.
+#include <cmath>
+#include <cstdlib>
+
+#include "jaus/ocu/must_arrive.hpp"
+#include "network_test.hpp"
+#include "ocu_helpers.hpp"
+
+namespace jaus::test::network {
+namespace {
+
+using jaus::msg::PrimaryStatus;
+using Hold = jaus::ocu::ControlHold;
+
+const jaus::Address kDriver{1, 1, 33, 1};
+constexpr std::uint8_t kAuthority = 10;  // above the vector and waypoint drivers' 1
+constexpr auto kHoldFor = 60s;
+constexpr int kEmergencies = 100;
+constexpr double kEmergencyAckP99BoundMs = 200;
+
+int loss_percent() {
+  const char* text = std::getenv("JAUS_NETWORK_LOSS_PERCENT");
+  return text ? std::atoi(text) : 10;
+}
+
+class ControlUnderLoss : public NetworkTest {};
+
+TEST_F(ControlUnderLoss, AHeldDriverDrivesFor60sAndSetEmergencyIsAckedWithin200msAtP99) {
+  const int loss = loss_percent();
+  start_simulator();
+  start_node(veh1_spec(Finding::alone));
+  ASSERT_TRUE(wait_for_status("1.1.33.1", kVeh1, "ready", 30s)) << node(kVeh1).output();
+  LinkLoss link(*lab, kOcu);
+  auto lossy = link.set_loss(loss);
+  ASSERT_TRUE(lossy) << lossy.error().message();
+  auto* session = open_ocu({kVeh1});
+  ASSERT_NE(session, nullptr);
+
+  // 60 s of driving: the hold must not end early, and the wheels turn.
+  {
+    Hold hold(*session, kDriver, kAuthority);
+    ASSERT_TRUE(take_control(hold)) << "control of 1.1.33.1 not granted at " << loss << " % loss";
+    hold.send_while_held(wrench_effort(60), 100ms);
+    const auto states_before = simulator->states().size();
+    const auto started = Clock::now();
+    const Hold::End end = hold.hold(kHoldFor);
+    const double held_s = seconds_since(started);
+    hold.release();
+    EXPECT_EQ(end, Hold::End::time_up) << "the hold ended after " << held_s << " s";
+    const auto states = simulator->states();
+    // From 3 s in (the vehicle accelerating) to the end of the hold.
+    std::size_t moving = 0;
+    std::size_t counted = 0;
+    for (std::size_t i = states_before + 30; i < states.size(); ++i, ++counted)
+      moving += ClearpathSimulator::moving(states[i]) ? 1 : 0;
+    ASSERT_GT(counted, 400u) << "the simulator printed too few states";
+    const double moving_percent = 100.0 * static_cast<double>(moving) / static_cast<double>(counted);
+    std::cout << "control at " << loss << " % loss each way: held " << held_s << " s, " << hold.sent_while_held()
+              << " Set Wrench Effort sent, vehicle moving in " << moving_percent << " % of the simulator's states\n";
+    EXPECT_GE(moving_percent, loss <= 10 ? 95.0 : 80.0);
+  }
+
+  // Stopped (the release stopped it) before the emergencies.
+  ASSERT_TRUE(simulator->wait_for(ClearpathSimulator::stopped, 5s));
+  std::vector<double> ack_ms;
+  int retransmitted = 0;
+  for (int i = 0; i < kEmergencies; ++i) {
+    const auto r = jaus::ocu::send_must_arrive(*session, kDriver, jaus::msg::SetEmergency{{1}},
+                                               jaus::priority::kSafetyCritical);
+    ASSERT_EQ(r.outcome, jaus::ocu::Arrival::acknowledged)
+        << "Set Emergency " << i << ": " << jaus::ocu::to_string(r.outcome) << " after " << r.transmissions
+        << " transmissions";
+    ack_ms.push_back(milliseconds(r.elapsed));
+    retransmitted += r.transmissions > 1 ? 1 : 0;
+    ASSERT_EQ(primary_status(*session, kDriver), PrimaryStatus::emergency) << "after Set Emergency " << i;
+    const auto cleared = jaus::ocu::send_must_arrive(*session, kDriver, jaus::msg::ClearEmergency{{1}},
+                                                     jaus::priority::kSafetyCritical);
+    ASSERT_EQ(cleared.outcome, jaus::ocu::Arrival::acknowledged) << "Clear Emergency " << i;
+    ASSERT_TRUE(wait_for_primary_status(*session, kDriver, PrimaryStatus::ready, 5000ms)) << "after Clear Emergency " << i;
+  }
+  const double p50 = percentile(ack_ms, 50);
+  const double p99 = percentile(ack_ms, 99);
+  std::cout << "Set Emergency at " << loss << " % loss each way, " << kEmergencies << " tries: ACK p50 " << p50
+            << " ms, p99 " << p99 << " ms, max " << percentile(ack_ms, 100) << " ms, " << retransmitted
+            << " needed a retransmission\n";
+  RecordProperty("emergency_ack_p99_ms", std::to_string(p99));
+  EXPECT_LE(p99, kEmergencyAckP99BoundMs);
+}
+
+}  // namespace
+}  // namespace jaus::test::network
