@@ -12,9 +12,14 @@
 //
 // The network outlives its links, and the nodes and sessions they deliver to
 // disconnect (on_receive({})) or outlive the packets still in flight.
+//
+// A lossy radio link: link.set_loss(0.1, 0.1, seed) drops 10 % of what the
+// link sends and 10 % of what reaches it, at random but the same for a seed.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <random>
 #include <functional>
 #include <memory>
 #include <span>
@@ -48,6 +53,19 @@ class MemoryLink final : public node::Link {
   void set_connected(bool connected) { connected_ = connected; }
   bool connected() const { return connected_; }
 
+  // Random loss, reproducible: each packet this link transmits is lost with
+  // probability `outbound`, each that reaches it with `inbound` (clamped to
+  // 0..1), drawn from a std::mt19937 seeded with `seed` (its raw output,
+  // which the standard fixes: the same drops with every compiler). A packet
+  // lost outbound reaches no link (the tap still sees it: the node sent it).
+  void set_loss(double outbound, double inbound, std::uint32_t seed) {
+    outbound_loss_ = std::clamp(outbound, 0.0, 1.0);
+    inbound_loss_ = std::clamp(inbound, 0.0, 1.0);
+    random_.seed(seed);
+  }
+  // Packets dropped by set_loss, both ways (not those of a pulled cable).
+  std::uint64_t packets_lost() const { return lost_; }
+
   std::uint8_t subsystem() const { return subsystem_; }
   std::uint8_t node() const { return node_; }
   std::uint64_t packets_sent() const { return sent_; }
@@ -66,6 +84,7 @@ class MemoryLink final : public node::Link {
       : network_(network), subsystem_(subsystem), node_(node) {}
   void arrive(std::span<const std::uint8_t> packet) {
     if (!connected_ || !receiver_) return;
+    if (lost(inbound_loss_)) return;
     ++received_;
     receiver_(packet);
   }
@@ -74,10 +93,22 @@ class MemoryLink final : public node::Link {
            (destination.node == node_ || destination.node == Address::kBroadcast);
   }
 
+  bool lost(double probability) {
+    if (probability <= 0) return false;
+    // mt19937 draws 32-bit values: lost when below probability * 2^32.
+    const bool dropped = static_cast<double>(random_()) < probability * 4294967296.0;
+    lost_ += dropped;
+    return dropped;
+  }
+
   MemoryNetwork& network_;
   std::uint8_t subsystem_;
   std::uint8_t node_;
   bool connected_ = true;
+  double outbound_loss_ = 0;
+  double inbound_loss_ = 0;
+  std::mt19937 random_;
+  std::uint64_t lost_ = 0;
   Receiver receiver_;
   Tap tap_;
   std::uint64_t sent_ = 0;
@@ -129,6 +160,7 @@ inline void MemoryLink::transmit(const Header& header, std::span<const std::uint
   if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
+  if (lost(outbound_loss_)) return;
   network_.carry(*this, header, packet);
 }
 
@@ -136,6 +168,7 @@ inline void MemoryLink::transmit_to_every_link(const Header& header, std::span<c
   if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
+  if (lost(outbound_loss_)) return;
   network_.carry(*this, header, packet, true);
 }
 
