@@ -26,6 +26,7 @@ Node::Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& 
       inbound_(PriorityQueue<Inbound>::Options{config.inbound_queue_capacity}),
       assembler_(config.large_data_sets),
       acks_(config.acks),
+      duplicates_(config.duplicates),
       liveness_(config.liveness),
       sequences_(config.sequences),
       lines_(clock_, scheduler_, [this](rt::LogLevel level, const std::string& text) { this->log(level, text); }) {
@@ -149,6 +150,12 @@ std::size_t Node::local_matches(const Address& destination, const Address& exclu
   return n;
 }
 
+std::optional<Address> Node::first_local_match(const Address& destination) const {
+  for (const auto& c : components_)
+    if (destination.matches(c->address())) return c->address();
+  return std::nullopt;
+}
+
 // ---- from the network ------------------------------------------------------------
 
 void Node::receive_bytes(std::span<const std::uint8_t> bytes) {
@@ -268,6 +275,16 @@ void Node::drain() {
   // Highest priority first; safety-critical (12-15) before everything queued.
   while (auto message = inbound_.pop()) {
     const Header& h = message->header;
+    // Checked here, not on arrival: a first copy the full queue dropped was
+    // never delivered, so its retransmission is not a duplicate; and of two
+    // copies queued together only the first acts.
+    if (message->exclude == Address{} &&
+        duplicates_.check(h, message->payload, clock_.now()) == DuplicateVerdict::duplicate) {
+      ++counters_.duplicates_filtered;
+      answer_ack_request(h, first_local_match(h.destination));  // the ACK of the first copy was lost
+      recycle_payload(std::move(message->payload));
+      continue;
+    }
     bool delivered = false;
     Address first_receiver;  // answers an ACK request: a broadcast's sender matches the ACK against it
     for (std::size_t i = 0; i < components_.size(); ++i) {

@@ -11,7 +11,9 @@
 // what). An ACK request is answered with ACK when some
 // local component took the message (from that component, so that the sender
 // of a broadcast can match it) and NAK when none could (a broadcast nobody
-// here took is not answered: another node may take it).
+// here took is not answered: another node may take it). A retransmitted
+// copy of an ACK-requested message already delivered is ACKed again but not
+// delivered again, stops excepted (duplicate_filter.hpp).
 // From a local component (send): the node stamps the sequence number (per
 // source and destination; service connection reports keep their own), splits
 // payloads over 4080 bytes into a large data set, delivers locally what is
@@ -29,6 +31,7 @@
 #include <vector>
 
 #include "jaus/node/ack_tracker.hpp"
+#include "jaus/node/duplicate_filter.hpp"
 #include "jaus/node/large_data_set_assembler.hpp"
 #include "jaus/node/liveness_table.hpp"
 #include "jaus/node/priority_queue.hpp"
@@ -57,6 +60,7 @@ struct NodeConfig {
   std::size_t inbound_queue_capacity = 1024;
   LargeDataSetAssembler::Options large_data_sets;
   AckTracker::Options acks;
+  DuplicateFilter::Options duplicates;
   LivenessTable::Options liveness;
   SequenceCounters::Options sequences;
 };
@@ -77,6 +81,9 @@ struct NodeCounters {
   std::uint64_t acks_sent = 0;
   std::uint64_t naks_sent = 0;
   std::uint64_t send_failures = 0;       // a local message the node could not send
+  // Retransmitted copies of ACK-requested messages already delivered: ACKed
+  // again, not delivered again (DuplicateFilter; stops are always delivered).
+  std::uint64_t duplicates_filtered = 0;
 };
 
 // How a message sent with send_acknowledged ended (AckResolution::outcome,
@@ -150,6 +157,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   const LivenessTable& liveness() const { return liveness_; }
   const LargeDataSetAssembler& assembler() const { return assembler_; }
   const AckTracker& acks() const { return acks_; }
+  const DuplicateFilter& duplicates() const { return duplicates_; }
 
  private:
   struct Inbound {
@@ -162,6 +170,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   bool is_local(const Address& destination) const;
   bool reaches_elsewhere(const Address& destination) const;
   std::size_t local_matches(const Address& destination, const Address& exclude) const;
+  std::optional<Address> first_local_match(const Address& destination) const;
   void enqueue(Inbound message);
   void drain();
   // Payload buffers of dispatched messages are used again for the next ones:
@@ -209,6 +218,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   static constexpr std::size_t kMaxSetStandings = 64;
   std::map<LargeDataSetKey, rt::SenderStanding> set_standings_;
   AckTracker acks_;
+  DuplicateFilter duplicates_;
   std::map<AckKey, AckCallback> ack_callbacks_;  // of send_acknowledged messages still pending
   rt::TimerId ack_timer_ = rt::kNoTimer;
   rt::TimePoint ack_timer_due_{};
