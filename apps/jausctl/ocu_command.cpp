@@ -28,7 +28,8 @@ using ocu::Parsed;
 
 // What every OCU command takes, as written on the command line.
 struct CommonOptions {
-  std::vector<std::string> to{"127.0.0.1:3794"};
+  std::vector<std::string> to;  // none: ocu::kDefaultPeer, or only the group with --multicast
+  std::string multicast;
   std::string bind = "0.0.0.0:0";
   std::string framing = "opc";
   std::string as;  // empty: a fresh ID for this run (fresh_ocu_address)
@@ -39,7 +40,10 @@ struct CommonOptions {
 
 void add_common_options(CLI::App* cmd, CommonOptions& c) {
   cmd->add_option("--to", c.to, "the node to talk to, HOST[:PORT] (a static peer; repeat for several nodes)")->type_name("HOST[:PORT]")
-      ->capture_default_str();
+      ->default_str(std::string(ocu::kDefaultPeer) + ", none with --multicast");
+  cmd->add_option("--multicast", c.multicast,
+                  "reach nodes through this multicast group too (jausd's transport.multicast, e.g. 224.1.0.1)")
+      ->type_name("GROUP[:PORT]");
   cmd->add_option("--bind", c.bind,
                   "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")->type_name("ADDR[:PORT]")
       ->capture_default_str();
@@ -89,12 +93,10 @@ jaus::rt::LogFn stderr_log(int verbosity) {
 
 Parsed<Common> parse_common(const CommonOptions& c) {
   Common out;
-  out.session.to.clear();
-  for (const auto& text : c.to) {
-    auto to = ocu::parse_endpoint_text(text, jaus::transport::kJausPort, false);
-    if (!to) return ocu::invalid("--to: " + to.error().message());
-    out.session.to.push_back(*to);
-  }
+  auto peers = ocu::parse_peers(c.to, c.multicast);
+  if (!peers) return jaus::unexpected(peers.error());
+  out.session.to = std::move(peers->to);
+  out.session.multicast = peers->multicast;
   auto bind = ocu::parse_endpoint_text(c.bind, 0, true);
   if (!bind) return ocu::invalid("--bind: " + bind.error().message());
   auto framing = ocu::parse_framing(c.framing);
@@ -388,7 +390,8 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
 
   // emergency
   auto action = std::make_shared<std::string>();
-  auto* emergency = app.add_subcommand("emergency", "Set or clear the emergency (Stop) condition of ADDR");
+  auto* emergency = app.add_subcommand(
+      "emergency", "Set or clear the emergency (Stop) condition of ADDR; repeated every 50 ms until ACKed");
   emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->type_name("S.N.C.I")->required();
   emergency
       ->add_option("ACTION", *action,

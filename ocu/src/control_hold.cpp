@@ -30,9 +30,9 @@ ControlHold::~ControlHold() {
 
 ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
   RequestResult r;
-  auto reply = session_.request(target_, jaus::msg::RequestComponentControl{{authority_}},
-                                {jaus::msg::ConfirmComponentControl::code, jaus::msg::RejectComponentControl::code},
-                                timeout);
+  auto reply = request_resending(session_, target_, jaus::msg::RequestComponentControl{{authority_}},
+                                 {jaus::msg::ConfirmComponentControl::code, jaus::msg::RejectComponentControl::code},
+                                 timeout);
   if (!reply) {
     r.outcome = session_.interrupted() ? Outcome::interrupted : Outcome::no_reply;
     r.error = reply.error();
@@ -62,6 +62,13 @@ ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
     if (m.header.source != target_) return;
     if (m.header.command_code == jaus::msg::RejectComponentControl::code) rejected_ = true;
     if (m.header.command_code == jaus::msg::QueryComponentStatus::code) ++liveness_checks_;
+    // The answer to a keepalive: the state as fresh as a report's (and the
+    // first one sooner when the service connection's creation was lost).
+    if (m.header.command_code == jaus::msg::ReportComponentStatus::code) {
+      jaus::msg::ReportComponentStatus report{};
+      if (jaus::wire::decode_payload_into(m.payload, report, session_.options().dialect, jaus::kHeaderSize))
+        heard_status(report.primary_status);
+    }
   });
   watch_status();
   return r;
@@ -80,14 +87,18 @@ void ControlHold::watch_status() {
   status_sc_ = session_.component().subscribe<jaus::msg::ReportComponentStatus>(
       target_, status_rate_hz(), 0,
       [this](const jaus::Header&, const jaus::msg::ReportComponentStatus& report) {
-        status_heard_ = session_.clock().now();
-        const std::uint8_t state = report.primary_status & 0x0F;
-        if (state_ == state) return;
-        const std::string text = state_ ? primary_status_text(*state_) + " -> " + primary_status_text(state)
-                                        : primary_status_text(state);
-        state_ = state;
-        if (on_state_) on_state_(text);
+        heard_status(report.primary_status);
       });
+}
+
+void ControlHold::heard_status(std::uint8_t primary_status) {
+  status_heard_ = session_.clock().now();
+  const std::uint8_t state = primary_status & 0x0F;
+  if (state_ == state) return;
+  const std::string text =
+      state_ ? primary_status_text(*state_) + " -> " + primary_status_text(state) : primary_status_text(state);
+  state_ = state;
+  if (on_state_) on_state_(text);
 }
 
 void ControlHold::stop_watching_status() {
@@ -116,6 +127,7 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
     if (now >= until) return End::time_up;
     auto slice = std::min<jaus::rt::Duration>(until - now, kHoldSlice);
     if (repeated_) slice = std::min<jaus::rt::Duration>(slice, repeat(now) - now);
+    slice = std::min<jaus::rt::Duration>(slice, keep_alive(now) - now);
     // Only reports that came can stop: a component that does not provide its
     // status (refused, or a peer without service connections) is held without
     // this check. (The connection's own `confirmed` is reset while the client
@@ -148,11 +160,21 @@ jaus::rt::TimePoint ControlHold::repeat(jaus::rt::TimePoint now) {
     header.destination = target_;
     session_.send_raw(header, repeated_->payload);
     ++sent_while_held_;
+    last_sent_ = now;
     // From the ideal times, so a late wake-up does not slow the rate down.
     next_send_ += repeat_period_;
     if (next_send_ < now) next_send_ = now + repeat_period_;
   }
   return next_send_;
+}
+
+jaus::rt::TimePoint ControlHold::keep_alive(jaus::rt::TimePoint now) {
+  if (now - last_sent_ >= kKeepalive) {
+    session_.send(target_, jaus::msg::QueryComponentStatus{});
+    ++keepalives_sent_;
+    last_sent_ = now;
+  }
+  return last_sent_ + kKeepalive;
 }
 
 void ControlHold::send_while_held(PreparedMessage message, jaus::rt::Duration period, WhenNotReady when_not_ready,
@@ -168,14 +190,19 @@ void ControlHold::send_while_held(PreparedMessage message, jaus::rt::Duration pe
   }
 }
 
-void ControlHold::release() {
-  session_.send(target_, jaus::msg::ReleaseComponentControl{});
+ArrivalResult ControlHold::release() {
   stop_watching_status();
+  std::vector<std::uint8_t> payload(jaus::kMaxPayloadSize);
+  const auto size = jaus::wire::encode_payload(jaus::msg::ReleaseComponentControl{}, payload);
+  if (!size) return ArrivalResult{};
+  jaus::Header header;
+  header.command_code = jaus::msg::ReleaseComponentControl::code;
+  return send_must_arrive_through_stop(session_, target_, header, std::span(payload).first(*size), kReleasePolicy);
 }
 
 std::optional<jaus::msg::ReportComponentControl> ControlHold::who_has_control(jaus::rt::Duration timeout) {
-  auto reply = session_.request(target_, jaus::msg::QueryComponentControl{},
-                                {jaus::msg::ReportComponentControl::code}, timeout);
+  auto reply = request_resending(session_, target_, jaus::msg::QueryComponentControl{},
+                                 {jaus::msg::ReportComponentControl::code}, timeout);
   if (!reply) return std::nullopt;
   jaus::msg::ReportComponentControl report{};
   if (!jaus::wire::decode_payload_into(reply->payload, report, session_.options().dialect, jaus::kHeaderSize))

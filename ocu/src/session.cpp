@@ -63,6 +63,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.node.dialect = o.dialect;
   config.link.bind = o.bind;
   config.link.framing = o.framing;
+  config.link.multicast = o.multicast;
   for (const auto& peer : o.to) config.link.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
   config.link.relay = false;  // messages end at the OCU
   config.settings.identity = ocu_identity();
@@ -175,7 +176,10 @@ void OcuSession::observe(const jaus::PacketView& packet) {
     if (const auto it = watchers_.find(id); it != watchers_.end()) it->second(h);
   // Messages the runtime consumes never reach the component's inbox; the
   // caller still wants to see them (a Confirm Service Connection after `send`).
-  if (h.data_flag == jaus::DataFlag::single && h.destination.matches(options_.self) &&
+  // (An ACK or NAK carries the code of what it answers, and no message: the
+  // node settles it, must_arrive.hpp.)
+  const bool ack_or_nak = h.ack_nak == jaus::AckNak::ack || h.ack_nak == jaus::AckNak::nak;
+  if (h.data_flag == jaus::DataFlag::single && !ack_or_nak && h.destination.matches(options_.self) &&
       component_->consumes(h.command_code))
     deliver(Received{h, {packet.payload.begin(), packet.payload.end()}});
 }
@@ -188,10 +192,18 @@ void OcuSession::deliver(const Received& message) {
 }
 
 bool OcuSession::run_until(const std::function<bool()>& done, jaus::rt::Duration limit) {
+  return run(done, limit, false);
+}
+
+bool OcuSession::run_cleanup_until(const std::function<bool()>& done, jaus::rt::Duration limit) {
+  return run(done, std::min(limit, kLongestCleanup), true);
+}
+
+bool OcuSession::run(const std::function<bool()>& done, jaus::rt::Duration limit, bool through_stop) {
   const auto deadline = clock().now() + limit;
   for (;;) {
     if (done()) return true;
-    if (interrupted()) return false;
+    if (interrupted() && !through_stop) return false;
     const auto now = clock().now();
     if (now >= deadline) return false;
     if (!io_) {

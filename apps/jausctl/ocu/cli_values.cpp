@@ -108,6 +108,31 @@ Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text,
   return jaus::transport::Ipv4Endpoint{*address, static_cast<std::uint16_t>(port)};
 }
 
+Parsed<jaus::transport::Ipv4Endpoint> parse_multicast_group(std::string_view text) {
+  auto group = parse_endpoint_text(text, jaus::transport::kJausPort, false);
+  if (!group) return jaus::unexpected(group.error());
+  if (!group->is_multicast())
+    return invalid("bad multicast group '" + std::string(text) + "': expected 224.0.0.0..239.255.255.255[:port]");
+  return *group;
+}
+
+Parsed<PeerOptions> parse_peers(const std::vector<std::string>& to, std::string_view multicast) {
+  PeerOptions peers;
+  if (!multicast.empty()) {
+    auto group = parse_multicast_group(multicast);
+    if (!group) return invalid("--multicast: " + group.error().message());
+    peers.multicast = *group;
+  }
+  std::vector<std::string> texts = to;
+  if (texts.empty() && !peers.multicast) texts.emplace_back(kDefaultPeer);
+  for (const auto& text : texts) {
+    auto endpoint = parse_endpoint_text(text, jaus::transport::kJausPort, false);
+    if (!endpoint) return invalid("--to: " + endpoint.error().message());
+    peers.to.push_back(*endpoint);
+  }
+  return peers;
+}
+
 Parsed<jaus::transport::Framing> parse_framing(std::string_view text) {
   if (text == "opc") return jaus::transport::Framing::opc;
   if (text == "judp") return jaus::transport::Framing::judp;

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "jaus/core/address.hpp"
 #include "jaus/base/expected.hpp"
@@ -51,6 +53,19 @@ Parsed<jaus::rt::Duration> parse_seconds(std::string_view text);
 // is accepted only where `allow_port_zero` (a bind address, not a peer).
 Parsed<jaus::transport::Ipv4Endpoint> parse_endpoint_text(std::string_view text, std::uint16_t default_port,
                                                           bool allow_port_zero);
+
+// "a.b.c.d[:port]", a multicast group (224.0.0.0/4); a missing port is 3794.
+Parsed<jaus::transport::Ipv4Endpoint> parse_multicast_group(std::string_view text);
+
+// Where an OCU command reaches its nodes: the static peers (--to) and the
+// multicast group (--multicast). No --to means 127.0.0.1:3794, but with
+// --multicast it means the group alone (discovery with multicast only).
+struct PeerOptions {
+  std::vector<jaus::transport::Ipv4Endpoint> to;
+  std::optional<jaus::transport::Ipv4Endpoint> multicast;
+};
+inline constexpr std::string_view kDefaultPeer = "127.0.0.1:3794";
+Parsed<PeerOptions> parse_peers(const std::vector<std::string>& to, std::string_view multicast);
 
 // "opc" or "judp".
 Parsed<jaus::transport::Framing> parse_framing(std::string_view text);

@@ -114,7 +114,10 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
            << " was sent\n";
     return kExitFailure;
   }
-  control.release();
+  const auto released = control.release();
+  if (released.outcome != Arrival::acknowledged)
+    io.err << "jausctl control: Release Component Control to " << target << " not acknowledged ("
+           << released.transmissions << " transmissions): it drops the control itself after its controller timeout\n";
   io.out << "control of " << target << " released after " << held << " (" << control.liveness_checks()
          << " liveness checks answered";
   if (options.send) io.out << ", " << control.sent_while_held() << " commands sent";

@@ -1,7 +1,15 @@
-// The one-shot OCU commands: status, query, send, emergency. Each sends one
-// message and waits (up to the timeout) for the answer.
+// The one-shot OCU commands: status, query, send, emergency. Over a lossy
+// link (issue 32) a query is sent again every 250 ms until answered (queries
+// are idempotent), and a command that must arrive (emergency, a command sent
+// with `send`) goes with an ACK request, retransmitted until ACKed
+// (jaus/ocu/must_arrive.hpp; docs/safety.md, "Loss: what must arrive").
+#include <optional>
+
+#include "jaus/messages/catalogue.hpp"
 #include "jaus/messages/core_messages.hpp"
+#include "jaus/ocu/must_arrive.hpp"
 #include "jaus/ocu/names.hpp"
+#include "jaus/ocu/repeated_query.hpp"
 #include "image_file.hpp"
 #include "ocu_commands.hpp"
 
@@ -19,8 +27,8 @@ int fail(CommandIo io, std::string_view command, const jaus::Error& why) { retur
 jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& session,
                                                                           const jaus::Address& target,
                                                                           jaus::rt::Duration timeout) {
-  auto reply = session.request(target, jaus::msg::QueryComponentStatus{}, {jaus::msg::ReportComponentStatus::code},
-                               timeout);
+  auto reply = request_resending(session, target, jaus::msg::QueryComponentStatus{},
+                                 {jaus::msg::ReportComponentStatus::code}, timeout);
   if (!reply) return jaus::unexpected(reply.error());
   jaus::msg::ReportComponentStatus report{};
   if (auto decoded = jaus::wire::decode_payload_into(reply->payload, report, session.options().dialect, jaus::kHeaderSize);
@@ -37,6 +45,54 @@ constexpr jaus::rt::Duration kClearPoll = std::chrono::milliseconds(100);
 
 bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
   return (report.primary_status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
+}
+
+// "10 transmissions in 0.5 s"
+std::string transmissions_text(const ArrivalResult& result) {
+  return std::to_string(result.transmissions) + (result.transmissions == 1 ? " transmission" : " transmissions") +
+         " in " + seconds_text(result.elapsed);
+}
+
+// Why a command that must arrive did not, in one line: "Set Emergency to
+// 1.1.33.1 not acknowledged (10 transmissions in 0.5 s)".
+std::string not_arrived_text(const std::string& what, const jaus::Address& target, const ArrivalResult& result) {
+  switch (result.outcome) {
+    case Arrival::refused:
+      return what + " to " + target.to_string() + " refused by its node (NAK): no component there took it";
+    case Arrival::interrupted: return what + " to " + target.to_string() + ": interrupted before it was acknowledged";
+    case Arrival::acknowledged:
+    case Arrival::unacknowledged: break;
+  }
+  return what + " to " + target.to_string() + " not acknowledged (" + transmissions_text(result) + ")";
+}
+
+// The first message from `from` after this is made (any code), kept while a
+// command is retransmitted: its reply may come before the ACK.
+class FirstReply {
+ public:
+  FirstReply(OcuSession& session, const jaus::Address& from)
+      : session_(session), id_(session.listen([this, from](const Received& r) {
+          if (!reply_ && from.matches(r.header.source)) reply_ = r;
+        })) {}
+  ~FirstReply() { session_.unlisten(id_); }
+  FirstReply(const FirstReply&) = delete;
+  FirstReply& operator=(const FirstReply&) = delete;
+  const std::optional<Received>& reply() const { return reply_; }
+
+ private:
+  OcuSession& session_;
+  std::optional<Received> reply_;
+  OcuSession::ListenerId id_;
+};
+
+// `send` retransmits until ACKed what commands (RA command class,
+// 0x0000-0x1FFF: Resume, Standby, Shutdown, Reset, Set/Clear Emergency,
+// control, service connections, Set ...), on the RA dialect: the common
+// peer (openjaus) may ignore ACK requests, and would get it 10 times.
+// Queries and reports go once: a lost query shows as no reply.
+constexpr std::uint16_t kLastCommandCode = 0x1FFF;
+bool must_arrive(const PreparedMessage& message, jaus::wire::Dialect dialect) {
+  return dialect == jaus::wire::Dialect::ra && message.header.command_code <= kLastCommandCode;
 }
 
 }  // namespace
@@ -59,10 +115,7 @@ int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Durat
 int run_query(OcuSession& session, const jaus::Address& target, const PreparedMessage& query,
               std::uint16_t report_code, jaus::rt::Duration timeout, CommandIo io,
               const std::optional<std::string>& save_image) {
-  jaus::Header header = query.header;
-  header.destination = target;
-  session.send_raw(header, query.payload);
-  auto reply = session.await_reply(target, {report_code}, timeout);
+  auto reply = request_raw_resending(session, target, query.header, query.payload, {report_code}, timeout);
   if (!reply) return fail(io, "query", reply.error());
   auto json = message_json(*reply, session.options().dialect);
   if (!json) return fail(io, "query", json.error());
@@ -77,13 +130,29 @@ int run_query(OcuSession& session, const jaus::Address& target, const PreparedMe
 
 int run_send(OcuSession& session, const jaus::Address& target, const PreparedMessage& message,
              jaus::rt::Duration timeout, CommandIo io) {
+  const FirstReply first(session, target);
   jaus::Header header = message.header;
   header.destination = target;
-  session.send_raw(header, message.payload);
+  const auto start = session.clock().now();
+  if (must_arrive(message, session.options().dialect) && !target.is_broadcast()) {
+    const auto arrival = send_must_arrive(session, target, header, message.payload);
+    if (arrival.outcome != Arrival::acknowledged) {
+      const auto* info = jaus::msg::find_message(header.command_code);
+      return fail(io, "send", not_arrived_text(info ? std::string(info->name) : code_text(header.command_code),
+                                               target, arrival));
+    }
+  } else {
+    session.send_raw(header, message.payload);
+  }
   // Commands have no reply in the RA: silence is not a failure here.
-  auto reply = session.await_reply(target, {}, timeout);
-  if (!reply) return kExitOk;
-  auto json = message_json(*reply, session.options().dialect);
+  const auto waited = session.clock().now() - start;
+  if (!first.reply() && waited < timeout)
+    session.run_until([&] { return first.reply().has_value(); }, timeout - waited);
+  if (!first.reply()) {
+    if (session.interrupted()) return fail(io, "send", "interrupted");
+    return kExitOk;
+  }
+  auto json = message_json(*first.reply(), session.options().dialect);
   if (!json) return fail(io, "send", json.error());
   io.out << json_line(*json) << "\n";
   return kExitOk;
@@ -92,19 +161,29 @@ int run_send(OcuSession& session, const jaus::Address& target, const PreparedMes
 int run_emergency(OcuSession& session, const jaus::Address& target, bool set, jaus::rt::Duration timeout,
                   CommandIo io) {
   // Bit 0 of the emergency code is Stop, the only condition the RA defines.
-  if (set)
-    session.send(target, jaus::msg::SetEmergency{{1}}, jaus::priority::kSafetyCritical);
-  else
-    session.send(target, jaus::msg::ClearEmergency{{1}});
+  // Retransmitted until ACKed: the ACK comes once the component has acted on it.
+  const auto arrival = set ? send_must_arrive(session, target, jaus::msg::SetEmergency{{1}},
+                                              jaus::priority::kSafetyCritical)
+                           : send_must_arrive(session, target, jaus::msg::ClearEmergency{{1}});
   const std::string what = set ? "Set Emergency" : "Clear Emergency";
   if (target.is_broadcast()) {
-    // Many components may answer; there is no single state to show.
-    io.out << what << " sent to " << target.to_string() << " by " << session.self().to_string() << "\n";
+    // Many components may answer and none acknowledges (must_arrive.hpp):
+    // repeated; there is no single state to show.
+    if (arrival.outcome == Arrival::interrupted) return fail(io, "emergency", what + " interrupted");
+    io.out << what << " sent to " << target.to_string() << " by " << session.self().to_string() << " ("
+           << transmissions_text(arrival) << "; a broadcast is not acknowledged)\n";
     return kExitOk;
   }
-  // The status query follows the command through the same queue: its answer shows the outcome.
+  if (arrival.outcome != Arrival::acknowledged) {
+    std::string why = not_arrived_text(what, target, arrival);
+    if (set && arrival.outcome != Arrival::interrupted)
+      why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
+    return fail(io, "emergency", why);
+  }
+  // Acknowledged, so acted on; the status shows the state it left.
   auto report = query_status(session, target, timeout);
-  if (!report) return fail(io, "emergency", what + " sent, but " + report.error().message() + " to show its state");
+  if (!report)
+    return fail(io, "emergency", what + " acknowledged, but " + report.error().message() + " to show its state");
   const std::string state = primary_status_text(report->primary_status);
   if (set && !is_emergency(*report))
     return fail(io, "emergency", target.to_string() + " is in " + state + " after Set Emergency");

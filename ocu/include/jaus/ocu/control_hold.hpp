@@ -1,9 +1,20 @@
 // Control of one component by the OCU: request it, hold it, release it.
 //
-// Holding needs no traffic of its own: the controlled component checks its
-// controller with Query Component Status (every controller timeout / 3), and
-// the OCU component, being an rt::Component, answers those by itself; the
-// OCU's node manager heartbeats keep its node alive on the other side.
+// The controlled component drops its controller after a silence of its
+// controller timeout (3 s by default): any message from the OCU component
+// counts, and it asks for one with Query Component Status every timeout / 3,
+// which the OCU component, being an rt::Component, answers by itself. Over a
+// lossy link those answers alone are not enough (at 30 % loss each way three
+// query-answer pairs in a row are lost every few seconds), so while holding,
+// the hold also sends a keepalive (Query Component Status, cheap and without
+// effect) whenever nothing else went to the component for kKeepalive: a
+// timeout passes only when a dozen datagrams in a row are lost. The first
+// goes as soon as the hold begins, and the answers count as status reports:
+// the state is known at once even when the status service connection's
+// creation was lost (its client creates it again after 1 s). The OCU's
+// node manager heartbeats keep its node alive on the other side.
+// Over loss, the request is sent again until answered, and the release goes
+// with an ACK request, retransmitted until ACKed (must_arrive.hpp).
 // Like other OCUs (jaus-wire-notes.md), the hold watches the component's
 // Report Component Status on a 5 Hz service connection (at the send rate
 // when faster, see send_while_held): it shows state changes, and silence
@@ -19,6 +30,8 @@
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/runtime/service_connection_client.hpp"
 #include "jaus/ocu/message_json.hpp"
+#include "jaus/ocu/must_arrive.hpp"
+#include "jaus/ocu/repeated_query.hpp"
 #include "jaus/ocu/session.hpp"
 
 namespace jaus::ocu {
@@ -43,6 +56,11 @@ class ControlHold {
 
   // Silence of the status reports that ends a hold (when the component provides them).
   static constexpr jaus::rt::Duration kStatusSilence = std::chrono::seconds(5);
+  // Longest time without a message to the component while holding: the
+  // default controller timeout / 12.
+  static constexpr jaus::rt::Duration kKeepalive = std::chrono::milliseconds(250);
+  // Release Component Control: every 50 ms until ACKed, half a second at most.
+  static constexpr MustArrivePolicy kReleasePolicy{std::chrono::milliseconds(50), 10};
 
   ControlHold(OcuSession& session, const jaus::Address& target, std::uint8_t authority,
               jaus::rt::Duration status_silence = kStatusSilence);
@@ -51,7 +69,9 @@ class ControlHold {
   ControlHold(const ControlHold&) = delete;
   ControlHold& operator=(const ControlHold&) = delete;
 
-  // Request Component Control; waits for Confirm or Reject Component Control.
+  // Request Component Control; waits for Confirm or Reject Component Control,
+  // sending the request again every kQueryResendPeriod (a second request from
+  // the controller changes nothing), so one lost datagram costs 250 ms.
   RequestResult request(jaus::rt::Duration timeout);
   // Runs the session while control is held: until `limit` (none: until
   // interrupted) or control is lost. `on_state` hears the component's
@@ -78,9 +98,12 @@ class ControlHold {
   // The primary status last reported (bits 0-3), none before the first report.
   std::optional<std::uint8_t> state() const { return state_; }
 
-  // Release Component Control (fire and forget: the RA has no reply to it)
-  // and end the status service connection.
-  void release();
+  // Release Component Control and end the status service connection. The RA
+  // has no reply to it, so it goes with an ACK request, retransmitted until
+  // ACKed (kReleasePolicy), also after a stop was requested: Ctrl-C releases.
+  // Unacknowledged, the component's controller timeout ends the control
+  // (and stops it) instead.
+  ArrivalResult release();
 
   // Who has control now (Query Component Control), asked after a Reject:
   // none without a reply; a controller that is not a valid address means nobody.
@@ -88,9 +111,14 @@ class ControlHold {
 
   // Liveness checks (Query Component Status) the component sent us while held.
   std::uint64_t liveness_checks() const { return liveness_checks_; }
+  // Keepalives sent while held (none while the repeated command goes often enough).
+  std::uint64_t keepalives_sent() const { return keepalives_sent_; }
 
  private:
   void watch_status();
+  // A Report Component Status from the component: on its service connection,
+  // or answering a keepalive.
+  void heard_status(std::uint8_t primary_status);
   void stop_watching_status();
   bool status_refused() const;
   bool left_ready() const;
@@ -98,6 +126,9 @@ class ControlHold {
   // Sends the repeated command when it is due and the component is Ready;
   // returns when to look again.
   jaus::rt::TimePoint repeat(jaus::rt::TimePoint now);
+  // Sends a keepalive when nothing went to the component for kKeepalive;
+  // returns when the next one is due.
+  jaus::rt::TimePoint keep_alive(jaus::rt::TimePoint now);
 
   OcuSession& session_;
   jaus::Address target_;
@@ -118,6 +149,8 @@ class ControlHold {
   bool been_ready_ = false;  // since send_while_held()
   jaus::rt::TimePoint next_send_{};
   std::uint64_t sent_while_held_ = 0;
+  jaus::rt::TimePoint last_sent_{};  // to the component, by the hold
+  std::uint64_t keepalives_sent_ = 0;
 };
 
 }  // namespace jaus::ocu

@@ -55,6 +55,12 @@ struct SessionOptions {
   // Any address, any free port. Peers that answer to IP:3794 instead of the
   // sender's port need the OCU bound to its own address and port 3794.
   jaus::transport::Ipv4Endpoint bind{0, 0};
+  // A multicast group (e.g. 224.1.0.1:3794, as jausd's transport.multicast):
+  // broadcasts (discovery) and messages to nodes not heard from yet go there
+  // too, and the session joins it to hear the nodes' heartbeats. With it, `to`
+  // may be empty. Best effort like jausd's: a host without a multicast route
+  // logs a warning and talks to `to` only.
+  std::optional<jaus::transport::Ipv4Endpoint> multicast;
   jaus::transport::Framing framing = jaus::transport::Framing::opc;
   jaus::wire::Dialect dialect = jaus::wire::Dialect::ra;
   std::uint8_t authority = 0;  // the OCU component's own authority
@@ -89,13 +95,14 @@ class OcuSession {
   using Watcher = std::function<void(const jaus::Header&)>;
   using ListenerId = std::uint64_t;
 
-  // Binds the socket and starts the node. `io` null: the session runs its own.
+  // Binds the socket (and joins the multicast group) and starts the node.
+  // `io` null: the session runs its own.
   // The error (io, invalid_argument) says it in one line, e.g. "0.0.0.0:3794
   // is already in use".
   static jaus::Expected<std::unique_ptr<OcuSession>> open(SessionOptions options,
                                                          boost::asio::io_context* io = nullptr);
-  // The same node on an injected link, clock and scheduler (options.to, bind
-  // and framing are the link's business and not used). Errors: an invalid
+  // The same node on an injected link, clock and scheduler (options.to, bind,
+  // framing and multicast are the link's business and not used). Errors: an invalid
   // address, an environment with something missing (invalid_argument).
   static jaus::Expected<std::unique_ptr<OcuSession>> attach(SessionOptions options, SessionEnvironment environment);
   // Shuts the node down in order: subscriptions still open are terminated.
@@ -136,6 +143,11 @@ class OcuSession {
   // has passed or a stop is requested. True when `done()`.
   bool run_until(const std::function<bool()>& done, jaus::rt::Duration limit);
   void run_for(jaus::rt::Duration limit) { run_until([] { return false; }, limit); }
+  // The same after a stop was requested, for clean-up that must be heard
+  // (a Release Component Control retransmitted until ACKed), at most
+  // kLongestCleanup: a Ctrl-C never needs a second one.
+  static constexpr jaus::rt::Duration kLongestCleanup = std::chrono::seconds(1);
+  bool run_cleanup_until(const std::function<bool()>& done, jaus::rt::Duration limit);
 
   // Interrupts what the session is waiting for, now and later (commands then
   // clean up: release control, terminate service connections). From any
@@ -164,6 +176,7 @@ class OcuSession {
   void receive_packet(std::span<const std::uint8_t> bytes);  // an attached session's link
   void observe(const jaus::PacketView& packet);
   void deliver(const Received& message);
+  bool run(const std::function<bool()>& done, jaus::rt::Duration limit, bool through_stop);
 
   SessionOptions options_;
   // On UDP: the io_context (owned_io_ when the caller gave none) and the host.

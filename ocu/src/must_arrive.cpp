@@ -1,0 +1,122 @@
+#include "jaus/ocu/must_arrive.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+
+namespace jaus::ocu {
+
+namespace {
+
+using namespace std::chrono_literals;
+
+// The node resolves every message it tracks (exhausted at the latest
+// retransmit_after after the last transmission): this is only a backstop.
+constexpr jaus::rt::Duration kResolutionMargin = 1s;
+
+struct Pending {
+  std::optional<jaus::node::AckResolution> resolution;
+  jaus::rt::TimePoint resolved_at{};
+};
+
+Arrival arrival_of(jaus::node::AckOutcome outcome) {
+  switch (outcome) {
+    case jaus::node::AckOutcome::acknowledged: return Arrival::acknowledged;
+    case jaus::node::AckOutcome::refused: return Arrival::refused;
+    case jaus::node::AckOutcome::exhausted: break;
+  }
+  return Arrival::unacknowledged;
+}
+
+MustArrivePolicy sane(MustArrivePolicy policy) {
+  policy.retransmit_after = std::max<jaus::rt::Duration>(policy.retransmit_after, 1ms);
+  policy.max_transmissions = std::max<std::uint32_t>(policy.max_transmissions, 1);
+  return policy;
+}
+
+// Runs the session until `done` or `limit`; through a stop request too when `through_stop`.
+bool run(OcuSession& session, const std::function<bool()>& done, jaus::rt::Duration limit, bool through_stop) {
+  return through_stop ? session.run_cleanup_until(done, limit) : session.run_until(done, limit);
+}
+
+// A broadcast: repeated, never acknowledged (must_arrive.hpp says why).
+ArrivalResult repeat_broadcast(OcuSession& session, jaus::Header header, std::span<const std::uint8_t> payload,
+                               const MustArrivePolicy& policy, bool through_stop) {
+  ArrivalResult result;
+  const auto start = session.clock().now();
+  for (std::uint32_t i = 0; i < policy.max_transmissions; ++i) {
+    if (i > 0) {
+      run(session, [] { return false; }, policy.retransmit_after, through_stop);
+      if (!through_stop && session.interrupted()) {
+        result.outcome = Arrival::interrupted;
+        break;
+      }
+    }
+    session.send_raw(header, payload);
+    ++result.transmissions;
+  }
+  result.elapsed = session.clock().now() - start;
+  return result;
+}
+
+ArrivalResult send(OcuSession& session, const jaus::Address& to, jaus::Header header,
+                   std::span<const std::uint8_t> payload, MustArrivePolicy policy, bool through_stop) {
+  policy = sane(policy);
+  header.destination = to;
+  header.source = session.self();
+  if (payload.size() > jaus::kMaxPayloadSize) return ArrivalResult{};
+  header.data_size = static_cast<std::uint16_t>(payload.size());
+  if (to.is_broadcast()) {
+    header.ack_nak = jaus::AckNak::none;
+    return repeat_broadcast(session, header, payload, policy, through_stop);
+  }
+  // The node may call back after we return (interrupted): the state is shared.
+  auto pending = std::make_shared<Pending>();
+  auto& clock = session.clock();
+  const auto start = clock.now();
+  session.node().send_acknowledged(
+      header, payload, jaus::node::AckPolicy{policy.retransmit_after, policy.max_transmissions},
+      [pending, &clock](const jaus::node::AckResolution& resolution) {
+        pending->resolution = resolution;
+        pending->resolved_at = clock.now();
+      });
+  const auto limit = policy.retransmit_after * policy.max_transmissions + kResolutionMargin;
+  run(session, [&] { return pending->resolution.has_value(); }, limit, through_stop);
+  ArrivalResult result;
+  if (!pending->resolution) {
+    result.outcome = session.interrupted() && !through_stop ? Arrival::interrupted : Arrival::unacknowledged;
+    result.elapsed = clock.now() - start;
+    // The node's count is known only once it resolves: so far, one per period begun.
+    const auto periods = static_cast<std::uint32_t>(result.elapsed / policy.retransmit_after) + 1;
+    result.transmissions = std::min(periods, policy.max_transmissions);
+    return result;
+  }
+  result.outcome = arrival_of(pending->resolution->outcome);
+  result.transmissions = pending->resolution->transmissions;
+  result.elapsed = pending->resolved_at - start;
+  return result;
+}
+
+}  // namespace
+
+std::string_view to_string(Arrival arrival) {
+  switch (arrival) {
+    case Arrival::acknowledged: return "acknowledged";
+    case Arrival::refused: return "refused";
+    case Arrival::unacknowledged: return "unacknowledged";
+    case Arrival::interrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+ArrivalResult send_must_arrive(OcuSession& session, const jaus::Address& to, jaus::Header header,
+                               std::span<const std::uint8_t> payload, MustArrivePolicy policy) {
+  return send(session, to, header, payload, policy, false);
+}
+
+ArrivalResult send_must_arrive_through_stop(OcuSession& session, const jaus::Address& to, jaus::Header header,
+                                            std::span<const std::uint8_t> payload, MustArrivePolicy policy) {
+  return send(session, to, header, payload, policy, true);
+}
+
+}  // namespace jaus::ocu
