@@ -10,7 +10,7 @@ endif()
 jaus_read_layering("${DOC}")
 file(GLOB_RECURSE files LIST_DIRECTORIES FALSE
   "${ROOT}/core/*.?pp" "${ROOT}/runtime/*.?pp" "${ROOT}/components/*.?pp" "${ROOT}/transport/*.?pp"
-  "${ROOT}/host/*.?pp" "${ROOT}/ocu/*.?pp" "${ROOT}/conformance/*.?pp" "${ROOT}/clearpath/*.?pp"
+  "${ROOT}/host/*.?pp" "${ROOT}/ocu/*.?pp" "${ROOT}/console/*.?pp" "${ROOT}/conformance/*.?pp" "${ROOT}/clearpath/*.?pp"
   "${ROOT}/bridge/*.?pp" "${ROOT}/apps/*.?pp")
 set(problems 0)
 set(checked 0)
