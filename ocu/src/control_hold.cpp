@@ -69,7 +69,15 @@ ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
       if (jaus::wire::decode_payload_into(m.payload, report, session_.options().dialect, jaus::kHeaderSize))
         heard_status(report.primary_status);
     }
+    // The answer to a control check (or to who_has_control).
+    if (m.header.command_code == jaus::msg::ReportComponentControl::code && !control_elsewhere_) {
+      jaus::msg::ReportComponentControl report{};
+      if (jaus::wire::decode_payload_into(m.payload, report, session_.options().dialect, jaus::kHeaderSize) &&
+          report.controller != session_.self())
+        control_elsewhere_ = report;
+    }
   });
+  next_control_check_ = session_.clock().now() + kControlCheck;
   watch_status();
   return r;
 }
@@ -119,7 +127,7 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
   auto& clock = session_.clock();
   const auto until = limit ? clock.now() + *limit : jaus::rt::TimePoint::max();
   for (;;) {
-    if (rejected_) return End::rejected;
+    if (control_gone()) return End::rejected;
     if (session_.interrupted()) return End::interrupted;
     if (repeated_ && status_refused()) return End::unwatched;
     if (repeated_ && when_not_ready_ == WhenNotReady::end_hold && left_ready()) return End::not_ready;
@@ -127,6 +135,7 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
     if (now >= until) return End::time_up;
     auto slice = std::min<jaus::rt::Duration>(until - now, kHoldSlice);
     if (repeated_) slice = std::min<jaus::rt::Duration>(slice, repeat(now) - now);
+    slice = std::min<jaus::rt::Duration>(slice, check_control(now) - now);
     slice = std::min<jaus::rt::Duration>(slice, keep_alive(now) - now);
     // Only reports that came can stop: a component that does not provide its
     // status (refused, or a peer without service connections) is held without
@@ -134,7 +143,7 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
     // re-creates it after a silence, so it cannot tell.)
     if (state_ && now - status_heard_ > status_silence_) return End::silent;
     // A new state wakes the loop at once: it decides before the next command goes.
-    session_.run_until([this, seen = state_] { return rejected_ || state_ != seen; }, slice);
+    session_.run_until([this, seen = state_] { return control_gone() || state_ != seen; }, slice);
   }
 }
 
@@ -166,6 +175,15 @@ jaus::rt::TimePoint ControlHold::repeat(jaus::rt::TimePoint now) {
     if (next_send_ < now) next_send_ = now + repeat_period_;
   }
   return next_send_;
+}
+
+jaus::rt::TimePoint ControlHold::check_control(jaus::rt::TimePoint now) {
+  if (now >= next_control_check_) {
+    session_.send(target_, jaus::msg::QueryComponentControl{});
+    last_sent_ = now;
+    next_control_check_ = now + kControlCheck;
+  }
+  return next_control_check_;
 }
 
 jaus::rt::TimePoint ControlHold::keep_alive(jaus::rt::TimePoint now) {

@@ -111,7 +111,7 @@ TEST_F(LossyControlTest, APlainHoldAtThirtyPercentLossKeepsControlThroughItsKeep
   print("30 % loss each way, nothing streamed", h);
   EXPECT_EQ(h.end, ocu::ControlHold::End::time_up);
   EXPECT_EQ(moments_not_controlled, 0);
-  EXPECT_GE(h.keepalives, 230u);  // every 250 ms
+  EXPECT_GE(h.keepalives, 170u);  // every 250 ms, but where a control check (every 1 s) went
   EXPECT_EQ(h.released.outcome, ocu::Arrival::acknowledged);
 }
 
@@ -167,6 +167,41 @@ TEST_F(LossyControlTest, TheKeepaliveEndsWithTheHold) {
   // ends it, since nothing keeps it alive now but the answers to its queries.
   jaus::testing::run_for(time, 2s);
   EXPECT_EQ(control.keepalives_sent(), keepalives);
+}
+
+// A partition longer than the controller timeout: the component drops the
+// OCU and its Reject is lost. After healing the hold learns it from its
+// control check instead of streaming refused commands on.
+TEST_F(LossyControlTest, AControlDroppedWhoseRejectWasLostEndsTheHoldAfterHealing) {
+  auto ocu = open_lossy_ocu(7);
+  ASSERT_TRUE(ocu);
+  ocu::ControlHold control(*ocu, kDriver, 7);
+  control.send_while_held(forward(), 100ms);
+  ASSERT_EQ(control.request(1s).outcome, ocu::ControlHold::Outcome::granted);
+  EXPECT_EQ(control.hold(2s), ocu::ControlHold::End::time_up);
+  cut_for(4500ms);
+  const auto cut_at = time.now();
+  EXPECT_EQ(control.hold(30s), ocu::ControlHold::End::rejected);
+  EXPECT_LE(time.now() - cut_at, 4500ms + ocu::ControlHold::kControlCheck + 2 * kOneWay);
+  ASSERT_TRUE(control.control_elsewhere());
+  EXPECT_FALSE(control.control_elsewhere()->controller.is_valid());  // nobody
+  EXPECT_FALSE(target->driver().control().controller());
+}
+
+TEST_F(LossyControlTest, JausctlControlSaysSoWhenTheRejectWasLost) {
+  auto ocu = open_lossy_ocu(7);
+  ASSERT_TRUE(ocu);
+  ocu::ControlOptions options;
+  options.target = kDriver;
+  options.authority = 7;
+  options.hold_for = 30s;
+  options.send = forward();
+  once([&] { return target->efforts_arrived() >= 5; }, [&] { cut_for(4500ms); });
+  EXPECT_EQ(ocu::run_control(*ocu, options, io()), kExitFailure);
+  EXPECT_NE(err.str().find(": the component dropped it (its Reject Component Control never arrived); it has no "
+                           "controller now\n"),
+            std::string::npos)
+      << err.str();
 }
 
 }  // namespace

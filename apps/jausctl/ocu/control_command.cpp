@@ -83,6 +83,12 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
     io.out << target << ": state " << state << "\n" << std::flush;
   });
   const auto held = elapsed_text(session.clock().now() - start);
+  if (end == ControlHold::End::rejected && control.control_elsewhere()) {
+    io.err << "jausctl control: control of " << target << " lost after " << held
+           << ": the component dropped it (its Reject Component Control never arrived)"
+           << controller_text(control.control_elsewhere()) << "\n";
+    return kExitFailure;
+  }
   if (end == ControlHold::End::rejected) {
     const auto controller = control.who_has_control(std::min(options.timeout, kWhoHasControlTimeout));
     io.err << "jausctl control: control of " << target << " lost after " << held

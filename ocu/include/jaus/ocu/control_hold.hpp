@@ -15,6 +15,10 @@
 // node manager heartbeats keep its node alive on the other side.
 // Over loss, the request is sent again until answered, and the release goes
 // with an ACK request, retransmitted until ACKed (must_arrive.hpp).
+// A Reject Component Control can be lost too (sent once, when the component
+// dropped us during a partition): every kControlCheck the hold asks Query
+// Component Control, and an answer naming another controller (or none) ends
+// the hold like a Reject, so a hold never goes on streaming refused commands.
 // Like other OCUs (jaus-wire-notes.md), the hold watches the component's
 // Report Component Status on a 5 Hz service connection (at the send rate
 // when faster, see send_while_held): it shows state changes, and silence
@@ -61,6 +65,8 @@ class ControlHold {
   static constexpr jaus::rt::Duration kKeepalive = std::chrono::milliseconds(250);
   // Release Component Control: every 50 ms until ACKed, half a second at most.
   static constexpr MustArrivePolicy kReleasePolicy{std::chrono::milliseconds(50), 10};
+  // How often the hold asks who has control.
+  static constexpr jaus::rt::Duration kControlCheck = std::chrono::seconds(1);
 
   ControlHold(OcuSession& session, const jaus::Address& target, std::uint8_t authority,
               jaus::rt::Duration status_silence = kStatusSilence);
@@ -109,6 +115,10 @@ class ControlHold {
   // none without a reply; a controller that is not a valid address means nobody.
   std::optional<jaus::msg::ReportComponentControl> who_has_control(jaus::rt::Duration timeout);
 
+  // The component's answer to a control check that named another controller
+  // (or none): the hold ended with End::rejected without a Reject received.
+  const std::optional<jaus::msg::ReportComponentControl>& control_elsewhere() const { return control_elsewhere_; }
+
   // Liveness checks (Query Component Status) the component sent us while held.
   std::uint64_t liveness_checks() const { return liveness_checks_; }
   // Keepalives sent while held (none while the repeated command goes often enough).
@@ -129,6 +139,9 @@ class ControlHold {
   // Sends a keepalive when nothing went to the component for kKeepalive;
   // returns when the next one is due.
   jaus::rt::TimePoint keep_alive(jaus::rt::TimePoint now);
+  // Asks Query Component Control when due; returns when it is next due.
+  jaus::rt::TimePoint check_control(jaus::rt::TimePoint now);
+  bool control_gone() const { return rejected_ || control_elsewhere_.has_value(); }
 
   OcuSession& session_;
   jaus::Address target_;
@@ -151,6 +164,8 @@ class ControlHold {
   std::uint64_t sent_while_held_ = 0;
   jaus::rt::TimePoint last_sent_{};  // to the component, by the hold
   std::uint64_t keepalives_sent_ = 0;
+  jaus::rt::TimePoint next_control_check_{};
+  std::optional<jaus::msg::ReportComponentControl> control_elsewhere_;
 };
 
 }  // namespace jaus::ocu
