@@ -16,8 +16,10 @@ string(JOIN "\n" CPACK_PACKAGE_DESCRIPTION
        "driver, pose and velocity sensors, visual sensor, manipulator) on UDP and"
        "drives a Clearpath platform over its serial protocol; it runs as the systemd"
        "service jausd.service with /etc/jaus/jausd.yaml. jausctl talks to nodes as an"
-       "OCU, jaus-conform tests any node's conformance and clearpath-sim simulates a"
-       "Clearpath platform. The static libraries, headers and CMake package"
+       "OCU, jaus-console is an operator console in a browser (drive, control,"
+       "emergency, camera), jaus-conform tests any node's conformance and"
+       "clearpath-sim simulates a Clearpath platform. The static libraries, headers"
+       "and CMake package"
        "(find_package(jaus)) build components of your own.")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)

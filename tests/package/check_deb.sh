@@ -44,10 +44,10 @@ grep -q 'rm -rf /var/lib/jaus' "$work/control/postrm" || fail "postrm purge keep
 
 # Contents.
 dpkg-deb -c "$deb" | awk '{print $NF}' > "$work/contents"
-for path in ./usr/bin/jausd ./usr/bin/jausctl ./usr/bin/clearpath-sim ./usr/bin/jaus-conform \
+for path in ./usr/bin/jausd ./usr/bin/jausctl ./usr/bin/clearpath-sim ./usr/bin/jaus-conform ./usr/bin/jaus-console \
   ./etc/jaus/jausd.yaml ./usr/lib/systemd/system/jausd.service \
   ./usr/share/man/man1/jausd.1.gz ./usr/share/man/man1/jausctl.1.gz ./usr/share/man/man1/clearpath-sim.1.gz \
-  ./usr/share/man/man1/jaus-conform.1.gz ./usr/share/doc/jaus-node/README.md ./usr/share/doc/jaus-node/CHANGELOG.md \
+  ./usr/share/man/man1/jaus-conform.1.gz ./usr/share/man/man1/jaus-console.1.gz ./usr/share/doc/jaus-node/README.md ./usr/share/doc/jaus-node/CHANGELOG.md \
   ./usr/include/jaus/runtime/component.hpp; do
   grep -qx "$path" "$work/contents" || fail "not in the package: $path"
 done

@@ -1,0 +1,177 @@
+// jaus-console: the operator console in a browser (docs/console.md). An OCU
+// with its own JAUS ID (an ocu::OcuSession on UDP) that serves the page and
+// its WebSocket (jaus_console's WebServer) on 127.0.0.1:8080 by default, on
+// one io_context. Thin: options, logging, signals; the console itself is
+// jaus_console. SIGINT/SIGTERM: zero effort where driving, control released,
+// pages closed, then exit.
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <CLI/CLI.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <csignal>
+#include <iostream>
+#include <random>
+
+#include "jaus/base/version.hpp"
+#include "jaus/console/operator_console.hpp"
+#include "jaus/console/web_server.hpp"
+#include "jaus/transport/asio_runtime.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadUsage = 2;
+
+struct Options {
+  std::string listen = "127.0.0.1:8080";
+  std::vector<std::string> to;
+  std::string bind;
+  std::string as;
+  int authority = 0;
+  std::string token;
+  int verbosity = 0;
+};
+
+int bad_usage(const std::string& what) {
+  std::cerr << "jaus-console: " << what << " (--help for usage)\n";
+  return kExitBadUsage;
+}
+
+jaus::rt::LogFn stderr_log(int verbosity) {
+  // Default: warnings and errors; -v the console's events; -vv the runtime's debug lines.
+  const auto threshold = verbosity >= 2   ? jaus::rt::LogLevel::debug
+                         : verbosity == 1 ? jaus::rt::LogLevel::info
+                                          : jaus::rt::LogLevel::warn;
+  return [threshold](jaus::rt::LogLevel level, const std::string& text) {
+    if (level < threshold) return;
+    static constexpr const char* kNames[] = {"debug", "info", "warn", "error"};
+    std::cerr << "jaus-console [" << kNames[static_cast<int>(level)] << "] " << text << "\n";
+  };
+}
+
+// Its own JAUS node each run unless --as says otherwise, as jausctl does:
+// what one run held (control, an emergency) is not inherited by the next.
+std::string fresh_ocu_address() {
+  std::random_device entropy;
+  std::uniform_int_distribution<int> node(1, 254);
+  return "254." + std::to_string(node(entropy)) + ".40.1";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"jaus-console: the operator console in a browser. Serves a page and its WebSocket "
+               "(http://127.0.0.1:8080/ by default) and talks JAUS to the nodes as an OCU: the system tree, "
+               "control, driving with a deadman, emergency, camera, arm, waypoints (docs/console.md)."};
+  app.set_version_flag("--version", "jaus-console " + std::string(jaus::kVersion));
+  app.add_option("--listen", o.listen,
+                 "where the page is served, ADDR:PORT (beyond loopback only with a token; reach a robot's console "
+                 "with an SSH port forward instead)")
+      ->type_name("ADDR:PORT")
+      ->capture_default_str();
+  app.add_option("--to", o.to, "a node to talk to, HOST[:PORT] (a static peer; repeat for several nodes; default 127.0.0.1)")
+      ->type_name("HOST[:PORT]");
+  app.add_option("--bind", o.bind, "the OCU's own UDP address, ADDR[:PORT] (default: any, any port)")
+      ->type_name("ADDR[:PORT]");
+  app.add_option("--as", o.as, "this OCU's JAUS address (default: a new 254.N.40.1 each run)")->type_name("S.N.C.I");
+  app.add_option("--authority", o.authority, "the OCU component's own authority, 0..255")
+      ->type_name("N")
+      ->capture_default_str();
+  app.add_option("--token", o.token,
+                 "the token pages must give (?token=); with --listen beyond loopback and no --token, one is "
+                 "generated and printed")
+      ->type_name("TEXT");
+  app.add_flag("-v,--verbose", o.verbosity, "log more: -v the console's events, -vv the runtime's debug lines");
+  CLI11_PARSE(app, argc, argv);
+
+  auto listen = jaus::transport::parse_endpoint(o.listen, jaus::console::kDefaultConsolePort);
+  if (!listen) return bad_usage("--listen: " + listen.error().message());
+  jaus::ocu::SessionOptions session_options;
+  if (!o.to.empty()) {
+    session_options.to.clear();
+    for (const auto& peer : o.to) {
+      auto endpoint = jaus::transport::parse_endpoint(peer);
+      if (!endpoint) return bad_usage("--to: " + endpoint.error().message());
+      session_options.to.push_back(*endpoint);
+    }
+  }
+  if (!o.bind.empty()) {
+    auto bind = jaus::transport::parse_endpoint(o.bind, 0);
+    if (!bind) return bad_usage("--bind: " + bind.error().message());
+    session_options.bind = *bind;
+  }
+  const auto self = jaus::Address::parse(o.as.empty() ? fresh_ocu_address() : o.as);
+  if (!self || self->is_broadcast() || self->component == 1)
+    return bad_usage("--as: '" + o.as + "' is not an OCU address S.N.C.I (1..254 each, component not 1)");
+  if (o.authority < 0 || o.authority > 255) return bad_usage("--authority: 0..255");
+  session_options.self = *self;
+  session_options.authority = static_cast<std::uint8_t>(o.authority);
+  const auto log = stderr_log(o.verbosity);
+  session_options.log = log;
+
+  std::string token = o.token;
+  if (token.empty() && !jaus::console::is_loopback(listen->address)) token = jaus::console::generate_token();
+
+  std::signal(SIGPIPE, SIG_IGN);
+  boost::asio::io_context io;  // the session's, the web server's and the signals'
+  auto session = jaus::ocu::OcuSession::open(session_options, &io);
+  if (!session) {
+    std::cerr << "jaus-console: " << session.error().message() << "\n";
+    return kExitFailure;
+  }
+  jaus::transport::AsioRuntime runtime(io);
+
+  std::unique_ptr<jaus::console::WebServer> server;
+  jaus::console::ConsoleOptions console_options;
+  console_options.version = std::string(jaus::kVersion);
+  console_options.log = log;
+  jaus::console::OperatorConsole console(**session, runtime, runtime, console_options,
+                                         [&server](jaus::console::PageId to, const std::string& frame) {
+                                           if (server) server->send(to, frame);
+                                         });
+
+  jaus::console::WebServerOptions web;
+  web.listen = *listen;
+  web.token = token;
+  web.log = log;
+  auto started = jaus::console::WebServer::start(
+      io, web,
+      jaus::console::PageEvents{[&](jaus::console::PageId page) { console.page_opened(page); },
+                                [&](jaus::console::PageId page) { console.page_closed(page); },
+                                [&](jaus::console::PageId page, std::string_view frame) {
+                                  console.page_frame(page, frame);
+                                }});
+  if (!started) {
+    std::cerr << "jaus-console: " << started.error().message() << "\n";
+    return kExitFailure;
+  }
+  server = std::move(*started);
+
+  const std::string address = jaus::transport::ipv4_to_string(listen->address) + ":" + std::to_string(server->port());
+  std::cout << "jaus-console " << jaus::kVersion << ": OCU " << (*session)->self().to_string() << ", page at http://"
+            << address << "/" << (token.empty() ? "" : "?token=" + token) << std::endl;
+
+  bool stopping = false;
+  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const boost::system::error_code& ec, int) {
+    if (ec) return;
+    stopping = true;
+    // Zero effort and Release Component Control go out here, before the pages close.
+    console.shutdown();
+    server->stop();
+    (*session)->request_stop();
+  });
+
+  console.start();
+  while (!stopping && !(*session)->interrupted()) (*session)->run_until([&] { return stopping; }, std::chrono::hours(1));
+  console.shutdown();
+  server->stop();
+  // Let the closes and the last datagrams leave.
+  (*session)->run_cleanup_until([] { return false; }, std::chrono::milliseconds(200));
+  std::cout << "jaus-console: stopped" << std::endl;
+  return kExitOk;
+}
