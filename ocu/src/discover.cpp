@@ -25,6 +25,11 @@ void send_queries(OcuSession& session, const std::vector<DiscoveryQuery>& querie
   }
 }
 
+// Questions lost on a lossy link (or their answers) are asked again this
+// often while the wait lasts; the first broadcast too (a node that missed it
+// is also found by its heartbeats).
+constexpr rt::Duration kAskAgainEvery = std::chrono::milliseconds(500);
+
 }  // namespace
 
 Discovery discover(OcuSession& session, rt::Duration wait) {
@@ -34,7 +39,15 @@ Discovery discover(OcuSession& session, rt::Duration wait) {
   const auto listener = session.listen(
       [&](const Received& r) { send_queries(session, discovery.received(r.header, r.payload, dialect)); });
   send_queries(session, discovery.start());
-  session.run_for(wait);
+  const auto until = session.clock().now() + wait;
+  for (;;) {
+    const auto now = session.clock().now();
+    if (now >= until || session.interrupted()) break;
+    session.run_for(std::min(kAskAgainEvery, until - now));
+    if (session.clock().now() >= until || session.interrupted()) break;
+    send_queries(session, discovery.start());
+    send_queries(session, discovery.unanswered());
+  }
   session.unlisten(watcher);
   session.unlisten(listener);
   return discovery;

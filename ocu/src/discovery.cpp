@@ -44,7 +44,19 @@ DiscoveredNode& Discovery::node_of(std::uint8_t subsystem, std::uint8_t node) {
 
 void Discovery::ask(std::vector<DiscoveryQuery>& out, const jaus::Address& to, Kind kind, std::uint8_t field,
                     const jaus::Address& key) {
-  if (asked_.emplace(key, kind, field).second) out.push_back(DiscoveryQuery{to, kind, field});
+  const DiscoveryQuery query{to, kind, field};
+  if (asked_.try_emplace(QuestionKey{key, kind, field}, Question{query, false}).second) out.push_back(query);
+}
+
+void Discovery::answered(const jaus::Address& key, Kind kind, std::uint8_t field) {
+  if (const auto it = asked_.find(QuestionKey{key, kind, field}); it != asked_.end()) it->second.answered = true;
+}
+
+std::vector<DiscoveryQuery> Discovery::unanswered() const {
+  std::vector<DiscoveryQuery> out;
+  for (const auto& [key, question] : asked_)
+    if (!question.answered) out.push_back(question.query);
+  return out;
 }
 
 void Discovery::add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<DiscoveryQuery>& out) {
@@ -82,11 +94,16 @@ std::vector<DiscoveryQuery> Discovery::received(const jaus::Header& h, std::span
   if (!h.source.is_valid() || h.source.is_broadcast() || is_self(h.source)) return {};
   std::vector<DiscoveryQuery> out = heard(h.source);
   const jaus::Address& from = h.source;
+  const jaus::Address whole_subsystem{from.subsystem, 0, 0, 0};
+  const auto manager = node_manager(from.subsystem, from.node);
   switch (h.command_code) {
     case jaus::msg::ReportIdentification::code: {
       const auto report = decode<jaus::msg::ReportIdentification>(payload, dialect);
       if (!report) break;
       const Identification identification{report->identification, report->type, report->authority};
+      if (report->query_type == id::kSubsystem) answered(whole_subsystem, Kind::identification, id::kSubsystem);
+      if (report->query_type == id::kNode) answered(manager, Kind::identification, id::kNode);
+      if (report->query_type == id::kComponent) answered(from, Kind::identification, id::kComponent);
       if (report->query_type == id::kSubsystem) subsystems_[from.subsystem].identification = identification;
       if (report->query_type == id::kNode) node_of(from.subsystem, from.node).identification = identification;
       if (report->query_type == id::kComponent)
@@ -96,6 +113,8 @@ std::vector<DiscoveryQuery> Discovery::received(const jaus::Header& h, std::span
     case jaus::msg::ReportConfiguration::code: {
       const auto report = decode<jaus::msg::ReportConfiguration>(payload, dialect);
       if (!report) break;
+      answered(whole_subsystem, Kind::configuration, id::kSubsystem);
+      answered(manager, Kind::configuration, id::kNode);
       for (const auto& node : report->nodes) {
         if (!is_real_id(node.node_id)) continue;
         add_node(from.subsystem, node.node_id, out);
@@ -108,6 +127,7 @@ std::vector<DiscoveryQuery> Discovery::received(const jaus::Header& h, std::span
     case jaus::msg::ReportSubsystemList::code: {
       const auto report = decode<jaus::msg::ReportSubsystemList>(payload, dialect);
       if (!report) break;
+      answered(whole_subsystem, Kind::subsystem_list, 0);
       // Each entry speaks for its subsystem: asked like a heartbeat's source.
       for (const auto& entry : report->subsystems) {
         auto more = heard(entry);
@@ -118,6 +138,7 @@ std::vector<DiscoveryQuery> Discovery::received(const jaus::Header& h, std::span
     case jaus::msg::ReportServices::code: {
       const auto report = decode<jaus::msg::ReportServices>(payload, dialect);
       if (!report) break;
+      answered(from, Kind::services, 0);
       auto& node = node_of(from.subsystem, from.node);
       if (from.component == kNodeManager) {
         for (const auto& service : report->services) node.services_by_type[service.type] = service;

@@ -1,5 +1,7 @@
 // Discovery over a session: heartbeats and replies feed the Discovery model,
-// whose queries are sent as they come, for `wait`. What jausctl discover
+// whose queries are sent as they come, for `wait`; every 0.5 s the first
+// broadcast and the questions still unanswered go again (a lossy link loses
+// some, or their answers). What jausctl discover
 // prints and what the conformance runner starts from.
 #pragma once
 

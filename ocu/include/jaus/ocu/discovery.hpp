@@ -5,7 +5,9 @@
 // component for its identification and services. Every subsystem in a
 // subsystem list is then asked in turn, so an OCU that reaches one node
 // learns the subsystems that node knows (it relays to them). Sans-I/O:
-// messages in, queries out; the command sends them.
+// messages in, queries out; the command sends them. Over a lossy link a
+// question or its answer may be lost: unanswered() lists the questions asked
+// and not answered yet, for the command to ask again.
 #pragma once
 
 #include <cstdint>
@@ -76,6 +78,11 @@ class Discovery {
   std::vector<DiscoveryQuery> received(const jaus::Header& header, std::span<const std::uint8_t> payload,
                                        jaus::wire::Dialect dialect);
 
+  // Every question asked whose answer has not come (a Report Configuration
+  // answers both configuration questions of its node manager: it does not
+  // say which it answers).
+  std::vector<DiscoveryQuery> unanswered() const;
+
   const std::map<std::uint8_t, DiscoveredSubsystem>& subsystems() const { return subsystems_; }
   std::size_t component_count() const;
 
@@ -94,9 +101,16 @@ class Discovery {
   void ask(std::vector<DiscoveryQuery>& out, const jaus::Address& to, Kind kind, std::uint8_t field,
            const jaus::Address& key);
 
+  using QuestionKey = std::tuple<jaus::Address, Kind, std::uint8_t>;
+  struct Question {
+    DiscoveryQuery query;
+    bool answered = false;
+  };
+  void answered(const jaus::Address& key, Kind kind, std::uint8_t field);
+
   jaus::Address self_;
   std::map<std::uint8_t, DiscoveredSubsystem> subsystems_;
-  std::set<std::tuple<jaus::Address, Kind, std::uint8_t>> asked_;
+  std::map<QuestionKey, Question> asked_;
 };
 
 }  // namespace jaus::ocu
