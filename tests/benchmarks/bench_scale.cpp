@@ -27,7 +27,8 @@
 // records their senders).
 //
 //   bench_scale [--subsystems 10,50,100] [--nodes 1] [--ocus 1]
-//               [--fabric routed|multicast|both] [--latency-ms 1] [--steady-s 10]
+//               [--fabric routed|multicast|both] [--latency-ms 1] [--jitter-us 0]
+//               [--steady-s 10]
 #include <malloc.h>
 
 #include <atomic>
@@ -39,6 +40,7 @@
 #include <map>
 #include <memory>
 #include <new>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -97,6 +99,10 @@ std::int64_t heap_bytes() { return g_heap_bytes.load(std::memory_order_relaxed);
 double seconds(rt::Duration d) { return std::chrono::duration<double>(d).count(); }
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// How long the OCUs may take to list everything: five times `jausctl
+// discover`'s default --wait, which asks each question once.
+constexpr rt::Duration kDiscoveryLimit = 10s;
+
 enum class Fabric { routed, multicast };
 const char* fabric_name(Fabric f) { return f == Fabric::routed ? "routed" : "multicast"; }
 
@@ -106,6 +112,7 @@ struct Options {
   int ocus = 1;
   std::vector<Fabric> fabrics{Fabric::routed, Fabric::multicast};
   rt::Duration latency = 1ms;
+  rt::Duration jitter{};
   rt::Duration steady = 10s;
 };
 
@@ -124,21 +131,32 @@ std::uint16_t code_of(std::span<const std::uint8_t> packet) {
 }
 
 // A node's way onto the memory network: counts what it sends, and in the
-// multicast fabric hands every broadcast to every node, as a multicast group does.
+// multicast fabric hands every broadcast to every node, as a multicast group
+// does. With jitter, each message leaves up to `jitter` later (in its
+// sender's order), as processing and the wire spread a burst of replies; without,
+// every reply to one wave of queries arrives at the same instant.
 class FabricLink final : public node::Link {
  public:
-  FabricLink(testing::MemoryLink& link, Fabric fabric, Traffic& traffic)
-      : link_(link), fabric_(fabric), traffic_(traffic) {}
+  struct Jitter {
+    rt::Clock* clock = nullptr;
+    rt::Scheduler* scheduler = nullptr;
+    rt::Duration most{};
+    std::mt19937* random = nullptr;
+  };
+  FabricLink(testing::MemoryLink& link, Fabric fabric, Traffic& traffic, Jitter jitter)
+      : link_(link), fabric_(fabric), traffic_(traffic), jitter_(jitter) {}
 
   void transmit(const Header& header, std::span<const std::uint8_t> packet) override {
     ++traffic_.sent;
     ++traffic_.sent_by_code[header.command_code];
-    const bool broadcast =
-        header.destination.subsystem == Address::kBroadcast || header.destination.node == Address::kBroadcast;
-    if (fabric_ == Fabric::multicast && broadcast)
-      link_.transmit_to_every_link(header, packet);
-    else
-      link_.transmit(header, packet);
+    if (!link_.connected()) return;  // the network is down now, not when the message would leave
+    if (jitter_.most <= rt::Duration::zero()) return forward(header, packet);
+    std::uniform_int_distribution<rt::Duration::rep> spread(0, jitter_.most.count());
+    const rt::TimePoint when = std::max(leaves_, jitter_.clock->now() + rt::Duration(spread(*jitter_.random)));
+    leaves_ = when;
+    jitter_.scheduler->call_at(when, [this, header, bytes = std::vector<std::uint8_t>(packet.begin(), packet.end())] {
+      forward(header, bytes);
+    });
   }
   // What reaches this node goes to `receiver`, counted.
   void deliver(std::function<void(std::span<const std::uint8_t>)> receiver) {
@@ -152,9 +170,20 @@ class FabricLink final : public node::Link {
   void set_connected(bool connected) { link_.set_connected(connected); }
 
  private:
+  void forward(const Header& header, std::span<const std::uint8_t> packet) {
+    const bool broadcast =
+        header.destination.subsystem == Address::kBroadcast || header.destination.node == Address::kBroadcast;
+    if (fabric_ == Fabric::multicast && broadcast)
+      link_.transmit_to_every_link(header, packet);
+    else
+      link_.transmit(header, packet);
+  }
+
   testing::MemoryLink& link_;
   Fabric fabric_;
   Traffic& traffic_;
+  Jitter jitter_;
+  rt::TimePoint leaves_{};  // when this sender's latest message leaves
 };
 
 // ---- the system under test ----------------------------------------------------
@@ -235,6 +264,7 @@ struct RunFigures {
   double liveness_entries_per_node = 0;        // mean, vehicle nodes, steady state
   std::size_t liveness_entries_max = 0;
   std::uint64_t liveness_rejected_full = 0;    // newcomers refused, all nodes
+  std::uint64_t queue_dropped = 0;             // inbound queue full, all nodes
   std::size_t ocu_liveness_entries = 0;        // the first OCU's, when it listed everything
   std::size_t ocu_components_listed = 0;
   double discovery_wall_ms = 0;                // real time the OCUs' discovery took, in this one process
@@ -309,8 +339,9 @@ class System {
           }
           return all;
         },
-        60s);
+        kDiscoveryLimit);
     f.discovery_wall_ms = seconds_since(discovery_wall_start) * 1000;
+    if (!ocus_.front().complete_after) f.ocu_liveness_entries = ocus_.front().session->node().liveness().size();
     f.discovery = difference(traffic_, before_discovery);
     bool every_ocu_complete = true;
     rt::Duration slowest{};
@@ -338,7 +369,11 @@ class System {
       f.liveness_entries_max = std::max(f.liveness_entries_max, liveness.size());
       f.liveness_rejected_full += liveness.counters().rejected_full;
     }
-    for (const auto& o : ocus_) f.liveness_rejected_full += o.session->node().liveness().counters().rejected_full;
+    for (const auto& h : hosts_) f.queue_dropped += h->node().counters().queue_dropped;
+    for (const auto& o : ocus_) {
+      f.liveness_rejected_full += o.session->node().liveness().counters().rejected_full;
+      f.queue_dropped += o.session->node().counters().queue_dropped;
+    }
     f.liveness_entries_per_node = static_cast<double>(entries) / static_cast<double>(hosts_.size());
     f.wall_s = seconds_since(wall_start);
     return f;
@@ -346,7 +381,7 @@ class System {
 
  private:
   FabricLink& new_link(std::uint8_t subsystem, std::uint8_t node) {
-    links_.push_back(std::make_unique<FabricLink>(network_.attach(subsystem, node), fabric_, traffic_));
+    links_.push_back(std::make_unique<FabricLink>(network_.attach(subsystem, node), fabric_, traffic_, jitter()));
     return *links_.back();
   }
 
@@ -364,6 +399,8 @@ class System {
       }
   }
 
+  FabricLink::Jitter jitter() { return {&time_, &time_, options_.jitter, &random_}; }
+
   bool every_vehicle_lists_every_subsystem() const {
     for (const auto& h : hosts_) {
       std::size_t vehicles = 0;
@@ -377,7 +414,7 @@ class System {
   void attach_ocus() {
     for (int i = 0; i < options_.ocus; ++i) {
       Ocu o;
-      o.link = std::make_unique<FabricLink>(network_.attach(ocu_subsystem(i), 1), fabric_, traffic_);
+      o.link = std::make_unique<FabricLink>(network_.attach(ocu_subsystem(i), 1), fabric_, traffic_, jitter());
       ocu::SessionOptions session;
       session.self = Address{ocu_subsystem(i), 1, 40, 1};
       FabricLink* link = o.link.get();
@@ -440,6 +477,7 @@ class System {
   rt::VirtualTime time_;
   testing::MemoryNetwork network_;
   Traffic traffic_;
+  std::mt19937 random_{32};  // the same spread every run
   std::vector<std::unique_ptr<FabricLink>> links_;
   std::vector<std::unique_ptr<host::NodeHost>> hosts_;
   std::vector<Ocu> ocus_;
@@ -448,7 +486,7 @@ class System {
 // ---- output --------------------------------------------------------------------
 
 std::string duration_text(const std::optional<rt::Duration>& d) {
-  if (!d) return "never";
+  if (!d) return "> " + std::to_string(static_cast<int>(seconds(kDiscoveryLimit)));
   char text[32];
   std::snprintf(text, sizeof text, "%.3f", seconds(*d));
   return text;
@@ -464,25 +502,26 @@ std::string message_name(std::uint16_t code) {
 
 void print_run(const RunFigures& f) {
   const double per_s = f.steady_s > 0 ? 1.0 / f.steady_s : 0;
-  std::printf("%4d %5d | %6s %6s %7.1f | %8.1f %6.1f %9.1f | %6.1f %5zu %5zu %6llu | %6llu %7llu | %7.0f %8.0f %6.1f %7.1f "
-              "| %6.2f\n",
+  std::printf("%4d %5d | %6s %6s %7.1f | %8.1f %6.1f %9.1f | %6.1f %5zu %5zu %6llu | %6llu %7llu %5llu | %7.0f %8.0f "
+              "%6.1f %7.1f | %6.2f\n",
               f.subsystems, f.all_nodes, duration_text(f.mesh_converged).c_str(),
               duration_text(f.ocus_complete).c_str(), f.discovery_wall_ms, f.heap_per_subsystem_bytes / 1024.0,
               f.heap_per_peer_entry_bytes, f.ocu_heap_per_subsystem_bytes, f.liveness_entries_per_node,
               f.liveness_entries_max, f.ocu_liveness_entries,
               static_cast<unsigned long long>(f.liveness_rejected_full),
               static_cast<unsigned long long>(f.discovery.sent), static_cast<unsigned long long>(f.discovery.delivered),
+              static_cast<unsigned long long>(f.queue_dropped),
               static_cast<double>(f.steady.sent) * per_s, static_cast<double>(f.steady.delivered) * per_s,
               static_cast<double>(f.steady.sent) * per_s / f.all_nodes,
               static_cast<double>(f.steady.delivered) * per_s / f.all_nodes, f.wall_s);
 }
 
 void print_header() {
-  std::printf("%4s %5s | %-22s | %-26s | %-25s | %-14s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
-              "liveness table entries", "discovery msgs", "steady state, messages/s", "wall");
-  std::printf("%4s %5s | %6s %6s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s | %7s %8s %6s %7s | %6s\n", "S", "nodes",
-              "mesh s", "OCU s", "OCU ms", "KiB/subs", "B/peer", "OCU B/sub", "mean", "max", "OCU", "refusd", "sent",
-              "deliverd", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
+  std::printf("%4s %5s | %-22s | %-26s | %-25s | %-20s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
+              "liveness table entries", "discovery messages", "steady state, messages/s", "wall");
+  std::printf("%4s %5s | %6s %6s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s %5s | %7s %8s %6s %7s | %6s\n", "S",
+              "nodes", "mesh s", "OCU s", "OCU ms", "KiB/subs", "B/peer", "OCU B/sub", "mean", "max", "OCU", "refusd",
+              "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
 }
 
 void print_by_message(const RunFigures& f) {
@@ -545,11 +584,13 @@ Options parse(int argc, char** argv) {
       else throw std::invalid_argument("--fabric is routed, multicast or both");
     } else if (arg == "--latency-ms") {
       o.latency = std::chrono::microseconds(static_cast<std::int64_t>(std::stod(value()) * 1000));
+    } else if (arg == "--jitter-us") {
+      o.jitter = std::chrono::microseconds(std::stoll(value()));
     } else if (arg == "--steady-s") {
       o.steady = std::chrono::milliseconds(static_cast<std::int64_t>(std::stod(value()) * 1000));
     } else {
       throw std::invalid_argument("usage: bench_scale [--subsystems 10,50,100] [--nodes N] [--ocus N] "
-                                  "[--fabric routed|multicast|both] [--latency-ms MS] [--steady-s S]");
+                                  "[--fabric routed|multicast|both] [--latency-ms MS] [--jitter-us US] [--steady-s S]");
     }
   }
   if (o.nodes_per_subsystem < 1 || o.nodes_per_subsystem > 254) throw std::invalid_argument("--nodes is 1..254");
@@ -568,15 +609,17 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     std::printf("bench_scale: S subsystems of %d node(s) each (node 1: node manager, communicator, primitive driver, "
                 "global pose sensor; others: node manager, velocity state sensor), %d OCU(s) discovering them as "
-                "jausctl discover does; heartbeats 1 Hz, network latency %.1f ms, virtual time\n",
-                o.nodes_per_subsystem, o.ocus, seconds(o.latency) * 1000);
+                "jausctl discover does; heartbeats 1 Hz, network latency %.1f ms (+ up to %.0f us per message), "
+                "virtual time\n",
+                o.nodes_per_subsystem, o.ocus, seconds(o.latency) * 1000, seconds(o.jitter) * 1e6);
     std::printf("  converged: mesh, every vehicle node's subsystem list names every vehicle subsystem (from the "
                 "network coming up for all at once); OCU, every OCU lists every subsystem, node and component, "
                 "identified, with services (from its start; OCU ms: the real time that took in this process)\n");
     std::printf("  heap: bytes in use (operator new); KiB/subs: per subsystem as built; B/peer: growth while the "
                 "vehicles learnt each other / (S*(S-1)); OCU B/sub: an OCU's growth while discovering / S\n");
     std::printf("  steady state: %.0f s after discovery, JAUS messages handed to the network (sent) and delivered "
-                "to nodes, per node = / all nodes (OCUs included); refusd: liveness newcomers refused (table full)\n",
+                "to nodes, per node = / all nodes (OCUs included); refusd: liveness newcomers refused (table full), "
+                "all nodes; qdrop: messages a full inbound queue dropped, all nodes, whole run\n",
                 seconds(o.steady));
     for (const Fabric fabric : o.fabrics) {
       std::printf("\nfabric %s%s\n", fabric_name(fabric),
