@@ -19,6 +19,7 @@ packages=(
   lintian               # tests/package checks the jaus-node .deb with Debian's package checker
   tshark                # tests/wireshark runs the generated Wireshark dissector in tshark
   iproute2 nftables     # tests/network: network namespaces, a bridge, veths (ip) and packet loss (nft)
+  chromium chromium-driver  # tests/browser: jaus-console's page in headless Chromium (tests only; ~26 s to install)
 )
 
 missing=()
