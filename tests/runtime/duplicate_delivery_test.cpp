@@ -41,7 +41,7 @@ class DuplicateDeliveryTest : public ::testing::Test {
     h.ack_nak = ack;
     h.sequence = sequence;
     h.data_size = static_cast<std::uint16_t>(*size);
-    encode_header_unchecked(h, std::span(bytes).first<kHeaderSize>());
+    encode_header_unchecked(h, std::span<std::uint8_t, kHeaderSize>(bytes.data(), kHeaderSize));
     bytes.resize(kHeaderSize + *size);
     a->receive_bytes(bytes);
     time.advance(1ms);

@@ -86,12 +86,13 @@ struct NodeCounters {
   std::uint64_t duplicates_filtered = 0;
 };
 
-// How a message sent with send_acknowledged ended (AckResolution::outcome,
-// transmissions = how often it crossed the network, 0 when it never did).
-using AckCallback = std::function<void(const AckResolution&)>;
 
 class Node final : public rt::Outbox, public rt::NodeDirectory {
  public:
+  // How a message sent with send_acknowledged ended (AckResolution::outcome,
+  // transmissions = how often it crossed the network, 0 when it never did).
+  using AckCallback = std::function<void(const AckResolution&)>;
+
   Node(NodeConfig config, rt::Clock& clock, rt::Scheduler& scheduler, Link& link, rt::LogFn log = {});
   ~Node() override;
   Node(const Node&) = delete;
