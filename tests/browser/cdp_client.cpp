@@ -226,9 +226,10 @@ Expected<void> CdpClient::read_one(Clock::time_point until) {
   Json message = Json::parse(beast::buffers_to_string(buffer_.data()), nullptr, false);
   buffer_.consume(buffer_.size());
   if (message.is_discarded()) return fail(ErrorCode::malformed, "DevTools sent a frame that is not JSON");
-  if (message.contains("id"))
-    responses_[message["id"].get<int>()] = std::move(message);
-  else
+  if (message.contains("id") && message["id"].is_number_integer()) {
+    const int id = message["id"].get<int>();  // before the move: an assignment's right side goes first
+    responses_[id] = std::move(message);
+  } else
     events_.push_back(std::move(message));
   return {};
 }
@@ -366,10 +367,20 @@ Expected<void> Tab::screenshot(const std::filesystem::path& file) {
   return {};
 }
 
-Expected<void> Tab::close() {
+Expected<void> Tab::close(std::chrono::milliseconds deadline) {
   auto closed = cdp_->call("Target.closeTarget", {{"targetId", target_}});
   if (!closed) return unexpected(closed.error());
-  return {};
+  // Closing is asynchronous: the tab is gone once the browser no longer lists it.
+  const auto until = Clock::now() + deadline;
+  while (true) {
+    auto targets = cdp_->call("Target.getTargets");
+    if (!targets) return unexpected(targets.error());
+    bool listed = false;
+    for (const auto& target : (*targets)["targetInfos"]) listed = listed || target.value("targetId", "") == target_;
+    if (!listed) return {};
+    if (Clock::now() >= until) return fail(ErrorCode::timeout, "the tab did not close");
+    std::this_thread::sleep_for(20ms);
+  }
 }
 
 }  // namespace jaus::test::browser

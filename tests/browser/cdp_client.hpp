@@ -111,8 +111,8 @@ class Tab {
   Expected<void> click(const std::string& selector);
   // The visible page as a PNG file.
   Expected<void> screenshot(const std::filesystem::path& file);
-  // Closes the tab as the operator would (the page gets pagehide; its socket closes).
-  Expected<void> close();
+  // Closes the tab as the operator would (the page gets pagehide; its socket closes), and waits until it is gone.
+  Expected<void> close(std::chrono::milliseconds deadline = 10s);
 
  private:
   Tab(CdpClient& cdp, std::string target, std::string session)

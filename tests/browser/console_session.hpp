@@ -36,7 +36,7 @@ inline std::optional<Json> json_line_of(ChildProcess& child) {
 inline std::unique_ptr<ChildProcess> start_console(const DefaultJausd& jausd, const std::string& to,
                                                    const std::string& jaus_bind, const std::string& http_listen) {
   return std::make_unique<ChildProcess>(
-      std::vector<std::string>{JAUS_CONSOLE_PATH, "--to", to, "--bind", jaus_bind, "--listen", http_listen},
+      std::vector<std::string>{JAUS_CONSOLE_PATH, "--to", to, "--bind", jaus_bind, "--listen", http_listen, "-v"},
       (jausd.dir() / "jaus-console.log").string());
 }
 
