@@ -46,10 +46,16 @@ DuplicateVerdict DuplicateFilter::check(const Header& h, std::span<const std::ui
     return DuplicateVerdict::duplicate;
   }
   if (entries_.size() >= options_.max_entries) {
-    const auto oldest = entries_.find(recency_.front());
-    if (now - oldest->second.last_seen <= options_.window) ++counters_.forgotten;
-    entries_.erase(oldest);
-    recency_.pop_front();
+    // The least recently seen makes room, its nodes reused: a full table
+    // (a flood of distinct messages) allocates nothing.
+    auto oldest = entries_.extract(recency_.front());
+    if (now - oldest.mapped().last_seen <= options_.window) ++counters_.forgotten;
+    recency_.splice(recency_.end(), recency_, recency_.begin());
+    recency_.back() = key;
+    oldest.key() = key;
+    oldest.mapped() = Entry{fingerprint, payload.size(), now, std::prev(recency_.end())};
+    entries_.insert(std::move(oldest));
+    return DuplicateVerdict::first_copy;
   }
   recency_.push_back(key);
   entries_.emplace(key, Entry{fingerprint, payload.size(), now, std::prev(recency_.end())});

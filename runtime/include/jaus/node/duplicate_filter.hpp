@@ -11,7 +11,8 @@
 // (stopping twice is safe, and a restarted OCU reusing its ID and sequence 0
 // must still stop the vehicle). Bounded: at most `max_entries` messages are
 // remembered, the least recently seen forgotten first (a flood of distinct
-// messages only makes the filter forget, never drop a first copy).
+// messages only makes the filter forget, never drop a first copy; once full
+// it reuses the forgotten entry's memory: no allocation per message).
 #pragma once
 
 #include <cstddef>
