@@ -135,8 +135,10 @@
       renderDriving();
     },
     pose(m) {
+      // The map follows a source that reports: the first one heard unless the operator chose one.
+      if (!poseSource() || (!state.pose.has(poseSource()) && !$("pose-source").dataset.touched))
+        selectDefault("pose-source", m.source);
       state.pose.set(m.source, m);
-      if (!poseSource()) selectDefault("pose-source", m.source);
       if (m.source === poseSource()) {
         const last = state.track[state.track.length - 1];
         if (!last || Math.hypot(last.x - m.x, last.y - m.y) > 0.01) {
@@ -374,9 +376,24 @@
     return { held, linear: Math.round(linear * limit * 100), angular: Math.round(angular * limit * 100) };
   }
 
+  // Whether this console drives `target` now: it holds control (the control frame, or the tree's controller).
+  function controlled(target) {
+    const control = state.control.get(target);
+    const c = state.components.get(target);
+    return (control && control.state === "held") || (!!c && !!state.self && c.controller === state.self);
+  }
+
+  let warnedNoControl = false;
   function sendDrive(c) {
     const target = $("drive-target").value;
     if (!target) return;
+    if (c.held && !controlled(target)) {
+      // Not ours to drive: say so once per press rather than have the console refuse 20 frames a second.
+      if (!warnedNoControl) log("warn", `take control of ${target} before driving (Request control)`);
+      warnedNoControl = true;
+      return;
+    }
+    if (!c.held) warnedNoControl = false;
     if (send({ type: "drive", target, linear: c.linear, angular: c.angular, held: c.held })) state.drive.sent++;
   }
 
@@ -394,6 +411,7 @@
     } else {
       if (driveTimer) { clearInterval(driveTimer); driveTimer = null; }
       if (was) sendDrive({ held: false, linear: 0, angular: 0 });
+      warnedNoControl = false;
     }
     renderDeadman();
   }
@@ -649,7 +667,11 @@
     renderWaypoints();
     drawMap();
   });
-  $("pose-source").addEventListener("change", () => { state.track = []; renderPose(); });
+  $("pose-source").addEventListener("change", () => {
+    $("pose-source").dataset.touched = "1";
+    state.track = [];
+    renderPose();
+  });
   $("map-clear-track").addEventListener("click", () => { state.track = []; drawMap(); });
 
   // ---------------------------------------------------------------- waypoints
@@ -755,10 +777,19 @@
   // ---------------------------------------------------------------- event log and helpers
   function log(level, text, time) {
     const list = $("event-log");
-    const item = el("li", level);
+    // A repeat of the newest entry counts up rather than scrolling the log away.
+    const newest = list.firstElementChild;
+    if (newest && newest.dataset.text === text && newest.classList.contains(level || "info")) {
+      const times = Number(newest.dataset.times || 1) + 1;
+      newest.dataset.times = String(times);
+      newest.querySelector(".times").textContent = ` ×${times}`;
+      return;
+    }
+    const item = el("li", level || "info");
+    item.dataset.text = text;
     const when = time ? new Date(time) : new Date();
     const stamp = el("time", "", isNaN(when) ? String(time) : when.toLocaleTimeString([], { hour12: false }));
-    item.append(stamp, document.createTextNode(text));
+    item.append(stamp, document.createTextNode(text), el("span", "times", ""));
     list.prepend(item);
     while (list.children.length > LOG_ENTRIES) list.lastChild.remove();
   }
