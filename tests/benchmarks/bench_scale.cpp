@@ -48,6 +48,7 @@
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/catalogue.hpp"
+#include "jaus/messages/core_messages.hpp"
 #include "jaus/messages/discovery_messages.hpp"
 #include "jaus/ocu/discovery.hpp"
 #include "jaus/ocu/session.hpp"
@@ -102,6 +103,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 // How long the OCUs may take to list everything: five times `jausctl
 // discover`'s default --wait, which asks each question once.
 constexpr rt::Duration kDiscoveryLimit = 10s;
+constexpr std::uint8_t kOperatorAuthority = 5;  // above the vehicles' components (0)
 
 enum class Fabric { routed, multicast };
 const char* fabric_name(Fabric f) { return f == Fabric::routed ? "routed" : "multicast"; }
@@ -268,6 +270,7 @@ struct RunFigures {
   std::size_t ocu_liveness_entries = 0;        // the first OCU's, when it listed everything
   std::size_t ocu_components_listed = 0;
   double discovery_wall_ms = 0;                // real time the OCUs' discovery took, in this one process
+  std::string control;                         // what the first OCU's Request Component Control of 1.1.33.1 got
   Traffic discovery;                           // from the OCUs' start until every OCU listed everything
   Traffic steady;                              // over the steady window
   double steady_s = 0;
@@ -354,6 +357,8 @@ class System {
         static_cast<double>(heap_bytes() - heap_ocus_attached) / options_.ocus / subsystems_;
     f.ocu_components_listed = ocus_.front().discovery->component_count();
 
+    f.control = try_control();
+
     // Steady state: the discovery replies are in, the OCUs stay on the network.
     testing::run_for(time_, 2s);
     const Traffic at_start = traffic_;
@@ -399,6 +404,23 @@ class System {
       }
   }
 
+  // Whether an operator can still take control once the system is this
+  // large: a vehicle whose liveness table is full treats a new OCU as
+  // unrecorded and refuses it. Released at once (no controller traffic later).
+  std::string try_control() {
+    ocu::OcuSession& s = *ocus_.front().session;
+    const Address driver{1, 1, components_of_node(1)[2].id, 1};
+    auto reply = s.request(driver, msg::RequestComponentControl{{kOperatorAuthority}}, {msg::ConfirmComponentControl::code},
+                           1s);
+    if (!reply) return "no reply";
+    msg::ConfirmComponentControl confirm{};
+    if (!wire::decode_payload_into(reply->payload, confirm, wire::Dialect::ra, kHeaderSize)) return "garbled";
+    if (confirm.response_code != msg::control_response::kAccepted) return "refused";
+    s.send(driver, msg::ReleaseComponentControl{});
+    testing::run_for(time_, 100ms);
+    return "yes";
+  }
+
   FabricLink::Jitter jitter() { return {&time_, &time_, options_.jitter, &random_}; }
 
   bool every_vehicle_lists_every_subsystem() const {
@@ -417,6 +439,7 @@ class System {
       o.link = std::make_unique<FabricLink>(network_.attach(ocu_subsystem(i), 1), fabric_, traffic_, jitter());
       ocu::SessionOptions session;
       session.self = Address{ocu_subsystem(i), 1, 40, 1};
+      session.authority = kOperatorAuthority;
       FabricLink* link = o.link.get();
       auto attached = ocu::OcuSession::attach(
           session, ocu::SessionEnvironment{&time_, &time_, link,
@@ -502,10 +525,11 @@ std::string message_name(std::uint16_t code) {
 
 void print_run(const RunFigures& f) {
   const double per_s = f.steady_s > 0 ? 1.0 / f.steady_s : 0;
-  std::printf("%4d %5d | %6s %6s %7.1f | %8.1f %6.1f %9.1f | %6.1f %5zu %5zu %6llu | %6llu %7llu %5llu | %7.0f %8.0f "
-              "%6.1f %7.1f | %6.2f\n",
+  std::printf("%4d %5d | %6s %6s %7.1f %7s | %8.1f %6.1f %9.1f | %6.1f %5zu %5zu %6llu | %6llu %7llu %5llu | %7.0f "
+              "%8.0f %6.1f %7.1f | %6.2f\n",
               f.subsystems, f.all_nodes, duration_text(f.mesh_converged).c_str(),
-              duration_text(f.ocus_complete).c_str(), f.discovery_wall_ms, f.heap_per_subsystem_bytes / 1024.0,
+              duration_text(f.ocus_complete).c_str(), f.discovery_wall_ms, f.control.c_str(),
+              f.heap_per_subsystem_bytes / 1024.0,
               f.heap_per_peer_entry_bytes, f.ocu_heap_per_subsystem_bytes, f.liveness_entries_per_node,
               f.liveness_entries_max, f.ocu_liveness_entries,
               static_cast<unsigned long long>(f.liveness_rejected_full),
@@ -517,10 +541,10 @@ void print_run(const RunFigures& f) {
 }
 
 void print_header() {
-  std::printf("%4s %5s | %-22s | %-26s | %-25s | %-20s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
+  std::printf("%4s %5s | %-30s | %-26s | %-25s | %-20s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
               "liveness table entries", "discovery messages", "steady state, messages/s", "wall");
-  std::printf("%4s %5s | %6s %6s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s %5s | %7s %8s %6s %7s | %6s\n", "S",
-              "nodes", "mesh s", "OCU s", "OCU ms", "KiB/subs", "B/peer", "OCU B/sub", "mean", "max", "OCU", "refusd",
+  std::printf("%4s %5s | %6s %6s %7s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s %5s | %7s %8s %6s %7s | %6s\n",
+              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/peer", "OCU B/sub", "mean", "max", "OCU", "refusd",
               "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
 }
 
@@ -614,7 +638,8 @@ int main(int argc, char** argv) {
                 o.nodes_per_subsystem, o.ocus, seconds(o.latency) * 1000, seconds(o.jitter) * 1e6);
     std::printf("  converged: mesh, every vehicle node's subsystem list names every vehicle subsystem (from the "
                 "network coming up for all at once); OCU, every OCU lists every subsystem, node and component, "
-                "identified, with services (from its start; OCU ms: the real time that took in this process)\n");
+                "identified, with services (from its start; OCU ms: the real time that took in this process); control: "
+                "the first OCU's Request Component Control of 1.1.33.1 afterwards\n");
     std::printf("  heap: bytes in use (operator new); KiB/subs: per subsystem as built; B/peer: growth while the "
                 "vehicles learnt each other / (S*(S-1)); OCU B/sub: an OCU's growth while discovering / S\n");
     std::printf("  steady state: %.0f s after discovery, JAUS messages handed to the network (sent) and delivered "
