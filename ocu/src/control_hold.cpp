@@ -62,9 +62,10 @@ ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
     if (m.header.source != target_) return;
     if (m.header.command_code == jaus::msg::RejectComponentControl::code) rejected_ = true;
     if (m.header.command_code == jaus::msg::QueryComponentStatus::code) ++liveness_checks_;
-    // The answer to a keepalive: the state as fresh as a report's (and the
-    // first one sooner when the service connection's creation was lost).
-    if (m.header.command_code == jaus::msg::ReportComponentStatus::code) {
+    // The answer to a keepalive: the first state sooner when the service
+    // connection's creation was lost. Once its reports come, they alone
+    // tell the state (an answer overtaken by a newer report is not stale news).
+    if (m.header.command_code == jaus::msg::ReportComponentStatus::code && !status_reported_) {
       jaus::msg::ReportComponentStatus report{};
       if (jaus::wire::decode_payload_into(m.payload, report, session_.options().dialect, jaus::kHeaderSize))
         heard_status(report.primary_status);
@@ -95,6 +96,7 @@ void ControlHold::watch_status() {
   status_sc_ = session_.component().subscribe<jaus::msg::ReportComponentStatus>(
       target_, status_rate_hz(), 0,
       [this](const jaus::Header&, const jaus::msg::ReportComponentStatus& report) {
+        status_reported_ = true;
         heard_status(report.primary_status);
       });
 }

@@ -9,9 +9,10 @@
 // the hold also sends a keepalive (Query Component Status, cheap and without
 // effect) whenever nothing else went to the component for kKeepalive: a
 // timeout passes only when a dozen datagrams in a row are lost. The first
-// goes as soon as the hold begins, and the answers count as status reports:
-// the state is known at once even when the status service connection's
-// creation was lost (its client creates it again after 1 s). The OCU's
+// goes as soon as the hold begins, and until the status service connection's
+// first report its answers count as status reports: the state is known at
+// once even when the connection's creation was lost (its client creates it
+// again after 1 s). The OCU's
 // node manager heartbeats keep its node alive on the other side.
 // Over loss, the request is sent again until answered, and the release goes
 // with an ACK request, retransmitted until ACKed (must_arrive.hpp).
@@ -152,6 +153,7 @@ class ControlHold {
   std::uint64_t liveness_checks_ = 0;
   std::optional<jaus::rt::SubscriptionId> status_sc_;
   std::optional<std::uint8_t> state_;  // last primary status reported
+  bool status_reported_ = false;       // by the service connection (not only by keepalive answers)
   jaus::rt::TimePoint status_heard_{};
   std::function<void(const std::string&)> on_state_;
   std::optional<PreparedMessage> repeated_;
