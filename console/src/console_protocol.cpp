@@ -10,7 +10,7 @@ namespace {
 using nlohmann::json;
 
 jaus::Unexpected<jaus::Error> refuse(std::string_view type, const std::string& why) {
-  return jaus::unexpected(jaus::make_error(jaus::ErrorCode::json, std::string(type) + ": " + why));
+  return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, std::string(type) + ": " + why));
 }
 
 // The fields of one frame, each read with its check; the first error wins.
@@ -273,12 +273,12 @@ std::string_view to_string(ControlState state) {
 
 jaus::Expected<PageFrame> parse_page_frame(std::string_view text) {
   const json frame = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (frame.is_discarded()) return jaus::unexpected(jaus::make_error(jaus::ErrorCode::json, "not JSON"));
+  if (frame.is_discarded()) return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, "not JSON"));
   if (!frame.is_object())
-    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::json, "a frame must be a JSON object"));
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, "a frame must be a JSON object"));
   const auto type_it = frame.find("type");
   if (type_it == frame.end() || !type_it->is_string())
-    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::json, "a frame must have a \"type\" (text)"));
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, "a frame must have a \"type\" (text)"));
   const auto& type = type_it->get_ref<const std::string&>();
   const Fields fields(frame, type);
   if (type == "control") return parse_control(fields);
@@ -288,7 +288,7 @@ jaus::Expected<PageFrame> parse_page_frame(std::string_view text) {
   if (type == "camera") return parse_camera(fields);
   if (type == "arm") return parse_arm(fields);
   if (type == "waypoints") return parse_waypoints(fields);
-  return jaus::unexpected(jaus::make_error(jaus::ErrorCode::json, "unknown frame type \"" + type + "\""));
+  return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, "unknown frame type \"" + type + "\""));
 }
 
 std::string format_frame(const ServerFrame& frame) {

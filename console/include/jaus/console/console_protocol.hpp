@@ -82,7 +82,7 @@ using PageFrame =
 inline constexpr std::size_t kMaxWaypoints = 1000;
 inline constexpr std::size_t kMaxJoints = 32;
 
-// One text frame. Errors (ErrorCode::json): not JSON, not an object, no or an
+// One text frame. Errors (ErrorCode::invalid_argument, the message alone): not JSON, not an object, no or an
 // unknown "type", a field missing, of the wrong type or out of range; the
 // detail names the field ("drive: 'linear' must be a number in -100..100").
 jaus::Expected<PageFrame> parse_page_frame(std::string_view text);
