@@ -195,13 +195,14 @@ struct ComponentPlan {
   std::uint8_t id = 0;
 };
 
+std::uint8_t id_of(const char* kind) {
+  const host::ComponentKind* k = host::find_component_kind(kind);
+  if (!k) throw std::invalid_argument(std::string("no component kind ") + kind);
+  return k->default_id;
+}
+
 // Node 1 of a subsystem is the vehicle's main computer; the others each add a sensor.
 std::vector<ComponentPlan> components_of_node(int node) {
-  const auto id_of = [](const char* kind) {
-    const host::ComponentKind* k = host::find_component_kind(kind);
-    if (!k) throw std::invalid_argument(std::string("no component kind ") + kind);
-    return k->default_id;
-  };
   std::vector<ComponentPlan> plan{{"node_manager", 1}};
   if (node == 1) {
     plan.push_back({"communicator", id_of("communicator")});
@@ -261,14 +262,13 @@ struct RunFigures {
   std::optional<rt::Duration> mesh_converged;  // from power-on
   std::optional<rt::Duration> ocus_complete;   // from the OCUs' start, the slowest
   double heap_per_subsystem_bytes = 0;         // as built
-  double heap_per_peer_entry_bytes = 0;        // the vehicles' growth while learning each other
+  double heap_per_subsystem_pair_bytes = 0;    // the vehicles' growth while learning each other, per ordered pair
   double ocu_heap_per_subsystem_bytes = 0;     // an OCU's growth while discovering
   double liveness_entries_per_node = 0;        // mean, vehicle nodes, steady state
   std::size_t liveness_entries_max = 0;
   std::uint64_t liveness_rejected_full = 0;    // newcomers refused, all nodes
   std::uint64_t queue_dropped = 0;             // inbound queue full, all nodes
   std::size_t ocu_liveness_entries = 0;        // the first OCU's, when it listed everything
-  std::size_t ocu_components_listed = 0;
   double discovery_wall_ms = 0;                // real time the OCUs' discovery took, in this one process
   std::string control;                         // what the first OCU's Request Component Control of 1.1.33.1 got
   Traffic discovery;                           // from the OCUs' start until every OCU listed everything
@@ -320,7 +320,7 @@ class System {
     testing::run_for(time_, 3s);
     const auto heap_learnt = heap_bytes();
     const double ordered_pairs = static_cast<double>(subsystems_) * (subsystems_ - 1);
-    f.heap_per_peer_entry_bytes =
+    f.heap_per_subsystem_pair_bytes =
         ordered_pairs > 0 ? static_cast<double>(heap_learnt - heap_built) / ordered_pairs : 0;
 
     attach_ocus();
@@ -355,7 +355,6 @@ class System {
     if (every_ocu_complete) f.ocus_complete = slowest;
     f.ocu_heap_per_subsystem_bytes =
         static_cast<double>(heap_bytes() - heap_ocus_attached) / options_.ocus / subsystems_;
-    f.ocu_components_listed = ocus_.front().discovery->component_count();
 
     f.control = try_control();
 
@@ -373,8 +372,8 @@ class System {
       entries += liveness.size();
       f.liveness_entries_max = std::max(f.liveness_entries_max, liveness.size());
       f.liveness_rejected_full += liveness.counters().rejected_full;
+      f.queue_dropped += h->node().counters().queue_dropped;
     }
-    for (const auto& h : hosts_) f.queue_dropped += h->node().counters().queue_dropped;
     for (const auto& o : ocus_) {
       f.liveness_rejected_full += o.session->node().liveness().counters().rejected_full;
       f.queue_dropped += o.session->node().counters().queue_dropped;
@@ -409,7 +408,7 @@ class System {
   // unrecorded and refuses it. Released at once (no controller traffic later).
   std::string try_control() {
     ocu::OcuSession& s = *ocus_.front().session;
-    const Address driver{1, 1, components_of_node(1)[2].id, 1};
+    const Address driver{1, 1, id_of("primitive_driver"), 1};
     auto reply = s.request(driver, msg::RequestComponentControl{{kOperatorAuthority}}, {msg::ConfirmComponentControl::code},
                            1s);
     if (!reply) return "no reply";
@@ -530,7 +529,7 @@ void print_run(const RunFigures& f) {
               f.subsystems, f.all_nodes, duration_text(f.mesh_converged).c_str(),
               duration_text(f.ocus_complete).c_str(), f.discovery_wall_ms, f.control.c_str(),
               f.heap_per_subsystem_bytes / 1024.0,
-              f.heap_per_peer_entry_bytes, f.ocu_heap_per_subsystem_bytes, f.liveness_entries_per_node,
+              f.heap_per_subsystem_pair_bytes, f.ocu_heap_per_subsystem_bytes, f.liveness_entries_per_node,
               f.liveness_entries_max, f.ocu_liveness_entries,
               static_cast<unsigned long long>(f.liveness_rejected_full),
               static_cast<unsigned long long>(f.discovery.sent), static_cast<unsigned long long>(f.discovery.delivered),
@@ -544,7 +543,7 @@ void print_header() {
   std::printf("%4s %5s | %-30s | %-26s | %-25s | %-20s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
               "liveness table entries", "discovery messages", "steady state, messages/s", "wall");
   std::printf("%4s %5s | %6s %6s %7s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s %5s | %7s %8s %6s %7s | %6s\n",
-              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/peer", "OCU B/sub", "mean", "max", "OCU", "refusd",
+              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/pair", "OCU B/sub", "mean", "max", "OCU", "refusd",
               "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
 }
 
@@ -640,7 +639,7 @@ int main(int argc, char** argv) {
                 "network coming up for all at once); OCU, every OCU lists every subsystem, node and component, "
                 "identified, with services (from its start; OCU ms: the real time that took in this process); control: "
                 "the first OCU's Request Component Control of 1.1.33.1 afterwards\n");
-    std::printf("  heap: bytes in use (operator new); KiB/subs: per subsystem as built; B/peer: growth while the "
+    std::printf("  heap: bytes in use (operator new); KiB/subs: per subsystem as built; B/pair: growth while the "
                 "vehicles learnt each other / (S*(S-1)); OCU B/sub: an OCU's growth while discovering / S\n");
     std::printf("  steady state: %.0f s after discovery, JAUS messages handed to the network (sent) and delivered "
                 "to nodes, per node = / all nodes (OCUs included); refusd: liveness newcomers refused (table full), "
