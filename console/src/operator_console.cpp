@@ -69,14 +69,26 @@ struct JointLimit {
   double min = 0, max = 0;  // rad or m
 };
 
+// Part 3 carries revolute angles as 0 .. 2 pi: back into (-pi, pi], with
+// the 0.001 rad of the wire's rounding allowed above pi.
+double signed_angle(double rad) {
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  return rad > std::numbers::pi + 0.002 ? rad - kTwoPi : rad;
+}
+
+JointLimit joint_limit(std::uint8_t type, double min, double max) {
+  if (type == static_cast<std::uint8_t>(jaus::msg::JointType::prismatic)) return {false, min, max};
+  JointLimit limit{true, signed_angle(min), signed_angle(max)};
+  // -pi and pi are one angle on the wire: a minimum that came back as +pi.
+  if (limit.min >= limit.max) limit.min -= 2 * std::numbers::pi;
+  return limit;
+}
+
 // Joints 1 .. n-1 with their links, then the last joint (Part 3's order).
 std::vector<JointLimit> joint_limits(const jaus::msg::ManipulatorSpecificationsBody& s) {
   std::vector<JointLimit> limits;
-  for (const auto& j : s.joints)
-    limits.push_back({j.type != static_cast<std::uint8_t>(jaus::msg::JointType::prismatic), j.min_rad_or_m,
-                      j.max_rad_or_m});
-  limits.push_back({s.last_joint_type != static_cast<std::uint8_t>(jaus::msg::JointType::prismatic),
-                    s.last_joint_min_rad_or_m, s.last_joint_max_rad_or_m});
+  for (const auto& j : s.joints) limits.push_back(joint_limit(j.type, j.min_rad_or_m, j.max_rad_or_m));
+  limits.push_back(joint_limit(s.last_joint_type, s.last_joint_min_rad_or_m, s.last_joint_max_rad_or_m));
   return limits;
 }
 
@@ -498,7 +510,12 @@ void OperatorConsole::on_arm(PageId page, const ArmFrame& frame) {
   jaus::msg::SetJointPositions set{};
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const double value = limits[i].revolute ? radians(frame.joints[i]) : frame.joints[i];
-    set.positions_rad.push_back(within(value, limits[i].min, limits[i].max));
+    // The specifications carry limits to 0.001 (rad or m), rounded either
+    // way: one step inside them is within the arm's real limits.
+    constexpr double kStep = 0.001;
+    const double low = std::min(limits[i].min, limits[i].max) + kStep;
+    const double high = std::max(limits[i].min, limits[i].max) - kStep;
+    set.positions_rad.push_back(low < high ? within(value, low, high) : within(value, limits[i].min, limits[i].max));
   }
   session_.send(frame.target, set);
 }
@@ -511,7 +528,7 @@ void OperatorConsole::publish_arm(const jaus::Address& source) {
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const auto& l = limits[i];
     const double position = i < it->second.positions_rad_or_m.size() ? it->second.positions_rad_or_m[i] : 0.0;
-    frame.joints.push_back(l.revolute ? ArmJoint{degrees(l.min), degrees(l.max), degrees(position), "deg"}
+    frame.joints.push_back(l.revolute ? ArmJoint{degrees(l.min), degrees(l.max), degrees(signed_angle(position)), "deg"}
                                       : ArmJoint{l.min, l.max, position, "m"});
   }
   to_all(frame);
