@@ -409,8 +409,8 @@ class System {
   std::string try_control() {
     ocu::OcuSession& s = *ocus_.front().session;
     const Address driver{1, 1, id_of("primitive_driver"), 1};
-    auto reply = s.request(driver, msg::RequestComponentControl{{kOperatorAuthority}}, {msg::ConfirmComponentControl::code},
-                           1s);
+    auto reply =
+        s.request(driver, msg::RequestComponentControl{{kOperatorAuthority}}, {msg::ConfirmComponentControl::code}, 1s);
     if (!reply) return "no reply";
     msg::ConfirmComponentControl confirm{};
     if (!wire::decode_payload_into(reply->payload, confirm, wire::Dialect::ra, kHeaderSize)) return "garbled";
@@ -543,8 +543,8 @@ void print_header() {
   std::printf("%4s %5s | %-30s | %-26s | %-25s | %-20s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
               "liveness table entries", "discovery messages", "steady state, messages/s", "wall");
   std::printf("%4s %5s | %6s %6s %7s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s %5s | %7s %8s %6s %7s | %6s\n",
-              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/pair", "OCU B/sub", "mean", "max", "OCU", "refusd",
-              "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
+              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/pair", "OCU B/sub", "mean", "max", "OCU",
+              "refusd", "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
 }
 
 void print_by_message(const RunFigures& f) {
