@@ -543,8 +543,8 @@ void print_header() {
   std::printf("%4s %5s | %-30s | %-26s | %-25s | %-20s | %-33s | %6s\n", "", "", "converged", "heap (bytes)",
               "liveness table entries", "discovery messages", "steady state, messages/s", "wall");
   std::printf("%4s %5s | %6s %6s %7s %7s | %8s %6s %9s | %6s %5s %5s %6s | %6s %7s %5s | %7s %8s %6s %7s | %6s\n",
-              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/pair", "OCU B/sub", "mean", "max", "OCU",
-              "refusd", "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
+              "S", "nodes", "mesh s", "OCU s", "OCU ms", "control", "KiB/subs", "B/pair", "OCU B/sub", "mean", "max",
+              "OCU", "refusd", "sent", "deliverd", "qdrop", "sent", "deliverd", "snt/nd", "rcvd/nd", "s");
 }
 
 void print_by_message(const RunFigures& f) {
