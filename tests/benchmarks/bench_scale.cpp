@@ -61,7 +61,7 @@ namespace {
 std::atomic<std::int64_t> g_heap_bytes{0};
 std::atomic<std::uint64_t> g_allocations{0};
 
-void* counted_malloc(std::size_t size) noexcept {
+[[gnu::noinline]] void* counted_malloc(std::size_t size) noexcept {
   void* p = std::malloc(size == 0 ? 1 : size);
   if (p) {
     g_heap_bytes.fetch_add(static_cast<std::int64_t>(malloc_usable_size(p)), std::memory_order_relaxed);
@@ -69,26 +69,30 @@ void* counted_malloc(std::size_t size) noexcept {
   }
   return p;
 }
-void counted_free(void* p) noexcept {
+[[gnu::noinline]] void counted_free(void* p) noexcept {
   if (!p) return;
   g_heap_bytes.fetch_sub(static_cast<std::int64_t>(malloc_usable_size(p)), std::memory_order_relaxed);
   std::free(p);
 }
 }  // namespace
 
-void* operator new(std::size_t size) {
+// Not inlined: inlined into a caller, GCC takes the free() for a mismatched
+// delete of new's pointer (as tests/load/steady_state_allocation_test.cpp says).
+[[gnu::noinline]] void* operator new(std::size_t size) {
   if (void* p = counted_malloc(size)) return p;
   throw std::bad_alloc();
 }
-void* operator new[](std::size_t size) { return operator new(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
-void operator delete(void* p) noexcept { counted_free(p); }
-void operator delete[](void* p) noexcept { counted_free(p); }
-void operator delete(void* p, std::size_t) noexcept { counted_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { counted_free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { counted_free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { counted_free(p); }
+[[gnu::noinline]] void* operator new[](std::size_t size) { return operator new(size); }
+[[gnu::noinline]] void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
+[[gnu::noinline]] void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  return counted_malloc(size);
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept { counted_free(p); }
+[[gnu::noinline]] void operator delete[](void* p) noexcept { counted_free(p); }
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { counted_free(p); }
+[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept { counted_free(p); }
+[[gnu::noinline]] void operator delete(void* p, const std::nothrow_t&) noexcept { counted_free(p); }
+[[gnu::noinline]] void operator delete[](void* p, const std::nothrow_t&) noexcept { counted_free(p); }
 
 namespace {
 
