@@ -123,6 +123,11 @@ class NetworkTest : public ::testing::Test {
     return false;
   }
 
+  // The OCU host's address, any free port.
+  static jaus::transport::Ipv4Endpoint ocu_any_port() {
+    return {jaus::transport::parse_endpoint(kOcu.address)->address, 0};
+  }
+
   // An OCU in this process, in the `ocu` namespace (this thread stays there
   // until the test ends), talking to `to` (static peers); its node's log
   // lines kept. Null (and a failure) when it cannot be opened.
@@ -137,7 +142,7 @@ class NetworkTest : public ::testing::Test {
     options.self = self;
     options.to.clear();
     for (const auto& host : to) options.to.push_back(*jaus::transport::parse_endpoint(host.address));
-    options.bind = *jaus::transport::parse_endpoint(std::string(kOcu.address) + ":0");
+    options.bind = ocu_any_port();
     options.log = [this](jaus::rt::LogLevel, const std::string& line) {
       ocu_log.push_back({Clock::now(), line});
     };

@@ -65,10 +65,12 @@ TEST_F(Partition, TheVehicleStopsAndStaysStoppedAfterHealingUntilTheOperatorComm
   EXPECT_LE(*stopped_after_s, kControllerTimeoutSeconds + 0.5);
 
   // The careless OCU holds on after healing: nothing may move.
-  // (A hold that already ended leaves the session running for the same time.)
+  // (A hold that ends sooner leaves the session running for the rest of the 6 s.)
   std::optional<Hold::End> after;
+  const auto healed_at = Clock::now();
   if (during == Hold::End::time_up) after = careless.hold(6s);
-  else session->run_for(6s);
+  const auto watched = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - healed_at);
+  if (watched < 6s) session->run_for(6s - watched);
   const auto after_healing = simulator->states();
   std::size_t moving_after = 0;
   for (std::size_t i = states_at_healing; i < after_healing.size(); ++i)

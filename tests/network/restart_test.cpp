@@ -32,7 +32,7 @@ class Restart : public NetworkTest {
  protected:
   // Whether veh2a's node manager lists node 2 of its subsystem with a component.
   bool veh2a_lists_node_2(jaus::ocu::OcuSession& session) {
-    auto reply = session.request(kVeh2aNodeManager, jaus::msg::QueryConfiguration{{2}},
+    auto reply = session.request(kVeh2aNodeManager, jaus::msg::QueryConfiguration{{jaus::msg::identification::kSubsystem}},
                                  {jaus::msg::ReportConfiguration::code}, 300ms);
     if (!reply) return false;
     jaus::msg::ReportConfiguration report{};
@@ -47,7 +47,7 @@ class Restart : public NetworkTest {
   }
   // Whether a query to veh2b's node manager, sent only to veh1, is answered (veh1 relays it).
   bool reached_through_veh1(jaus::ocu::OcuSession& through_veh1) {
-    return static_cast<bool>(through_veh1.request(kVeh2bNodeManager, jaus::msg::QueryIdentification{{2}},
+    return static_cast<bool>(through_veh1.request(kVeh2bNodeManager, jaus::msg::QueryIdentification{{jaus::msg::identification::kNode}},
                                                   {jaus::msg::ReportIdentification::code}, 300ms));
   }
 };
@@ -60,7 +60,7 @@ TEST_F(Restart, ANodeKilledAndRestartedIsForgottenAndRelearntAndItsServiceConnec
     jaus::ocu::SessionOptions options;
     options.self = {254, 11, 40, 1};
     options.to = {*jaus::transport::parse_endpoint(kVeh1.address)};
-    options.bind = *jaus::transport::parse_endpoint(std::string(kOcu.address) + ":0");
+    options.bind = ocu_any_port();
     return jaus::ocu::OcuSession::open(options, &session->io_context());
   }();
   ASSERT_TRUE(through_veh1_opened) << through_veh1_opened.error().message();
@@ -100,7 +100,9 @@ TEST_F(Restart, ANodeKilledAndRestartedIsForgottenAndRelearntAndItsServiceConnec
       std::chrono::milliseconds(static_cast<int>(kForgetBoundSeconds * 1000)) + 5s);
   for (const char* who : {"veh2a", "veh1", "ocu"}) {
     EXPECT_TRUE(forgot_after_s.count(who)) << who << " did not forget node 2.2";
-    if (forgot_after_s.count(who)) EXPECT_LE(forgot_after_s[who], kForgetBoundSeconds) << who;
+    if (forgot_after_s.count(who)) {
+      EXPECT_LE(forgot_after_s[who], kForgetBoundSeconds) << who;
+    }
   }
 
   // Restarted: who learns it again, when.
@@ -121,11 +123,15 @@ TEST_F(Restart, ANodeKilledAndRestartedIsForgottenAndRelearntAndItsServiceConnec
       std::chrono::milliseconds(static_cast<int>(kReportsBoundSeconds * 1000)) + 10s);
   for (const char* who : {"veh2a", "veh1 (route)"}) {
     EXPECT_TRUE(relearnt_after_s.count(who)) << who << " did not learn node 2.2 again";
-    if (relearnt_after_s.count(who)) EXPECT_LE(relearnt_after_s[who], kRelearnBoundSeconds) << who;
+    if (relearnt_after_s.count(who)) {
+      EXPECT_LE(relearnt_after_s[who], kRelearnBoundSeconds) << who;
+    }
   }
   EXPECT_TRUE(reports_after_s) << "the service connection on 2.2.37.1 did not recover: "
                                << session->component().subscription(subscription)->recreated << " re-creations";
-  if (reports_after_s) EXPECT_LE(*reports_after_s, kReportsBoundSeconds);
+  if (reports_after_s) {
+    EXPECT_LE(*reports_after_s, kReportsBoundSeconds);
+  }
 
   std::cout << "restart of node 2.2: forgotten after";
   for (const auto& [who, s] : forgot_after_s) std::cout << " " << who << " " << s << " s";
