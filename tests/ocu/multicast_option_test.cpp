@@ -8,8 +8,11 @@
 #include <cstdio>
 #include <string>
 
+#include <sstream>
+
 #include "jaus/ocu/session.hpp"
 #include "ocu/cli_values.hpp"
+#include "ocu/ocu_commands.hpp"
 
 namespace jausctl::ocu {
 namespace {
@@ -54,14 +57,19 @@ TEST(MulticastOption, NoToMeansLoopbackWithoutMulticastAndOnlyTheGroupWithIt) {
             "--to: bad endpoint 'localhost': expected an IPv4 address a.b.c.d[:port]");
 }
 
-TEST(MulticastOption, ASessionOpensWithAGroupAndNoPeers) {
+// (Multicast is best effort: where the host cannot join, the session still opens.)
+TEST(MulticastOption, ASessionOpensWithAGroupAndNoPeersAndDiscoverNamesTheGroup) {
   SessionOptions options;
   options.to.clear();
-  options.multicast = jaus::transport::Ipv4Endpoint{kGroup, 0};  // any port: nothing else listens there
-  options.multicast->port = 0xF00D;
+  options.multicast = jaus::transport::Ipv4Endpoint{kGroup, 0xF00D};  // a port nothing else listens on
+  options.bind = jaus::transport::Ipv4Endpoint{0x7F000001, 0};
   auto session = OcuSession::open(options);
   ASSERT_TRUE(session) << session.error().message();
   EXPECT_TRUE((*session)->on_udp());
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(run_discover(**session, {std::chrono::milliseconds(200), false}, CommandIo{out, err}), kExitFailure);
+  EXPECT_EQ(err.str(), "jausctl discover: no JAUS node heard within 0.2 s (asked the multicast group 224.1.0.1:61453)\n");
 }
 
 // stdout and stderr of the built jausctl, and its exit code.

@@ -15,6 +15,8 @@ int run_discover(OcuSession& session, const DiscoverOptions& options, CommandIo 
     }
     std::string asked;
     for (const auto& peer : session.options().to) asked += (asked.empty() ? "" : ", ") + jaus::transport::to_string(peer);
+    if (const auto& group = session.options().multicast)
+      asked += (asked.empty() ? "the multicast group " : " and the multicast group ") + jaus::transport::to_string(*group);
     io.err << "jausctl discover: no JAUS node heard within " << seconds_text(options.wait) << " (asked " << asked
            << ")\n";
     return kExitFailure;
