@@ -83,6 +83,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.node.liveness.component_timeout = seconds(config.liveness.component_timeout_s);
   h.node.liveness.node_timeout = seconds(config.liveness.node_timeout_s);
   h.node.liveness.subsystem_timeout = seconds(config.liveness.subsystem_timeout_s);
+  h.node.liveness.max_entries = config.liveness.max_entries;
 
   h.link.bind = config.transport.bind;
   h.link.framing = config.transport.framing;

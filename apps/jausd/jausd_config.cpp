@@ -67,6 +67,10 @@ constexpr std::size_t kMaxIdentification = 80;           // Report Identificatio
 constexpr double kMaxSeconds = 86400;                     // keeps every duration representable
 constexpr std::size_t kMaxConnectionsLimit = 255;
 constexpr std::size_t kMaxPeersLimit = 65535;
+// 254 subsystems x 254 nodes x a few components is the most JAUS IDs name;
+// the floor leaves room for this node's own peers and one OCU.
+constexpr std::size_t kMinLivenessEntries = 16;
+constexpr std::size_t kMaxLivenessEntries = 1u << 20;
 
 constexpr std::array<std::string_view, 4> kLogLevels{"debug", "info", "warn", "error"};
 constexpr std::array<std::string_view, 2> kDialects{"ra", "openjaus"};
@@ -528,7 +532,10 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                      [&](const Entry& e) { l.component_timeout_s = number(e, kPositiveTimeoutRange); }},
                     {"node_timeout_s", [&](const Entry& e) { l.node_timeout_s = number(e, kPositiveTimeoutRange); }},
                     {"subsystem_timeout_s",
-                     [&](const Entry& e) { l.subsystem_timeout_s = number(e, kPositiveTimeoutRange); }}});
+                     [&](const Entry& e) { l.subsystem_timeout_s = number(e, kPositiveTimeoutRange); }},
+                    {"max_entries", [&](const Entry& e) {
+                       l.max_entries = integer<std::size_t>(e, kMinLivenessEntries, kMaxLivenessEntries);
+                     }}});
         }},
        {"transport",
         [&](const Entry& s) {

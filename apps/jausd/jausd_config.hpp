@@ -66,6 +66,9 @@ struct LivenessSettings {  // peers unheard this long are forgotten
   double component_timeout_s = 3;
   double node_timeout_s = 5;
   double subsystem_timeout_s = 5;
+  // Peers (subsystems, nodes, components) remembered at once; newcomers
+  // beyond it are not recorded (and may not take control) until room frees.
+  std::size_t max_entries = 1024;
 };
 
 struct JausdConfig {

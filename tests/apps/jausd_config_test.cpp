@@ -136,6 +136,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.liveness.component_timeout_s, 3);
   EXPECT_EQ(c.liveness.node_timeout_s, 5);
   EXPECT_EQ(c.liveness.subsystem_timeout_s, 5);
+  EXPECT_EQ(c.liveness.max_entries, 1024u);
   EXPECT_EQ(c.dialect, "ra");
   EXPECT_EQ(c.transport.bind, endpoint("0.0.0.0:3794"));
   EXPECT_EQ(c.transport.framing, Framing::opc);
@@ -218,6 +219,11 @@ TEST(JausdConfig, EmptyFileIsTheDefaultConfiguration) {
   EXPECT_TRUE(validate(JausdConfig{}));
 }
 
+TEST(JausdConfig, LivenessTableSizeReachesTheNode) {
+  EXPECT_EQ(jausd::host_config(expect_ok("liveness: {max_entries: 4096}\n")).node.liveness.max_entries, 4096u);
+  EXPECT_EQ(jausd::host_config(expect_ok("{}")).node.liveness.max_entries, 1024u);
+}
+
 TEST(JausdConfig, EmergencyScopeAndStateDirectory) {
   const auto c = expect_ok("emergency_scope: component\nstate_directory: /var/lib/jaus\n");
   EXPECT_EQ(c.emergency_scope, jaus::host::EmergencyScope::component);
@@ -233,7 +239,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 155);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 156);  // declared in the file
   EXPECT_TRUE(validate(*result));
 }
 
@@ -284,6 +290,7 @@ liveness:
   component_timeout_s: 0.5
   node_timeout_s: 10
   subsystem_timeout_s: 86400
+  max_entries: 4096
 transport:
   bind: 127.0.0.2
   framing: judp
@@ -333,6 +340,7 @@ logging:
   EXPECT_EQ(c.liveness.component_timeout_s, 0.5);
   EXPECT_EQ(c.liveness.node_timeout_s, 10);
   EXPECT_EQ(c.liveness.subsystem_timeout_s, 86400);
+  EXPECT_EQ(c.liveness.max_entries, 4096u);
   EXPECT_EQ(c.transport.bind, endpoint("127.0.0.2:3794"));
   EXPECT_EQ(c.transport.framing, Framing::judp);
   EXPECT_EQ(c.transport.multicast, endpoint("224.1.0.1:3795"));
@@ -354,16 +362,16 @@ logging:
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 42);
+  EXPECT_EQ(c.components[0].line, 43);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 45);
+  EXPECT_EQ(c.components[1].line, 46);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 51);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 52);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -485,7 +493,7 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "max_total_rate_hz, deadman_periods, deadman_minimum_s, deadman_maximum_s)");
   expect_error("liveness:\n\n  peer_timeout_s: 1\n", 3,
                "unknown key 'peer_timeout_s' in liveness (known: component_timeout_s, node_timeout_s, "
-               "subsystem_timeout_s)");
+               "subsystem_timeout_s, max_entries)");
   expect_error("transport:\n  port: 3794\n", 2,
                "unknown key 'port' in transport (known: bind, framing, multicast, broadcast_to_peers, relay, "
                "peers, allow, control_from, verify_endpoints, max_peers)");
@@ -574,6 +582,7 @@ TEST(JausdConfigErrors, OutOfRange) {
                "'node_timeout_s' must be a number of seconds > 0 and <= 86400, got '0'");
   expect_error("liveness:\n  component_timeout_s: -3\n", 2,
                "'component_timeout_s' must be a number of seconds > 0 and <= 86400, got '-3'");
+  expect_error("liveness:\n  max_entries: 8\n", 2, "'max_entries' must be an integer 16..1048576, got '8'");
   expect_error("liveness:\n  subsystem_timeout_s: 1e9\n", 2,
                "'subsystem_timeout_s' must be a number of seconds > 0 and <= 86400, got '1e9'");
   expect_error("transport:\n  max_peers: 0\n", 2, "'max_peers' must be an integer 1..65535, got '0'");
