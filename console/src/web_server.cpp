@@ -144,7 +144,7 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
       return;
     }
     queue_.push_back(std::move(frame));
-    if (queue_.size() == 1 && open_) write_next();
+    if (open_ && !writing_) write_next();
   }
 
   bool is_open() const { return open_; }
@@ -171,8 +171,8 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
       return;
     }
     open_ = true;
-    if (s->events.opened) s->events.opened(id_);
-    if (!queue_.empty()) write_next();
+    if (s->events.opened) s->events.opened(id_);  // may send: the first write starts there
+    if (!writing_ && !queue_.empty()) write_next();
     read();
   }
 
@@ -192,7 +192,9 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
     if (!closing_) read();
   }
 
+  // One write at a time (Beast allows no more): the next starts when it ends.
   void write_next() {
+    writing_ = true;
     ws_.text(true);
     ws_.async_write(asio::buffer(*queue_.front()),
                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_write(ec); });
@@ -207,7 +209,10 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
       queued_bytes_ -= queue_.front()->size();
       queue_.pop_front();
     }
-    if (!queue_.empty()) write_next();
+    if (!queue_.empty())
+      write_next();
+    else
+      writing_ = false;
   }
 
   // The page is gone: the console hears it once (its drive stops).
@@ -228,6 +233,7 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
   std::deque<std::shared_ptr<const std::string>> queue_;
   std::size_t queued_bytes_ = 0;
   bool open_ = false;
+  bool writing_ = false;
   bool closing_ = false;
   bool finished_ = false;
 };
