@@ -69,27 +69,33 @@ TEST_F(ControlUnderLoss, AHeldDriverDrivesFor60sAndSetEmergencyIsAckedWithin200m
 
   // Stopped (the release stopped it) before the emergencies.
   ASSERT_TRUE(simulator->wait_for(ClearpathSimulator::stopped, 5s));
-  std::vector<double> ack_ms;
+  std::vector<double> ack_ms;  // an unacknowledged try counts with the time it gave up after
   int retransmitted = 0;
+  int unacknowledged = 0;
   for (int i = 0; i < kEmergencies; ++i) {
     const auto r = jaus::ocu::send_must_arrive(*session, kDriver, jaus::msg::SetEmergency{{1}},
                                                jaus::priority::kSafetyCritical);
-    ASSERT_EQ(r.outcome, jaus::ocu::Arrival::acknowledged)
-        << "Set Emergency " << i << ": " << jaus::ocu::to_string(r.outcome) << " after " << r.transmissions
-        << " transmissions";
     ack_ms.push_back(milliseconds(r.elapsed));
     retransmitted += r.transmissions > 1 ? 1 : 0;
-    ASSERT_EQ(primary_status(*session, kDriver), PrimaryStatus::emergency) << "after Set Emergency " << i;
+    const bool acknowledged = r.outcome == jaus::ocu::Arrival::acknowledged;
+    unacknowledged += acknowledged ? 0 : 1;
+    EXPECT_TRUE(acknowledged) << "Set Emergency " << i << ": " << jaus::ocu::to_string(r.outcome) << " after "
+                              << r.transmissions << " transmissions";
+    const auto status = primary_status(*session, kDriver);
+    if (acknowledged) {
+      ASSERT_EQ(status, PrimaryStatus::emergency) << "after Set Emergency " << i;
+    }
+    if (status != PrimaryStatus::emergency) continue;
     const auto cleared = jaus::ocu::send_must_arrive(*session, kDriver, jaus::msg::ClearEmergency{{1}},
                                                      jaus::priority::kSafetyCritical);
-    ASSERT_EQ(cleared.outcome, jaus::ocu::Arrival::acknowledged) << "Clear Emergency " << i;
+    EXPECT_EQ(cleared.outcome, jaus::ocu::Arrival::acknowledged) << "Clear Emergency " << i;
     ASSERT_TRUE(wait_for_primary_status(*session, kDriver, PrimaryStatus::ready, 5000ms)) << "after Clear Emergency " << i;
   }
   const double p50 = percentile(ack_ms, 50);
   const double p99 = percentile(ack_ms, 99);
   std::cout << "Set Emergency at " << loss << " % loss each way, " << kEmergencies << " tries: ACK p50 " << p50
             << " ms, p99 " << p99 << " ms, max " << percentile(ack_ms, 100) << " ms, " << retransmitted
-            << " needed a retransmission\n";
+            << " needed a retransmission, " << unacknowledged << " never acknowledged (10 transmissions)\n";
   RecordProperty("emergency_ack_p99_ms", std::to_string(p99));
   EXPECT_LE(p99, kEmergencyAckP99BoundMs);
 }

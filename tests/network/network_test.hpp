@@ -81,10 +81,11 @@ class NetworkTest : public ::testing::Test {
     return *(nodes[host] = std::move(node));
   }
   // The simulator and the three vehicles' nodes.
-  void start_vehicles(Finding finding, const std::string& more_veh1_transport = "") {
+  void start_vehicles(Finding finding, const std::string& more_veh1_transport = "",
+                      const std::string& more_veh2a_transport = "") {
     start_simulator();
     start_node(veh1_spec(finding, more_veh1_transport));
-    start_node(veh2a_spec(finding));
+    start_node(veh2a_spec(finding, more_veh2a_transport));
     start_node(veh2b_spec(finding));
   }
   LabJausd& node(const LabHost& host) { return *nodes.at(host.name); }

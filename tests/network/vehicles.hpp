@@ -44,12 +44,12 @@ inline LabNodeSpec veh1_spec(Finding finding, const std::string& more_transport 
           std::string("platform: {udp: ") + kSimulatorAddress + ":7300}\n"};
 }
 
-inline LabNodeSpec veh2a_spec(Finding finding) {
+inline LabNodeSpec veh2a_spec(Finding finding, const std::string& more_transport = "") {
   return {kVeh2a,
           2,
           1,
           {{"node_manager", 1}, {"communicator", 35}, {"primitive_driver", 33}, {"global_pose_sensor", 38}},
-          transport_for(finding, kVeh2a),
+          transport_for(finding, kVeh2a, more_transport),
           ""};
 }
 
