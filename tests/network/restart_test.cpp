@@ -20,7 +20,7 @@ namespace {
 const jaus::Address kCamera{2, 2, 37, 1};
 const jaus::Address kVeh2bNodeManager{2, 2, 1, 1};
 constexpr double kForgetBoundSeconds = 8.0;    // node_timeout_s 5 + housekeeping + margin
-X
+constexpr double kRelearnBoundSeconds = 5.0;   // jausd's start and a heartbeat: measured 0.4 s
 constexpr double kReportsBoundSeconds = 5.0;   // the client re-creates a silent connection: measured 0.5 s
 
 // Lines of a node's log about node 2.2 ("node 2.2.0.0 silent: lost").
