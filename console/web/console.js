@@ -100,7 +100,7 @@
 
   function setLink(text, level) {
     const el = $("link-status");
-    el.textContent = "console: " + text;
+    el.textContent = text;
     el.className = "badge " + level;
   }
 
@@ -183,8 +183,8 @@
       state.link.last_heard_ms = m.last_heard_ms;
       const el = $("jaus-link");
       const stale = m.last_heard_ms == null || m.last_heard_ms > 3000;
-      el.textContent = `JAUS: ${m.peers} peer${m.peers === 1 ? "" : "s"}` +
-        (m.last_heard_ms == null ? "" : `, heard ${formatAge(m.last_heard_ms)} ago`);
+      el.textContent = `JAUS ${m.peers} peer${m.peers === 1 ? "" : "s"}` +
+        (m.last_heard_ms == null ? "" : ` · ${formatAge(m.last_heard_ms)}`);
       el.className = "badge " + (m.peers === 0 || stale ? "bad" : "ok");
     },
     error(m) {
