@@ -128,6 +128,7 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
               std::size_t max_queued)
       : ws_(std::move(socket)), server_(std::move(server)), id_(id), max_queued_(max_queued) {
     ws_.read_message_max(max_frame);
+    ws_.auto_fragment(false);  // one frame per message: an image is not cut into 4 KiB pieces
   }
 
   void accept(http::request<http::string_body> request) {
