@@ -296,6 +296,7 @@
     if (control && (control.state === "refused" || control.state === "lost") &&
         !(c && c.controller === state.self)) { text = control.state; level = "bad"; }
     if (control && control.state === "held") { text = "held by this console"; level = "ok"; }
+    if (c && (c.state === "emergency" || c.state === "failure")) level = "bad";  // held, but it will not move
     badge.textContent = text + (c && c.state ? ` · ${c.state}` : "");
     badge.className = "badge " + level;
     badge.dataset.state = control ? control.state : "none";
