@@ -110,7 +110,8 @@
       state.self = m.self;
       state.page = m.page ?? null;
       if (m.deadman_ms) state.deadmanMs = m.deadman_ms;
-      $("self-id").textContent = `OCU ${m.self}` + (m.version ? ` · v${m.version}` : "");
+      $("self-id").textContent = `OCU ${m.self}`;
+      $("self-id").title = `this console's JAUS ID` + (m.version ? ` (jaus-console ${m.version})` : "");
     },
     tree(m) {
       state.components.clear();
