@@ -49,6 +49,32 @@ TEST_F(LossyCommandsTest, EmergencySetReportsFailureWhenEverythingIsLost) {
   EXPECT_EQ(state(), PrimaryStatus::ready);
 }
 
+// The common RA 3.3 peer may ignore ACK requests: with --dialect openjaus an
+// emergency not acknowledged is judged by the status that follows (with the
+// RA dialect it is a failure, as above).
+TEST_F(LossyCommandsTest, WithTheOpenJausDialectTheStatusTellsWhenNoAckComes) {
+  ocu::SessionOptions options;
+  options.dialect = jaus::wire::Dialect::openjaus;
+  auto& link = network.attach(options.self.subsystem, options.self.node);
+  // What reaches the OCU, but the ACKs: a peer that never sends them.
+  const auto no_acks = [&link](std::function<void(std::span<const std::uint8_t>)> receiver) {
+    if (!receiver) return link.on_receive({});
+    link.on_receive([receiver = std::move(receiver)](std::span<const std::uint8_t> packet) {
+      const auto decoded = jaus::decode_packet(packet);
+      if (decoded && decoded->header.ack_nak == jaus::AckNak::ack) return;
+      receiver(packet);
+    });
+  };
+  auto session = ocu::OcuSession::attach(
+      options, ocu::SessionEnvironment{&time, &time, &link, no_acks, jaus::testing::stepper(time)});
+  ASSERT_TRUE(session) << session.error().message();
+  ASSERT_EQ(ocu::run_emergency(**session, kCommunicator, true, 1s, io()), kExitOk) << err.str();
+  EXPECT_EQ(err.str(), "jausctl emergency: Set Emergency to 1.1.35.1 not acknowledged (10 transmissions in 0.5 s) (the "
+                       "peer may ignore ACK requests): its status tells\n");
+  EXPECT_EQ(out.str(), "1.1.35.1: emergency set by 254.1.40.1 (state Emergency)\n");
+  EXPECT_EQ(state(), PrimaryStatus::emergency);
+}
+
 TEST_F(LossyCommandsTest, EmergencyToNoSuchComponentIsRefusedByItsNode) {
   auto ocu = open_lossy_ocu();
   ASSERT_TRUE(ocu);

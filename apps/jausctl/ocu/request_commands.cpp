@@ -174,12 +174,19 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
            << transmissions_text(arrival) << "; a broadcast is not acknowledged)\n";
     return kExitOk;
   }
-  if (arrival.outcome != Arrival::acknowledged) {
+  // The common RA 3.3 peer (--dialect openjaus) may ignore ACK requests:
+  // there, only its status can tell (the state check below).
+  const bool status_must_tell =
+      arrival.outcome == Arrival::unacknowledged && session.options().dialect == jaus::wire::Dialect::openjaus;
+  if (arrival.outcome != Arrival::acknowledged && !status_must_tell) {
     std::string why = not_arrived_text(what, target, arrival);
     if (set && arrival.outcome != Arrival::interrupted)
       why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
     return fail(io, "emergency", why);
   }
+  if (status_must_tell)
+    io.err << "jausctl emergency: " << not_arrived_text(what, target, arrival)
+           << " (the peer may ignore ACK requests): its status tells\n";
   // Acknowledged, so acted on; the status shows the state it left.
   auto report = query_status(session, target, timeout);
   if (!report)
