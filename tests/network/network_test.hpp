@@ -45,7 +45,6 @@ class NetworkTest : public ::testing::Test {
     static int tests = 0;
     dir = std::filesystem::temp_directory_path() /
           ("jaus-network-" + std::to_string(::getpid()) + "-" + std::to_string(tests++));
-    std::filesystem::create_directories(dir);
     auto made = NetworkLab::create();
     if (!made) {
       const std::string reason =
@@ -55,6 +54,7 @@ class NetworkTest : public ::testing::Test {
       GTEST_SKIP() << reason;
     }
     lab = std::move(*made);
+    std::filesystem::create_directories(dir);
   }
   void TearDown() override {
     ocu.reset();
@@ -63,7 +63,7 @@ class NetworkTest : public ::testing::Test {
     simulator.reset();
     lab.reset();
     std::error_code ignored;
-    if (HasFailure()) std::cout << "logs kept in " << dir << "\n";
+    if (HasFailure() && std::filesystem::exists(dir)) std::cout << "logs kept in " << dir << "\n";
     else std::filesystem::remove_all(dir, ignored);
   }
 
