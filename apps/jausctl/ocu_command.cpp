@@ -85,7 +85,10 @@ jaus::rt::LogFn stderr_log(int verbosity) {
                          : verbosity == 1 ? jaus::rt::LogLevel::warn
                                           : jaus::rt::LogLevel::error;
   return [threshold](jaus::rt::LogLevel level, const std::string& text) {
-    if (level < threshold) return;
+    // A --multicast group that cannot be used is shown anyway: without it,
+    // discovery with multicast only finds nothing and would not say why.
+    const bool multicast_warning = level == jaus::rt::LogLevel::warn && text.rfind("multicast ", 0) == 0;
+    if (level < threshold && !multicast_warning) return;
     static constexpr const char* kNames[] = {"debug", "info", "warn", "error"};
     std::cerr << "jausctl [" << kNames[static_cast<int>(level)] << "] " << text << "\n";
   };
