@@ -63,7 +63,8 @@ class NetworkTest : public ::testing::Test {
     simulator.reset();
     lab.reset();
     std::error_code ignored;
-    if (HasFailure() && std::filesystem::exists(dir)) std::cout << "logs kept in " << dir << "\n";
+    const bool keep = HasFailure() || std::getenv("JAUS_NETWORK_KEEP_LOGS");
+    if (keep && std::filesystem::exists(dir)) std::cout << "logs kept in " << dir << "\n";
     else std::filesystem::remove_all(dir, ignored);
   }
 
