@@ -268,13 +268,18 @@ void OperatorConsole::on_control(PageId page, const ControlFrame& frame) {
     event(EventLevel::info, "control of " + target.to_string() + " released (page " + std::to_string(page) + ")");
     return;
   }
+  request_control(page, target, frame.authority);
+}
+
+void OperatorConsole::request_control(PageId page, const jaus::Address& target, std::uint8_t authority) {
   auto& control = control_of(target);
   if (control.client->state() != jaus::rt::ControlClient::State::released) return;  // already asked or held
+  control.authority = authority;
   set_control_state(target, ControlState::requesting, "");
   event(EventLevel::info, "requesting control of " + target.to_string() + " with authority " +
-                              std::to_string(frame.authority) + " (page " + std::to_string(page) + ")");
+                              std::to_string(authority) + " (page " + std::to_string(page) + ")");
   control.client->acquire(
-      target, frame.authority,
+      target, authority,
       [this, target] {
         set_control_state(target, ControlState::held, "");
         event(EventLevel::info, "control of " + target.to_string() + " held");
@@ -439,9 +444,16 @@ void OperatorConsole::on_emergency(PageId page, const EmergencyFrame& frame) {
 }
 
 void OperatorConsole::on_state(PageId page, const StateFrame& frame) {
-  if (frame.resume)
+  if (frame.resume) {
+    // Control was lost when the target left Ready (Standby): Resume is a
+    // controller's, so ask again with the authority the page last asked
+    // with. The Request goes first, the Resume right behind it.
+    auto it = controls_.find(frame.target);
+    if (it != controls_.end() && it->second.authority && it->second.client &&
+        it->second.client->state() == jaus::rt::ControlClient::State::released)
+      request_control(page, frame.target, *it->second.authority);
     session_.send(frame.target, jaus::msg::Resume{});
-  else {
+  } else {
     stop_drive(frame.target, "standby");
     session_.send(frame.target, jaus::msg::Standby{});
   }

@@ -228,6 +228,28 @@ TEST_F(OperatorConsoleTest, WaypointsAreLoadedIntoTheDriver) {
   EXPECT_EQ(report.waypoint_count, 3);
 }
 
+TEST_F(OperatorConsoleTest, PoseVelocityAndJointsFlowToEveryPage) {
+  node.run_for(1s);
+  for (const auto* type : {"pose", "velocity", "arm"}) EXPECT_GE(node.frames(2, type).size(), 4u) << type;
+  const auto pose = node.frames(1, "pose").back();
+  EXPECT_EQ(pose["source"], "1.1.41.1");
+  EXPECT_TRUE(pose.contains("latitude")) << "the node's global pose sensor gives latitude and longitude";
+  EXPECT_EQ(node.frames(1, "velocity").back()["source"], "1.1.42.1");
+}
+
+TEST_F(OperatorConsoleTest, StandbyLosesControlAndResumeTakesItAgain) {
+  ASSERT_TRUE(node.take_control(1));
+  node.page_sends(2, {{"type", "state"}, {"target", "1.1.33.1"}, {"action", "standby"}});
+  node.run_for(300ms);
+  EXPECT_EQ(node.state_of(kPrimitiveDriver), rt::PrimaryStatus::standby);
+  // Leaving Ready loses control (rt::ControlClient): nothing resumes by itself.
+  EXPECT_EQ(node.frames(1, "control").back()["state"], "lost");
+  // Resume asks for control again (with the authority asked before), then resumes as controller.
+  node.page_sends(2, {{"type", "state"}, {"target", "1.1.33.1"}, {"action", "resume"}});
+  ASSERT_TRUE(node.run_until([&] { return node.console().holds_control(kPrimitiveDriver); }, 2s));
+  EXPECT_EQ(node.state_of(kPrimitiveDriver), rt::PrimaryStatus::ready);
+}
+
 TEST_F(OperatorConsoleTest, MalformedFramesAreAnsweredToTheirPageAndCounted) {
   node.page_sends(2, {{"type", "drive"}, {"target", "1.1.33.1"}});
   EXPECT_EQ(node.console().counters().frames_refused, 1u);

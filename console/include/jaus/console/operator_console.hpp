@@ -100,6 +100,7 @@ class OperatorConsole {
     std::unique_ptr<jaus::rt::ControlClient> client;
     ControlState state = ControlState::released;
     std::string why;
+    std::optional<std::uint8_t> authority;  // of the last request a page made
   };
   struct ComponentLive {
     std::optional<std::uint8_t> status;
@@ -144,6 +145,7 @@ class OperatorConsole {
 
   // Control.
   Control& control_of(const jaus::Address& target);
+  void request_control(PageId page, const jaus::Address& target, std::uint8_t authority);
   void set_control_state(const jaus::Address& target, ControlState state, const std::string& why);
   void release_control(const jaus::Address& target);
 
