@@ -338,18 +338,33 @@ Expected<void> Tab::key_down(const std::string& code) {
 }
 Expected<void> Tab::key_up(const std::string& code) { return key("keyUp", code); }
 
-Expected<void> Tab::click(const std::string& selector) {
+Expected<Json> Tab::center_of(const std::string& selector) {
   const Json quoted = selector;
   auto box = evaluate("(() => { const e = document.querySelector(" + quoted.dump() +
                       "); if (!e) return null; e.scrollIntoView({block: 'center'});"
                       " const r = e.getBoundingClientRect(); return {x: r.x + r.width / 2, y: r.y + r.height / 2}; })()");
-  if (!box) return unexpected(box.error());
+  if (!box) return box;
   if (box->is_null()) return fail(ErrorCode::invalid_argument, "no element matches " + selector);
-  for (const char* type : {"mouseMoved", "mousePressed", "mouseReleased"}) {
-    Json params{{"type", type}, {"x", (*box)["x"]}, {"y", (*box)["y"]}, {"button", "left"}, {"clickCount", 1}};
-    if (std::string(type) == "mouseMoved") params["button"] = "none";
-    if (auto sent = cdp_->call("Input.dispatchMouseEvent", params, session_); !sent) return unexpected(sent.error());
-  }
+  return box;
+}
+
+Expected<void> Tab::mouse(const std::string& type, double x, double y) {
+  // A move carries no button down in this client (no drags with the button up are needed).
+  Json params{{"type", type}, {"x", x}, {"y", y}, {"button", "left"}, {"buttons", 1}, {"clickCount", 1}};
+  if (type == "mouseReleased") params["buttons"] = 0;
+  auto sent = cdp_->call("Input.dispatchMouseEvent", params, session_);
+  if (!sent) return unexpected(sent.error());
+  return {};
+}
+
+Expected<void> Tab::click(const std::string& selector) {
+  auto box = center_of(selector);
+  if (!box) return unexpected(box.error());
+  const double x = (*box)["x"].get<double>(), y = (*box)["y"].get<double>();
+  Json moved{{"type", "mouseMoved"}, {"x", x}, {"y", y}, {"button", "none"}};
+  if (auto sent = cdp_->call("Input.dispatchMouseEvent", moved, session_); !sent) return unexpected(sent.error());
+  for (const char* type : {"mousePressed", "mouseReleased"})
+    if (auto sent = mouse(type, x, y); !sent) return sent;
   return {};
 }
 

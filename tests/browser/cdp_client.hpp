@@ -109,6 +109,10 @@ class Tab {
   Expected<void> key_up(const std::string& code);
   // A left click in the middle of the first element `selector` matches (scrolled into view first).
   Expected<void> click(const std::string& selector);
+  // The middle of the first element `selector` matches, in the viewport (scrolled into view first).
+  Expected<Json> center_of(const std::string& selector);
+  // One mouse event ("mousePressed", "mouseMoved", "mouseReleased") at x, y with the left button.
+  Expected<void> mouse(const std::string& type, double x, double y);
   // The visible page as a PNG file.
   Expected<void> screenshot(const std::filesystem::path& file);
   // Closes the tab as the operator would (the page gets pagehide; its socket closes), and waits until it is gone.

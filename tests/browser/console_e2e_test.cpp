@@ -165,6 +165,22 @@ TEST_F(ConsoleInChromium, TheOperatorDrivesWatchesStopsAndClosesTheTab) {
   EXPECT_TRUE(page_shows(tab, "document.getElementById('deadman').textContent.startsWith('released')", 2s));
   screenshot(tab, "04-released");
 
+  // The on-screen stick (pointer events): pressed and pushed up drives forward, let go stops sending.
+  {
+    auto stick = tab.center_of("#stick");
+    ASSERT_TRUE(stick) << stick.error().message();
+    const double x = (*stick)["x"].get<double>(), y = (*stick)["y"].get<double>();
+    ASSERT_TRUE(tab.mouse("mousePressed", x, y));
+    ASSERT_TRUE(tab.mouse("mouseMoved", x, y - 60));
+    EXPECT_TRUE(page_shows(tab, "window.jausConsole.state.drive.held && window.jausConsole.state.drive.linear > 30 && "
+                                "document.getElementById('driving-status').dataset.sending === 'true'", 5s))
+        << value_of(tab.evaluate("JSON.stringify(window.jausConsole.state.drive)"), Json()).dump() << diagnostics();
+    ASSERT_TRUE(tab.mouse("mouseReleased", x, y - 60));
+    EXPECT_TRUE(page_shows(tab, "!window.jausConsole.state.drive.held && "
+                                "document.getElementById('driving-status').dataset.sending === 'false'", 5s));
+    EXPECT_EQ(speed_once([](double v) { return v == 0.0; }, 10s), 0.0) << diagnostics();
+  }
+
   // 5. The camera panel shows the live images: at least two different frames, and a pan moves the picture.
   ASSERT_TRUE(tab.click("#camera-watch"));
   ASSERT_TRUE(page_shows(tab, "!!document.getElementById('camera-image').dataset.frame", 20s)) << diagnostics();
