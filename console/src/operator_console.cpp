@@ -547,6 +547,10 @@ void OperatorConsole::publish_arm(const jaus::Address& source) {
 }
 
 void OperatorConsole::on_waypoints(PageId page, const WaypointsFrame& frame) {
+  // A route drives when its driver goes from Standby to Ready (Resume):
+  // Standby first, then the list, all while still its controller (control
+  // is lost at the next status poll; `resume` takes it again).
+  session_.send(frame.target, jaus::msg::Standby{});
   session_.send(frame.target, jaus::msg::SetTravelSpeed{{frame.speed_mps}});
   for (std::size_t i = 0; i < frame.points.size(); ++i) {
     jaus::msg::SetLocalWaypoint waypoint{};

@@ -214,7 +214,7 @@ TEST_F(OperatorConsoleTest, ArmJointsAreClampedToTheirLimits) {
   if (joints.size() != 1) EXPECT_FALSE(node.frames(1, "error").empty()) << "a wrong joint count is refused";
 }
 
-TEST_F(OperatorConsoleTest, WaypointsAreLoadedIntoTheDriver) {
+TEST_F(OperatorConsoleTest, WaypointsAreLoadedAndResumeDrivesThem) {
   ASSERT_TRUE(node.take_control(1, kWaypointDriver));
   node.page_sends(1, {{"type", "waypoints"},
                       {"target", "1.1.46.1"},
@@ -226,6 +226,9 @@ TEST_F(OperatorConsoleTest, WaypointsAreLoadedIntoTheDriver) {
   msg::ReportWaypointCount report{};
   ASSERT_TRUE(wire::decode_payload_into(count->payload, report, wire::Dialect::ra, kHeaderSize));
   EXPECT_EQ(report.waypoint_count, 3);
+
+  node.page_sends(1, {{"type", "state"}, {"target", "1.1.46.1"}, {"action", "resume"}});
+  EXPECT_TRUE(node.run_until([&] { return node.speed_mps() > 0.1; }, 5s)) << "resume drives the route";
 }
 
 TEST_F(OperatorConsoleTest, PoseVelocityAndJointsFlowToEveryPage) {
