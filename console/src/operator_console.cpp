@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ctime>
 #include <numbers>
+#include <utility>
 
 #include "jaus/messages/all.hpp"
 #include "jaus/wire/message.hpp"
@@ -283,6 +284,7 @@ void OperatorConsole::request_control(PageId page, const jaus::Address& target, 
       [this, target] {
         set_control_state(target, ControlState::held, "");
         event(EventLevel::info, "control of " + target.to_string() + " held");
+        if (auto pending = std::exchange(controls_[target].when_held, nullptr)) pending();
       },
       [this, target](const std::string& why) {
         const bool was_held = controls_[target].state == ControlState::held;
@@ -291,6 +293,16 @@ void OperatorConsole::request_control(PageId page, const jaus::Address& target, 
         event(was_held ? EventLevel::warn : EventLevel::info,
               "control of " + target.to_string() + (was_held ? " lost: " : " refused: ") + why);
       });
+}
+
+void OperatorConsole::as_controller(PageId page, const jaus::Address& target, std::function<void()> command) {
+  if (holds_control(target)) {
+    command();
+    return;
+  }
+  auto& control = control_of(target);
+  control.when_held = std::move(command);  // the latest command wins
+  request_control(page, target, control.authority.value_or(session_.options().authority));
 }
 
 void OperatorConsole::release_control(const jaus::Address& target) {
@@ -492,7 +504,7 @@ void OperatorConsole::on_camera(PageId page, const CameraFrame& frame) {
     pose.mode_indicator = 0;  // position, not rate
     pose.y_angular_percent = percent(frame.pan_deg, options_.camera_pan_full_scale_deg);
     pose.x_angular_percent = percent(frame.tilt_deg, options_.camera_tilt_full_scale_deg);
-    session_.send(target, pose);
+    as_controller(page, target, [this, target, pose] { session_.send(target, pose); });
   }
 }
 
@@ -529,7 +541,7 @@ void OperatorConsole::on_arm(PageId page, const ArmFrame& frame) {
     const double high = std::max(limits[i].min, limits[i].max) - kStep;
     set.positions_rad.push_back(low < high ? within(value, low, high) : within(value, limits[i].min, limits[i].max));
   }
-  session_.send(frame.target, set);
+  as_controller(page, frame.target, [this, target = frame.target, set] { session_.send(target, set); });
 }
 
 void OperatorConsole::publish_arm(const jaus::Address& source) {

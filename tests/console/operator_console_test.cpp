@@ -196,8 +196,15 @@ TEST_F(OperatorConsoleTest, CameraImagesFlowWhileAPageWatchesAndTheConnectionClo
   EXPECT_EQ(camera.service_connections().active(), 0u);
 }
 
+TEST_F(OperatorConsoleTest, PanTiltTakesControlOfTheCameraAndCommandsIt) {
+  node.page_sends(1, {{"type", "camera"}, {"target", "1.1.37.1"}, {"watch", false}, {"pan_deg", 30}, {"tilt_deg", 10}});
+  EXPECT_TRUE(node.run_until([&] { return node.console().holds_control(kCamera); }, 2s));
+  node.run_for(500ms);
+  EXPECT_EQ(node.find(kCamera)->counters().refused_not_controller, 0u) << "Set Camera Pose came from the controller";
+}
+
 TEST_F(OperatorConsoleTest, ArmJointsAreClampedToTheirLimits) {
-  ASSERT_TRUE(node.take_control(1, kArm));
+  // No control asked first: the joints ask for it (the OCU's authority) and go once it is held.
   ASSERT_TRUE(node.run_until([&] { return !node.frames(1, "arm").empty(); }, 3s));
   const auto joints = node.frames(1, "arm").back()["joints"];
   ASSERT_FALSE(joints.empty());
@@ -206,6 +213,7 @@ TEST_F(OperatorConsoleTest, ArmJointsAreClampedToTheirLimits) {
   node.page_sends(1, {{"type", "arm"}, {"target", "1.1.49.1"}, {"joints", wanted}});
   node.run_for(30s);
   const auto after = node.frames(1, "arm").back()["joints"];
+  EXPECT_TRUE(node.console().holds_control(kArm));
   const double max = after[0]["max"];
   EXPECT_NEAR(after[0]["position"].get<double>(), max, 0.5) << "joint 1 goes to its maximum, no further";
   EXPECT_TRUE(node.frames(1, "error").empty());

@@ -101,6 +101,8 @@ class OperatorConsole {
     ControlState state = ControlState::released;
     std::string why;
     std::optional<std::uint8_t> authority;  // of the last request a page made
+    // A command that needs control (pan/tilt, joints), sent once control is held.
+    std::function<void()> when_held;
   };
   struct ComponentLive {
     std::optional<std::uint8_t> status;
@@ -146,6 +148,9 @@ class OperatorConsole {
   // Control.
   Control& control_of(const jaus::Address& target);
   void request_control(PageId page, const jaus::Address& target, std::uint8_t authority);
+  // Runs `command` now if control of `target` is held, else asks for it
+  // (the page's last authority, or the OCU's own) and runs it once held.
+  void as_controller(PageId page, const jaus::Address& target, std::function<void()> command);
   void set_control_state(const jaus::Address& target, ControlState state, const std::string& why);
   void release_control(const jaus::Address& target);
 
