@@ -224,5 +224,26 @@ TEST_F(ConsoleInChromium, TheOperatorDrivesWatchesStopsAndClosesTheTab) {
   }
 }
 
+// A console with a token: the page opened with ?token= passes it on to its
+// WebSocket and connects; opened without it, the console refuses the socket
+// and the page keeps saying it is not connected.
+TEST_F(ConsoleInChromium, ThePagePassesTheConsolesTokenOn) {
+  console.reset();
+  console = std::make_unique<ChildProcess>(
+      std::vector<std::string>{JAUS_CONSOLE_PATH, "--to", kNode, "--bind", kConsoleJaus, "--listen", kConsoleHttp,
+                               "--token", "field-laptop-7"},
+      (jausd->dir() / "jaus-console-token.log").string());
+  auto with_token = open_console_page(*cdp, page_url() + "?token=field-laptop-7", 30s);
+  ASSERT_TRUE(with_token) << with_token.error().message() << diagnostics();
+  EXPECT_TRUE(page_shows(*with_token, tree_lists(kDriver), 30s)) << diagnostics();
+
+  auto without = Tab::open(*cdp, page_url());
+  ASSERT_TRUE(without) << without.error().message();
+  // Several refused attempts (the page backs off from 0.5 s), never connected.
+  EXPECT_TRUE(page_shows(*without, "document.getElementById('link-status').textContent.startsWith('reconnecting')", 10s));
+  EXPECT_FALSE(page_shows(*without, "document.getElementById('link-status').classList.contains('ok')", 2s));
+  EXPECT_EQ(value_of(without->evaluate("window.jausConsole.state.self"), Json("?")), Json());
+}
+
 }  // namespace
 }  // namespace jaus::test::browser
