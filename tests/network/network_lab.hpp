@@ -4,8 +4,8 @@
 // its own address on 10.77.0.0/24 and a multicast route on eth0. The names
 // carry the test process's pid and a counter (jausnet-<pid>-<n>-<host>), so
 // suites run side by side; labs of dead processes are removed when a new
-// one is made, and a lab removes its namespaces when it goes (their veths go
-// with them).
+// one is made (with the processes left in them), and a lab removes its
+// namespaces when it goes (their veths go with them).
 #pragma once
 
 #include <signal.h>
@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -66,7 +67,13 @@ class NetworkLab {
       const std::string name = entry.path().filename().string();
       if (name.rfind(kPrefix, 0) != 0) continue;
       const auto pid = std::atoi(name.c_str() + std::char_traits<char>::length(kPrefix));
-      if (pid > 0 && ::kill(pid, 0) == -1 && errno == ESRCH) (void)run_command({kIp, "netns", "delete", name});
+      if (pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+      // What a killed test left running there (jausd, clearpath-sim) goes with it.
+      if (auto pids = run_command({kIp, "netns", "pids", name})) {
+        std::istringstream lines(*pids);
+        for (int left; lines >> left;) ::kill(left, SIGKILL);
+      }
+      (void)run_command({kIp, "netns", "delete", name});
     }
   }
 
