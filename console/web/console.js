@@ -270,10 +270,8 @@
     fill("waypoint-target", [KIND.local_waypoint_driver]);
     // The emergency button stops the vehicle: its driver unless the operator chose otherwise.
     const emergencyTarget = $("emergency-target");
-    const previous = emergencyTarget.value;
     fill("emergency-target", [KIND.primitive_driver], true);
-    if (!previous && driver) emergencyTarget.value = driver.address;
-    else if (previous) emergencyTarget.value = previous;
+    if (!emergencyTarget.dataset.touched && driver) emergencyTarget.value = driver.address;
   }
 
   function selectDefault(id, value) {
@@ -547,6 +545,7 @@
     if (target) send({ type: "state", target, action: "standby" });
   });
   $("emergency").addEventListener("click", setEmergency);
+  $("emergency-target").addEventListener("change", () => { $("emergency-target").dataset.touched = "1"; });
   $("emergency-clear").addEventListener("click", () => {
     const target = $("emergency-target").value || "all";
     send({ type: "emergency", target, action: "clear" });
@@ -801,7 +800,11 @@
     if (text != null) e.textContent = text;
     return e;
   }
-  function fixed(v, digits) { return typeof v === "number" && isFinite(v) ? v.toFixed(digits) : "–"; }
+  function fixed(v, digits) {
+    if (typeof v !== "number" || !isFinite(v)) return "–";
+    const text = v.toFixed(digits);
+    return Number(text) === 0 ? (0).toFixed(digits) : text;  // no "-0.0"
+  }
   function formatAge(ms) { return ms < 1000 ? `${Math.round(ms)} ms` : `${(ms / 1000).toFixed(1)} s`; }
 
   window.jausConsole = { state, send, handle };

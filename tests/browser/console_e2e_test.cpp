@@ -224,6 +224,47 @@ TEST_F(ConsoleInChromium, TheOperatorDrivesWatchesStopsAndClosesTheTab) {
   }
 }
 
+// The arm panel: one slider per joint within its limits; moving one (with
+// control of the manipulator) moves the joint, and the position read back
+// follows.
+TEST_F(ConsoleInChromium, TheArmFollowsItsSlider) {
+  constexpr const char* kArm = "12.1.49.1";
+  auto opened = open_console_page(*cdp, page_url(), 30s);
+  ASSERT_TRUE(opened) << opened.error().message() << diagnostics();
+  Tab& tab = *opened;
+  ASSERT_TRUE(page_shows(tab, tree_lists(kArm) + " && !!document.getElementById('arm-joint-0')", 30s)) << diagnostics();
+  // The emergency button stops the vehicle: its target is the primitive driver unless the operator chose another.
+  EXPECT_TRUE(page_shows(tab, "document.getElementById('emergency-target').value === '" + std::string(kDriver) + "'", 5s));
+  // base_yaw's limits in config/jausd.yaml (carried in radians, scaled: within a tenth of a degree).
+  const Json limits = value_of(tab.evaluate("[Number(document.getElementById('arm-joint-0').min),"
+                                            " Number(document.getElementById('arm-joint-0').max)]"),
+                               Json{0, 0});
+  EXPECT_NEAR(limits[0].get<double>(), -170, 0.1) << limits.dump();
+  EXPECT_NEAR(limits[1].get<double>(), 170, 0.1) << limits.dump();
+
+  ASSERT_TRUE(tab.evaluate("(() => { const t = document.getElementById('control-target'); t.value = '" + std::string(kArm) +
+                           "'; t.dispatchEvent(new Event('change')); return true; })()"));
+  const auto until = Clock::now() + 30s;
+  bool ready = false;
+  while (!ready && Clock::now() < until) {
+    ASSERT_TRUE(tab.click("#control-request"));
+    if (!page_shows(tab, console_controls(kArm), 5s)) continue;
+    if (value_of(tab.evaluate(component_state(kArm)), Json()) != "ready") {
+      ASSERT_TRUE(tab.click("#state-resume"));
+    }
+    ready = page_shows(tab, component_state(kArm) + " === 'ready'", 5s);
+  }
+  ASSERT_TRUE(ready) << diagnostics();
+
+  ASSERT_TRUE(tab.evaluate("(() => { const j = document.getElementById('arm-joint-0'); j.value = 30;"
+                           " j.dispatchEvent(new Event('input')); return true; })()"));
+  EXPECT_TRUE(page_shows(tab, "window.jausConsole.state.arm.get('" + std::string(kArm) + "')[0].position > 25", 20s))
+      << value_of(tab.evaluate("JSON.stringify(window.jausConsole.state.arm.get('" + std::string(kArm) + "'))"), Json())
+             .dump()
+      << diagnostics();
+  screenshot(tab, "09-arm");
+}
+
 // A console with a token: the page opened with ?token= passes it on to its
 // WebSocket and connects; opened without it, the console refuses the socket
 // and the page keeps saying it is not connected.
