@@ -74,7 +74,10 @@ void Discovery::add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<
 void Discovery::add_component(const jaus::Address& a, std::vector<DiscoveryQuery>& out) {
   const auto* known = find_node(a.subsystem, a.node);
   const bool is_new = !known || !known->components.contains({a.component, a.instance});
-  if (is_new && component_count() >= kMaxComponents) return;
+  if (is_new && (components_in(a.subsystem) >= kMaxComponentsPerSubsystem || component_count() >= kMaxComponents)) {
+    ++components_left_out_;
+    return;
+  }
   add_node(a.subsystem, a.node, out);
   auto& c = node_of(a.subsystem, a.node).components[{a.component, a.instance}];
   c.address = a;
@@ -151,6 +154,14 @@ std::vector<DiscoveryQuery> Discovery::received(const jaus::Header& h, std::span
       break;
   }
   return out;
+}
+
+std::size_t Discovery::components_in(std::uint8_t subsystem) const {
+  const auto s = subsystems_.find(subsystem);
+  if (s == subsystems_.end()) return 0;
+  std::size_t n = 0;
+  for (const auto& [nid, node] : s->second.nodes) n += node.components.size();
+  return n;
 }
 
 std::size_t Discovery::component_count() const {

@@ -219,7 +219,7 @@ TEST_F(DiscoveryModel, EverySubsystemInASubsystemListIsAsked) {
   EXPECT_TRUE(discovery.subsystems().contains(5));
 }
 
-TEST_F(DiscoveryModel, ANodeClaimingTooManyComponentsIsNotBelieved) {
+TEST_F(DiscoveryModel, ASubsystemClaimingTooManyComponentsIsNotBelieved) {
   jaus::msg::ReportConfiguration configuration;
   for (std::uint8_t node = 1; node <= 10; ++node) {
     jaus::msg::NodeEntry entry{node, {}};
@@ -227,8 +227,26 @@ TEST_F(DiscoveryModel, ANodeClaimingTooManyComponentsIsNotBelieved) {
     configuration.nodes.push_back(entry);
   }
   const auto queries = reply(jaus::Address{3, 1, 1, 1}, configuration);
-  EXPECT_EQ(discovery.component_count(), Discovery::kMaxComponents);
-  EXPECT_LE(queries.size(), 2 * Discovery::kMaxComponents + 4 * 10 + 2);
+  EXPECT_EQ(discovery.component_count(), Discovery::kMaxComponentsPerSubsystem);
+  EXPECT_EQ(discovery.components_left_out(), 2000 - Discovery::kMaxComponentsPerSubsystem);
+  EXPECT_LE(queries.size(), 2 * Discovery::kMaxComponentsPerSubsystem + 4 * 10 + 2);
+}
+
+// bench_scale found the bound counted over the whole system: 170 vehicles of
+// six components filled it and the rest were silently left out.
+TEST_F(DiscoveryModel, TwoHundredFiftyVehiclesOfSixComponentsAreAllListed) {
+  for (std::uint8_t subsystem = 1; subsystem <= 250; ++subsystem) {
+    jaus::msg::ReportConfiguration configuration;
+    for (std::uint8_t node = 1; node <= 2; ++node) {
+      jaus::msg::NodeEntry entry{node, {}};
+      for (std::uint8_t c : {std::uint8_t{1}, std::uint8_t{33}, std::uint8_t{38}}) entry.components.push_back({c, 1});
+      configuration.nodes.push_back(entry);
+    }
+    reply(jaus::Address{subsystem, 1, 1, 1}, configuration);
+  }
+  EXPECT_EQ(discovery.component_count(), 250u * 6u);
+  EXPECT_EQ(discovery.components_left_out(), 0u);
+  EXPECT_EQ(discovery.subsystems().size(), 250u);
 }
 
 TEST_F(DiscoveryModel, MalformedRepliesAreIgnored) {

@@ -25,6 +25,9 @@ int run_discover(OcuSession& session, const DiscoverOptions& options, CommandIo 
     io.out << discovery_json(discovery).dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
   else
     io.out << discovery_table(discovery);
+  if (discovery.components_left_out() > 0)
+    io.err << "jausctl discover: " << discovery.components_left_out()
+           << " components left out (more than a subsystem or a system is believed to have)\n";
   return kExitOk;
 }
 

@@ -63,9 +63,13 @@ struct DiscoveryQuery {
 
 class Discovery {
  public:
-  // Each component costs two queries: a node that claims more than this is
-  // not believed (bounded memory and traffic whatever it sends).
-  static constexpr std::size_t kMaxComponents = 1024;
+  // Each component costs two queries and a few hundred bytes: a subsystem
+  // that claims more than kMaxComponentsPerSubsystem is not believed, and the
+  // whole system is bounded too (memory and traffic whatever peers send).
+  // The total allows 64 components in each of the 254 subsystems
+  // (bench_scale: a system-wide 1024 cut 170 two-node vehicles short).
+  static constexpr std::size_t kMaxComponentsPerSubsystem = 1024;
+  static constexpr std::size_t kMaxComponents = 254 * 64;
 
   // `self` is the OCU: its own node is left out.
   explicit Discovery(jaus::Address self) : self_(self) {}
@@ -85,6 +89,8 @@ class Discovery {
 
   const std::map<std::uint8_t, DiscoveredSubsystem>& subsystems() const { return subsystems_; }
   std::size_t component_count() const;
+  // Components heard of but left out by the bounds above.
+  std::size_t components_left_out() const { return components_left_out_; }
 
   // A component's services: its own answer, else its node manager's entry for its component ID.
   static std::vector<jaus::msg::ServiceEntry> services_of(const DiscoveredNode& node,
@@ -97,6 +103,7 @@ class Discovery {
   const DiscoveredNode* find_node(std::uint8_t subsystem, std::uint8_t node) const;
   void add_node(std::uint8_t subsystem, std::uint8_t node, std::vector<DiscoveryQuery>& out);
   void add_component(const jaus::Address& address, std::vector<DiscoveryQuery>& out);
+  std::size_t components_in(std::uint8_t subsystem) const;
   // Asks once per key: a subsystem-wide question is keyed by the subsystem alone.
   void ask(std::vector<DiscoveryQuery>& out, const jaus::Address& to, Kind kind, std::uint8_t field,
            const jaus::Address& key);
@@ -110,6 +117,7 @@ class Discovery {
 
   jaus::Address self_;
   std::map<std::uint8_t, DiscoveredSubsystem> subsystems_;
+  std::size_t components_left_out_ = 0;
   std::map<QuestionKey, Question> asked_;
 };
 
