@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project builds with. Idempotent; needs root
 # (or sudo). Nothing is downloaded at build time: everything comes from here.
+# Usage: ./scripts/setup.sh            the packages to build and test
+#        ./scripts/setup.sh --browser  the browser tests' Chromium (scripts/test.sh
+#                                      installs it while the first build runs)
 set -euo pipefail
 
 packages=(
@@ -19,8 +22,12 @@ packages=(
   lintian               # tests/package checks the jaus-node .deb with Debian's package checker
   tshark                # tests/wireshark runs the generated Wireshark dissector in tshark
   iproute2 nftables     # tests/network: network namespaces, a bridge, veths (ip) and packet loss (nft)
-  chromium chromium-driver  # tests/browser: jaus-console's page in headless Chromium (tests only; ~26 s to install)
 )
+if [ "${1:-}" = "--browser" ]; then
+  # tests/browser: jaus-console's page in headless Chromium (tests only;
+  # 26 packages, 133 MB of .debs, about 30 s to fetch and install).
+  packages=(chromium chromium-driver)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs what the project needs, builds it and runs every test:
 #   1. Release build (GCC, -O2 as Debian builds, -Wall -Wextra -Werror): libraries, apps, benchmarks,
-#      the system suite, which runs the shipped programs end to end, and the load suite (a node
-#      under a million datagrams; the sanitizer tree floods it with a tenth of that);
+#      the system suite, which runs the shipped programs end to end, the network suite (nodes in
+#      network namespaces under packet loss: needs root), the browser suite (jaus-console's page in
+#      headless Chromium, installed meanwhile) and the load suite (a node under a million datagrams;
+#      the sanitizer tree floods it with a tenth of that);
 #   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (clang, -Werror): every suite,
 #      and the libFuzzer targets (libraries instrumented for coverage), each run briefly on its seed
 #      corpus; line tables only (-g1), all a sanitizer report needs. Without clang the sanitizer
@@ -16,6 +18,10 @@ cd "$(dirname "$0")/.."
 root=$(pwd)
 
 ./scripts/setup.sh
+# Chromium (the browser tests only) installs while the release tree compiles.
+mkdir -p build
+./scripts/setup.sh --browser > build/setup-browser.log 2>&1 &
+browser_setup=$!
 
 jobs=$(nproc)
 configure_and_build() {  # $1 build dir, remaining args: cmake options; BUILD_NICENESS lowers the compiler's priority
@@ -35,16 +41,17 @@ run_tests() {  # $1 build dir
 echo "== release build"
 configure_and_build build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_TEST_SUITES=system
 
-echo "== release system and load suites (in the background, output at the end of the sanitizer build)"
+if ! wait "$browser_setup"; then echo "== installing Chromium failed:"; cat build/setup-browser.log; exit 1; fi
+echo "== release system, network, browser and load suites (in the background, output at the end of the sanitizer build)"
 release_log=build/release/system-suite.log
 run_tests build/release > "$release_log" 2>&1 &
 release_tests=$!
 finish_release_tests() {
   local status=0
   wait "$release_tests" || status=$?
-  echo "== release system and load suites:"
+  echo "== release system, network, browser and load suites:"
   cat "$release_log"
-  if [ "$status" -ne 0 ]; then echo "== release system and load suites failed"; exit 1; fi
+  if [ "$status" -ne 0 ]; then echo "== release system, network, browser and load suites failed"; exit 1; fi
 }
 
 sanitizer_options=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DJAUS_SANITIZE=ON -DJAUS_BUILD_BENCHMARKS=OFF)

@@ -17,11 +17,12 @@ using Hold = jaus::ocu::ControlHold;
 const jaus::Address kDriver{1, 1, 33, 1};
 constexpr std::uint8_t kAuthority = 10;
 constexpr auto kPartition = 3s;
-// veh1's control.controller_timeout_s here: the driver asks a silent
-// controller every third of it and drops control at the first ask after the
-// timeout, so a partition must outlast 4/3 of it to drop control for sure
-// (the default 3 s would need 4 s). A shorter partition is not a loss of
-// control: the careless OCU then drives on after healing.
+// veh1's control.controller_timeout_s here: control goes once the controller
+// has been silent for longer than this, so a partition must outlast it. With the default 3 s a 3 s partition is at the edge (the last
+// effort before the cut is up to 100 ms older than the cut): 2 s leaves a
+// clear second. A shorter outage is not a loss of control: an OCU that still
+// repeats its command (the operator still holds the stick) drives on after
+// healing (docs/safety.md, "Loss: what must arrive").
 constexpr double kControllerTimeoutSeconds = 2.0;
 constexpr double kStatusPeriodSeconds = 0.1;       // clearpath-sim --status-every
 

@@ -177,6 +177,22 @@ TEST_F(ComponentTest, SilentControllerLosesControlAndThePlatformStops) {
   EXPECT_EQ(driver->executed.size(), 1u);
 }
 
+// Control goes as soon as the controller has been silent for longer than
+// controller_timeout (3 s), not at the next of its checks (every timeout / 3),
+// which could be up to a second later (tests/network's partition on real
+// processes).
+TEST_F(ComponentTest, ControlEndsAsSoonAsTheSilenceOutlastsTheTimeout) {
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  time.advance(700ms);
+  drive(kOcuA, 60);  // heard at 0.7 s: off the checks' 1 s grid
+  ASSERT_TRUE(driver->control().is_controller(kOcuA));
+  time.advance(3000ms);  // exactly the timeout: not longer
+  EXPECT_TRUE(driver->control().is_controller(kOcuA));
+  time.advance(1ms);
+  EXPECT_FALSE(driver->control().controller());
+  EXPECT_FALSE(driver->moving);
+}
+
 TEST_F(ComponentTest, AnsweringControllerKeepsControl) {
   ASSERT_EQ(request_control(kOcuA, 10), 0);
   for (int i = 0; i < 30; ++i) {

@@ -595,8 +595,19 @@ void Component::arm_controller_watch() {
   if (controller_timer_ != kNoTimer) env_.scheduler.cancel(controller_timer_);
   controller_timer_ = kNoTimer;
   if (config_.controller_timeout <= Duration::zero()) return;
-  const Duration period = config_.controller_timeout / kControllerQueriesPerTimeout;
-  controller_timer_ = env_.scheduler.call_at(env_.clock.now() + period, [this] { check_controller(); });
+  schedule_controller_check();
+}
+
+// The next look at the controller: a query period from now, or the moment
+// its silence outlasts the timeout if that comes first. So control goes 1 ms
+// after controller_timeout of silence, not up to a query period later (the
+// checks alone could leave a silent controller in control for 4/3 of it).
+void Component::schedule_controller_check() {
+  const TimePoint now = env_.clock.now();
+  const TimePoint next_query = now + config_.controller_timeout / kControllerQueriesPerTimeout;
+  const TimePoint silent_enough = controller_last_heard_ + config_.controller_timeout + std::chrono::milliseconds(1);
+  controller_timer_ =
+      env_.scheduler.call_at(std::max(now, std::min(next_query, silent_enough)), [this] { check_controller(); });
 }
 
 void Component::check_controller() {
@@ -604,15 +615,14 @@ void Component::check_controller() {
   const auto& controller = control_.controller();
   if (!controller) return;
   const Duration silence = env_.clock.now() - controller_last_heard_;
-  if (silence > config_.controller_timeout) {
+  if (silence > config_.controller_timeout) {  // "longer than": ComponentConfig::controller_timeout
     take_control_away("controller silent for " +
                       std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(silence).count()) + " ms");
     return;
   }
   // Ask for a sign of life; the reply (or any other message) refreshes liveness.
   send(controller->address, msg::QueryComponentStatus{});
-  const Duration period = config_.controller_timeout / kControllerQueriesPerTimeout;
-  controller_timer_ = env_.scheduler.call_at(env_.clock.now() + period, [this] { check_controller(); });
+  schedule_controller_check();
 }
 
 // ---- time ----------------------------------------------------------------------

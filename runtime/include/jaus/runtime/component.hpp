@@ -359,6 +359,7 @@ class Component {
   void end_stale_command_connections(std::string_view why);
   void arm_controller_watch();
   void check_controller();
+  void schedule_controller_check();
 
   // Emergency: the component follows its latch (its own, or the vehicle's).
   void follow_emergency();
