@@ -1,0 +1,194 @@
+// The in-process OCU reaches veh1 only through a delay line (delay_line.hpp)
+// in the `ocu` namespace: every datagram waits 40 ms + uniform(0, 80) ms each
+// way, so datagrams sent less than 80 ms apart overtake each other, and 5 %
+// are dropped each way. Over it: a 15 s control hold with effort at 10 Hz;
+// 30 rounds of Set and Clear Emergency sent to arrive; and the safety case of
+// reordering: a Resume and then a Standby, each ACKed, must end in Standby
+// even when retransmitted copies of the Resume arrive after the Standby (the
+// node drops a copy of a command it already handled).
+#include <cstdlib>
+
+#include "delay_line.hpp"
+#include "jaus/ocu/must_arrive.hpp"
+#include "jaus/transport/framing.hpp"
+#include "network_test.hpp"
+#include "ocu_helpers.hpp"
+
+namespace jaus::test::network {
+namespace {
+
+using jaus::msg::PrimaryStatus;
+using Hold = jaus::ocu::ControlHold;
+
+const jaus::Address kDriver{1, 1, 33, 1};
+constexpr std::uint8_t kAuthority = 10;  // above the vector driver's 1
+constexpr std::uint16_t kRelayPort = 4794;
+constexpr auto kHoldFor = 15s;
+constexpr int kEmergencyRounds = 30;
+constexpr int kResumeStandbyRounds = 10;
+// Longer than the longest a datagram waits in the line (40 + 80 ms) with
+// margin: copies still on their way by then are late copies.
+constexpr auto kLateCopiesLand = 300ms;
+
+class DelayAndReorder : public NetworkTest {
+ protected:
+  // veh1 and the simulator, the delay line, and an OCU whose only peer is the line.
+  void SetUp() override {
+    NetworkTest::SetUp();
+    if (IsSkipped() || HasFailure()) return;
+    start_simulator();
+    start_node(veh1_spec(Finding::alone));
+    ASSERT_TRUE(wait_for_status("1.1.33.1", kVeh1, "ready", 30s)) << node(kVeh1).output();
+    DelayLineOptions options;
+    options.name_space = lab->namespace_of(kOcu);
+    options.listen = ipv4_endpoint(kOcu.address, kRelayPort);
+    options.vehicle = ipv4_endpoint(kVeh1.address, 3794);
+    options.base = 40ms;
+    options.jitter = 80ms;
+    options.drop_probability = 0.05;
+    options.seed = static_cast<std::uint32_t>(::getpid());
+    options.on_delivery_to_vehicle = [this](std::span<const std::uint8_t> datagram) { note_delivery(datagram); };
+    auto started = DelayLine::start(options);
+    ASSERT_TRUE(started) << started.error().message();
+    line = std::move(*started);
+
+    auto entered = InNamespace::enter(lab->namespace_of(kOcu));
+    ASSERT_TRUE(entered) << entered.error().message();
+    in_ocu_namespace = std::move(*entered);
+    jaus::ocu::SessionOptions session_options;
+    session_options.self = {254, 10, 40, 1};
+    session_options.to = {*jaus::transport::parse_endpoint(std::string(kOcu.address) + ":" + std::to_string(kRelayPort))};
+    session_options.bind = ocu_any_port();
+    auto opened = jaus::ocu::OcuSession::open(session_options);
+    ASSERT_TRUE(opened) << opened.error().message();
+    ocu = std::move(*opened);
+  }
+  void TearDown() override {
+    ocu.reset();  // before the line: nothing left to relay
+    line.reset();
+    NetworkTest::TearDown();
+  }
+
+  void print_line(const std::string& after) const {
+    const auto c = line->counters();
+    std::cout << "delay line after " << after << ": " << c.received << " datagrams received, " << c.forwarded
+              << " forwarded, " << c.dropped << " dropped, " << c.reordered << " reordered\n";
+  }
+  // Lines of veh1's jausd log at level error.
+  std::vector<std::string> veh1_errors() {
+    std::vector<std::string> errors;
+    std::istringstream lines(node(kVeh1).output());
+    for (std::string line_text; std::getline(lines, line_text);)
+      if (line_text.find("[error]") != std::string::npos) errors.push_back(line_text);
+    return errors;
+  }
+  // Sent to arrive, up to three times (each send_must_arrive gives up after
+  // 10 transmissions, 0.5 s: at 5 % loss each way and up to 240 ms of round
+  // trip, rarely all of them lost or late).
+  jaus::ocu::ArrivalResult send_until_acked(const auto& message, std::vector<double>& ack_ms) {
+    jaus::ocu::ArrivalResult r;
+    for (int i = 0; i < 3; ++i) {
+      r = jaus::ocu::send_must_arrive(*ocu, kDriver, message, jaus::priority::kSafetyCritical);
+      ack_ms.push_back(milliseconds(r.elapsed));
+      if (r.outcome == jaus::ocu::Arrival::acknowledged) break;
+    }
+    return r;
+  }
+
+  // On the line's thread: a Resume delivered after a Standby sent later
+  // (higher sequence number) was delivered is a late copy the node must drop.
+  void note_delivery(std::span<const std::uint8_t> datagram) {
+    const auto message = jaus::transport::unframe(datagram);
+    if (!message) return;
+    const jaus::Header& h = message->packet.header;
+    if (h.command_code == jaus::msg::Standby::code)
+      latest_standby_delivered = std::max<int>(latest_standby_delivered, h.sequence);
+    else if (h.command_code == jaus::msg::Resume::code && h.sequence < latest_standby_delivered)
+      ++resumes_delivered_after_a_later_standby;
+  }
+
+  std::atomic<int> latest_standby_delivered{-1};
+  std::atomic<int> resumes_delivered_after_a_later_standby{0};
+  std::unique_ptr<DelayLine> line;
+};
+
+TEST_F(DelayAndReorder, AHoldDrivesFor15sWithoutSpuriousLossOfControl) {
+  Hold hold(*ocu, kDriver, kAuthority);
+  ASSERT_TRUE(take_control(hold)) << "control of 1.1.33.1 not granted through the delay line";
+  hold.send_while_held(wrench_effort(60), 100ms);
+  const auto states_before = simulator->states().size();
+  const auto started = Clock::now();
+  const Hold::End end = hold.hold(kHoldFor);
+  const double held_s = seconds_since(started);
+  hold.release();
+  EXPECT_EQ(end, Hold::End::time_up) << "the hold ended after " << held_s << " s";
+  const auto states = simulator->states();
+  std::size_t moving = 0;
+  std::size_t counted = 0;
+  for (std::size_t i = states_before + 30; i < states.size(); ++i, ++counted)  // from 3 s in
+    moving += ClearpathSimulator::moving(states[i]) ? 1 : 0;
+  ASSERT_GT(counted, 80u) << "the simulator printed too few states";
+  const double moving_percent = 100.0 * static_cast<double>(moving) / static_cast<double>(counted);
+  std::cout << "control through 40+0..80 ms each way, 5 % loss: held " << held_s << " s, " << hold.sent_while_held()
+            << " Set Wrench Effort sent, vehicle moving in " << moving_percent << " % of the simulator's states\n";
+  print_line("the hold");
+  EXPECT_GE(moving_percent, 90.0);
+}
+
+TEST_F(DelayAndReorder, SetAndClearEmergency30TimesEndsOutOfEmergency) {
+  std::vector<double> set_ms;
+  std::vector<double> clear_ms;
+  for (int i = 0; i < kEmergencyRounds; ++i) {
+    const auto set = send_until_acked(jaus::msg::SetEmergency{{1}}, set_ms);
+    ASSERT_EQ(set.outcome, jaus::ocu::Arrival::acknowledged) << "Set Emergency " << i;
+    // Set Emergency is never filtered as a copy (stopping twice is safe): its
+    // retransmissions still in the line must land before the Clear.
+    ocu->run_for(kLateCopiesLand);
+    ASSERT_EQ(primary_status(*ocu, kDriver), PrimaryStatus::emergency) << "after Set Emergency " << i;
+    const auto clear = send_until_acked(jaus::msg::ClearEmergency{{1}}, clear_ms);
+    ASSERT_EQ(clear.outcome, jaus::ocu::Arrival::acknowledged) << "Clear Emergency " << i;
+    ASSERT_TRUE(wait_for_primary_status(*ocu, kDriver, PrimaryStatus::ready, 5000ms)) << "after Clear Emergency " << i;
+  }
+  ocu->run_for(1s);  // late copies of anything
+  EXPECT_EQ(primary_status(*ocu, kDriver), PrimaryStatus::ready);
+  EXPECT_TRUE(veh1_errors().empty()) << "veh1 logged errors:\n" << node(kVeh1).output();
+  std::cout << "Set Emergency through the delay line, " << set_ms.size() << " sends: ACK p50 " << percentile(set_ms, 50)
+            << " ms, p99 " << percentile(set_ms, 99) << " ms; Clear Emergency, " << clear_ms.size() << " sends: ACK p50 "
+            << percentile(clear_ms, 50) << " ms, p99 " << percentile(clear_ms, 99) << " ms\n";
+  print_line("the emergencies");
+  EXPECT_GT(line->counters().reordered, 0u) << "the delay line never reordered: the test proved nothing";
+}
+
+TEST_F(DelayAndReorder, AResumeRetransmittedPastALaterStandbyDoesNotAct) {
+  Hold hold(*ocu, kDriver, kAuthority);
+  ASSERT_TRUE(take_control(hold)) << "control of 1.1.33.1 not granted through the delay line";
+  std::vector<double> resume_ms;
+  std::vector<double> standby_ms;
+  int resume_retransmitted = 0;
+  // Once slowly: Resume does make the driver Ready, Standby takes it back.
+  ASSERT_EQ(send_until_acked(jaus::msg::Resume{}, resume_ms).outcome, jaus::ocu::Arrival::acknowledged);
+  ASSERT_TRUE(wait_for_primary_status(*ocu, kDriver, PrimaryStatus::ready, 3000ms));
+  ASSERT_EQ(send_until_acked(jaus::msg::Standby{}, standby_ms).outcome, jaus::ocu::Arrival::acknowledged);
+  ASSERT_TRUE(wait_for_primary_status(*ocu, kDriver, PrimaryStatus::standby, 3000ms));
+  for (int i = 0; i < kResumeStandbyRounds; ++i) {
+    const auto resume = send_until_acked(jaus::msg::Resume{}, resume_ms);
+    ASSERT_EQ(resume.outcome, jaus::ocu::Arrival::acknowledged) << "Resume " << i;
+    resume_retransmitted += resume.transmissions > 1 ? 1 : 0;
+    // At once, while copies of the Resume may still be in the line.
+    const auto standby = send_until_acked(jaus::msg::Standby{}, standby_ms);
+    ASSERT_EQ(standby.outcome, jaus::ocu::Arrival::acknowledged) << "Standby " << i;
+    const Hold::End end = hold.hold(1s);  // keeps control while late copies land
+    ASSERT_EQ(end, Hold::End::time_up) << "control lost in round " << i;
+    ASSERT_EQ(primary_status(*ocu, kDriver), PrimaryStatus::standby) << "round " << i << ": a late Resume acted";
+  }
+  hold.release();
+  std::cout << "Resume then Standby, " << kResumeStandbyRounds << " rounds: Resume ACK p50 " << percentile(resume_ms, 50)
+            << " ms, p99 " << percentile(resume_ms, 99) << " ms (" << resume_retransmitted
+            << " retransmitted); Standby ACK p50 " << percentile(standby_ms, 50) << " ms, p99 "
+            << percentile(standby_ms, 99) << " ms; " << resumes_delivered_after_a_later_standby
+            << " copies of a Resume reached veh1 after a later Standby (and did not act)\n";
+  print_line("Resume/Standby");
+}
+
+}  // namespace
+}  // namespace jaus::test::network
