@@ -7,11 +7,12 @@
 #      the sanitizer tree floods it with a tenth of that);
 #   2. Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (clang, -Werror): every suite,
 #      and the libFuzzer targets (libraries instrumented for coverage), each run briefly on its seed
-#      corpus; line tables only (-g1), all a sanitizer report needs. Without clang the sanitizer
-#      build uses GCC and the fuzz targets are skipped.
-# Two compilers, two sets of warnings. The Release system and load suites (real-clock tests that
-# mostly wait on sockets and timers, and one flood) run while the sanitizer tree compiles at a lower CPU priority, so the
-# tests get the CPU whenever they need it and the compiler takes the rest.
+#      corpus while the sanitizer suites run; line tables only (-g1), all a sanitizer report needs.
+#      Without clang the sanitizer build uses GCC and the fuzz targets are skipped.
+# Two compilers, two sets of warnings. The Release system, network, browser and load suites
+# (real-clock tests that mostly wait on sockets and timers, and one flood) run while the sanitizer
+# tree compiles at a lower CPU priority, and the fuzz smoke at the lowest priority while the
+# sanitizer suites run: the tests get the CPU whenever they need it, the rest takes what is left.
 # Usage: ./scripts/test.sh (from anywhere; builds go to build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -66,28 +67,30 @@ asan_built=0
 BUILD_NICENESS=10 configure_and_build build/asan "${sanitizer_options[@]}" && asan_built=1
 finish_release_tests
 if [ "$asan_built" != 1 ]; then echo "== sanitizer build failed"; exit 1; fi
-run_tests build/asan
-
 fuzz_dir=build/asan/fuzz
-if [ -d "$fuzz_dir" ]; then
-  echo "== fuzz targets (libFuzzer, short smoke run)"
-  # Each target runs 20 s on its seed corpus, as many at once as there are cores.
-  fuzz_one() {  # $1 target; its output goes to $fuzz_dir/<name>.log
-    local target=$1 name corpus status=0
-    name=$(basename "$target")
-    corpus=$(mktemp -d)
-    cp -r "$root/tests/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
-    if [ "$name" = fuzz_jaus_decode ] || [ "$name" = fuzz_node_receive ]; then
-      # Seed with every JAUS vector, one file each.
-      grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
-        while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done
-    fi
-    "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/$fuzz_dir/" \
-      > "$root/$fuzz_dir/$name.log" 2>&1 || status=$?
-    rm -rf "$corpus"
-    return $status
-  }
-  targets=()
+fuzz_log=build/asan/fuzz-smoke.log
+# Each fuzz target runs 20 s on its seed corpus, as many at once as there are
+# cores, at the lowest priority while the sanitizer suites run: the tests,
+# many of which wait on sockets and timers, get the CPU whenever they need it
+# and the fuzzers take the rest (a target given less CPU makes fewer runs in
+# its 20 s; it still runs every seed and then mutates).
+fuzz_one() {  # $1 target; its output goes to $fuzz_dir/<name>.log
+  local target=$1 name corpus status=0
+  name=$(basename "$target")
+  corpus=$(mktemp -d)
+  cp -r "$root/tests/fuzz/corpus/$name/." "$corpus/" 2>/dev/null || true
+  if [ "$name" = fuzz_jaus_decode ] || [ "$name" = fuzz_node_receive ]; then
+    # Seed with every JAUS vector, one file each.
+    grep -hv '^#' "$root"/tests/data/jaus-openjaus*-vectors.txt | awk '{print $NF}' |
+      while read -r hex; do printf '%s' "$hex" | perl -ne 'print pack("H*", $_)' > "$corpus/$(printf '%s' "$hex" | md5sum | cut -c1-16)"; done
+  fi
+  nice -n 19 "$target" "$corpus" -max_total_time=20 -print_final_stats=0 -artifact_prefix="$root/$fuzz_dir/" \
+    > "$root/$fuzz_dir/$name.log" 2>&1 || status=$?
+  rm -rf "$corpus"
+  return $status
+}
+fuzz_smoke() {  # every target, `jobs` at a time; a summary line each, the failing one's log
+  local targets=() target i k name pids batch
   for target in "$fuzz_dir"/fuzz_*; do if [ -x "$target" ]; then targets+=("$target"); fi; done
   for ((i = 0; i < ${#targets[@]}; i += jobs)); do
     pids=()
@@ -96,12 +99,28 @@ if [ -d "$fuzz_dir" ]; then
     for k in "${!batch[@]}"; do
       name=$(basename "${batch[$k]}")
       if ! wait "${pids[$k]}"; then
-        echo "== $name failed:"; tail -n 40 "$fuzz_dir/$name.log"; exit 1
+        echo "== $name failed:"; tail -n 40 "$fuzz_dir/$name.log"; return 1
       fi
       echo "$name: $(grep -E '^Done [0-9]+ runs' "$fuzz_dir/$name.log" | tail -n 1)"
     done
   done
+}
+fuzz_pid=""
+if [ -d "$fuzz_dir" ]; then
+  echo "== fuzz targets (libFuzzer, short smoke run; in the background at the lowest priority, output after the sanitizer suites)"
+  fuzz_smoke > "$fuzz_log" 2>&1 &
+  fuzz_pid=$!
 else
   echo "== clang not found: fuzz targets skipped"
 fi
+asan_tests_ok=1
+run_tests build/asan || asan_tests_ok=0
+if [ -n "$fuzz_pid" ]; then
+  fuzz_ok=1
+  wait "$fuzz_pid" || fuzz_ok=0
+  echo "== fuzz targets:"
+  cat "$fuzz_log"
+  if [ "$fuzz_ok" != 1 ]; then echo "== fuzz smoke failed"; exit 1; fi
+fi
+if [ "$asan_tests_ok" != 1 ]; then echo "== sanitizer suites failed"; exit 1; fi
 echo "== all tests passed in $SECONDS s"
