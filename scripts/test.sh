@@ -25,15 +25,12 @@ mkdir -p build
 browser_setup=$!
 
 jobs=$(nproc)
-# One compile more than there are cores: links and the tests' discovery steps
-# wait on the disk, and a third job keeps both cores compiling meanwhile.
-build_jobs=$((jobs + 1))
 configure_and_build() {  # $1 build dir, remaining args: cmake options; BUILD_NICENESS lowers the compiler's priority
   local dir=$1; shift
   local start=$SECONDS
   # Explicit returns: this also runs on the left of ||, where set -e does not apply.
   cmake -S "$root" -B "$dir" -G Ninja "$@" >/dev/null || return 1
-  nice -n "${BUILD_NICENESS:-0}" cmake --build "$dir" -j "$build_jobs" || return 1
+  nice -n "${BUILD_NICENESS:-0}" cmake --build "$dir" -j "$jobs" || return 1
   echo "== $dir: built in $((SECONDS - start)) s"
 }
 run_tests() {  # $1 build dir
