@@ -48,23 +48,13 @@ TEST_F(ControlUnderLoss, AHeldDriverDrivesFor60sAndSetEmergencyIsAckedWithin200m
     Hold hold(*session, kDriver, kAuthority);
     ASSERT_TRUE(take_control(hold)) << "control of 1.1.33.1 not granted at " << loss << " % loss";
     hold.send_while_held(wrench_effort(60), 100ms);
-    const auto states_before = simulator->states().size();
-    const auto started = Clock::now();
-    const Hold::End end = hold.hold(kHoldFor);
-    const double held_s = seconds_since(started);
-    hold.release();
-    EXPECT_EQ(end, Hold::End::time_up) << "the hold ended after " << held_s << " s";
-    const auto states = simulator->states();
-    // From 3 s in (the vehicle accelerating) to the end of the hold.
-    std::size_t moving = 0;
-    std::size_t counted = 0;
-    for (std::size_t i = states_before + 30; i < states.size(); ++i, ++counted)
-      moving += ClearpathSimulator::moving(states[i]) ? 1 : 0;
-    ASSERT_GT(counted, 400u) << "the simulator printed too few states";
-    const double moving_percent = 100.0 * static_cast<double>(moving) / static_cast<double>(counted);
-    std::cout << "control at " << loss << " % loss each way: held " << held_s << " s, " << hold.sent_while_held()
-              << " Set Wrench Effort sent, vehicle moving in " << moving_percent << " % of the simulator's states\n";
-    EXPECT_GE(moving_percent, loss <= 10 ? 95.0 : 80.0);
+    const HeldDrive drive = hold_and_watch(hold, *simulator, kHoldFor);
+    EXPECT_EQ(drive.end, Hold::End::time_up) << "the hold ended after " << drive.held_s << " s";
+    ASSERT_GT(drive.counted, 400u) << "the simulator printed too few states";
+    std::cout << "control at " << loss << " % loss each way: held " << drive.held_s << " s, "
+              << hold.sent_while_held() << " Set Wrench Effort sent, vehicle moving in " << drive.moving_percent()
+              << " % of the simulator's states\n";
+    EXPECT_GE(drive.moving_percent(), loss <= 10 ? 95.0 : 80.0);
   }
 
   // Stopped (the release stopped it) before the emergencies.

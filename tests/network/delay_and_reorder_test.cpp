@@ -120,23 +120,14 @@ TEST_F(DelayAndReorder, AHoldDrivesFor15sWithoutSpuriousLossOfControl) {
   Hold hold(*ocu, kDriver, kAuthority);
   ASSERT_TRUE(take_control(hold)) << "control of 1.1.33.1 not granted through the delay line";
   hold.send_while_held(wrench_effort(60), 100ms);
-  const auto states_before = simulator->states().size();
-  const auto started = Clock::now();
-  const Hold::End end = hold.hold(kHoldFor);
-  const double held_s = seconds_since(started);
-  hold.release();
-  EXPECT_EQ(end, Hold::End::time_up) << "the hold ended after " << held_s << " s";
-  const auto states = simulator->states();
-  std::size_t moving = 0;
-  std::size_t counted = 0;
-  for (std::size_t i = states_before + 30; i < states.size(); ++i, ++counted)  // from 3 s in
-    moving += ClearpathSimulator::moving(states[i]) ? 1 : 0;
-  ASSERT_GT(counted, 80u) << "the simulator printed too few states";
-  const double moving_percent = 100.0 * static_cast<double>(moving) / static_cast<double>(counted);
-  std::cout << "control through 40+0..80 ms each way, 5 % loss: held " << held_s << " s, " << hold.sent_while_held()
-            << " Set Wrench Effort sent, vehicle moving in " << moving_percent << " % of the simulator's states\n";
+  const HeldDrive drive = hold_and_watch(hold, *simulator, kHoldFor);
+  EXPECT_EQ(drive.end, Hold::End::time_up) << "the hold ended after " << drive.held_s << " s";
+  ASSERT_GT(drive.counted, 80u) << "the simulator printed too few states";
+  std::cout << "control through 40+0..80 ms each way, 5 % loss: held " << drive.held_s << " s, "
+            << hold.sent_while_held() << " Set Wrench Effort sent, vehicle moving in " << drive.moving_percent()
+            << " % of the simulator's states\n";
   print_line("the hold");
-  EXPECT_GE(moving_percent, 90.0);
+  EXPECT_GE(drive.moving_percent(), 90.0);
 }
 
 TEST_F(DelayAndReorder, SetAndClearEmergency30TimesEndsOutOfEmergency) {

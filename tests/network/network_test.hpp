@@ -23,6 +23,7 @@
 
 #include "../system/clearpath_simulator.hpp"
 #include "in_namespace.hpp"
+#include "jaus/ocu/control_hold.hpp"
 #include "jaus/ocu/session.hpp"
 #include "lab_jausd.hpp"
 #include "link_loss.hpp"
@@ -37,6 +38,32 @@ using Json = nlohmann::json;
 
 inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A hold streaming Set Wrench Effort (already sent by send_while_held) held
+// for `d`, then released, and what the simulator's true state showed meanwhile.
+struct HeldDrive {
+  jaus::ocu::ControlHold::End end{};
+  double held_s = 0;
+  std::size_t moving = 0;   // simulator states showing the vehicle moving...
+  std::size_t counted = 0;  // ...of those from 3 s in (the vehicle accelerating) to the end
+  double moving_percent() const {
+    return counted == 0 ? 0 : 100.0 * static_cast<double>(moving) / static_cast<double>(counted);
+  }
+};
+inline HeldDrive hold_and_watch(jaus::ocu::ControlHold& hold, const ClearpathSimulator& simulator,
+                                std::chrono::seconds d) {
+  constexpr std::size_t kAcceleratingStates = 30;  // 3 s at the simulator's 0.1 s status period
+  HeldDrive drive;
+  const auto states_before = simulator.states().size();
+  const auto started = Clock::now();
+  drive.end = hold.hold(d);
+  drive.held_s = seconds_since(started);
+  hold.release();
+  const auto states = simulator.states();
+  for (std::size_t i = states_before + kAcceleratingStates; i < states.size(); ++i, ++drive.counted)
+    drive.moving += ClearpathSimulator::moving(states[i]) ? 1 : 0;
+  return drive;
 }
 
 class NetworkTest : public ::testing::Test {
