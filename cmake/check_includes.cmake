@@ -9,7 +9,7 @@ if(NOT ROOT OR NOT DOC)
 endif()
 jaus_read_layering("${DOC}")
 file(GLOB_RECURSE files LIST_DIRECTORIES FALSE
-  "${ROOT}/core/*.?pp" "${ROOT}/runtime/*.?pp" "${ROOT}/components/*.?pp" "${ROOT}/transport/*.?pp"
+  "${ROOT}/core/*.?pp" "${ROOT}/runtime/*.?pp" "${ROOT}/components/*.?pp" "${ROOT}/jss_face/*.?pp" "${ROOT}/transport/*.?pp"
   "${ROOT}/host/*.?pp" "${ROOT}/ocu/*.?pp" "${ROOT}/console/*.?pp" "${ROOT}/conformance/*.?pp" "${ROOT}/clearpath/*.?pp"
   "${ROOT}/bridge/*.?pp" "${ROOT}/apps/*.?pp")
 set(problems 0)

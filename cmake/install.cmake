@@ -20,12 +20,12 @@ list(TRANSFORM jaus_component_folders PREPEND components/ OUTPUT_VARIABLE jaus_c
 
 # The libraries of docs/architecture.md, in dependency order.
 set(JAUS_EXPORTED_LIBRARIES
-    jaus_base jaus_core jaus_runtime ${jaus_component_libraries}
+    jaus_base jaus_core jaus_jss_codec jaus_runtime ${jaus_component_libraries} jaus_jss_face
     jaus_transport jaus_clearpath jaus_clearpath_sim jaus_clearpath_asio jaus_bridge
     jaus_host jaus_ocu jaus_conform)
 
 # The folders whose include/ holds public headers (all under jaus/, no two alike).
-set(JAUS_PUBLIC_INCLUDE_DIRS core runtime transport host ocu conformance clearpath bridge ${jaus_component_include_dirs})
+set(JAUS_PUBLIC_INCLUDE_DIRS core runtime jss_face transport host ocu conformance clearpath bridge ${jaus_component_include_dirs})
 
 # jaus::plugin_api: what a component plugin compiles against (the headers,
 # C++20, the header-only libraries they include) and nothing it links: jausd
