@@ -1,0 +1,211 @@
+// A SAE JAUS (JSS) operator unit as a library: one JSS endpoint of its own
+// on a UDP socket speaking AS5669A (jss-notes.md 1), with what a JSS client
+// needs to drive a JSS vehicle: sequence numbers, ACK answers to
+// ACK-requested messages, large message reassembly, requests resent until
+// answered, commands resent until ACKed, and listeners for what arrives
+// unasked (Reject Control, Events). Discovery, control and events build on
+// it (jss_discovery.hpp, jss_control.hpp, jss_events.hpp).
+//
+// Two ways to open one, as OcuSession: open() on UDP on an io_context
+// (jausctl, jaus-conform); attach() on an injected clock, scheduler and
+// datagram path (tests: a JssFace on virtual time, no socket).
+//
+// Single-threaded: everything runs on the thread that calls run_until(),
+// but request_stop().
+#pragma once
+
+#include <utility>  // Boost 1.74's Asio headers need it first
+
+#include <boost/asio/io_context.hpp>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "jaus/base/expected.hpp"
+#include "jaus/base/log.hpp"
+#include "jaus/base/time.hpp"
+#include "jaus/jss/all.hpp"
+#include "jaus/jss/jss_id.hpp"
+#include "jaus/jss/judp.hpp"
+#include "jaus/ocu/must_arrive.hpp"
+#include "jaus/transport/ipv4.hpp"
+
+namespace jaus::ocu {
+
+// JSS subsystems count up from 1 for vehicles; 200 keeps an operator unit
+// clear of them (and of the RA OCU's 254). Node 1, component 1.
+inline constexpr jss::JssId kDefaultJssOcuId{200, 1, 1};
+// Where JSS nodes (JRM, fkie IOP, jausd's face) send broadcasts and messages
+// to IDs they have not heard from.
+inline constexpr transport::Ipv4Endpoint kJssMulticastGroup{0xEFFF0001, transport::kJausPort};  // 239.255.0.1
+inline constexpr jss::JssId kJssBroadcast{jss::JssId::kAllSubsystems, jss::JssId::kAll, jss::JssId::kAll};
+// A query lost (or its reply) is sent again after this long (as the RA OCU).
+inline constexpr rt::Duration kJssQueryResendPeriod = std::chrono::milliseconds(250);
+inline constexpr rt::Duration kJssDefaultTimeout = std::chrono::seconds(1);
+
+struct JssSessionOptions {
+  jss::JssId self = kDefaultJssOcuId;
+  // Static peers: messages to IDs not heard from yet, and broadcasts, go to
+  // each (and to the multicast group, when set). Heard IDs are answered at
+  // the endpoint they were heard from.
+  std::vector<transport::Ipv4Endpoint> to{{0x7F000001, transport::kJausPort}};
+  transport::Ipv4Endpoint bind{0, 0};  // any address, any free port
+  // The JSS multicast group (kJssMulticastGroup): joined, and used as `to`
+  // is. Best effort: a host without a multicast route logs and goes on.
+  std::optional<transport::Ipv4Endpoint> multicast;
+  // What we answer to Query Identification (type 4, and 2/3 for our own
+  // subsystem and node): JSS type 20001 is an OCU.
+  std::string name = "jausctl";
+  std::uint16_t identification_type = 20001;
+  // Larger contents go as a large message (first/middle/last packets).
+  std::size_t max_packet_contents = 1400;
+  // Reassembly bound: a large message beyond this many bytes is dropped
+  // (counted), as is one whose packets stop coming for reassembly_timeout.
+  std::size_t max_large_message = 1 << 20;
+  rt::Duration reassembly_timeout = std::chrono::seconds(2);
+  std::size_t max_reassemblies = 16;   // large messages in progress at once (the oldest goes)
+  std::size_t max_learnt_endpoints = 1024;  // JSS IDs whose endpoint is remembered (the oldest goes)
+  rt::LogFn log;
+};
+
+// What an attached session runs on instead of a socket and an io_context.
+struct JssEnvironment {
+  rt::Clock* clock = nullptr;
+  rt::Scheduler* scheduler = nullptr;
+  // Where the session's datagrams go (a JssFace's receive, in tests).
+  std::function<void(const jss::JssId& to, std::span<const std::uint8_t> datagram)> transmit;
+  // Hands the environment what takes each datagram for the session; called
+  // once by attach(), and with an empty function when the session goes.
+  std::function<void(std::function<void(std::span<const std::uint8_t>)>)> connect;
+  // Lets time pass up to `until` at most (jaus::testing::stepper).
+  std::function<void(rt::TimePoint until)> wait;
+};
+
+// A JSS message addressed to us (or broadcast), reassembled when large.
+struct JssReceived {
+  jss::JudpHeader header;               // of its (first) packet
+  std::vector<std::uint8_t> contents;   // u16 message ID, then the body
+  std::uint16_t message_id() const { return jss::message_id_of(contents); }
+  const jss::JssId& source() const { return header.source; }
+};
+
+struct JssSessionCounters {
+  std::uint64_t datagrams_sent = 0;
+  std::uint64_t datagrams_received = 0;
+  std::uint64_t malformed = 0;          // not AS5669A, or a bad header (logged, rate-limited)
+  std::uint64_t not_for_us = 0;         // destination matches neither us nor a broadcast
+  std::uint64_t messages_received = 0;  // delivered to listeners
+  std::uint64_t acks_sent = 0;
+  std::uint64_t acks_received = 0;
+  std::uint64_t large_messages_sent = 0;
+  std::uint64_t large_messages_received = 0;
+  std::uint64_t large_messages_dropped = 0;  // out of order, too large, timed out or evicted
+};
+
+class JssSession {
+ public:
+  using Listener = std::function<void(const JssReceived&)>;
+  using ListenerId = std::uint64_t;
+
+  // Binds the socket (joins the multicast group). `io` null: its own.
+  // Errors (io, invalid_argument) in one line: "0.0.0.0:3794 is already in use".
+  static Expected<std::unique_ptr<JssSession>> open(JssSessionOptions options, boost::asio::io_context* io = nullptr);
+  // Errors: an invalid or broadcast ID, an environment with something missing.
+  static Expected<std::unique_ptr<JssSession>> attach(JssSessionOptions options, JssEnvironment environment);
+  ~JssSession();
+  JssSession(const JssSession&) = delete;
+  JssSession& operator=(const JssSession&) = delete;
+
+  const jss::JssId& self() const;
+  const JssSessionOptions& options() const;
+  rt::Clock& clock();
+  rt::Scheduler& scheduler();
+  const JssSessionCounters& counters() const;
+  bool on_udp() const;
+  // The endpoint `id` was last heard from (UDP only).
+  std::optional<transport::Ipv4Endpoint> endpoint_of(const jss::JssId& id) const;
+
+  // Sends contents (message ID + body) to `to`, split into a large message
+  // when above max_packet_contents. Returns the sequence number of its
+  // (first) packet. Broadcast IDs go without ACK request.
+  std::uint16_t send_contents(const jss::JssId& to, std::span<const std::uint8_t> contents,
+                              jss::JudpPriority priority = jss::JudpPriority::normal, bool ack_requested = false);
+  template <class M>
+  std::uint16_t send(const jss::JssId& to, const M& message, jss::JudpPriority priority = jss::JudpPriority::normal) {
+    const auto contents = jss::encode_contents(message);
+    return send_contents(to, contents, priority);
+  }
+
+  // With an ACK request, the same packet (same sequence number) again every
+  // policy.retransmit_after until `to` ACKs (or NAKs: refused) it, at most
+  // policy.max_transmissions times. A broadcast ID is sent that many times
+  // and is `unacknowledged`. Contents above max_packet_contents cannot be
+  // acknowledged as one packet: unacknowledged, nothing sent.
+  ArrivalResult send_contents_must_arrive(const jss::JssId& to, std::span<const std::uint8_t> contents,
+                                          jss::JudpPriority priority = jss::JudpPriority::normal,
+                                          MustArrivePolicy policy = {});
+  // The same, going on after request_stop() (clean-up: Release Control).
+  ArrivalResult send_contents_must_arrive_through_stop(const jss::JssId& to, std::span<const std::uint8_t> contents,
+                                                       jss::JudpPriority priority = jss::JudpPriority::normal,
+                                                       MustArrivePolicy policy = {});
+  template <class M>
+  ArrivalResult send_must_arrive(const jss::JssId& to, const M& message,
+                                 jss::JudpPriority priority = jss::JudpPriority::normal, MustArrivePolicy policy = {}) {
+    const auto contents = jss::encode_contents(message);
+    return send_contents_must_arrive(to, contents, priority, policy);
+  }
+
+  // Every message addressed to us (or to a broadcast ID that matches us),
+  // after the session answered its ACK request.
+  ListenerId listen(Listener listener);
+  void unlisten(ListenerId id);
+
+  // The first message from `from` (wildcards match any ID) with one of
+  // `ids` (any when empty). Errors: timeout ("no reply from 1.1.33 within
+  // 1 s"), interrupted.
+  Expected<JssReceived> await_reply(const jss::JssId& from, std::vector<std::uint16_t> ids, rt::Duration timeout);
+  // Sends the query now and every `resend_every` until a reply comes (at most `timeout`).
+  Expected<JssReceived> request_contents(const jss::JssId& to, std::span<const std::uint8_t> query,
+                                         std::vector<std::uint16_t> reply_ids, rt::Duration timeout = kJssDefaultTimeout,
+                                         rt::Duration resend_every = kJssQueryResendPeriod);
+  // Typed: query<msg::ReportStatus>(to, msg::QueryStatus{}). Errors as
+  // request_contents, or the reply's decode error.
+  template <class Reply, class Query>
+  Expected<Reply> query(const jss::JssId& to, const Query& query, rt::Duration timeout = kJssDefaultTimeout,
+                        rt::Duration resend_every = kJssQueryResendPeriod) {
+    const auto contents = jss::encode_contents(query);
+    auto reply = request_contents(to, contents, {Reply::code}, timeout, resend_every);
+    if (!reply) return unexpected(reply.error());
+    return jss::decode_contents<Reply>(reply->contents);
+  }
+
+  // As OcuSession: runs until `done()`, `limit` passed or a stop requested.
+  bool run_until(const std::function<bool()>& done, rt::Duration limit);
+  void run_for(rt::Duration limit) { run_until([] { return false; }, limit); }
+  static constexpr rt::Duration kLongestCleanup = std::chrono::seconds(1);
+  bool run_cleanup_until(const std::function<bool()>& done, rt::Duration limit);
+  void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
+  bool interrupted() const { return interrupted_.load(std::memory_order_relaxed); }
+
+  // An attached session's environment hands datagrams here (open() wires its socket itself).
+  void receive_datagram(std::span<const std::uint8_t> datagram,
+                        std::optional<transport::Ipv4Endpoint> from = std::nullopt);
+
+ private:
+  struct Impl;
+  explicit JssSession(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+  std::atomic<bool> interrupted_ = false;
+};
+
+// timeout: "no reply from 1.1.33 within 1 s"
+Error no_jss_reply_error(const jss::JssId& from, rt::Duration timeout);
+
+}  // namespace jaus::ocu
