@@ -61,18 +61,17 @@ void AmplificationGuard::drop_held(State& state) {
   state.held_bytes = 0;
 }
 
-bool AmplificationGuard::received(const Ipv4Endpoint& from, std::size_t size, const Address& source,
-                                  const Header& header) {
+AmplificationGuard::State* AmplificationGuard::count_received(const Ipv4Endpoint& from, std::size_t size) {
   const auto it = endpoints_.find(from);
-  if (it == endpoints_.end() || it->second.verified) return false;
-  State& state = it->second;
-  state.received += size;
-  state.source = source;
+  if (it == endpoints_.end() || it->second.verified) return nullptr;
+  it->second.received += size;
   counters_.bytes_received_unverified += size;
-  const bool answer = (header.ack_nak == AckNak::ack || header.ack_nak == AckNak::nak) &&
-                      header.command_code == kChallengeCode && state.challenge;
-  if (!answer) return false;
-  if (header.sequence != *state.challenge) {
+  return &it->second;
+}
+
+bool AmplificationGuard::answers(State& state, std::uint16_t sequence) {
+  if (!state.challenge) return false;
+  if (sequence != *state.challenge) {
     ++counters_.wrong_answers;
     if (++state.wrong_answers >= options_.wrong_answers_per_challenge) {
       // Retired: the next challenge (not before challenge_interval) has a new number.
@@ -85,6 +84,24 @@ bool AmplificationGuard::received(const Ipv4Endpoint& from, std::size_t size, co
   state.challenge.reset();
   ++counters_.endpoints_verified;
   return true;
+}
+
+bool AmplificationGuard::received(const Ipv4Endpoint& from, std::size_t size, const Address& source,
+                                  const Header& header) {
+  State* state = count_received(from, size);
+  if (state == nullptr) return false;
+  state->source = source;
+  const bool answer =
+      (header.ack_nak == AckNak::ack || header.ack_nak == AckNak::nak) && header.command_code == kChallengeCode;
+  return answer && answers(*state, header.sequence);
+}
+
+bool AmplificationGuard::received_jss(const Ipv4Endpoint& from, std::size_t size, const jss::JudpHeader& header) {
+  State* state = count_received(from, size);
+  if (state == nullptr) return false;
+  state->jss_source = header.source;
+  // An AS5669A ACK is header only: it carries no message ID to compare.
+  return header.ack_nak == jss::JudpAckNak::ack && answers(*state, header.sequence);
 }
 
 AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Framing framing,
@@ -123,14 +140,9 @@ std::vector<AmplificationGuard::Held> AmplificationGuard::release(const Ipv4Endp
   return out;
 }
 
-std::optional<Header> AmplificationGuard::challenge(const Ipv4Endpoint& to, Framing framing, std::uint8_t subsystem,
-                                                    std::uint8_t node, rt::TimePoint now) {
-  const auto it = endpoints_.find(to);
-  if (it == endpoints_.end() || it->second.verified || it->second.held.empty()) return std::nullopt;
-  State& state = it->second;
-  if (!state.source.is_valid()) return std::nullopt;  // never heard: nowhere to address it
+std::optional<std::uint16_t> AmplificationGuard::due_challenge(State& state, std::size_t size, rt::TimePoint now) {
+  if (state.verified || state.held.empty()) return std::nullopt;
   if (state.challenged_at && now - *state.challenged_at < options_.challenge_interval) return std::nullopt;
-  const std::size_t size = framed_size(framing, kHeaderSize);
   if (state.sent + size > state.received) return std::nullopt;  // wait for the sender's next datagram
   if (!state.challenge) {
     state.challenge = next_sequence();
@@ -140,14 +152,42 @@ std::optional<Header> AmplificationGuard::challenge(const Ipv4Endpoint& to, Fram
   state.sent += size;
   counters_.bytes_sent_unverified += size;
   ++counters_.challenges_sent;
+  return state.challenge;
+}
+
+std::optional<Header> AmplificationGuard::challenge(const Ipv4Endpoint& to, Framing framing, std::uint8_t subsystem,
+                                                    std::uint8_t node, rt::TimePoint now) {
+  const auto it = endpoints_.find(to);
+  if (it == endpoints_.end()) return std::nullopt;
+  State& state = it->second;
+  if (!state.source.is_valid()) return std::nullopt;  // never heard: nowhere to address it
+  const auto sequence = due_challenge(state, framed_size(framing, kHeaderSize), now);
+  if (!sequence) return std::nullopt;
   Header h;
   h.ack_nak = AckNak::ack_requested;
   h.command_code = kChallengeCode;
   h.destination = state.source;
   h.source = Address{subsystem, node, 1, 1};  // this node's node manager
   h.data_size = 0;
-  h.sequence = *state.challenge;
+  h.sequence = *sequence;
   return h;
+}
+
+std::optional<std::vector<std::uint8_t>> AmplificationGuard::challenge_jss(const Ipv4Endpoint& to,
+                                                                           const jss::JssId& self, rt::TimePoint now) {
+  const auto it = endpoints_.find(to);
+  if (it == endpoints_.end()) return std::nullopt;
+  State& state = it->second;
+  if (!state.jss_source.is_valid()) return std::nullopt;  // never heard: nowhere to address it
+  const auto sequence = due_challenge(state, kJssChallengeSize, now);
+  if (!sequence) return std::nullopt;
+  jss::JudpHeader h;
+  h.ack_nak = jss::JudpAckNak::ack_requested;
+  h.destination = state.jss_source;
+  h.source = self;
+  h.sequence = *sequence;
+  constexpr std::array<std::uint8_t, 2> kQueryHeartbeatPulse = {kChallengeCode & 0xFF, kChallengeCode >> 8};
+  return jss::make_judp_datagram(h, kQueryHeartbeatPulse);
 }
 
 void AmplificationGuard::expire(rt::TimePoint now) {

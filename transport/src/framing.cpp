@@ -9,7 +9,14 @@ namespace {
 constexpr std::uint8_t kJudpVersion = 0x01;
 }
 
-std::string_view to_string(Framing framing) { return framing == Framing::judp ? "judp" : "opc"; }
+std::string_view to_string(Framing framing) {
+  switch (framing) {
+    case Framing::opc: return "opc";
+    case Framing::judp: return "judp";
+    case Framing::as5669a: return "as5669a";
+  }
+  return "unknown";
+}
 
 std::string_view to_string(DropReason reason) {
   switch (reason) {
@@ -23,6 +30,8 @@ std::string_view to_string(DropReason reason) {
     case DropReason::invalid_source: return "invalid source ID";
     case DropReason::route_claim: return "node ID claimed from a second endpoint";
     case DropReason::relayed_copy: return "relayed copy of a direct message";
+    case DropReason::jss_malformed: return "malformed AS5669A datagram";
+    case DropReason::jss_off: return "AS5669A datagram with JSS off";
     case DropReason::count_: break;
   }
   return "unknown";
@@ -85,6 +94,7 @@ DropReason drop_reason(const Error& unframe_error) {
 
 FramePrefix frame_prefix(Framing framing, std::size_t message_size) {
   FramePrefix p;
+  if (framing == Framing::as5669a) return p;  // the datagram is complete
   if (framing == Framing::opc) {
     std::copy(kOpcPrefix.begin(), kOpcPrefix.end(), p.bytes.begin());
     p.size = kOpcPrefix.size();

@@ -13,7 +13,7 @@ void RouteTable::add_static_peer(const Ipv4Endpoint& endpoint, Framing framing) 
   it->second = Peer{endpoint, framing, true, {}, routes, subsystems};
 }
 
-void RouteTable::erase_route(std::map<std::uint16_t, Route>::iterator route) {
+void RouteTable::erase_route(std::map<std::uint32_t, Route>::iterator route) {
   const auto peer = peers_.find(route->second.endpoint);
   routes_.erase(route);
   if (peer == peers_.end()) return;
@@ -25,7 +25,7 @@ void RouteTable::recount_subsystems(Peer& peer) const {
   // Rare (a route replaced, moved or expired): a walk over at most max_entries routes.
   peer.subsystems.reset();
   for (const auto& [k, route] : routes_)
-    if (route.endpoint == peer.endpoint) peer.subsystems.set(k >> 8);
+    if (route.endpoint == peer.endpoint) mark_subsystem(peer, k >> 8);
 }
 
 bool RouteTable::holds_pinned_route(const Ipv4Endpoint& endpoint) const {
@@ -70,9 +70,9 @@ bool RouteTable::room_for_endpoint_of(std::uint32_t address) {
   return false;
 }
 
-Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
+Learnt RouteTable::learn(std::uint16_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
                          rt::TimePoint now) {
-  const std::uint16_t k = key(subsystem, node);
+  const std::uint32_t k = key(subsystem, node);
   auto peer = peers_.find(from);
   // The claim check comes first: whether or not the table has room, a known
   // ID is never taken by a host the rules refuse.
@@ -120,7 +120,7 @@ Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4En
   if (peer->second.routes >= options_.max_routes_per_endpoint) {
     // The endpoint's oldest route without state gives way to its newest; a
     // route holding state stays (else its ID would be free to claim).
-    std::vector<std::map<std::uint16_t, Route>::iterator> own;
+    std::vector<std::map<std::uint32_t, Route>::iterator> own;
     for (auto it = routes_.begin(); it != routes_.end(); ++it)
       if (it->second.endpoint == from) own.push_back(it);
     std::sort(own.begin(), own.end(),
@@ -150,11 +150,11 @@ Learnt RouteTable::learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4En
   }
   routes_.emplace(k, Route{from, now});
   ++peer->second.routes;
-  peer->second.subsystems.set(subsystem);
+  mark_subsystem(peer->second, subsystem);
   return result;
 }
 
-std::optional<Peer> RouteTable::route(std::uint8_t subsystem, std::uint8_t node) const {
+std::optional<Peer> RouteTable::route(std::uint16_t subsystem, std::uint8_t node) const {
   const auto route = routes_.find(key(subsystem, node));
   if (route == routes_.end()) return std::nullopt;
   const auto peer = peers_.find(route->second.endpoint);

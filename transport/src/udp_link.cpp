@@ -39,6 +39,11 @@ std::array<std::uint64_t, 2> challenge_key(const UdpLinkOptions& options) {
   return key;
 }
 
+// The JSS guard's key: another key, so its challenge numbers are not the RA guard's.
+std::array<std::uint64_t, 2> jss_challenge_key(std::array<std::uint64_t, 2> key) {
+  return {key[0] ^ 0x4a53532d6a756470ULL, key[1] ^ 0x415335363639410aULL};
+}
+
 }  // namespace
 
 std::uint64_t UdpLinkCounters::dropped_total() const {
@@ -65,13 +70,32 @@ UdpLink::UdpLink(asio::io_context& io, rt::Clock& clock, rt::Scheduler& schedule
       log_(log ? std::move(log) : rt::silent_log()),
       routes_(options_.routes),
       guard_(options_.amplification, challenge_key(options_)),
+      jss_routes_(options_.routes),
+      jss_guard_(options_.amplification, jss_challenge_key(challenge_key(options_))),
       repeated_lines_(clock_, scheduler_, log_) {
-  for (const auto& peer : options_.peers) routes_.add_static_peer(peer.endpoint, peer.framing);
+  for (const auto& peer : options_.peers) {
+    routes_.add_static_peer(peer.endpoint, peer.framing);
+    // A configured peer is one for JSS too: never challenged, and reached by what has no route.
+    jss_routes_.add_static_peer(peer.endpoint, Framing::as5669a);
+  }
   // Verification goes with the endpoint: a new one at that port starts unverified.
   routes_.on_forgotten([this](const Ipv4Endpoint& endpoint) {
     guard_.forget(endpoint);
-    counters_.amplification = guard_.counters();
+    sync_amplification_counters();
   });
+  jss_routes_.on_forgotten([this](const Ipv4Endpoint& endpoint) {
+    jss_guard_.forget(endpoint);
+    sync_amplification_counters();
+  });
+}
+
+void UdpLink::sync_amplification_counters() {
+  counters_.amplification = guard_.counters();
+  counters_.jss.amplification = jss_guard_.counters();
+}
+
+jss::JssId UdpLink::jss_self() const {
+  return options_.jss_self.value_or(jss::JssId{options_.subsystem, options_.node, 1});
 }
 
 void UdpLink::receive_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
@@ -108,40 +132,60 @@ Expected<void> UdpLink::bind_sockets() {
   if (ec) return failed("cannot make the socket non-blocking: " + ec.message());
   local_port_ = main_->socket.local_endpoint(ec).port();
 
-  if (!options_.multicast) return {};
-  const Ipv4Endpoint group = *options_.multicast;
-  if (!group.is_multicast()) return failed(to_string(group) + " is not a multicast address (224.0.0.0/4)");
-  const auto interface = asio::ip::address_v4(options_.bind.address);
+  if (options_.multicast && !options_.multicast->is_multicast())
+    return failed(to_string(*options_.multicast) + " is not a multicast address (224.0.0.0/4)");
+  if (options_.jss_multicast && !options_.jss_multicast->is_multicast())
+    return failed(to_string(*options_.jss_multicast) + " is not a multicast address (224.0.0.0/4)");
+  if (!options_.multicast && !options_.jss_multicast) return {};
   // Multicast is best effort: a host without a multicast route still talks to
   // its known and static peers.
-  auto degrade = [&](const std::string& what, const boost::system::error_code& error) -> Expected<void> {
-    log_(rt::LogLevel::warn, "multicast " + to_string(group) + ": " + what + ": " + error.message() +
-                                 "; broadcasts go to known peers only");
-    options_.multicast.reset();
-    multicast_.reset();
-    return {};
-  };
+  const auto interface = asio::ip::address_v4(options_.bind.address);
   if (!options_.bind.is_any()) main_->socket.set_option(asio::ip::multicast::outbound_interface(interface), ec);
   if (!ec) main_->socket.set_option(asio::ip::multicast::enable_loopback(true), ec);
   if (!ec) main_->socket.set_option(asio::ip::multicast::hops(options_.multicast_ttl), ec);
-  if (ec) return degrade("cannot send", ec);
+  const auto degrade = [&](std::optional<Ipv4Endpoint>& group, const std::string& what, std::string_view rest) {
+    log_(rt::LogLevel::warn, "multicast " + to_string(*group) + ": " + what + "; " + std::string(rest));
+    group.reset();
+  };
+  if (ec) {
+    const std::string what = "cannot send: " + ec.message();
+    if (options_.multicast) degrade(options_.multicast, what, "broadcasts go to known peers only");
+    if (options_.jss_multicast) degrade(options_.jss_multicast, what, "JSS broadcasts go to static peers only");
+    return {};
+  }
+  if (options_.multicast)
+    if (auto joined = join_group(*options_.multicast); !joined)
+      degrade(options_.multicast, joined.error().message(), "broadcasts go to known peers only");
+  // One group for both dialects is joined once (the first byte tells them apart).
+  if (options_.jss_multicast && options_.jss_multicast != options_.multicast)
+    if (auto joined = join_group(*options_.jss_multicast); !joined)
+      degrade(options_.jss_multicast, joined.error().message(), "JSS broadcasts go to static peers only");
+  return {};
+}
 
+Expected<void> UdpLink::join_group(const Ipv4Endpoint& group) {
+  const auto failed = [](const std::string& what, const boost::system::error_code& error) {
+    return unexpected(make_error(ErrorCode::io, what + ": " + error.message()));
+  };
+  boost::system::error_code ec;
+  const auto interface = asio::ip::address_v4(options_.bind.address);
   const auto group_address = asio::ip::address_v4(group.address);
   if (options_.bind.is_any() && options_.bind.port == group.port) {
     // The main socket already receives everything sent to its port.
     main_->socket.set_option(asio::ip::multicast::join_group(group_address), ec);
-    if (ec) return degrade("cannot join", ec);
+    if (ec) return failed("cannot join", ec);
     return {};
   }
   // A socket bound to one address does not see the group's datagrams: a
   // second socket, bound to the group, receives them. Several nodes on one
   // host share the group, hence SO_REUSEADDR here.
-  multicast_ = std::make_unique<Socket>(io_);
-  multicast_->socket.open(udp::v4(), ec);
-  if (!ec) multicast_->socket.set_option(udp::socket::reuse_address(true), ec);
-  if (!ec) multicast_->socket.bind(to_asio(group), ec);
-  if (!ec) multicast_->socket.set_option(asio::ip::multicast::join_group(group_address, interface), ec);
-  if (ec) return degrade("cannot receive", ec);
+  auto socket = std::make_unique<Socket>(io_);
+  socket->socket.open(udp::v4(), ec);
+  if (!ec) socket->socket.set_option(udp::socket::reuse_address(true), ec);
+  if (!ec) socket->socket.bind(to_asio(group), ec);
+  if (!ec) socket->socket.set_option(asio::ip::multicast::join_group(group_address, interface), ec);
+  if (ec) return failed("cannot receive", ec);
+  group_sockets_.push_back(std::move(socket));
   return {};
 }
 
@@ -150,7 +194,7 @@ UdpLink::~UdpLink() { close(); }
 void UdpLink::start() {
   if (closed_) return;
   receive_next(*main_);
-  if (multicast_) receive_next(*multicast_);
+  for (const auto& socket : group_sockets_) receive_next(*socket);
   schedule_expiry();
 }
 
@@ -161,7 +205,7 @@ void UdpLink::close() {
   expiry_timer_ = rt::kNoTimer;
   boost::system::error_code ignored;
   if (main_) main_->socket.close(ignored);
-  if (multicast_) multicast_->socket.close(ignored);
+  for (const auto& socket : group_sockets_) socket->socket.close(ignored);
 }
 
 Ipv4Endpoint UdpLink::local_endpoint() const {
@@ -175,7 +219,9 @@ void UdpLink::schedule_expiry() {
     expiry_timer_ = rt::kNoTimer;
     routes_.expire(clock_.now());
     guard_.expire(clock_.now());
-    counters_.amplification = guard_.counters();
+    jss_routes_.expire(clock_.now());
+    jss_guard_.expire(clock_.now());
+    sync_amplification_counters();
     schedule_expiry();
   });
 }
@@ -226,6 +272,7 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
   ++counters_.datagrams_received;
   if (!allowed(from.address)) return drop(DropReason::not_allowed, from);
   if (!options_.bind.is_any() && from == options_.bind) return count_drop(DropReason::from_self);
+  if (!datagram.empty() && datagram[0] == jss::kAs5669aVersion) return on_jss(from, datagram);
   auto unframed = unframe(datagram);
   if (!unframed) return drop(drop_reason(unframed.error()), from, [&] { return unframed.error().message(); });
   const Header& header = unframed->packet.header;
@@ -260,7 +307,6 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
              std::string(to_string(unframed->framing)) + ")";
     });
   }
-  const bool recorded = learnt != Learnt::rejected;
   if (options_.verify_endpoints) {
     // A new learnt endpoint starts unverified (static peers are verified from
     // the start); one without a route too, since (255, ...) broadcasts reach it.
@@ -273,32 +319,105 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
       if (answered) {
         // The challenge's answer is the link's: the endpoint receives at its address, so what was held goes.
         for (const auto& held : guard_.release(from)) send_to(from, held.framing, held.packet);
-        counters_.amplification = guard_.counters();
+        sync_amplification_counters();
         return;
       }
       send_challenge(from, unframed->framing);  // its budget grew: a challenge may fit now
-      counters_.amplification = guard_.counters();
+      sync_amplification_counters();
     }
   }
-  rt::SenderStanding standing = rt::SenderStanding::trusted;
-  if (!recorded) {
-    standing = rt::SenderStanding::unrecorded;
-    ++counters_.delivered_unrecorded;
-    repeated_lines_.write("senders not recorded", rt::LogLevel::warn, [&] {
-      return "node " + node() + " at " + to_string(from) +
-             " not recorded (route table full, or its host's endpoints all hold state): delivered as unrecorded [" +
-             std::to_string(counters_.delivered_unrecorded) + " so far]";
-    });
-  } else if (!may_control(from.address)) {
-    standing = rt::SenderStanding::observer;
-    ++counters_.delivered_observer;
-  }
+  const rt::SenderStanding standing =
+      standing_of(from, learnt, counters_.delivered_unrecorded, counters_.delivered_observer, node());
   if (options_.relay) relay(from, header, datagram.last(kHeaderSize + unframed->packet.payload.size()));
   ++counters_.packets_delivered;
   if (handler_) handler_(unframed->packet, unframed->framing, standing);
 }
 
+rt::SenderStanding UdpLink::standing_of(const Ipv4Endpoint& from, Learnt learnt, std::uint64_t& unrecorded,
+                                        std::uint64_t& observer, const std::string& who) {
+  if (learnt == Learnt::rejected) {
+    ++unrecorded;
+    repeated_lines_.write("senders not recorded", rt::LogLevel::warn, [&] {
+      return "node " + who + " at " + to_string(from) +
+             " not recorded (route table full, or its host's endpoints all hold state): delivered as unrecorded [" +
+             std::to_string(unrecorded) + " so far]";
+    });
+    return rt::SenderStanding::unrecorded;
+  }
+  if (!may_control(from.address)) {
+    ++observer;
+    return rt::SenderStanding::observer;
+  }
+  return rt::SenderStanding::trusted;
+}
+
+void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
+  ++counters_.jss.datagrams_received;
+  if (!jss_handler_) return drop(DropReason::jss_off, from);
+  auto packets = jss::decode_judp_datagram(datagram);
+  if (!packets) return drop(DropReason::jss_malformed, from, [&] { return packets.error().message(); });
+  if (packets->empty()) return drop(DropReason::jss_malformed, from, [] { return std::string("no transport message"); });
+  // One sender per datagram: every message in it must name the same source
+  // (nobody packs several; a mix would let one claim ride on another's route).
+  const jss::JssId source = packets->front().header.source;
+  for (const auto& packet : *packets)
+    if (packet.header.source != source)
+      return drop(DropReason::jss_malformed, from, [&] {
+        return "messages from " + source.to_string() + " and " + packet.header.source.to_string() + " in one datagram";
+      });
+  const jss::JssId self = jss_self();
+  if (source.subsystem == self.subsystem && source.node == self.node) {
+    const bool ours = from.port == local_port_ && (options_.bind.is_any() || from.address == options_.bind.address);
+    if (ours) return count_drop(DropReason::from_self);
+    return drop(DropReason::from_self, from,
+                [&] { return "another JSS node uses this node's JSS ID " + source.to_string(); });
+  }
+  if (!source.is_valid() || source.is_broadcast())
+    return drop(DropReason::invalid_source, from, [&] { return "JSS source " + source.to_string(); });
+  const Learnt learnt = jss_routes_.learn(source.subsystem, source.node, from, Framing::as5669a, clock_.now());
+  auto node = [&] { return "JSS " + std::to_string(source.subsystem) + "." + std::to_string(source.node); };
+  if (learnt == Learnt::relayed_copy) return count_drop(DropReason::relayed_copy);
+  if (learnt == Learnt::claim_refused) {
+    return drop(DropReason::route_claim, from, [&] {
+      const auto route = jss_routes_.route(source.subsystem, source.node);
+      return node() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
+             "; spoofed, or two peers with one ID";
+    });
+  }
+  if (learnt == Learnt::new_route || learnt == Learnt::moved) {
+    repeated_lines_.write({"new and moved routes", kNewRouteLinesPerWindow}, rt::LogLevel::info, [&] {
+      return node() + (learnt == Learnt::moved ? " moved to " : " at ") + to_string(from) + " (as5669a)";
+    });
+  }
+  if (options_.verify_endpoints) {
+    if (!jss_guard_.tracks(from)) {
+      const auto peer = jss_routes_.peers().find(from);
+      if (peer != jss_routes_.peers().end() && !peer->second.is_static) jss_guard_.track(from);
+    }
+    if (jss_guard_.unverified(from)) {
+      const bool answered = jss_guard_.received_jss(from, datagram.size(), packets->front().header);
+      if (answered) {
+        // The ACK of the link's challenge is the link's: not the face's.
+        for (const auto& held : jss_guard_.release(from)) send_to(from, held.framing, held.packet);
+        sync_amplification_counters();
+        return;
+      }
+      send_challenge(from, Framing::as5669a);  // its budget grew: a challenge may fit now
+      sync_amplification_counters();
+    }
+  }
+  const rt::SenderStanding standing =
+      standing_of(from, learnt, counters_.jss.delivered_unrecorded, counters_.jss.delivered_observer, node());
+  ++counters_.jss.datagrams_delivered;
+  jss_handler_(datagram, standing);
+}
+
 void UdpLink::send_challenge(const Ipv4Endpoint& to, Framing framing) {
+  if (framing == Framing::as5669a) {
+    if (const auto challenge = jss_guard_.challenge_jss(to, jss_self(), clock_.now()))
+      send_to(to, framing, *challenge);
+    return;
+  }
   const auto challenge = guard_.challenge(to, framing, options_.subsystem, options_.node, clock_.now());
   if (!challenge) return;
   std::array<std::uint8_t, kHeaderSize> bytes{};
@@ -308,12 +427,13 @@ void UdpLink::send_challenge(const Ipv4Endpoint& to, Framing framing) {
 
 void UdpLink::send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
   if (!options_.verify_endpoints) return send_to(to, framing, packet);
-  const auto verdict = guard_.offer(to, framing, packet, clock_.now());
+  AmplificationGuard& guard = guard_for(framing);
+  const auto verdict = guard.offer(to, framing, packet, clock_.now());
   if (verdict == AmplificationGuard::Verdict::send) {
     send_to(to, framing, packet);
   } else {
     repeated_lines_.write("replies held for unverified endpoints", rt::LogLevel::info, [&] {
-      const auto& c = guard_.counters();
+      const auto& c = guard.counters();
       return "reply to " + to_string(to) + (verdict == AmplificationGuard::Verdict::held ? " held" : " dropped") +
              ": more than it sent until it answers a challenge (ACK requested; a peer that ignores ACK requests "
              "goes in transport.peers) [" + std::to_string(c.replies_held) + " held, " +
@@ -321,7 +441,7 @@ void UdpLink::send_routed(const Ipv4Endpoint& to, Framing framing, std::span<con
     });
     send_challenge(to, framing);
   }
-  counters_.amplification = guard_.counters();
+  sync_amplification_counters();
 }
 
 void UdpLink::relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet) {
@@ -395,6 +515,32 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
     // per window like the drops, not per count (a fast node sends thousands a second).
     repeated_lines_.write("packets with no route dropped", rt::LogLevel::warn, [&] {
       return "no route to " + to.to_string() + ": dropped [" + std::to_string(counters_.no_route) + " so far]";
+    });
+  }
+}
+
+void UdpLink::transmit_jss(const jss::JssId& to, std::span<const std::uint8_t> datagram) {
+  if (!to.is_broadcast()) {
+    if (auto peer = jss_routes_.route(to.subsystem, to.node))
+      return send_routed(peer->endpoint, Framing::as5669a, datagram);
+    ++counters_.jss.unrouted;
+  }
+  // Broadcast, or a JSS node not heard from yet: the JSS group and the static
+  // peers (JRM and fkie's node manager send there too; the reply teaches the route).
+  bool sent = false;
+  if (options_.jss_multicast) {
+    send_to(*options_.jss_multicast, Framing::as5669a, datagram);
+    sent = true;
+  }
+  for (const auto& configured : options_.peers) {
+    send_to(configured.endpoint, Framing::as5669a, datagram);
+    sent = true;
+  }
+  if (!sent && !to.is_broadcast()) {
+    ++counters_.jss.no_route;
+    repeated_lines_.write("JSS datagrams with no route dropped", rt::LogLevel::warn, [&] {
+      return "no route to JSS " + to.to_string() + ": dropped [" + std::to_string(counters_.jss.no_route) +
+             " so far]";
     });
   }
 }

@@ -19,6 +19,12 @@
 // larger than the smallest datagram received in the same framing). Endpoints
 // not tracked (static peers, the multicast group, tools' direct sends) are not
 // limited; verification is forgotten with the endpoint.
+//
+// SAE JAUS (AS5669A) endpoints are verified the same way: the challenge is an
+// AS5669A Query Heartbeat Pulse (contents 02 22) with ACK requested, from our
+// node manager's JSS ID, and the answer an AS5669A ACK (flag 3, header only)
+// with the same sequence number (received_jss, challenge_jss). The link keeps
+// one guard per dialect, as it keeps one route table per dialect.
 #pragma once
 
 #include <array>
@@ -32,12 +38,15 @@
 #include "jaus/base/time.hpp"
 #include "jaus/core/address.hpp"
 #include "jaus/core/header.hpp"
+#include "jaus/jss/judp.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
 
 namespace jaus::transport {
 
 inline constexpr std::uint16_t kChallengeCode = 0x2202;  // Query Heartbeat Pulse: harmless, header only
+// The AS5669A challenge: version, header, contents (the message ID 0x2202), sequence number.
+inline constexpr std::size_t kJssChallengeSize = 1 + jss::kTransportHeaderSize + 2 + jss::kSequenceSize;
 
 struct AmplificationGuardOptions {
   std::size_t max_held_per_endpoint = 16;  // datagrams (a large data set is several)
@@ -80,6 +89,9 @@ class AmplificationGuard {
   // endpoint's challenge: the endpoint is now verified, the datagram is the
   // link's (not delivered), and release() gives what was held.
   bool received(const Ipv4Endpoint& from, std::size_t size, const Address& source, const Header& header);
+  // The same for an AS5669A datagram whose (first) transport message has
+  // `header`: an ACK (flag 3) with the challenge's sequence number answers.
+  bool received_jss(const Ipv4Endpoint& from, std::size_t size, const jss::JudpHeader& header);
 
   enum class Verdict : std::uint8_t { send, held, dropped };
   // Before sending `packet` (header and payload) framed in `framing` to
@@ -99,6 +111,10 @@ class AmplificationGuard {
   // counted as sent. `self` is this node's ID (the challenge is from S.N.1.1).
   std::optional<Header> challenge(const Ipv4Endpoint& to, Framing framing, std::uint8_t subsystem, std::uint8_t node,
                                   rt::TimePoint now);
+  // The AS5669A challenge to `to`, if one is due: a complete datagram from
+  // `self` (our node manager's JSS ID) to the JSS ID last heard from `to`.
+  std::optional<std::vector<std::uint8_t>> challenge_jss(const Ipv4Endpoint& to, const jss::JssId& self,
+                                                         rt::TimePoint now);
 
   // Drops what was held longer than hold_time.
   void expire(rt::TimePoint now);
@@ -112,6 +128,7 @@ class AmplificationGuard {
     std::uint64_t received = 0;  // bytes, while unverified
     std::uint64_t sent = 0;
     Address source;  // the JAUS address last heard from it: where challenges go
+    jss::JssId jss_source;  // the same for an AS5669A endpoint
     std::deque<Held> held;
     std::size_t held_bytes = 0;
     std::optional<std::uint16_t> challenge;  // the outstanding challenge's sequence number
@@ -119,6 +136,12 @@ class AmplificationGuard {
     std::size_t wrong_answers = 0;
   };
   static std::size_t framed_size(Framing framing, std::size_t packet_size);
+  // Counts `size` received bytes; the state of an unverified tracked endpoint, else nullptr.
+  State* count_received(const Ipv4Endpoint& from, std::size_t size);
+  // Whether an answer (ACK or NAK of a challenge) with `sequence` verifies the endpoint.
+  bool answers(State& state, std::uint16_t sequence);
+  // The sequence number of a challenge of `size` bytes due now, counted as sent.
+  std::optional<std::uint16_t> due_challenge(State& state, std::size_t size, rt::TimePoint now);
   void drop_held(State& state);
   std::uint16_t next_sequence();
 

@@ -16,7 +16,8 @@
 
 namespace jaus::transport {
 
-enum class Framing : std::uint8_t { opc, judp };
+// as5669a: a complete SAE JAUS datagram, sent as it is (no prefix).
+enum class Framing : std::uint8_t { opc, judp, as5669a };
 std::string_view to_string(Framing framing);
 
 inline constexpr std::array<std::uint8_t, 8> kOpcPrefix = {'J', 'A', 'U', 'S', '0', '1', '.', '0'};
@@ -37,6 +38,8 @@ enum class DropReason : std::uint8_t {
   invalid_source,   // a source ID with a 0 (invalid) or 255 (broadcast) octet
   route_claim,      // a node ID already heard from another live endpoint (spoofed, or two peers with one ID)
   relayed_copy,     // a configured peer relayed a message of a node we hear directly: a duplicate
+  jss_malformed,    // first byte 0x02 (AS5669A) but not a valid AS5669A datagram
+  jss_off,          // an AS5669A datagram while the node has no JSS face
   count_            // number of reasons
 };
 std::string_view to_string(DropReason reason);

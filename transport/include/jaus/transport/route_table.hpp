@@ -35,7 +35,11 @@
 //   `move_after_silence`; otherwise the claim is refused, so nobody can steer
 //   a live node's traffic away by forging its ID.
 // The claim check runs before anything is recorded, so a full table never
-// skips it. A configured peer that is already another live node's endpoint
+// skips it.
+//
+// Subsystems are 16-bit so the same rules serve SAE JAUS (AS5669A) IDs: the
+// UDP link keeps a second table for JSS nodes (subsystem 1..65534, node),
+// whose peers' framing is as5669a. RA subsystems are 1..254. A configured peer that is already another live node's endpoint
 // is relaying (udp_link.hpp): what it relays for a node heard directly is a
 // copy, dropped without moving the route.
 #pragma once
@@ -58,8 +62,9 @@ struct Peer {
   bool is_static = false;
   rt::TimePoint last_heard{};
   std::size_t routes = 0;  // routes through this endpoint
-  // The subsystems of those routes: a subsystem's broadcasts go only to its
-  // own nodes (jaus-wire-notes.md, "Liveness and discovery").
+  // The RA subsystems of those routes: a subsystem's broadcasts go only to its
+  // own nodes (jaus-wire-notes.md, "Liveness and discovery"). JSS subsystems
+  // above 255 are not recorded (JSS broadcasts go to the group and static peers).
   std::bitset<256> subsystems;
   bool hosts_subsystem(std::uint8_t subsystem) const { return subsystems.test(subsystem); }
 };
@@ -103,7 +108,7 @@ class RouteTable {
   // never expires (see above). Asked only on a claim from another address, on
   // expiry of a silent route and when an endpoint or route must give way,
   // never per datagram. Unset: nothing is pinned.
-  using HoldsState = std::function<bool(std::uint8_t subsystem, std::uint8_t node)>;
+  using HoldsState = std::function<bool(std::uint16_t subsystem, std::uint8_t node)>;
   void pin_while(HoldsState holds_state) { holds_state_ = std::move(holds_state); }
   // Told when a learnt endpoint is forgotten (expired or replaced), so what
   // the link keeps per endpoint (its verification) goes with it.
@@ -112,10 +117,10 @@ class RouteTable {
 
   void add_static_peer(const Ipv4Endpoint& endpoint, Framing framing);
   // A datagram from `from`, framed in `framing`, whose JAUS source is subsystem.node.
-  Learnt learn(std::uint8_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
+  Learnt learn(std::uint16_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
                rt::TimePoint now);
   // Where (subsystem, node) lives, if known.
-  std::optional<Peer> route(std::uint8_t subsystem, std::uint8_t node) const;
+  std::optional<Peer> route(std::uint16_t subsystem, std::uint8_t node) const;
   // Every distinct peer endpoint (static and learnt), for broadcasts.
   const std::map<Ipv4Endpoint, Peer>& peers() const { return peers_; }
   // Forgets learnt routes and peers silent for longer than route_timeout.
@@ -125,17 +130,22 @@ class RouteTable {
   const RouteTableCounters& counters() const { return counters_; }
 
  private:
-  static std::uint16_t key(std::uint8_t subsystem, std::uint8_t node) {
-    return static_cast<std::uint16_t>((subsystem << 8) | node);
+  static std::uint32_t key(std::uint16_t subsystem, std::uint8_t node) {
+    return (static_cast<std::uint32_t>(subsystem) << 8) | node;
+  }
+  static void mark_subsystem(Peer& peer, std::uint32_t subsystem) {
+    if (subsystem < peer.subsystems.size()) peer.subsystems.set(subsystem);
   }
 
   struct Route {
     Ipv4Endpoint endpoint;
     rt::TimePoint last_heard{};
   };
-  void erase_route(std::map<std::uint16_t, Route>::iterator route);
+  void erase_route(std::map<std::uint32_t, Route>::iterator route);
   void recount_subsystems(Peer& peer) const;
-  bool pinned(std::uint16_t k) const { return holds_state_ && holds_state_(k >> 8, k & 0xFF); }
+  bool pinned(std::uint32_t k) const {
+    return holds_state_ && holds_state_(static_cast<std::uint16_t>(k >> 8), static_cast<std::uint8_t>(k & 0xFF));
+  }
   bool holds_pinned_route(const Ipv4Endpoint& endpoint) const;
   // Makes room for a new endpoint of `address` if it has its share: false if
   // every endpoint of the address holds state (the newcomer is not recorded).
@@ -143,7 +153,7 @@ class RouteTable {
   void erase_peer(std::map<Ipv4Endpoint, Peer>::iterator peer);
 
   RouteTableOptions options_;
-  std::map<std::uint16_t, Route> routes_;         // (subsystem, node) -> endpoint
+  std::map<std::uint32_t, Route> routes_;         // (subsystem, node) -> endpoint
   std::map<Ipv4Endpoint, Peer> peers_;            // endpoint -> framing, liveness
   std::size_t learnt_peers_ = 0;
   RouteTableCounters counters_;

@@ -27,6 +27,18 @@
 // another IP address and never expire while they do (route_table.hpp).
 // With `verify_endpoints`, no learnt endpoint is sent more bytes than it sent
 // until it answers a challenge (amplification_guard.hpp).
+//
+// SAE JAUS (jss-notes.md 1): datagrams whose first byte is 0x02 are AS5669A.
+// With a JSS handler set (on_jss_datagram: the node's JSS face), each is
+// checked (jss::decode_judp_datagram), its host filtered by `allow`, its
+// standing decided as above, the endpoint of its source JssId learnt in a
+// second route table (same bounds and claim rules, 16-bit subsystems), and
+// the whole datagram handed to the handler. transmit_jss() sends the face's
+// datagrams by JssId: to the learnt endpoint (through the amplification guard;
+// a JSS endpoint is challenged with an AS5669A Query Heartbeat Pulse, ACK
+// requested), else to `jss_multicast` and the static peers. Without a
+// handler AS5669A datagrams are dropped (jss_off). The link reads nothing of
+// JSS beyond the transport header.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -40,6 +52,7 @@
 #include <string>
 #include <vector>
 
+#include "jaus/jss/jss_id.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/runtime/environment.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
@@ -81,7 +94,23 @@ struct UdpLinkOptions {
   // The key of the challenges' sequence numbers; unset: random per link.
   // Tests inject it to know the numbers.
   std::optional<std::array<std::uint64_t, 2>> challenge_key;
-  RouteTableOptions routes;
+  RouteTableOptions routes;  // the RA table's and the JSS table's bounds, each
+  // SAE JAUS (AS5669A): the group JSS broadcasts and datagrams for unknown
+  // JSS IDs go to, joined on open (jausd: 239.255.0.1:3794). Unset: none.
+  std::optional<Ipv4Endpoint> jss_multicast;
+  // Our node manager's JSS ID: the source of JSS challenges; AS5669A datagrams
+  // from its (subsystem, node) are ours. Unset: (subsystem, node, 1).
+  std::optional<jss::JssId> jss_self;
+};
+
+struct JssLinkCounters {
+  std::uint64_t datagrams_received = 0;   // first byte 0x02 (their drops count in UdpLinkCounters::dropped)
+  std::uint64_t datagrams_delivered = 0;  // handed to the JSS handler
+  std::uint64_t delivered_unrecorded = 0;
+  std::uint64_t delivered_observer = 0;
+  std::uint64_t unrouted = 0;             // to a JSS ID not heard: sent to the group and static peers
+  std::uint64_t no_route = 0;             // ...and nowhere to send it: dropped
+  AmplificationCounters amplification;    // the JSS endpoints' verification
 };
 
 struct UdpLinkCounters {
@@ -96,6 +125,7 @@ struct UdpLinkCounters {
   std::uint64_t delivered_unrecorded = 0;  // delivered as rt::SenderStanding::unrecorded
   std::uint64_t delivered_observer = 0;    // delivered as rt::SenderStanding::observer
   AmplificationCounters amplification;     // verify_endpoints (amplification_guard.hpp)
+  JssLinkCounters jss;                     // AS5669A datagrams
   std::uint64_t dropped_total() const;
   std::uint64_t dropped_for(DropReason reason) const { return dropped[static_cast<std::size_t>(reason)]; }
 };
@@ -106,6 +136,9 @@ class UdpLink final : public node::Link {
   // payload (a view into the datagram, valid during the call), framing and
   // what the link knows of its sender (see above).
   using PacketHandler = std::function<void(const PacketView& packet, Framing framing, rt::SenderStanding standing)>;
+  // A received AS5669A datagram (checked: it decodes), a view valid during the
+  // call, with what the link knows of its sender.
+  using JssDatagramHandler = std::function<void(std::span<const std::uint8_t> datagram, rt::SenderStanding standing)>;
 
   // Opens and binds the sockets. A failure is one readable line, e.g.
   // "127.0.0.1:3794 is already in use".
@@ -124,6 +157,13 @@ class UdpLink final : public node::Link {
   void pin_routes_while(std::function<bool(std::uint8_t subsystem, std::uint8_t node)> holds_state) {
     routes_.pin_while(std::move(holds_state));
   }
+  // Where AS5669A datagrams go (the JSS face); unset: they are dropped.
+  void on_jss_datagram(JssDatagramHandler handler) { jss_handler_ = std::move(handler); }
+  // Whether a JSS node (subsystem, node) holds state here (its alias holds
+  // control, an emergency, ...): its JSS route is pinned as RA ones are.
+  void pin_jss_routes_while(std::function<bool(std::uint16_t subsystem, std::uint8_t node)> holds_state) {
+    jss_routes_.pin_while(std::move(holds_state));
+  }
   // Starts receiving.
   void start();
   // Stops receiving and sending (pending handlers are cancelled).
@@ -134,6 +174,10 @@ class UdpLink final : public node::Link {
   // Sends one message to an endpoint in a framing, outside routing (tools):
   // not limited by verify_endpoints (the caller chose the endpoint).
   void send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
+  // Sends one complete AS5669A datagram to a JSS ID: the endpoint learnt for
+  // its (subsystem, node); broadcast IDs and IDs not heard from go to
+  // jss_multicast and the static peers.
+  void transmit_jss(const jss::JssId& to, std::span<const std::uint8_t> datagram);
 
   // Takes `datagram` as if the socket had received it from `from`: every
   // check, count and route rule applies. For captures replayed and floods
@@ -143,6 +187,7 @@ class UdpLink final : public node::Link {
   Ipv4Endpoint local_endpoint() const;
   const UdpLinkCounters& counters() const { return counters_; }
   const RouteTable& routes() const { return routes_; }
+  const RouteTable& jss_routes() const { return jss_routes_; }
 
  private:
   struct Socket;
@@ -151,6 +196,10 @@ class UdpLink final : public node::Link {
   Expected<void> bind_sockets();
   void receive_next(Socket& socket);
   void on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
+  void on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
+  // The group of `group`: joined on the main socket, or a socket of its own.
+  Expected<void> join_group(const Ipv4Endpoint& group);
+  jss::JssId jss_self() const;
   // Counts a dropped datagram and writes its line, limited per reason; the
   // detail ("source 0.1.1.1") is built only for a line that is written, not
   // per datagram of a flood. (Defined and used in udp_link.cpp only.)
@@ -161,10 +210,16 @@ class UdpLink final : public node::Link {
   void count_drop(DropReason reason) { ++counters_.dropped[static_cast<std::size_t>(reason)]; }
   bool allowed(std::uint32_t address) const;
   bool may_control(std::uint32_t address) const;
+  // The standing of a sender whose route learn() answered with `learnt`, counted.
+  rt::SenderStanding standing_of(const Ipv4Endpoint& from, Learnt learnt, std::uint64_t& unrecorded,
+                                 std::uint64_t& observer, const std::string& who);
   // send_to, through the amplification guard when verify_endpoints is on:
   // what goes to learnt endpoints the routes chose.
   void send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
   void send_challenge(const Ipv4Endpoint& to, Framing framing);
+  // The guard of an endpoint speaking `framing` (one per dialect).
+  AmplificationGuard& guard_for(Framing framing) { return framing == Framing::as5669a ? jss_guard_ : guard_; }
+  void sync_amplification_counters();
   // A message for a node of another subsystem whose route we know, from a
   // node heard directly at `from`: sent on, in the framing that node speaks.
   void relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet);
@@ -179,10 +234,14 @@ class UdpLink final : public node::Link {
   UdpLinkOptions options_;
   rt::LogFn log_;
   std::unique_ptr<Socket> main_;
-  std::unique_ptr<Socket> multicast_;  // bound to the group when the main socket is bound to one address
+  // Bound to a group (RA, JSS) when the main socket is bound to one address.
+  std::vector<std::unique_ptr<Socket>> group_sockets_;
   RouteTable routes_;
   AmplificationGuard guard_;
+  RouteTable jss_routes_;
+  AmplificationGuard jss_guard_;
   PacketHandler handler_;
+  JssDatagramHandler jss_handler_;
   UdpLinkCounters counters_;
   rt::TimerId expiry_timer_ = rt::kNoTimer;
   // Lines a flood repeats: per drop reason, and new routes (10 per window).
