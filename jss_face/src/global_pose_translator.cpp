@@ -1,0 +1,39 @@
+// Global Pose Sensor 1.0 on the RA global pose sensor (38), jss-notes.md 4.4:
+// the query and report are RA's field for field, rescaled. Set Global Pose
+// and the Geomagnetic Property messages are not supported: RA has no message
+// for either, and a correction kept in the face would make JSS and RA clients
+// of one vehicle see two positions; they are left to the face's unsupported
+// count and logged with why (JSS has no "not supported" reply for commands).
+#include "mobility_translators.hpp"
+#include "mobility_translators_report.hpp"
+
+namespace jaus::jss_face {
+namespace {
+
+class GlobalPoseTranslator final
+    : public mobility::ReportTranslator<jss::msg::QueryGlobalPose, jss::msg::ReportGlobalPose, msg::QueryGlobalPose,
+                                        msg::ReportGlobalPose> {
+ public:
+  GlobalPoseTranslator()
+      : ReportTranslator("global pose sensor", kGlobalPoseSensorComponent,
+                         {ServiceUri{"urn:jaus:jss:mobility:GlobalPoseSensor", 1, 0}}) {}
+
+ protected:
+  bool command(const JssInbound& m, FacePort& port) override {
+    const bool set_pose = m.message_id == jss::msg::SetGlobalPose::code;
+    const bool geomagnetic = m.message_id == jss::msg::SetGeomagneticProperty::code ||
+                             m.message_id == jss::msg::QueryGeomagneticProperty::code;
+    if (set_pose || geomagnetic)
+      log().repeated(port, "global pose settings not supported", rt::LogLevel::warn, [&] {
+        return std::string(set_pose ? "Set Global Pose" : "Geomagnetic Property") + " from " + mobility::who(m) +
+               " not supported (the RA global pose sensor has no such setting)";
+      });
+    return false;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ServiceTranslator> make_global_pose_translator() { return std::make_unique<GlobalPoseTranslator>(); }
+
+}  // namespace jaus::jss_face

@@ -1,0 +1,37 @@
+// Local Pose Sensor 1.0 on the RA local pose sensor (41), jss-notes.md 4.3:
+// the query and report are RA's field for field (RA's Z range lies within
+// JSS's). Set Local Pose is not supported: RA has no message to move the
+// local frame, and a frame offset kept in the face would have to reach every
+// consumer of the RA frame (the RA waypoint drivers, RA clients of the same
+// vehicle) to stay one frame; so it is left to the face's unsupported count
+// (JSS has no "not supported" reply for commands) and logged with why.
+#include "mobility_translators.hpp"
+#include "mobility_translators_report.hpp"
+
+namespace jaus::jss_face {
+namespace {
+
+class LocalPoseTranslator final
+    : public mobility::ReportTranslator<jss::msg::QueryLocalPose, jss::msg::ReportLocalPose, msg::QueryLocalPose,
+                                        msg::ReportLocalPose> {
+ public:
+  LocalPoseTranslator()
+      : ReportTranslator("local pose sensor", kLocalPoseSensorComponent,
+                         {ServiceUri{"urn:jaus:jss:mobility:LocalPoseSensor", 1, 0}}) {}
+
+ protected:
+  bool command(const JssInbound& m, FacePort& port) override {
+    if (m.message_id == jss::msg::SetLocalPose::code)
+      log().repeated(port, "Set Local Pose not supported", rt::LogLevel::warn, [&] {
+        return "Set Local Pose from " + mobility::who(m) +
+               " not supported (RA has no way to move the local frame; poses stay in the vehicle's frame)";
+      });
+    return false;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ServiceTranslator> make_local_pose_translator() { return std::make_unique<LocalPoseTranslator>(); }
+
+}  // namespace jaus::jss_face

@@ -1,0 +1,148 @@
+// What the mobility translators share (jss-notes.md 4): encoding and
+// decoding on both sides, copying the fields JSS and RA describe alike,
+// reading an RA component in process (never commanding through it), and a
+// rate-limited log for what remote input repeats.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "jaus/base/expected.hpp"
+#include "jaus/core/header.hpp"
+#include "jaus/jss/all.hpp"
+#include "jaus/jss_face/face.hpp"
+#include "jaus/jss_face/translator.hpp"
+#include "jaus/messages/all.hpp"
+#include "jaus/node/node.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
+#include "jaus/wire/message.hpp"
+
+namespace jaus::jss_face::mobility {
+
+// Copies every field of `from` into the field of `to` at the same place of
+// the description. The two bodies must describe the same fields by the same
+// names (a JSS body and the RA body of the same message, jss_design.md):
+// checked at compile time, so a layout that drifts apart does not build.
+template <class To, class From>
+void copy_fields(const From& from, To& to) {
+  using FromBody = typename From::body_type;
+  using ToBody = typename To::body_type;
+  static_assert(std::tuple_size_v<decltype(wire::kFields<FromBody>)> ==
+                    std::tuple_size_v<decltype(wire::kFields<ToBody>)>,
+                "the JSS and RA bodies describe different numbers of fields");
+  wire::for_each_field_index<FromBody>([&](auto index) {
+    constexpr std::size_t i = decltype(index)::value;
+    constexpr const auto& source = std::get<i>(wire::kFields<FromBody>);
+    constexpr const auto& target = std::get<i>(wire::kFields<ToBody>);
+    using S = std::decay_t<decltype(source)>;
+    using T = std::decay_t<decltype(target)>;
+    static_assert(wire::is_presence_vector<S>::value == wire::is_presence_vector<T>::value,
+                  "the presence vectors are at different places");
+    if constexpr (!wire::is_presence_vector<S>::value) {
+      static_assert(source.name == target.name, "a field differs in name between JSS and RA");
+      static_assert(source.bit == target.bit, "a field differs in presence bit between JSS and RA");
+      static_cast<ToBody&>(to).*target.member = static_cast<const FromBody&>(from).*source.member;
+    }
+  });
+}
+
+// An RA message's payload (no header).
+template <class M>
+Expected<std::vector<std::uint8_t>> encode_ra(const M& message) {
+  std::array<std::uint8_t, kMaxPayloadSize> buffer{};
+  auto size = wire::encode_payload(message, buffer);
+  if (!size) return unexpected(size.error());
+  return std::vector<std::uint8_t>(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(*size));
+}
+
+template <class M>
+Expected<M> decode_ra(std::span<const std::uint8_t> payload) {
+  return wire::decode_payload<M>(payload);
+}
+
+// A JSS message's body (the contents after the message ID).
+template <class M>
+Expected<M> decode_jss_body(std::span<const std::uint8_t> body) {
+  return jss::decode_body<M>(body);
+}
+
+// What a translator says about the JSS client that asked.
+inline std::string who(const JssInbound& m) {
+  return m.origin.client.to_string() + " -> " + m.our_component.to_string();
+}
+
+// The rate-limited log of one translator: made on first use on the face's
+// clock and scheduler (the port is the face's, for the face's life).
+class TranslatorLog {
+ public:
+  template <class MakeText>
+  void repeated(FacePort& port, rt::Repeated kind, rt::LogLevel level, MakeText make_text) {
+    if (!lines_) {
+      FacePort* p = &port;
+      lines_ = std::make_unique<rt::RepeatedLines>(
+          port.clock(), port.scheduler(), [p](rt::LogLevel l, const std::string& text) { p->log(l, text); });
+    }
+    lines_->write(kind, level, make_text);
+  }
+
+ private:
+  std::unique_ptr<rt::RepeatedLines> lines_;
+};
+
+// Sends an RA message to our component as the client's alias.
+template <class M>
+void send_ra(FacePort& port, const JssInbound& from, const M& message, TranslatorLog& log) {
+  auto payload = encode_ra(message);
+  if (!payload) {
+    log.repeated(port, "RA messages not encoded", rt::LogLevel::error, [&] {
+      return std::string(M::name) + " for " + who(from) + " not encoded: " + payload.error().message();
+    });
+    return;
+  }
+  port.send_ra(from.origin, from.ra_component, M::code, *payload, from.standing);
+}
+
+// Sends a JSS message from our component (values out of their fields' range,
+// a bug of ours, are logged and not sent).
+template <class M>
+void reply_jss(FacePort& port, const ReplyTo& to, const jss::JssId& our_component, const M& message) {
+  auto contents = jss::try_encode_contents(message);
+  if (!contents) {
+    port.log(rt::LogLevel::error, std::string(M::name) + " to " + to.client.to_string() +
+                                      " not encoded: " + contents.error().message());
+    return;
+  }
+  port.reply(to, our_component, *contents);
+}
+
+// A JSS body that did not decode: the face counts and logs it; never acted on.
+inline void log_malformed(FacePort& port, TranslatorLog&, const JssInbound& m, std::string_view what,
+                          const Error& error) {
+  port.malformed(std::string(what) + " from " + who(m), error.message());
+}
+
+// The RA component behind a JSS one, read in process.
+inline const rt::Component* ra_component(FacePort& port, const Address& address) {
+  return port.node().find(address);
+}
+
+// Whether the client that sent `m` controls the RA component (its alias is
+// the controller): what the JSS list manager asks before it changes a list
+// the RA has no message for.
+inline bool client_controls(FacePort& port, const Address& ra, const jss::JssId& client) {
+  const rt::Component* component = ra_component(port, ra);
+  if (component == nullptr) return false;
+  const auto& controller = component->control().controller();
+  if (!controller || controller->address.subsystem != port.config().client_alias_subsystem) return false;
+  return port.jss_id_for(controller->address) == client;
+}
+inline bool client_controls(FacePort& port, const JssInbound& m) {
+  return client_controls(port, m.ra_component, m.origin.client);
+}
+
+}  // namespace jaus::jss_face::mobility

@@ -1,0 +1,56 @@
+// Primitive Driver 1.0 on the RA primitive driver (33), jss-notes.md 4.1:
+// Set Wrench Effort goes to the RA component as the client's alias, so the
+// RA rules decide (control, Ready, the command timeout, every stop path);
+// the six propulsive efforts are rescaled (JSS unsigned, RA signed) with
+// JSS's near-zero made exactly 0, the resistive ones and the presence vector
+// copied. Query / Report Wrench Effort are the RA component's.
+#include "mobility_translators.hpp"
+#include "mobility_translators_report.hpp"
+#include "scaling.hpp"
+
+namespace jaus::jss_face {
+namespace {
+
+using mobility::ReportTranslator;
+
+class PrimitiveDriverTranslator final
+    : public ReportTranslator<jss::msg::QueryWrenchEffort, jss::msg::ReportWrenchEffort, msg::QueryWrenchEffort,
+                              msg::ReportWrenchEffort> {
+ public:
+  PrimitiveDriverTranslator()
+      : ReportTranslator("primitive driver", kPrimitiveDriverComponent,
+                         {ServiceUri{"urn:jaus:jss:mobility:PrimitiveDriver", 1, 0}}) {}
+
+ protected:
+  bool handles_command(std::uint16_t message_id) const override {
+    return message_id == jss::msg::SetWrenchEffort::code;
+  }
+  bool command(const JssInbound& m, FacePort& port) override {
+    if (m.message_id != jss::msg::SetWrenchEffort::code) return false;
+    auto set = mobility::decode_jss_body<jss::msg::SetWrenchEffort>(m.body);
+    if (!set) {
+      mobility::log_malformed(port, log(), m, jss::msg::SetWrenchEffort::name, set.error());
+      return true;
+    }
+    mobility::send_ra(port, m, wrench_effort_to_ra(*set), log());
+    return true;
+  }
+};
+
+}  // namespace
+
+msg::SetWrenchEffort wrench_effort_to_ra(const jss::msg::SetWrenchEffort& jss) {
+  msg::SetWrenchEffort ra{};
+  mobility::copy_fields(jss, ra);
+  for (auto* effort : {&ra.propulsive_linear_effort_x_percent, &ra.propulsive_linear_effort_y_percent,
+                       &ra.propulsive_linear_effort_z_percent, &ra.propulsive_rotational_effort_x_percent,
+                       &ra.propulsive_rotational_effort_y_percent, &ra.propulsive_rotational_effort_z_percent})
+    *effort = scaling::effort_to_ra(*effort);
+  return ra;
+}
+
+std::unique_ptr<ServiceTranslator> make_primitive_driver_translator() {
+  return std::make_unique<PrimitiveDriverTranslator>();
+}
+
+}  // namespace jaus::jss_face
