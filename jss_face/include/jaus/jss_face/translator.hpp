@@ -98,6 +98,17 @@ class FacePort {
   // active waypoint): read it, never command through it.
   virtual node::Node& node() = 0;
   virtual void log(rt::LogLevel level, const std::string& text) = 0;
+  // The services every registered translator lists for a component with
+  // this RA component ID, in registration order (Discovery's reports).
+  virtual std::vector<ServiceUri> services_of(std::uint8_t ra_component_id) const {
+    (void)ra_component_id;
+    return {};
+  }
+  // A JSS message whose body does not decode: counted (FaceCounters::
+  // malformed) and logged (repeat-limited) with what and why; never acted on.
+  virtual void malformed(const std::string& what, const std::string& why) {
+    log(rt::LogLevel::warn, "malformed " + what + " ignored: " + why);
+  }
 };
 
 // One or more JSS services of a component.
@@ -117,6 +128,7 @@ class ServiceTranslator {
   // this translator's to translate.
   virtual bool from_ra(const RaOutbound& message, FacePort& port) = 0;
   // The client is forgotten (its alias ends): drop what is kept for it.
+  // `client` names a client node: component 255 (every component of it).
   virtual void forget(const jss::JssId& client) { (void)client; }
 };
 

@@ -1,0 +1,30 @@
+// Liveness (jss-notes.md 3.5): every component answers Query Heartbeat
+// Pulse itself (the RA component would answer the same, but the face knows
+// it is alive). No unsolicited heartbeat: JSS has none.
+#include "core_translators.hpp"
+#include "face_bytes.hpp"
+
+namespace jaus::jss_face {
+namespace {
+
+constexpr std::uint16_t kQueryHeartbeatPulse = 0x2202;
+constexpr std::uint16_t kReportHeartbeatPulse = 0x4202;
+
+class LivenessTranslator final : public ServiceTranslator {
+ public:
+  std::string_view name() const override { return "liveness"; }
+  std::vector<ServiceUri> services(std::uint8_t) const override { return {core_service("Liveness")}; }
+  bool handles(std::uint16_t id, std::uint8_t) const override { return id == kQueryHeartbeatPulse; }
+  bool from_jss(const JssInbound& m, FacePort& port) override {
+    if (m.message_id != kQueryHeartbeatPulse) return false;
+    port.reply(m.origin, m.our_component, ContentsWriter(kReportHeartbeatPulse));
+    return true;
+  }
+  bool from_ra(const RaOutbound&, FacePort&) override { return false; }
+};
+
+}  // namespace
+
+std::unique_ptr<ServiceTranslator> make_liveness_translator() { return std::make_unique<LivenessTranslator>(); }
+
+}  // namespace jaus::jss_face
