@@ -3,7 +3,7 @@
 # tests/CMakeLists.txt).
 #
 # jaus_add_gtests(<target> [REAL_TIME | PER_TEST] [SHARDS <n>] [TIMEOUT <seconds>]
-#                 [PROPERTIES <name> <value>...])
+#                 [UNITY [SEPARATE <file>...]] [PROPERTIES <name> <value>...])
 #
 # TIMEOUT applies to each ctest entry (a shard, or a test with PER_TEST);
 # without it ctest's --timeout (scripts/test.sh: 300 s) applies.
@@ -34,24 +34,26 @@
 # or configure with -DJAUS_TEST_ONE_PROCESS_PER_TEST=ON (one ctest entry per
 # test, as gtest_discover_tests makes them, for `ctest -R <test name>`).
 #
-# The executables of several files compile as unity builds (JAUS_UNITY_TESTS,
-# on by default): the files of a batch share one translation unit, so the
-# headers, GoogleTest and every template they instantiate (messages, nodes,
-# sessions) are compiled once a batch instead of once a file; measured on five
-# tests/ocu files under clang ASan: 22.9 s as five units, 8.2 s as one.
-# Files in one executable therefore must not define the same name at file
-# scope (anonymous namespaces included): put such helpers in a named
-# namespace of the file, or mark a file SKIP_UNITY_BUILD_INCLUSION.
+# UNITY: the executable's files compile as unity builds (batches of
+# JAUS_UNITY_TESTS_BATCH_SIZE files share one translation unit; off with
+# -DJAUS_UNITY_TESTS=OFF): the headers, GoogleTest and every template they
+# instantiate (messages, nodes, sessions) are compiled once a batch instead of
+# once a file. Measured under clang ASan: five tests/ocu files 22.9 s as five
+# units, 8.2 s as one; three tests/core message-check files 100 s, 74 s.
+# The files of a batch must not define the same name at file scope (anonymous
+# namespaces included: `redefinition of ...`): list such files after
+# SEPARATE (each compiled on its own), or give the name a namespace of its
+# file.
 
 include_guard(GLOBAL)
 include(GoogleTest)
 
-option(JAUS_UNITY_TESTS "Compile test executables of several files as unity builds" ON)
+option(JAUS_UNITY_TESTS "Compile the test executables registered with UNITY as unity builds" ON)
 option(JAUS_TEST_ONE_PROCESS_PER_TEST "One ctest entry and process per gtest test (for ctest -R <test>)" OFF)
 set(JAUS_UNITY_TESTS_BATCH_SIZE 8 CACHE STRING "Source files per unity translation unit of a test executable")
 
 function(jaus_add_gtests target)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "REAL_TIME;PER_TEST" "SHARDS;TIMEOUT" "PROPERTIES")
+  cmake_parse_arguments(PARSE_ARGV 1 arg "REAL_TIME;PER_TEST;UNITY" "SHARDS;TIMEOUT" "SEPARATE;PROPERTIES")
   if(arg_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "jaus_add_gtests(${target}): unknown arguments ${arg_UNPARSED_ARGUMENTS}")
   endif()
@@ -66,10 +68,11 @@ function(jaus_add_gtests target)
     set(timeout TIMEOUT ${arg_TIMEOUT})
   endif()
 
-  get_target_property(sources ${target} SOURCES)
-  list(LENGTH sources source_count)
-  if(JAUS_UNITY_TESTS AND source_count GREATER 1)
+  if(arg_UNITY AND JAUS_UNITY_TESTS)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${JAUS_UNITY_TESTS_BATCH_SIZE})
+    if(arg_SEPARATE)
+      set_source_files_properties(${arg_SEPARATE} TARGET_DIRECTORY ${target} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+    endif()
   endif()
 
   # The caller's LABELS are kept and ours added to them; other properties pass through.
