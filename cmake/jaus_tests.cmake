@@ -24,9 +24,9 @@
 #
 # The `realtime` slots (RESOURCE_GROUPS realtime:1) matter only when ctest is
 # given a resource spec file: scripts/test.sh runs the sanitizer suites with
-# twice as many jobs as cores and as many realtime slots as cores, so the
-# real-clock tests run as many at once as before and the deterministic shards
-# fill the CPU they leave idle. Plain `ctest -jN` ignores the slots.
+# one realtime slot more than there are cores and as many jobs again for the
+# deterministic shards, which fill the CPU the real-clock tests leave idle
+# while they wait. Plain `ctest -jN` ignores the slots.
 #
 # A failing shard prints the whole gtest output of its process (each test's
 # [ RUN ] / [ FAILED ] lines and its log). To run one test:

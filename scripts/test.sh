@@ -13,6 +13,8 @@
 # (real-clock tests that mostly wait on sockets and timers, and one flood) run while the sanitizer
 # tree compiles at a lower CPU priority, and the fuzz smoke at the lowest priority while the
 # sanitizer suites run: the tests get the CPU whenever they need it, the rest takes what is left.
+# The deterministic suites run as a few processes each (shards, not a process per test) below
+# the real-clock tests' priority, beside them (cmake/jaus_tests.cmake).
 # Usage: ./scripts/test.sh (from anywhere; builds go to build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -33,10 +35,24 @@ configure_and_build() {  # $1 build dir, remaining args: cmake options; BUILD_NI
   nice -n "${BUILD_NICENESS:-0}" cmake --build "$dir" -j "$jobs" || return 1
   echo "== $dir: built in $((SECONDS - start)) s"
 }
-run_tests() {  # $1 build dir
-  local start=$SECONDS
-  ctest --test-dir "$1" --output-on-failure -j "$jobs" --timeout 300 || return 1
-  echo "== $1: tested in $((SECONDS - start)) s"
+run_tests() {  # $1 build dir, remaining args: more ctest options
+  local dir=$1 start=$SECONDS; shift
+  # A failing shard's output is long: keep its start and its end (gtest's list of failed tests).
+  ctest --test-dir "$dir" --output-on-failure -j "$jobs" --timeout 300 --test-output-truncation middle "$@" || return 1
+  echo "== $dir: tested in $((SECONDS - start)) s"
+}
+# The sanitizer suites (cmake/jaus_tests.cmake): the real-clock tests (label
+# realtime: one process a test, or shards on sockets) hold a `realtime` slot
+# each, one more slot than there are cores: all but the flood mostly wait on
+# sockets and timers, so at normal priority they still ask for less CPU than
+# there is. The deterministic shards (label deterministic, nice 10) take as
+# many more jobs as there are cores and the CPU the real-clock tests leave.
+run_sanitizer_tests() {  # $1 build dir
+  local spec=$root/$1/realtime-slots.json  # absolute: ctest reads it from inside the tree
+  local realtime_slots=$((jobs + 1))
+  printf '{"version": {"major": 1, "minor": 0}, "local": [{"realtime": [{"id": "cores", "slots": %d}]}]}\n' \
+    "$realtime_slots" > "$spec"
+  run_tests "$1" -j $((realtime_slots + jobs)) --resource-spec-file "$spec"
 }
 
 echo "== release build"
@@ -114,7 +130,7 @@ else
   echo "== clang not found: fuzz targets skipped"
 fi
 asan_tests_ok=1
-run_tests build/asan || asan_tests_ok=0
+run_sanitizer_tests build/asan || asan_tests_ok=0
 if [ -n "$fuzz_pid" ]; then
   fuzz_ok=1
   wait "$fuzz_pid" || fuzz_ok=0
