@@ -3,6 +3,7 @@
 // ID, name, service and JSON: catalogue.hpp.
 #pragma once
 
+#include "jaus/jss/compiled_codecs.hpp"
 #include "jaus/jss/contents.hpp"
 #include "jaus/jss/messages/core.hpp"
 #include "jaus/jss/messages/discovery.hpp"

@@ -184,7 +184,8 @@ struct Tagged {
   template <class Json>
   Expected<void> from_json(const Json& j, TaggedValue& v) const {
     if (!j.is_object() || j.size() != 1) return wire::detail::json_error("expected {" + names() + ": value}");
-    const auto& [key, value] = *j.items().begin();
+    const std::string key = j.begin().key();
+    const Json& value = j.begin().value();
     for (const auto& a : alternatives) {
       if (a.name != key) continue;
       v.tag = a.tag;
