@@ -85,12 +85,22 @@ class JssEvent {
   Expected<void> cancel();
 
  private:
+  // A Confirm or Reject Event Request answering the request in flight.
+  struct Answer {
+    bool confirmed = false;
+    std::uint8_t event_id = 0;
+    double rate_hz = 0;
+    std::optional<std::uint8_t> reject_code;
+  };
   JssEvent(JssSession& session, const jss::JssId& provider, std::vector<std::uint8_t> query, JssEventOptions options,
            Callback callback);
-  Expected<void> request(std::uint16_t id, std::vector<std::uint8_t> contents, std::uint8_t request_id,
-                         bool through_stop);
+  // Sends `contents` (Create, Update or Cancel Event with `request_id`) until answered.
+  Expected<Answer> request(const std::vector<std::uint8_t>& contents, std::uint8_t request_id, bool through_stop);
+  std::uint8_t take_request_id() { return next_request_id_++; }
   void heard(const JssReceived& message);
   void schedule_refresh();
+  void refresh();
+  void cancel_refresh();
 
   JssSession& session_;
   jss::JssId provider_;
@@ -100,12 +110,15 @@ class JssEvent {
   JssSession::ListenerId listener_ = 0;
   std::uint8_t event_id_ = 0;
   std::uint8_t next_request_id_ = 1;
-  std::optional<std::uint8_t> pending_request_;
+  std::optional<std::uint8_t> pending_request_;  // waited for by request()
+  std::optional<Answer> answer_;
+  std::optional<std::uint8_t> refresh_request_;  // an Update Event sent by the refresh timer
   double confirmed_rate_hz_ = 0;
   std::uint64_t events_received_ = 0;
   std::uint64_t events_missed_ = 0;
   std::optional<std::uint8_t> last_sequence_;
   std::uint8_t provider_timeout_min_ = 0;
+  rt::Duration refresh_period_{};
   bool open_ = false;
   bool ended_by_provider_ = false;
   rt::TimerId refresh_timer_ = rt::kNoTimer;

@@ -1,0 +1,457 @@
+#include "jaus/ocu/jss_session.hpp"
+
+#include <algorithm>
+#include <deque>
+
+#include "jaus/ocu/names.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
+#include "jaus/transport/asio_runtime.hpp"
+#include "jss_reassembler.hpp"
+#include "jss_socket.hpp"
+
+namespace jaus::ocu {
+
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr rt::Duration kRunSlice = 100ms;  // run_until wakes at least this often on UDP
+// What the session answers by itself (jss-notes.md 3.5, 3.6).
+constexpr std::uint16_t kQueryHeartbeatPulse = 0x2202;
+constexpr std::uint16_t kReportHeartbeatPulse = 0x4202;
+constexpr std::uint16_t kQueryIdentification = 0x2B00;
+constexpr std::uint16_t kReportIdentification = 0x4B00;
+constexpr std::uint16_t kNodeType = 40001;
+constexpr std::uint16_t kComponentType = 60001;
+
+void put_u16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+  out.push_back(static_cast<std::uint8_t>(v));
+  out.push_back(static_cast<std::uint8_t>(v >> 8));
+}
+
+jss::JudpBroadcast broadcast_of(const jss::JssId& to) {
+  if (to.subsystem == jss::JssId::kAllSubsystems) return jss::JudpBroadcast::global;
+  return to.is_broadcast() ? jss::JudpBroadcast::local : jss::JudpBroadcast::none;
+}
+
+}  // namespace
+
+Error no_jss_reply_error(const jss::JssId& from, rt::Duration timeout) {
+  return make_error(ErrorCode::timeout, "no reply from " + from.to_string() + " within " + seconds_text(timeout));
+}
+
+struct JssSession::Impl {
+  // A must-arrive send waiting for its ACK.
+  struct AckWait {
+    jss::JssId to;
+    std::uint16_t sequence = 0;
+    bool acked = false;
+    bool refused = false;
+  };
+
+  explicit Impl(JssSessionOptions o)
+      : options(std::move(o)),
+        reassembler(options.max_large_message, std::max<std::size_t>(options.max_reassemblies, 1),
+                    options.reassembly_timeout) {
+    if (!options.log) options.log = rt::silent_log();
+  }
+
+  void transmit(const jss::JssId& to, std::span<const std::uint8_t> datagram);
+  std::uint16_t send(const jss::JssId& to, std::span<const std::uint8_t> contents, jss::JudpPriority priority,
+                     bool ack_requested, std::vector<std::uint8_t>* first_datagram);
+  void send_ack(const jss::JudpHeader& received);
+  void receive(std::span<const std::uint8_t> datagram, std::optional<transport::Ipv4Endpoint> from);
+  void handle(const jss::JudpPacket& packet);
+  void answer_builtin(const JssReceived& message);
+  void deliver(const JssReceived& message);
+  void learn(const jss::JssId& id, const transport::Ipv4Endpoint& endpoint);
+  ArrivalResult must_arrive(JssSession& session, const jss::JssId& to, std::span<const std::uint8_t> contents,
+                            jss::JudpPriority priority, MustArrivePolicy policy, bool through_stop);
+
+  JssSessionOptions options;
+  // On UDP.
+  std::unique_ptr<boost::asio::io_context> owned_io;
+  boost::asio::io_context* io = nullptr;
+  std::unique_ptr<transport::AsioRuntime> runtime;
+  std::unique_ptr<detail::JssSocket> socket;
+  // Attached.
+  JssEnvironment environment;
+  rt::Clock* clock = nullptr;
+  rt::Scheduler* scheduler = nullptr;
+  std::unique_ptr<rt::RepeatedLines> repeated;
+
+  JssSessionCounters counters;
+  std::uint16_t next_sequence = 0;
+  std::map<jss::JssId, transport::Ipv4Endpoint> endpoints;
+  std::deque<jss::JssId> endpoint_order;  // oldest first: the bound's victim
+  detail::JssReassembler reassembler;
+  ListenerId last_id = 0;
+  std::map<ListenerId, Listener> listeners;
+  std::vector<AckWait*> ack_waits;
+};
+
+void JssSession::Impl::transmit(const jss::JssId& to, std::span<const std::uint8_t> datagram) {
+  ++counters.datagrams_sent;
+  if (!socket) {
+    environment.transmit(to, datagram);
+    return;
+  }
+  if (!to.is_broadcast()) {
+    if (const auto it = endpoints.find(to); it != endpoints.end()) {
+      socket->send_to(it->second, datagram);
+      return;
+    }
+  }
+  // A broadcast, or an ID not heard from yet: every listed peer and the group.
+  for (const auto& peer : options.to) socket->send_to(peer, datagram);
+  if (options.multicast && socket->has_multicast()) socket->send_to(*options.multicast, datagram);
+}
+
+std::uint16_t JssSession::Impl::send(const jss::JssId& to, std::span<const std::uint8_t> contents,
+                                     jss::JudpPriority priority, bool ack_requested,
+                                     std::vector<std::uint8_t>* first_datagram) {
+  jss::JudpHeader header;
+  header.priority = priority;
+  header.broadcast = broadcast_of(to);
+  header.ack_nak = ack_requested && !to.is_broadcast() ? jss::JudpAckNak::ack_requested : jss::JudpAckNak::none;
+  header.destination = to;
+  header.source = options.self;
+  const std::size_t limit = std::max<std::size_t>(options.max_packet_contents, 3);
+  const std::uint16_t first_sequence = next_sequence;
+  if (contents.size() <= limit || to.is_broadcast()) {
+    header.sequence = next_sequence++;
+    auto datagram = jss::make_judp_datagram(header, contents);
+    transmit(to, datagram);
+    if (first_datagram) *first_datagram = std::move(datagram);
+    return first_sequence;
+  }
+  ++counters.large_messages_sent;
+  for (std::size_t offset = 0; offset < contents.size(); offset += limit) {
+    const std::size_t size = std::min(limit, contents.size() - offset);
+    header.data_flag = offset == 0                           ? jss::JudpDataFlag::first
+                       : offset + size == contents.size() ? jss::JudpDataFlag::last
+                                                            : jss::JudpDataFlag::middle;
+    header.sequence = next_sequence++;
+    const auto datagram = jss::make_judp_datagram(header, contents.subspan(offset, size));
+    transmit(to, datagram);
+  }
+  return first_sequence;
+}
+
+void JssSession::Impl::send_ack(const jss::JudpHeader& received) {
+  jss::JudpHeader ack;
+  ack.priority = received.priority;
+  ack.ack_nak = jss::JudpAckNak::ack;
+  ack.destination = received.source;
+  ack.source = options.self;
+  ack.sequence = received.sequence;
+  transmit(ack.destination, jss::make_judp_datagram(ack, {}));
+  ++counters.acks_sent;
+}
+
+void JssSession::Impl::learn(const jss::JssId& id, const transport::Ipv4Endpoint& endpoint) {
+  if (!id.is_valid() || id.is_broadcast()) return;
+  const auto [it, inserted] = endpoints.insert_or_assign(id, endpoint);
+  if (!inserted) return;
+  endpoint_order.push_back(id);
+  while (endpoint_order.size() > std::max<std::size_t>(options.max_learnt_endpoints, 1)) {
+    endpoints.erase(endpoint_order.front());
+    endpoint_order.pop_front();
+  }
+}
+
+void JssSession::Impl::receive(std::span<const std::uint8_t> datagram, std::optional<transport::Ipv4Endpoint> from) {
+  ++counters.datagrams_received;
+  auto packets = jss::decode_judp_datagram(datagram);
+  if (!packets) {
+    ++counters.malformed;
+    repeated->write(rt::Repeated{"jss session: malformed datagram"}, rt::LogLevel::warn, [&] {
+      return "JSS: dropped a datagram of " + std::to_string(datagram.size()) + " bytes" +
+             (from ? " from " + to_string(*from) : std::string{}) + ": " + packets.error().message();
+    });
+    return;
+  }
+  for (const auto& packet : *packets) {
+    if (packet.header.source == options.self) continue;  // our own broadcast, looped back by the group
+    if (from) learn(packet.header.source, *from);
+    handle(packet);
+  }
+}
+
+void JssSession::Impl::handle(const jss::JudpPacket& packet) {
+  const jss::JudpHeader& h = packet.header;
+  if (!h.destination.matches(options.self)) {
+    ++counters.not_for_us;
+    return;
+  }
+  if (h.ack_nak == jss::JudpAckNak::ack || h.ack_nak == jss::JudpAckNak::nak) {
+    ++counters.acks_received;
+    for (AckWait* wait : ack_waits)
+      if (wait->to == h.source && wait->sequence == h.sequence) {
+        if (h.ack_nak == jss::JudpAckNak::ack) wait->acked = true;
+        else wait->refused = true;
+      }
+    return;
+  }
+  std::optional<JssReceived> message;
+  if (h.data_flag == jss::JudpDataFlag::single) {
+    message = JssReceived{h, {packet.contents.begin(), packet.contents.end()}};
+  } else {
+    const auto before = reassembler.dropped();
+    if (auto whole = reassembler.add(packet, clock->now())) {
+      ++counters.large_messages_received;
+      message = JssReceived{whole->header, std::move(whole->contents)};
+    }
+    counters.large_messages_dropped += reassembler.dropped() - before;
+  }
+  if (message) {
+    answer_builtin(*message);
+    deliver(*message);
+  }
+  // After it was handled, as JSS nodes do (one ACK per packet that asks).
+  if (h.ack_nak == jss::JudpAckNak::ack_requested && !h.destination.is_broadcast()) send_ack(h);
+}
+
+void JssSession::Impl::answer_builtin(const JssReceived& message) {
+  const auto id = message.message_id();
+  if (id == kQueryHeartbeatPulse) {
+    std::vector<std::uint8_t> report;
+    put_u16(report, kReportHeartbeatPulse);
+    send(message.source(), report, jss::JudpPriority::normal, false, nullptr);
+  } else if (id == kQueryIdentification && message.contents.size() >= 3) {
+    const std::uint8_t query_type = message.contents[2];
+    if (query_type < 2 || query_type > 4) return;  // system identification is a system commander's
+    std::vector<std::uint8_t> report;
+    put_u16(report, kReportIdentification);
+    report.push_back(query_type);
+    put_u16(report, query_type == 2 ? options.identification_type : query_type == 3 ? kNodeType : kComponentType);
+    const std::string name = options.name.substr(0, 255);
+    report.push_back(static_cast<std::uint8_t>(name.size()));
+    report.insert(report.end(), name.begin(), name.end());
+    send(message.source(), report, jss::JudpPriority::normal, false, nullptr);
+  }
+}
+
+void JssSession::Impl::deliver(const JssReceived& message) {
+  ++counters.messages_received;
+  // Listeners may unlisten themselves (or others) while called: walk the ids.
+  std::vector<ListenerId> ids;
+  for (const auto& [id, l] : listeners) ids.push_back(id);
+  for (const auto id : ids)
+    if (const auto it = listeners.find(id); it != listeners.end()) it->second(message);
+}
+
+JssSession::JssSession(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+JssSession::~JssSession() {
+  if (impl_->environment.connect) impl_->environment.connect({});
+}
+
+namespace {
+Expected<void> check_self(const jss::JssId& self) {
+  if (!self.is_valid() || self.is_broadcast())
+    return unexpected(make_error(ErrorCode::invalid_argument,
+                                 "the JSS operator unit's ID " + self.to_string() +
+                                     " must be a real component (subsystem 1..65534, node and component 1..254)"));
+  return {};
+}
+}  // namespace
+
+Expected<std::unique_ptr<JssSession>> JssSession::open(JssSessionOptions options, boost::asio::io_context* io) {
+  if (auto checked = check_self(options.self); !checked) return unexpected(checked.error());
+  auto impl = std::make_unique<Impl>(std::move(options));
+  if (!io) {
+    impl->owned_io = std::make_unique<boost::asio::io_context>();
+    io = impl->owned_io.get();
+  }
+  impl->io = io;
+  impl->runtime = std::make_unique<transport::AsioRuntime>(*io);
+  impl->clock = impl->runtime.get();
+  impl->scheduler = impl->runtime.get();
+  impl->repeated = std::make_unique<rt::RepeatedLines>(*impl->clock, *impl->scheduler, impl->options.log);
+  Impl* raw = impl.get();
+  auto socket = detail::JssSocket::open(
+      *io, raw->options.bind, raw->options.multicast, raw->options.log,
+      [raw](const transport::Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) { raw->receive(datagram, from); });
+  if (!socket) return unexpected(socket.error());
+  impl->socket = std::move(*socket);
+  return std::unique_ptr<JssSession>(new JssSession(std::move(impl)));
+}
+
+Expected<std::unique_ptr<JssSession>> JssSession::attach(JssSessionOptions options, JssEnvironment environment) {
+  if (auto checked = check_self(options.self); !checked) return unexpected(checked.error());
+  if (!environment.clock || !environment.scheduler || !environment.transmit || !environment.connect ||
+      !environment.wait)
+    return unexpected(make_error(ErrorCode::invalid_argument,
+                                 "an attached JSS session needs a clock, a scheduler, transmit, connect and wait"));
+  auto impl = std::make_unique<Impl>(std::move(options));
+  impl->environment = std::move(environment);
+  impl->clock = impl->environment.clock;
+  impl->scheduler = impl->environment.scheduler;
+  impl->repeated = std::make_unique<rt::RepeatedLines>(*impl->clock, *impl->scheduler, impl->options.log);
+  Impl* raw = impl.get();
+  std::unique_ptr<JssSession> session(new JssSession(std::move(impl)));
+  raw->environment.connect([raw](std::span<const std::uint8_t> datagram) { raw->receive(datagram, std::nullopt); });
+  return session;
+}
+
+const jss::JssId& JssSession::self() const { return impl_->options.self; }
+const JssSessionOptions& JssSession::options() const { return impl_->options; }
+rt::Clock& JssSession::clock() { return *impl_->clock; }
+rt::Scheduler& JssSession::scheduler() { return *impl_->scheduler; }
+const JssSessionCounters& JssSession::counters() const { return impl_->counters; }
+bool JssSession::on_udp() const { return impl_->socket != nullptr; }
+
+std::optional<transport::Ipv4Endpoint> JssSession::endpoint_of(const jss::JssId& id) const {
+  const auto it = impl_->endpoints.find(id);
+  if (it == impl_->endpoints.end()) return std::nullopt;
+  return it->second;
+}
+
+void JssSession::receive_datagram(std::span<const std::uint8_t> datagram, std::optional<transport::Ipv4Endpoint> from) {
+  impl_->receive(datagram, from);
+}
+
+std::uint16_t JssSession::send_contents(const jss::JssId& to, std::span<const std::uint8_t> contents,
+                                        jss::JudpPriority priority, bool ack_requested) {
+  return impl_->send(to, contents, priority, ack_requested, nullptr);
+}
+
+ArrivalResult JssSession::send_contents_must_arrive(const jss::JssId& to, std::span<const std::uint8_t> contents,
+                                                    jss::JudpPriority priority, MustArrivePolicy policy) {
+  return impl_->must_arrive(*this, to, contents, priority, policy, false);
+}
+
+ArrivalResult JssSession::send_contents_must_arrive_through_stop(const jss::JssId& to,
+                                                                 std::span<const std::uint8_t> contents,
+                                                                 jss::JudpPriority priority, MustArrivePolicy policy) {
+  return impl_->must_arrive(*this, to, contents, priority, policy, true);
+}
+
+ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssId& to,
+                                           std::span<const std::uint8_t> contents, jss::JudpPriority priority,
+                                           MustArrivePolicy policy, bool through_stop) {
+  Impl& impl = *this;
+  ArrivalResult result;
+  const auto started = session.clock().now();
+  const auto period = std::max<rt::Duration>(policy.retransmit_after, 1ms);
+  const std::uint32_t most = std::max<std::uint32_t>(policy.max_transmissions, 1);
+  if (contents.size() > std::max<std::size_t>(impl.options.max_packet_contents, 3)) return result;
+  auto run = [&](const std::function<bool()>& done) {
+    return through_stop ? session.run_cleanup_until(done, period) : session.run_until(done, period);
+  };
+  if (to.is_broadcast()) {  // nobody could confirm for everyone: sent `most` times
+    for (std::uint32_t i = 0; i < most; ++i) {
+      impl.send(to, contents, priority, false, nullptr);
+      ++result.transmissions;
+      if (i + 1 < most) run([] { return false; });
+      if (session.interrupted() && !through_stop) {
+        result.outcome = Arrival::interrupted;
+        break;
+      }
+    }
+    result.elapsed = session.clock().now() - started;
+    return result;
+  }
+  std::vector<std::uint8_t> datagram;
+  AckWait wait;
+  wait.to = to;
+  wait.sequence = impl.send(to, contents, priority, true, &datagram);
+  result.transmissions = 1;
+  impl.ack_waits.push_back(&wait);
+  for (;;) {
+    if (run([&] { return wait.acked || wait.refused; })) break;
+    if (session.interrupted() && !through_stop) break;
+    if (result.transmissions >= most) break;
+    impl.transmit(to, datagram);  // the same packet: a receiver that already acted drops it as a duplicate
+    ++result.transmissions;
+  }
+  impl.ack_waits.erase(std::find(impl.ack_waits.begin(), impl.ack_waits.end(), &wait));
+  result.elapsed = session.clock().now() - started;
+  result.outcome = wait.acked               ? Arrival::acknowledged
+                   : wait.refused           ? Arrival::refused
+                   : session.interrupted() && !through_stop ? Arrival::interrupted
+                                            : Arrival::unacknowledged;
+  return result;
+}
+
+JssSession::ListenerId JssSession::listen(Listener listener) {
+  impl_->listeners.emplace(++impl_->last_id, std::move(listener));
+  return impl_->last_id;
+}
+
+void JssSession::unlisten(ListenerId id) { impl_->listeners.erase(id); }
+
+Expected<JssReceived> JssSession::await_reply(const jss::JssId& from, std::vector<std::uint16_t> ids,
+                                              rt::Duration timeout) {
+  std::optional<JssReceived> reply;
+  const ListenerId id = listen([&](const JssReceived& r) {
+    if (reply || !from.matches(r.source())) return;
+    if (!ids.empty() && std::find(ids.begin(), ids.end(), r.message_id()) == ids.end()) return;
+    reply = r;
+  });
+  run_until([&] { return reply.has_value(); }, timeout);
+  unlisten(id);
+  if (reply) return std::move(*reply);
+  if (interrupted()) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
+  return unexpected(no_jss_reply_error(from, timeout));
+}
+
+Expected<JssReceived> JssSession::request_contents(const jss::JssId& to, std::span<const std::uint8_t> query,
+                                                   std::vector<std::uint16_t> reply_ids, rt::Duration timeout,
+                                                   rt::Duration resend_every) {
+  std::optional<JssReceived> reply;
+  const ListenerId id = listen([&](const JssReceived& r) {
+    if (reply || !to.matches(r.source())) return;
+    if (!reply_ids.empty() && std::find(reply_ids.begin(), reply_ids.end(), r.message_id()) == reply_ids.end())
+      return;
+    reply = r;
+  });
+  const auto period = std::max<rt::Duration>(resend_every, 1ms);
+  const auto deadline = clock().now() + timeout;
+  send_contents(to, query);
+  for (;;) {
+    const auto now = clock().now();
+    if (now >= deadline) break;
+    if (run_until([&] { return reply.has_value(); }, std::min(period, deadline - now))) break;
+    if (interrupted() || clock().now() >= deadline) break;
+    send_contents(to, query);  // the query or its reply was lost (a second reply is ignored)
+  }
+  unlisten(id);
+  if (reply) return std::move(*reply);
+  if (interrupted()) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
+  return unexpected(no_jss_reply_error(to, timeout));
+}
+
+bool JssSession::run_until(const std::function<bool()>& done, rt::Duration limit) {
+  const auto deadline = clock().now() + limit;
+  for (;;) {
+    if (done()) return true;
+    if (interrupted()) return false;
+    const auto now = clock().now();
+    if (now >= deadline) return false;
+    if (!impl_->io) {
+      impl_->environment.wait(deadline);
+      continue;
+    }
+    if (impl_->io->stopped()) impl_->io->restart();
+    impl_->io->run_one_for(std::min(deadline - now, kRunSlice));
+  }
+}
+
+bool JssSession::run_cleanup_until(const std::function<bool()>& done, rt::Duration limit) {
+  const auto deadline = clock().now() + std::min(limit, kLongestCleanup);
+  for (;;) {
+    if (done()) return true;
+    const auto now = clock().now();
+    if (now >= deadline) return false;
+    if (!impl_->io) {
+      impl_->environment.wait(deadline);
+      continue;
+    }
+    if (impl_->io->stopped()) impl_->io->restart();
+    impl_->io->run_one_for(std::min(deadline - now, kRunSlice));
+  }
+}
+
+}  // namespace jaus::ocu
