@@ -6,7 +6,6 @@
 #include "jaus/ocu/names.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/transport/asio_runtime.hpp"
-#include "jss_reassembler.hpp"
 #include "jss_socket.hpp"
 
 namespace jaus::ocu {
@@ -50,9 +49,7 @@ struct JssSession::Impl {
   };
 
   explicit Impl(JssSessionOptions o)
-      : options(std::move(o)),
-        reassembler(options.max_large_message, std::max<std::size_t>(options.max_reassemblies, 1),
-                    options.reassembly_timeout) {
+      : options(std::move(o)), reassembler(options.reassembly) {
     if (!options.log) options.log = rt::silent_log();
   }
 
@@ -84,7 +81,7 @@ struct JssSession::Impl {
   std::uint16_t next_sequence = 0;
   std::map<jss::JssId, transport::Ipv4Endpoint> endpoints;
   std::deque<jss::JssId> endpoint_order;  // oldest first: the bound's victim
-  detail::JssReassembler reassembler;
+  jss::LargeMessageReassembler reassembler;
   ListenerId last_id = 0;
   std::map<ListenerId, Listener> listeners;
   std::vector<AckWait*> ack_waits;
@@ -116,25 +113,23 @@ std::uint16_t JssSession::Impl::send(const jss::JssId& to, std::span<const std::
   header.ack_nak = ack_requested && !to.is_broadcast() ? jss::JudpAckNak::ack_requested : jss::JudpAckNak::none;
   header.destination = to;
   header.source = options.self;
-  const std::size_t limit = std::max<std::size_t>(options.max_packet_contents, 3);
   const std::uint16_t first_sequence = next_sequence;
-  if (contents.size() <= limit || to.is_broadcast()) {
-    header.sequence = next_sequence++;
-    auto datagram = jss::make_judp_datagram(header, contents);
-    transmit(to, datagram);
-    if (first_datagram) *first_datagram = std::move(datagram);
+  header.sequence = first_sequence;
+  // Broadcasts are never split: they go whole (the receivers' limit is theirs).
+  const std::size_t limit =
+      to.is_broadcast() ? std::max<std::size_t>(contents.size(), 2) : std::max<std::size_t>(options.max_packet_contents, 3);
+  auto datagrams = jss::make_judp_datagrams(header, contents, limit);
+  if (!datagrams) {  // contents over 65521 bytes in a packet: nothing sent
+    repeated->write(rt::Repeated{"jss session: not sent"}, rt::LogLevel::error, [&] {
+      return "JSS: cannot send " + std::to_string(contents.size()) + " bytes to " + to.to_string() + ": " +
+             datagrams.error().message();
+    });
     return first_sequence;
   }
-  ++counters.large_messages_sent;
-  for (std::size_t offset = 0; offset < contents.size(); offset += limit) {
-    const std::size_t size = std::min(limit, contents.size() - offset);
-    header.data_flag = offset == 0                           ? jss::JudpDataFlag::first
-                       : offset + size == contents.size() ? jss::JudpDataFlag::last
-                                                            : jss::JudpDataFlag::middle;
-    header.sequence = next_sequence++;
-    const auto datagram = jss::make_judp_datagram(header, contents.subspan(offset, size));
-    transmit(to, datagram);
-  }
+  next_sequence = static_cast<std::uint16_t>(next_sequence + datagrams->size());
+  if (datagrams->size() > 1) ++counters.large_messages_sent;
+  for (const auto& datagram : *datagrams) transmit(to, datagram);
+  if (first_datagram && !datagrams->empty()) *first_datagram = std::move(datagrams->front());
   return first_sequence;
 }
 
@@ -196,13 +191,15 @@ void JssSession::Impl::handle(const jss::JudpPacket& packet) {
   std::optional<JssReceived> message;
   if (h.data_flag == jss::JudpDataFlag::single) {
     message = JssReceived{h, {packet.contents.begin(), packet.contents.end()}};
-  } else {
-    const auto before = reassembler.dropped();
-    if (auto whole = reassembler.add(packet, clock->now())) {
-      ++counters.large_messages_received;
-      message = JssReceived{whole->header, std::move(whole->contents)};
-    }
-    counters.large_messages_dropped += reassembler.dropped() - before;
+  } else if (auto whole = reassembler.add(packet, clock->now()); !whole) {
+    ++counters.large_messages_dropped;
+    repeated->write(rt::Repeated{"jss session: large message packet dropped"}, rt::LogLevel::warn, [&] {
+      return "JSS: dropped a large message packet from " + h.source.to_string() + " (sequence " +
+             std::to_string(h.sequence) + "): " + whole.error().message();
+    });
+  } else if (*whole) {
+    ++counters.large_messages_received;
+    message = JssReceived{(*whole)->header, std::move((*whole)->contents)};
   }
   if (message) {
     answer_builtin(*message);

@@ -34,6 +34,7 @@
 #include "jaus/jss/all.hpp"
 #include "jaus/jss/jss_id.hpp"
 #include "jaus/jss/judp.hpp"
+#include "jaus/jss/large_message.hpp"
 #include "jaus/ocu/must_arrive.hpp"
 #include "jaus/transport/ipv4.hpp"
 
@@ -65,12 +66,9 @@ struct JssSessionOptions {
   std::string name = "jausctl";
   std::uint16_t identification_type = 20001;
   // Larger contents go as a large message (first/middle/last packets).
-  std::size_t max_packet_contents = 1400;
-  // Reassembly bound: a large message beyond this many bytes is dropped
-  // (counted), as is one whose packets stop coming for reassembly_timeout.
-  std::size_t max_large_message = 1 << 20;
-  rt::Duration reassembly_timeout = std::chrono::seconds(2);
-  std::size_t max_reassemblies = 16;   // large messages in progress at once (the oldest goes)
+  std::size_t max_packet_contents = jss::kDefaultMaxPacketContents;
+  // Large messages received: bounded in number, bytes and time (dropped ones are counted).
+  jss::ReassemblyLimits reassembly;
   std::size_t max_learnt_endpoints = 1024;  // JSS IDs whose endpoint is remembered (the oldest goes)
   rt::LogFn log;
 };
@@ -106,7 +104,7 @@ struct JssSessionCounters {
   std::uint64_t acks_received = 0;
   std::uint64_t large_messages_sent = 0;
   std::uint64_t large_messages_received = 0;
-  std::uint64_t large_messages_dropped = 0;  // out of order, too large, timed out or evicted
+  std::uint64_t large_messages_dropped = 0;  // stray packets, too large, timed out, refused (logged)
 };
 
 class JssSession {
