@@ -17,6 +17,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "jaus/jss/codecs.hpp"
 #include "jaus/wire/describe.hpp"
 #include "lua_text.hpp"
 
@@ -74,6 +75,16 @@ template <class Count, class Record>
 struct IsRecords<wire::Records<Count, Record>> : std::true_type {
   using record = Record;
 };
+template <class C>
+struct IsEmbedded : std::false_type {};
+template <class S>
+struct IsEmbedded<jss::codec::Embedded<S>> : std::true_type {
+  static constexpr std::size_t size_bytes = sizeof(S);
+};
+template <class C>
+struct IsTagged : std::false_type {};
+template <std::size_t N>
+struct IsTagged<jss::codec::Tagged<N>> : std::true_type {};
 template <class C>
 struct IsFromDim : std::false_type {};
 template <std::size_t K, std::uint32_t Less>
@@ -164,6 +175,18 @@ std::string codec_lua(const Codec& codec) {
     return "k=\"address\",s=4";
   } else if constexpr (std::is_same_v<Codec, wire::EventLimitCodec>) {
     return "k=\"limit\"";
+  } else if constexpr (std::is_same_v<Codec, jss::codec::Str8>) {
+    return "k=\"str8\"";
+  } else if constexpr (std::is_same_v<Codec, jss::codec::IdCodec>) {
+    return "k=\"jssid\",s=4";
+  } else if constexpr (IsEmbedded<Codec>::value) {
+    return "k=\"embedded\",size=" + std::to_string(IsEmbedded<Codec>::size_bytes) + ",min=" +
+           std::to_string(codec.min_size);
+  } else if constexpr (IsTagged<Codec>::value) {
+    std::string out = "k=\"tagged\",alts={";
+    for (const auto& a : codec.tag_alternatives())
+      out += "[" + std::to_string(a.tag) + "]={n=" + lua_string(a.name) + ",s=" + std::to_string(a.size) + "},";
+    return out + "}";
   } else if constexpr (IsDimension<Codec>::value) {
     using T = typename IsDimension<Codec>::type;
     return int_params<T>("dim") + ",dim=" + std::to_string(IsDimension<Codec>::index) +

@@ -2,6 +2,9 @@
 -- body description), which the plugin defines just before this file from the
 -- message descriptions (apps/wireshark/jaus_table.hpp), and uses the
 -- prelude's bit32, field_registry, int_ftype, names_of and register_udp.
+-- AS5669A datagrams (SAE JAUS, version byte 0x02) on the same port are
+-- jss.lua's, which follows this file in the same block and uses its walkers;
+-- register.lua then registers the protocol's fields and the port.
 -- It never names a message or a field. Field abbreviations are
 -- jaus.<message>.<field path> (e.g. jaus.report_global_pose.latitude_deg);
 -- the structural items of a body end in .pv (presence vector, with one bit
@@ -63,7 +66,6 @@ local ef = {
   header = ProtoExpert.new("jaus.bad_header", "Bad JAUS header", expert.group.MALFORMED, expert.severity.ERROR),
   lds = ProtoExpert.new("jaus.large_data_set", "Packet of a large data set", expert.group.REASSEMBLE, expert.severity.NOTE),
 }
-jaus.experts = {ef.malformed, ef.unknown, ef.trailing, ef.header, ef.lds}
 
 -- ---- ProtoFields of the generated descriptions -----------------------------
 
@@ -146,8 +148,6 @@ for code, m in pairs(MESSAGES) do
   m.code = code
   prepare_body(m.body, "jaus." .. m.slug)
 end
-
-jaus.fields = fields
 
 -- ---- walking a body ---------------------------------------------------------
 
@@ -570,19 +570,31 @@ local function dissect_message(tvb, off, pinfo, tree, root)
 end
 
 local OPC = "JAUS01.0"
+local AS5669A = 2
 
 -- The framing by its prefix (a short message after it is reported, not skipped).
 local function framing_of(tvb)
   if tvb:len() >= 8 and tvb(0, 8):string() == OPC then return "OPC" end
   if tvb:len() >= 5 and tvb(0, 1):uint() == 1 and tvb(1, 2):uint() == 0 then return "JUDP" end
+  if tvb:len() >= 1 and tvb(0, 1):uint() == AS5669A then return "AS5669A" end
   return nil
 end
+
+-- AS5669A datagrams: jss.lua.
+local dissect_as5669a
 
 function jaus.dissector(tvb, pinfo, tree)
   local framing = framing_of(tvb)
   if framing == nil then return 0 end
-  pinfo.cols.protocol:set("JAUS")
   local root = tree:add(jaus, tvb())
+  if framing == "AS5669A" then
+    pinfo.cols.protocol:set("JAUS/JSS")
+    root:add(hf.framing, tvb(0, 1), "AS5669A")
+    local ok, err = pcall(dissect_as5669a, tvb, pinfo, root)
+    if not ok then root:add_proto_expert_info(ef.malformed, "dissector error: " .. tostring(err)) end
+    return tvb:len()
+  end
+  pinfo.cols.protocol:set("JAUS")
   local off
   if framing == "OPC" then
     root:add(hf.framing, tvb(0, 8), "OPC")
@@ -604,12 +616,17 @@ function jaus.dissector(tvb, pinfo, tree)
   return tvb:len()
 end
 
--- On other ports: a prefix and at least a header after it.
+-- On other ports: a prefix and at least a header after it (for AS5669A, a
+-- whole transport message with message type 0 and no header compression).
 local function heuristic(tvb, pinfo, tree)
   local framing = framing_of(tvb)
-  if framing == nil or tvb:len() < (framing == "OPC" and 8 or 5) + 16 then return false end
+  if framing == "AS5669A" then
+    if tvb:len() < 15 or tvb(1, 1):uint() ~= 0 then return false end
+    local size = tvb(2, 2):le_uint()
+    if size < 14 or size > tvb:len() - 1 then return false end
+  elseif framing == nil or tvb:len() < (framing == "OPC" and 8 or 5) + 16 then
+    return false
+  end
   jaus.dissector(tvb, pinfo, tree)
   return true
 end
-
-register_udp(jaus, heuristic)
