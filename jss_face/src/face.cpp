@@ -337,6 +337,12 @@ bool JssFace::owns(const Address& ra_destination) const { return impl_->aliases_
 void JssFace::from_node(const Header& header, std::span<const std::uint8_t> payload) {
   impl_->from_node(header, payload);
 }
+bool JssFace::holds_state_for(std::uint16_t subsystem, std::uint8_t node) const {
+  const jss::JssId client_node{subsystem, node, jss::JssId::kAll};
+  const auto slot = impl_->aliases_.find(client_node);
+  return slot && (impl_->node_.holds_state_for(impl_->aliases_.alias_subsystem(), *slot) ||
+                  impl_->events_.has_events_of(client_node));
+}
 std::optional<jss::JssId> JssFace::jss_id_of(const Address& ra_component) const {
   return impl_->ids_.jss_id_of(ra_component);
 }

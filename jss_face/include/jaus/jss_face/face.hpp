@@ -88,6 +88,10 @@ class JssFace {
   // An RA message from a local component to a JSS client's alias.
   void from_node(const Header& header, std::span<const std::uint8_t> payload);
 
+  // Whether a JSS client node (subsystem, node) holds state here: its alias
+  // holds control, an emergency, a service connection, or it has events. The
+  // transport pins its route meanwhile (UdpLink::pin_jss_routes_while).
+  bool holds_state_for(std::uint16_t subsystem, std::uint8_t node) const;
   // Our JSS ID of a local RA component.
   std::optional<jss::JssId> jss_id_of(const Address& ra_component) const;
   const FaceConfig& config() const;
