@@ -18,7 +18,8 @@ msg::SetLocalWaypoint local_waypoint_to_ra(const jss::msg::SetLocalWaypoint& jss
 }
 
 WaypointDrivers::~WaypointDrivers() {
-  if (port_ != nullptr && timer_ != rt::kNoTimer) port_->scheduler().cancel(timer_);
+  // The node's scheduler outlives the face; the face's port may be half gone by now.
+  if (scheduler_ != nullptr && timer_ != rt::kNoTimer) scheduler_->cancel(timer_);
 }
 
 WaypointDriverState& WaypointDrivers::state(const Address& ra_driver) {
@@ -67,7 +68,9 @@ void WaypointDrivers::set_speed(FacePort& port, const JssInbound& m, double spee
 std::uint16_t WaypointDrivers::active_element(FacePort& port, const Address& ra_driver) {
   const auto* d = driver(port, ra_driver);
   const auto& s = state(ra_driver);
-  if (d == nullptr || d->state() != rt::PrimaryStatus::ready || d->route_finished()) return 0;
+  // Not driving: halted (Standby, Emergency, control of the primitive driver
+  // lost) and not restarted; Clear Emergency returns to Ready without driving.
+  if (d == nullptr || d->state() != rt::PrimaryStatus::ready || !d->driving() || d->route_finished()) return 0;
   if (s.loaded != WaypointDriverState::Loaded::element_list) return 0;
   // The RA list is no longer the one we loaded (an RA client loaded another).
   if (d->waypoints().size() != s.route_uids.size()) return 0;
@@ -104,8 +107,9 @@ bool WaypointDrivers::left_ready(FacePort& port, const Address& ra_driver, const
 
 void WaypointDrivers::watch(FacePort& port) {
   port_ = &port;
+  scheduler_ = &port.scheduler();
   if (timer_ != rt::kNoTimer) return;
-  timer_ = port.scheduler().call_at(port.clock().now() + kLeaveReadyCheckPeriod, [this] {
+  timer_ = scheduler_->call_at(port.clock().now() + kLeaveReadyCheckPeriod, [this] {
     timer_ = rt::kNoTimer;
     check_left_ready();
   });

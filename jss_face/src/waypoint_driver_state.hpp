@@ -85,6 +85,7 @@ class WaypointDrivers {
 
   std::map<Address, WaypointDriverState> states_;
   FacePort* port_ = nullptr;  // the face's, for the check's timer
+  rt::Scheduler* scheduler_ = nullptr;
   rt::TimerId timer_ = rt::kNoTimer;
 };
 
