@@ -2,7 +2,9 @@
 // codec on the command line. Output is JSON (decode) or hex (encode); errors
 // are one line on stderr naming the offset or field, with exit code 2.
 // `wireshark` writes the Lua dissector generated from the descriptions (JAUS
-// and Clearpath: apps/wireshark, docs/wireshark.md).
+// and Clearpath: apps/wireshark, docs/wireshark.md). With --dialect jss,
+// decode, encode, list and doc work on SAE JAUS (JSS) messages and AS5669A
+// datagrams by the JSS catalogue (docs/jss-messages.md).
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -12,7 +14,9 @@
 
 #include "commands.hpp"
 #include "jaus/base/hex.hpp"
+#include "jaus/jss/catalogue.hpp"
 #include "jaus/messages/catalogue.hpp"
+#include "ocu/jss_commands.hpp"
 #include "wireshark_plugin.hpp"
 
 namespace jausctl {
@@ -89,23 +93,31 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
   auto dialect = std::make_shared<std::string>("ra");
   auto add_dialect = [dialect](CLI::App* cmd) {
     cmd->add_option("--dialect", *dialect,
-                    "ra: Part 3 as written (default); openjaus: the quirks of the common open RA 3.3 peer")
-        ->check(CLI::IsMember({"ra", "openjaus"}));
+                    "ra: Part 3 as written (default); openjaus: the common RA 3.3 peer's quirks; jss: SAE JAUS")
+        ->check(CLI::IsMember({"ra", "openjaus", "jss"}));
   };
 
   auto hex = std::make_shared<std::string>();
   auto* decode_cmd = msg->add_subcommand("decode", "Decode a message (16-byte header + payload, hex) to JSON");
   decode_cmd->add_option("hex", *hex, "the message as hex")->required();
   add_dialect(decode_cmd);
-  decode_cmd->callback([&exit_code, hex, dialect] { exit_code = decode(*hex, *dialect); });
+  decode_cmd->callback([&exit_code, hex, dialect] {
+    exit_code = *dialect == "jss" ? ocu::jss_msg_decode(*hex, {std::cout, std::cerr}) : decode(*hex, *dialect);
+  });
 
   auto* encode_cmd = msg->add_subcommand("encode", "Encode a message from JSON on stdin (as `decode` prints it) to hex");
   add_dialect(encode_cmd);
-  encode_cmd->callback([&exit_code, dialect] { exit_code = encode(*dialect); });
+  encode_cmd->callback([&exit_code, dialect] {
+    if (*dialect != "jss") return void(exit_code = encode(*dialect));
+    const std::string input{std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
+    exit_code = ocu::jss_msg_encode(input, {std::cout, std::cerr});
+  });
 
-  auto* doc_cmd = msg->add_subcommand("doc", "Print docs/messages.md, generated from the message descriptions");
-  doc_cmd->callback([&exit_code] {
-    std::cout << jaus::msg::messages_markdown();
+  auto* doc_cmd = msg->add_subcommand(
+      "doc", "Print docs/messages.md (--dialect jss: docs/jss-messages.md), generated from the descriptions");
+  add_dialect(doc_cmd);
+  doc_cmd->callback([&exit_code, dialect] {
+    std::cout << (*dialect == "jss" ? jaus::jss::messages_markdown() : jaus::msg::messages_markdown());
     exit_code = kExitOk;
   });
 
@@ -115,8 +127,11 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
   wireshark_cmd->add_option("-o,--output", *output, "write it to this file instead of stdout");
   wireshark_cmd->callback([&exit_code, output] { exit_code = wireshark(*output); });
 
-  auto* list_cmd = msg->add_subcommand("list", "List every supported message: code, name, subgroup, class");
-  list_cmd->callback([&exit_code] { exit_code = list(); });
+  auto* list_cmd = msg->add_subcommand("list", "List every supported message: code, name, subgroup (jss: service), class");
+  add_dialect(list_cmd);
+  list_cmd->callback([&exit_code, dialect] {
+    exit_code = *dialect == "jss" ? ocu::jss_msg_list({std::cout, std::cerr}) : list();
+  });
 }
 
 }  // namespace jausctl

@@ -2,7 +2,8 @@
 // jausctl as an operator control unit. This file is the command line only:
 // it parses and checks every value (bad input: exit 2, one line naming what
 // is wrong, before any socket is opened), opens an OcuSession and hands over
-// to the command in ocu/.
+// to the command in ocu/. With --dialect jss the same commands speak SAE JAUS
+// (AS5669A, JSS IDs S.N.C) on a JssSession (ocu/jss_commands.hpp).
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
@@ -18,6 +19,7 @@
 #include "ocu/cli_values.hpp"
 #include "jaus/messages/environment_messages.hpp"
 #include "jaus/ocu/message_json.hpp"
+#include "ocu/jss_commands.hpp"
 #include "ocu/ocu_commands.hpp"
 
 namespace jausctl {
@@ -48,10 +50,13 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
                   "local ADDR[:PORT] (port 0: any free port); peers that reply to IP:3794 need <own IP>:3794")->type_name("ADDR[:PORT]")
       ->capture_default_str();
   cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->type_name("opc|judp")->capture_default_str();
-  cmd->add_option("--as", c.as, "this OCU's JAUS address (default: a new 254.N.40.1 each run; reuse it to clear)")
-      ->type_name("S.N.C.I");
+  cmd->add_option("--as", c.as,
+                  "this OCU's address (default: a new 254.N.40.1, jss: 200.N.1, each run; reuse it to clear)")
+      ->type_name("S.N.C.I|S.N.C");
   cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->type_name("SECONDS")->capture_default_str();
-  cmd->add_option("--dialect", c.dialect, "how payloads from the node are read: ra | openjaus")->type_name("ra|openjaus")
+  cmd->add_option("--dialect", c.dialect,
+                  "ra | openjaus: how RA payloads are read; jss: speak SAE JAUS (AS5669A, IDs S.N.C)")
+      ->type_name("ra|openjaus|jss")
       ->capture_default_str();
   cmd->add_flag("-v,--verbose", c.verbosity, "log the runtime: -v warnings, -vv info, -vvv debug");
 }
@@ -111,7 +116,7 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   auto timeout = ocu::parse_seconds(c.timeout);
   if (!timeout) return ocu::invalid("--timeout: " + timeout.error().message());
   if (c.dialect != "ra" && c.dialect != "openjaus")
-    return ocu::invalid("--dialect: bad dialect '" + c.dialect + "': expected ra or openjaus");
+    return ocu::invalid("--dialect: bad dialect '" + c.dialect + "': expected ra, openjaus or jss");
   out.session.bind = *bind;
   out.session.framing = *framing;
   out.session.self = *self;
@@ -124,9 +129,10 @@ Parsed<Common> parse_common(const CommonOptions& c) {
 // SIGINT and SIGTERM ask `session` to stop (the command then cleans up:
 // releases control, terminates its service connections), each time: the
 // clean-up only sends (it never waits), so a second Ctrl-C is never needed.
+template <class Session>
 class StopOnSignals {
  public:
-  StopOnSignals(boost::asio::io_context& io, ocu::OcuSession& session) : signals_(io, SIGINT, SIGTERM), session_(session) {
+  StopOnSignals(boost::asio::io_context& io, Session& session) : signals_(io, SIGINT, SIGTERM), session_(session) {
     arm();
   }
 
@@ -139,7 +145,7 @@ class StopOnSignals {
     });
   }
   boost::asio::signal_set signals_;
-  ocu::OcuSession& session_;
+  Session& session_;
 };
 
 // Parses the common options, opens the session and runs `command` on it.
@@ -154,7 +160,30 @@ int with_session(std::string_view name, const Common& common, Run run) {
     std::cerr << "jausctl " << name << ": " << session.error().message() << "\n";
     return kExitFailure;
   }
-  const StopOnSignals signals(io, **session);
+  const StopOnSignals<ocu::OcuSession> signals(io, **session);
+  return run(**session, ocu::CommandIo{std::cout, std::cerr});
+}
+
+bool is_jss(const CommonOptions& c) { return c.dialect == "jss"; }
+
+// --dialect jss: the JSS operator unit's options ("--framing" is the RA's: AS5669A has one).
+Parsed<ocu::JssCommon> parse_jss_common(const CommonOptions& c) {
+  auto parsed = ocu::parse_jss_common(ocu::JssCommonText{c.to, c.multicast, c.bind, c.as, c.timeout});
+  if (parsed) parsed->session.log = stderr_log(c.verbosity);
+  return parsed;
+}
+
+// The same as with_session, on a JSS session.
+template <class Run>
+int with_jss_session(std::string_view name, const ocu::JssCommon& common, Run run) {
+  std::signal(SIGPIPE, SIG_IGN);
+  boost::asio::io_context io;
+  auto session = ocu::JssSession::open(common.session, &io);
+  if (!session) {
+    std::cerr << "jausctl " << name << ": " << session.error().message() << "\n";
+    return kExitFailure;
+  }
+  const StopOnSignals<ocu::JssSession> signals(io, **session);
   return run(**session, ocu::CommandIo{std::cout, std::cerr});
 }
 
@@ -175,6 +204,14 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     }
     return *parsed;
   };
+  auto checked_jss = [common](std::string_view name, int& rc) -> std::optional<ocu::JssCommon> {
+    auto parsed = parse_jss_common(*common);
+    if (!parsed) {
+      rc = bad_input(name, parsed.error().message());
+      return std::nullopt;
+    }
+    return *parsed;
+  };
 
   // discover
   auto wait = std::make_shared<std::string>("2");
@@ -183,7 +220,17 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   discover->add_option("--wait", *wait, "seconds to listen and ask")->type_name("SECONDS")->capture_default_str();
   discover->add_flag("--json", *json, "print JSON instead of a table");
   add_common_options(discover, *common);
-  discover->callback([&exit_code, checked_common, wait, json] {
+  discover->callback([&exit_code, common, checked_common, checked_jss, wait, json] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("discover", exit_code);
+      if (!c) return;
+      auto seconds = ocu::parse_seconds(*wait);
+      if (!seconds) return void(exit_code = bad_input("discover", "--wait: " + seconds.error().message()));
+      exit_code = with_jss_session("discover", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_discover(s, *seconds, *json, io);
+      });
+      return;
+    }
     auto c = checked_common("discover", exit_code);
     if (!c) return;
     auto seconds = ocu::parse_seconds(*wait);
@@ -198,7 +245,17 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto* status = app.add_subcommand("status", "Query Component Status of ADDR; prints JSON");
   status->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
   add_common_options(status, *common);
-  status->callback([&exit_code, checked_common, target] {
+  status->callback([&exit_code, common, checked_common, checked_jss, target] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("status", exit_code);
+      if (!c) return;
+      auto id = ocu::parse_jss_id(*target, true);
+      if (!id) return void(exit_code = bad_input("status", id.error().message()));
+      exit_code = with_jss_session("status", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_status(s, *id, c->timeout, io);
+      });
+      return;
+    }
     auto c = checked_common("status", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
@@ -219,7 +276,29 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   query->add_option("--save-image", *save_image, "write the picture of a Report Image to FILE (PNG or JPEG as sent)")
       ->type_name("FILE");
   add_common_options(query, *common);
-  query->callback([&exit_code, checked_common, target, code, pv, fields, save_image] {
+  query->callback([&exit_code, common, checked_common, checked_jss, target, code, pv, fields, save_image] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("query", exit_code);
+      if (!c) return;
+      auto id = ocu::parse_jss_id(*target, true);
+      if (!id) return void(exit_code = bad_input("query", id.error().message()));
+      auto info = ocu::parse_jss_message(*code);
+      if (!info) return void(exit_code = bad_input("query", info.error().message()));
+      auto field_json = ocu::Json::parse(*fields, nullptr, false);
+      if (field_json.is_discarded()) return void(exit_code = bad_input("query", "--fields is not valid JSON"));
+      if (!pv->empty()) {
+        auto parsed_pv = ocu::parse_presence_vector(*pv);
+        if (!parsed_pv) return void(exit_code = bad_input("query", "--pv: " + parsed_pv.error().message()));
+        if (field_json.is_object()) field_json["presence_vector"] = *parsed_pv;
+      }
+      if (!save_image->empty()) return void(exit_code = bad_input("query", "--save-image is for RA Query Image"));
+      auto prepared = ocu::prepare_jss_query(**info, field_json);
+      if (!prepared) return void(exit_code = bad_input("query", prepared.error().message()));
+      exit_code = with_jss_session("query", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_query(s, *id, *prepared, c->timeout, io);
+      });
+      return;
+    }
     auto c = checked_common("query", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
@@ -255,7 +334,24 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   send->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
   send->add_option("JSON", *message, "the message; - reads it from stdin")->type_name("JSON")->required();
   add_common_options(send, *common);
-  send->callback([&exit_code, checked_common, target, message] {
+  send->callback([&exit_code, common, checked_common, checked_jss, target, message] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("send", exit_code);
+      if (!c) return;
+      auto id = ocu::parse_jss_id(*target, true);
+      if (!id) return void(exit_code = bad_input("send", id.error().message()));
+      std::string text = *message;
+      if (text == "-") text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+      const auto parsed = ocu::Json::parse(text, nullptr, false);
+      if (parsed.is_discarded())
+        return void(exit_code = bad_input("send", std::string(*message == "-" ? "stdin" : "the message") + " is not valid JSON"));
+      auto contents = ocu::prepare_jss_message(parsed);
+      if (!contents) return void(exit_code = bad_input("send", contents.error().message()));
+      exit_code = with_jss_session("send", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_send(s, *id, *contents, c->timeout, io);
+      });
+      return;
+    }
     auto c = checked_common("send", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
@@ -292,8 +388,31 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   control->add_flag("--resume-when-ready", *resume_when_ready,
                     "resume once Ready. UNSAFE: a Clear Emergency or Resume by anyone restarts the motion");
   add_common_options(control, *common);
-  control->callback([&exit_code, checked_common, target, authority, hold_for, repeated, repeat_rate,
-                     resume_when_ready] {
+  control->callback([&exit_code, common, checked_common, checked_jss, target, authority, hold_for, repeated,
+                     repeat_rate, resume_when_ready] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("control", exit_code);
+      if (!c) return;
+      ocu::JssControlCommand command;
+      auto id = ocu::parse_jss_id(*target, false);
+      if (!id) return void(exit_code = bad_input("control", id.error().message()));
+      auto level = ocu::parse_authority(*authority);
+      if (!level) return void(exit_code = bad_input("control", "--authority: " + level.error().message()));
+      if (!hold_for->empty()) {
+        auto seconds = ocu::parse_seconds(*hold_for);
+        if (!seconds) return void(exit_code = bad_input("control", "--for: " + seconds.error().message()));
+        command.hold_for = *seconds;
+      }
+      if (!repeated->empty() || !repeat_rate->empty() || *resume_when_ready)
+        return void(exit_code = bad_input("control", "--send, --rate and --resume-when-ready are RA only"));
+      command.target = *id;
+      command.authority = *level;
+      command.timeout = c->timeout;
+      exit_code = with_jss_session("control", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_control(s, command, io);
+      });
+      return;
+    }
     auto c = checked_common("control", exit_code);
     if (!c) return;
     ocu::ControlOptions options;
@@ -340,7 +459,10 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       "subscribe", "Service connection for report CODE from ADDR: one JSON line per report; rate on stderr");
   subscribe->add_option("ADDR", *target, "component address S.N.C.I")->type_name("S.N.C.I")->required();
   subscribe->add_option("CODE", *code, "report code (0x4002) or name (\"Report Component Status\")")->type_name("CODE")->required();
-  subscribe->add_option("--rate", *rate, "reports per second (up to 1092)")->type_name("HZ")->required();
+  subscribe->add_option("--rate", *rate, "reports per second (up to 1092); required but with --every-change")
+      ->type_name("HZ");
+  auto every_change = std::make_shared<bool>(false);
+  subscribe->add_flag("--every-change", *every_change, "jss: an event on every change of the report, not periodic");
   subscribe->add_option("--pv", *pv, "presence vector, hex (which fields each report carries)")->type_name("HEX");
   subscribe->add_option("--count", *count, "stop after this many reports")->type_name("N");
   subscribe->add_option("--for", *run_for, "stop after this many seconds")->type_name("SECONDS");
@@ -348,7 +470,59 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
                         "write the picture of each Report Image over FILE (the latest one stays)")
       ->type_name("FILE");
   add_common_options(subscribe, *common);
-  subscribe->callback([&exit_code, checked_common, target, code, rate, pv, count, run_for, save_image] {
+  subscribe->callback([&exit_code, common, checked_common, checked_jss, target, code, rate, every_change, pv, count,
+                       run_for, save_image] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("subscribe", exit_code);
+      if (!c) return;
+      ocu::JssSubscribeCommand command;
+      auto id = ocu::parse_jss_id(*target, false);
+      if (!id) return void(exit_code = bad_input("subscribe", id.error().message()));
+      auto info = ocu::parse_jss_message(*code);
+      if (!info) return void(exit_code = bad_input("subscribe", info.error().message()));
+      // A report names the event by its query (Report X -> Query X); a query is taken as it is.
+      const auto* query = *info;
+      if (query->message_class == jaus::jss::MessageClass::inform)
+        query = jaus::jss::find_message(static_cast<std::uint16_t>(query->id - 0x2000));
+      if (!query || query->message_class != jaus::jss::MessageClass::query)
+        return void(exit_code = bad_input("subscribe", std::string((*info)->name) + " is neither a report nor a query"));
+      auto fields = ocu::Json::object();
+      if (!pv->empty()) {
+        auto parsed_pv = ocu::parse_presence_vector(*pv);
+        if (!parsed_pv) return void(exit_code = bad_input("subscribe", "--pv: " + parsed_pv.error().message()));
+        fields["presence_vector"] = *parsed_pv;
+      }
+      auto prepared = ocu::prepare_jss_query(*query, fields);
+      if (!prepared) return void(exit_code = bad_input("subscribe", prepared.error().message()));
+      if (*every_change == !rate->empty())
+        return void(exit_code = bad_input("subscribe", "give either --rate HZ or --every-change"));
+      if (!rate->empty()) {
+        auto hz = ocu::parse_rate_hz(*rate);
+        if (!hz) return void(exit_code = bad_input("subscribe", "--rate: " + hz.error().message()));
+        command.rate_hz = *hz;
+      }
+      if (!count->empty()) {
+        auto n = ocu::parse_count(*count);
+        if (!n) return void(exit_code = bad_input("subscribe", "--count: " + n.error().message()));
+        command.count = *n;
+      }
+      if (!run_for->empty()) {
+        auto seconds = ocu::parse_seconds(*run_for);
+        if (!seconds) return void(exit_code = bad_input("subscribe", "--for: " + seconds.error().message()));
+        command.run_for = *seconds;
+      }
+      if (!save_image->empty()) return void(exit_code = bad_input("subscribe", "--save-image is for RA Report Image"));
+      command.target = *id;
+      command.query = std::move(*prepared);
+      command.every_change = *every_change;
+      command.timeout = c->timeout;
+      exit_code = with_jss_session("subscribe", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_subscribe(s, command, io);
+      });
+      return;
+    }
+    if (*every_change) return void(exit_code = bad_input("subscribe", "--every-change needs --dialect jss"));
+    if (rate->empty()) return void(exit_code = bad_input("subscribe", "--rate is required"));
     auto c = checked_common("subscribe", exit_code);
     if (!c) return;
     ocu::SubscribeOptions options;
@@ -402,7 +576,19 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       ->type_name("set|clear")
       ->required();
   add_common_options(emergency, *common);
-  emergency->callback([&exit_code, checked_common, target, action] {
+  emergency->callback([&exit_code, common, checked_common, checked_jss, target, action] {
+    if (is_jss(*common)) {
+      auto c = checked_jss("emergency", exit_code);
+      if (!c) return;
+      auto id = ocu::parse_jss_id(*target, true);
+      if (!id) return void(exit_code = bad_input("emergency", id.error().message()));
+      if (*action != "set" && *action != "clear")
+        return void(exit_code = bad_input("emergency", "bad action '" + *action + "': expected set or clear"));
+      exit_code = with_jss_session("emergency", *c, [&](ocu::JssSession& s, ocu::CommandIo io) {
+        return ocu::run_jss_emergency(s, *id, *action == "set", c->timeout, io);
+      });
+      return;
+    }
     auto c = checked_common("emergency", exit_code);
     if (!c) return;
     auto address = ocu::parse_address(*target, true);

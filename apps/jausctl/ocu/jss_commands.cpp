@@ -1,0 +1,256 @@
+// The session commands of --dialect jss: status, query, send, emergency,
+// control, subscribe, each on a JssSession. Queries are resent every 250 ms
+// until answered; commands go with an ACK request, resent until ACKed
+// (JssSession::send_contents_must_arrive), as the RA commands do.
+#include <algorithm>
+
+#include "jaus/jss/all.hpp"
+#include "jaus/ocu/jss_control.hpp"
+#include "jaus/ocu/jss_events.hpp"
+#include "jaus/ocu/names.hpp"
+#include "jaus/ocu/rate_meter.hpp"
+#include "jss_commands.hpp"
+
+namespace jausctl::ocu {
+
+namespace {
+
+namespace msg = jaus::jss::msg;
+using jaus::jss::JssId;
+
+constexpr std::uint16_t kFirstQueryId = 0x2000;  // below: commands
+constexpr jaus::rt::Duration kClearSettles = std::chrono::seconds(1);
+constexpr jaus::rt::Duration kClearPoll = std::chrono::milliseconds(100);
+
+int fail(CommandIo io, std::string_view command, const std::string& why) {
+  io.err << "jausctl " << command << ": " << why << "\n";
+  return kExitFailure;
+}
+
+// The JSON of received contents, as `jausctl msg decode --dialect jss` prints them, with who sent them.
+jaus::Expected<Json> received_json(const JssReceived& message) {
+  auto json = jaus::jss::contents_to_json(message.contents);
+  if (!json) {
+    jaus::Error e = json.error();
+    e.detail = "from " + message.source().to_string() + ": " + e.detail;
+    return jaus::unexpected(std::move(e));
+  }
+  (*json)["source"] = message.source().to_string();
+  return json;
+}
+
+std::string message_name(std::span<const std::uint8_t> contents) {
+  const auto id = jaus::jss::message_id_of(contents);
+  const auto* info = jaus::jss::find_message(id);
+  return info ? std::string(info->name) : code_text(id);
+}
+
+std::string transmissions_text(const ArrivalResult& result) {
+  return std::to_string(result.transmissions) + (result.transmissions == 1 ? " transmission" : " transmissions") +
+         " in " + seconds_text(result.elapsed);
+}
+
+std::string not_arrived_text(const std::string& what, const JssId& target, const ArrivalResult& result) {
+  switch (result.outcome) {
+    case Arrival::refused: return what + " to " + target.to_string() + " refused (NAK)";
+    case Arrival::interrupted: return what + " to " + target.to_string() + ": interrupted before it was acknowledged";
+    case Arrival::acknowledged:
+    case Arrival::unacknowledged: break;
+  }
+  return what + " to " + target.to_string() + " not acknowledged (" + transmissions_text(result) + ")";
+}
+
+// The first message from `from` after this is made, kept while a command is retransmitted.
+class FirstReply {
+ public:
+  FirstReply(JssSession& session, const JssId& from)
+      : session_(session), id_(session.listen([this, from](const JssReceived& r) {
+          if (!reply_ && from.matches(r.source())) reply_ = r;
+        })) {}
+  ~FirstReply() { session_.unlisten(id_); }
+  FirstReply(const FirstReply&) = delete;
+  FirstReply& operator=(const FirstReply&) = delete;
+  const std::optional<JssReceived>& reply() const { return reply_; }
+
+ private:
+  JssSession& session_;
+  std::optional<JssReceived> reply_;
+  JssSession::ListenerId id_;
+};
+
+jaus::Expected<msg::ReportStatus> query_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout) {
+  auto report = session.query<msg::ReportStatus>(target, msg::QueryStatus{}, timeout);
+  if (!report && report.error().code != jaus::ErrorCode::timeout && report.error().code != jaus::ErrorCode::interrupted)
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::malformed, "Report Status from " + target.to_string() +
+                                                                             " does not decode: " +
+                                                                             report.error().message()));
+  return report;
+}
+
+bool is_emergency(const msg::ReportStatus& report) {
+  return (report.status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
+}
+
+}  // namespace
+
+int run_jss_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout, CommandIo io) {
+  auto report = query_status(session, target, timeout);
+  if (!report) return fail(io, "status", report.error().message());
+  const unsigned code = report->status & 0x0F;
+  const std::string_view name = jaus::wire::name_of(jaus::msg::kComponentStates, code);
+  const Json out{{"component", target.to_string()},
+                 {"primary_status", name.empty() ? Json(code) : Json(std::string(name))},
+                 {"primary_status_code", code},
+                 {"emergency", is_emergency(*report)}};
+  io.out << json_line(out) << "\n";
+  return kExitOk;
+}
+
+int run_jss_query(JssSession& session, const JssId& target, const JssPreparedQuery& query, jaus::rt::Duration timeout,
+                  CommandIo io) {
+  auto reply = session.request_contents(target, query.contents, {query.report_id}, timeout);
+  if (!reply) return fail(io, "query", reply.error().message());
+  auto json = received_json(*reply);
+  if (!json) return fail(io, "query", json.error().message());
+  io.out << json_line(*json) << "\n";
+  return kExitOk;
+}
+
+int run_jss_send(JssSession& session, const JssId& target, const std::vector<std::uint8_t>& message,
+                 jaus::rt::Duration timeout, CommandIo io) {
+  const FirstReply first(session, target);
+  const auto start = session.clock().now();
+  const auto id = jaus::jss::message_id_of(message);
+  if (id < kFirstQueryId && !target.is_broadcast()) {
+    const auto priority = id == msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical
+                                                        : jaus::jss::JudpPriority::normal;
+    const auto arrival = session.send_contents_must_arrive(target, message, priority);
+    if (arrival.outcome != Arrival::acknowledged)
+      return fail(io, "send", not_arrived_text(message_name(message), target, arrival));
+  } else {
+    session.send_contents(target, message);
+  }
+  // JSS commands mostly have no reply: silence is not a failure.
+  const auto waited = session.clock().now() - start;
+  if (!first.reply() && waited < timeout)
+    session.run_until([&] { return first.reply().has_value(); }, timeout - waited);
+  if (!first.reply()) return session.interrupted() ? fail(io, "send", "interrupted") : kExitOk;
+  auto json = received_json(*first.reply());
+  if (!json) return fail(io, "send", json.error().message());
+  io.out << json_line(*json) << "\n";
+  return kExitOk;
+}
+
+int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::rt::Duration timeout, CommandIo io) {
+  msg::SetEmergency set_message;
+  set_message.emergency_code = 1;  // STOP, the only code JSS defines
+  msg::ClearEmergency clear_message;
+  clear_message.emergency_code = 1;
+  const auto arrival = set ? session.send_must_arrive(target, set_message, jaus::jss::JudpPriority::safety_critical)
+                           : session.send_must_arrive(target, clear_message);
+  const std::string what = set ? "Set Emergency" : "Clear Emergency";
+  if (target.is_broadcast()) {
+    if (arrival.outcome == Arrival::interrupted) return fail(io, "emergency", what + " interrupted");
+    io.out << what << " sent to " << target.to_string() << " by " << session.self().to_string() << " ("
+           << transmissions_text(arrival) << "; a broadcast is not acknowledged)\n";
+    return kExitOk;
+  }
+  if (arrival.outcome != Arrival::acknowledged) {
+    std::string why = not_arrived_text(what, target, arrival);
+    if (set && arrival.outcome != Arrival::interrupted)
+      why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
+    return fail(io, "emergency", why);
+  }
+  auto report = query_status(session, target, timeout);
+  if (!report)
+    return fail(io, "emergency", what + " acknowledged, but " + report.error().message() + " to show its state");
+  if (set && !is_emergency(*report))
+    return fail(io, "emergency", target.to_string() + " is in " + primary_status_text(report->status) +
+                                     " after Set Emergency");
+  const auto settle_until = session.clock().now() + std::min<jaus::rt::Duration>(timeout, kClearSettles);
+  while (!set && is_emergency(*report) && session.clock().now() < settle_until) {
+    session.run_for(kClearPoll);
+    auto again = query_status(session, target, timeout);
+    if (!again) break;
+    report = std::move(again);
+  }
+  if (!set && is_emergency(*report))
+    return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, " +
+                                     "the platform's own stop does, or " + session.self().to_string() + " never set it");
+  io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " by " << session.self().to_string()
+         << " (state " << primary_status_text(report->status) << ")\n";
+  return kExitOk;
+}
+
+int run_jss_control(JssSession& session, const JssControlCommand& command, CommandIo io) {
+  const std::string what = "control of " + command.target.to_string();
+  JssControlHold::Options options;
+  options.authority = command.authority;
+  options.request_timeout = command.timeout;
+  auto hold = JssControlHold::take(session, command.target, options);
+  if (!hold) return fail(io, "control", hold.error().code == jaus::ErrorCode::refused
+                                            ? what + " refused: " + hold.error().message()
+                                            : hold.error().message());
+  io.out << what << " granted to " << session.self().to_string() << " (authority " << int{command.authority}
+         << "; timeout " << int{(*hold)->timeout_s()} << " s, requested again every "
+         << seconds_text((*hold)->refresh_period()) << ")\n"
+         << std::flush;
+  const auto start = session.clock().now();
+  const bool held = (*hold)->hold_for(command.hold_for);
+  const auto elapsed = elapsed_text(session.clock().now() - start);
+  if (!held) return fail(io, "control", what + " lost after " + elapsed + ": " + (*hold)->lost_reason());
+  auto released = (*hold)->release(command.timeout);
+  if (!released)
+    return fail(io, "control", what + ": Release Control not answered (" + released.error().message() +
+                                   "); its timeout ends the control");
+  io.out << what << " released after " << elapsed << "\n";
+  return kExitOk;
+}
+
+int run_jss_subscribe(JssSession& session, const JssSubscribeCommand& command, CommandIo io) {
+  auto& clock = session.clock();
+  const std::string label = message_name(command.query.contents) + " events from " + command.target.to_string();
+  RateMeter meter(clock.now());
+  bool output_broken = false;
+  JssEventOptions options;
+  options.type = command.every_change ? JssEventType::every_change : JssEventType::periodic;
+  options.rate_hz = command.rate_hz;
+  options.request_timeout = command.timeout;
+  auto event = JssEvent::create(session, command.target, command.query.contents, options,
+                                [&](const JssEventReport& report) {
+                                  meter.tick(clock.now());
+                                  auto json = jaus::jss::contents_to_json(report.report);
+                                  if (!json) {
+                                    io.err << "jausctl subscribe: " << json.error().message() << "\n";
+                                    return;
+                                  }
+                                  (*json)["source"] = report.provider.to_string();
+                                  (*json)["event"] = Json{{"event_id", report.event_id}, {"sequence", report.sequence}};
+                                  io.out << json_line(*json) << "\n" << std::flush;
+                                  output_broken = !io.out;
+                                });
+  if (!event) return fail(io, "subscribe", event.error().message());
+  io.err << "jausctl subscribe: " << label << (command.every_change ? " on every change" : "") << " at "
+         << hz_text((*event)->confirmed_rate_hz()) << " Hz (event " << int{(*event)->event_id()} << ")\n";
+  const auto start = clock.now();
+  const auto limit = command.run_for.value_or(std::chrono::hours(24 * 365));
+  const auto finished = [&] {
+    return output_broken || (command.count && meter.count() >= *command.count) || !(*event)->open();
+  };
+  session.run_until(finished, limit);
+  const bool ended_by_provider = !(*event)->open();
+  const auto cancelled = (*event)->cancel();
+  io.err << "jausctl subscribe: " << label << ": " << summary_text(meter.total())
+         << (ended_by_provider ? "; the event was ended by its provider"
+             : cancelled       ? "; event cancelled"
+                               : "; Cancel Event not confirmed")
+         << "\n";
+  if (command.count && meter.count() < *command.count && !session.interrupted() && !output_broken) {
+    io.err << "jausctl subscribe: only " << meter.count() << " of " << *command.count << " events within "
+           << elapsed_text(clock.now() - start) << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+}  // namespace jausctl::ocu
