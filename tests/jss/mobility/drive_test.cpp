@@ -135,5 +135,30 @@ TEST(JssMobilityDrive, PoseSettingsAreUnsupportedAndChangeNothing) {
   EXPECT_TRUE(logged);
 }
 
+TEST(JssMobilityDrive, MalformedCommandsAreCountedAndNeverActedOn) {
+  JssVehicle v;
+  ASSERT_TRUE(v.wait_ready());
+  ASSERT_EQ(v.request_control(kJssPrimitiveDriver), jss::msg::confirm_control::kControlAccepted);
+  ASSERT_EQ(v.request_control(kJssWaypointDriver), jss::msg::confirm_control::kControlAccepted);
+  const auto malformed = v.face().counters().malformed;
+  // Set Wrench Effort whose presence vector promises a field that is not there.
+  auto effort = jss::encode_contents(forward(80));
+  effort.pop_back();
+  // Set Element whose element data count runs past the end.
+  const std::vector<std::uint8_t> element{0x1a, 0x04, 0x01, 0x01, 0x01, 0x00, 0x00, 0x00,
+                                          0x00, 0x00, 0x00, 0x40, 0x00, 0x0d, 0x04};
+  for (int i = 0; i < 10; ++i) {
+    v.send_contents(kJssPrimitiveDriver, effort);
+    v.send_contents(kJssWaypointDriver, element);
+    v.run_for(100ms);
+  }
+  EXPECT_EQ(v.face().counters().malformed, malformed + 20);
+  EXPECT_LT(v.speed_mps(), 0.01);
+  EXPECT_EQ(v.count(jss::msg::ConfirmElementRequest::code) + v.count(jss::msg::RejectElementRequest::code), 0u);
+  const auto count = v.ask<jss::msg::ReportElementCount>(kJssWaypointDriver, jss::msg::QueryElementCount{});
+  ASSERT_TRUE(count);
+  EXPECT_EQ(count->element_count, 0);
+}
+
 }  // namespace drive_test
 }  // namespace jaus::test

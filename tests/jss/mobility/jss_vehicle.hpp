@@ -114,12 +114,15 @@ class JssVehicle {
   // The client sends `message` to `to` (one AS5669A datagram, ACK requested when asked).
   template <class M>
   void send(const jss::JssId& to, const M& message, bool ack = false) {
+    send_contents(to, jss::encode_contents(message), ack);
+  }
+  // Any contents (message ID, then body), well formed or not.
+  void send_contents(const jss::JssId& to, std::span<const std::uint8_t> contents, bool ack = false) {
     jss::JudpHeader h;
     h.destination = to;
     h.source = client_;
     h.sequence = sequence_++;
     if (ack) h.ack_nak = jss::JudpAckNak::ack_requested;
-    const auto contents = jss::encode_contents(message);
     face_->receive(jss::make_judp_datagram(h, contents), rt::SenderStanding::trusted);
   }
   // Sends and waits up to `timeout` for R from `from` (earlier replies of R dropped first).

@@ -116,6 +116,11 @@ TEST_F(JssWaypointList, TheJudgesFourWaypointsAreReachedInOrder) {
         if (*uid != 0 && (order.empty() || order.back() != *uid)) order.push_back(*uid);
         if (*uid != 0 && !speed_checked) {
           EXPECT_NEAR(*travel_speed(), 1.0, 0.01);  // the JSS speed, not RA's 0.153 m/s steps
+          // Query Local Waypoint: the active element's waypoint.
+          const auto target =
+              v_.ask<jss::msg::ReportLocalWaypoint>(kJssWaypointDriver, jss::msg::QueryLocalWaypoint{{0x01}});
+          EXPECT_TRUE(target);
+          if (target) EXPECT_NEAR(target->x_m, kSquare[*uid - 1].x_m, 1e-3);
           speed_checked = true;
         }
         for (std::size_t i = 0; i < kSquare.size(); ++i) closest[i] = std::min(closest[i], distance(here(), kSquare[i]));
