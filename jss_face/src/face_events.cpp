@@ -1,6 +1,7 @@
 #include "face_events.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "aliases.hpp"
 #include "jaus/jss/contents.hpp"
@@ -90,7 +91,11 @@ std::optional<std::uint8_t> EventEngine::check_setup(const JssInbound& m, std::u
   setup.type = type;
   if (type == kPeriodic) {
     if (requested_hz <= 0) return reject::kInvalidEventSetup;
-    setup.rate_hz = std::min(requested_hz, kMaxRateHz);
+    // The wire's step is 1092/65535 Hz: 5 Hz arrives as 4.9989. Rounded to
+    // 0.01 Hz (within a step, so the confirmed value encodes the same) the
+    // rate is what the client meant: 5 Events a second, not 4.
+    setup.rate_hz = std::min(std::round(requested_hz * 100.0) / 100.0, kMaxRateHz);
+    if (setup.rate_hz <= 0) return reject::kInvalidEventSetup;
   } else {
     setup.rate_hz = 0;
   }

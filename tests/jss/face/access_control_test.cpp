@@ -1,0 +1,116 @@
+// Access control through the face: one arbitration for both dialects (the RA
+// component's), with JSS replies.
+#include "face_node.hpp"
+
+namespace jaus::test {
+namespace {
+
+namespace msg = jss::msg;
+using msg::confirm_control::kControlAccepted;
+using msg::confirm_control::kInsufficientAuthority;
+
+TEST(JssFaceAccessControl, RequestQueryAndReleaseControl) {
+  FaceNode node;
+  EXPECT_EQ(node.request_control(kClientA, kDriver, 5), kControlAccepted);
+  const auto report = node.ask<msg::ReportControl>(kClientA, kDriver, msg::QueryControl{});
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->controller, kClientA);
+  EXPECT_EQ(report->authority, 5);
+  // The RA component's controller is the client's alias.
+  ASSERT_TRUE(node.driver().control().controller().has_value());
+  EXPECT_EQ(node.driver().control().controller()->address.subsystem, 250);
+
+  const auto released = node.ask<msg::RejectControl>(kClientA, kDriver, msg::ReleaseControl{});
+  ASSERT_TRUE(released.has_value());
+  EXPECT_EQ(released->response_code, msg::reject_control::kControlReleased);
+  node.run_for(20ms);
+  EXPECT_FALSE(node.driver().control().controller().has_value());
+  const auto after = node.ask<msg::ReportControl>(kClientA, kDriver, msg::QueryControl{});
+  ASSERT_TRUE(after.has_value());
+  EXPECT_EQ(after->controller, jss::JssId{});
+}
+
+TEST(JssFaceAccessControl, AHigherAuthorityPreemptsAndTheOldControllerGetsRejectZero) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), kControlAccepted);
+  EXPECT_EQ(node.request_control(kClientB, kDriver, 5), kInsufficientAuthority);
+  EXPECT_EQ(node.request_control(kClientB, kDriver, 9), kControlAccepted);
+  node.run_for(20ms);
+  const auto rejected = node.take<msg::RejectControl>(kClientA, kDriver);
+  ASSERT_TRUE(rejected.has_value());
+  EXPECT_EQ(rejected->response_code, msg::reject_control::kControlReleased);
+  const auto report = node.ask<msg::ReportControl>(kClientA, kDriver, msg::QueryControl{});
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->controller, kClientB);
+  EXPECT_EQ(report->authority, 9);
+}
+
+TEST(JssFaceAccessControl, ReportTimeoutIsTheControllerTimeout) {
+  jss_face::FaceConfig config;
+  config.controller_timeout_s = 3;
+  FaceNode node(config);
+  const auto report = node.ask<msg::ReportTimeout>(kClientA, kDriver, msg::QueryTimeout{});
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->timeout_s, 3);
+}
+
+TEST(JssFaceAccessControl, ASilentJssControllerLosesControlAndThePlatformIsStopped) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), kControlAccepted);
+  const auto stops_before = node.driver().counters().stops_commanded;
+  // Kept by sending within the timeout (as AS5710 says: Request Control again).
+  for (int i = 0; i < 4; ++i) {
+    node.run_for(2s);
+    ASSERT_EQ(node.request_control(kClientA, kDriver, 5), kControlAccepted);
+  }
+  EXPECT_TRUE(node.driver().control().controller().has_value());
+  // The controller check reaches the client as JSS Query Status.
+  EXPECT_GT(node.count(kClientA, msg::QueryStatus::code), 0u);
+  node.drop(kClientA, msg::RejectControl::code);
+  // Silent: control goes after the RA controller timeout (3 s), with Reject 0.
+  ASSERT_TRUE(node.run_until([&] { return node.count(kClientA, msg::RejectControl::code) > 0; }, 4s));
+  EXPECT_FALSE(node.driver().control().controller().has_value());
+  EXPECT_GT(node.driver().counters().stops_commanded, stops_before);
+}
+
+TEST(JssFaceAccessControl, AnRaOperatorAndAJssClientSeeOneController) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), kControlAccepted);
+  // The RA operator asks at a higher authority: it takes over, the JSS client hears Reject 0.
+  node.send_ra(kRaDriver, jaus::msg::RequestComponentControl{{9}});
+  ASSERT_TRUE(node.run_until([&] { return node.count(kClientA, msg::RejectControl::code) > 0; }));
+  EXPECT_EQ(node.ra_count(jaus::msg::ConfirmComponentControl::code), 1u);
+  const auto report = node.ask<msg::ReportControl>(kClientA, kDriver, msg::QueryControl{});
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->controller, (jss::JssId{5, 1, 40}));
+  // And the JSS client is refused below it.
+  EXPECT_EQ(node.request_control(kClientA, kDriver, 9), kInsufficientAuthority);
+}
+
+TEST(JssFaceAccessControl, SetAuthorityFromTheControllerChangesItsAuthorityWithoutReply) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), kControlAccepted);
+  node.clear();
+  node.send(kClientA, kDriver, msg::SetAuthority{{7}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.count(kClientA, msg::ConfirmControl::code), 0u);
+  EXPECT_EQ(node.driver().control().controller()->authority, 7);
+  // From another client: ignored.
+  node.send(kClientB, kDriver, msg::SetAuthority{{9}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().control().controller()->authority, 7);
+}
+
+TEST(JssFaceAccessControl, AnObserverIsRefusedControl) {
+  FaceNode node;
+  jss::JudpHeader h;
+  h.source = kClientA;
+  h.destination = kDriver;
+  node.receive(jss::make_judp_datagram(h, jss::encode_contents(msg::RequestControl{{5}})), rt::SenderStanding::observer);
+  ASSERT_TRUE(node.run_until([&] { return node.count(kClientA, msg::ConfirmControl::code) > 0; }));
+  EXPECT_EQ(node.take<msg::ConfirmControl>(kClientA, kDriver)->response_code, kInsufficientAuthority);
+  EXPECT_FALSE(node.driver().control().controller().has_value());
+}
+
+}  // namespace
+}  // namespace jaus::test

@@ -1,0 +1,75 @@
+// Management through the face: the RA component's lifecycle and emergency
+// latch, with JSS Report Status; a JSS stop holds until that client clears.
+#include "face_node.hpp"
+
+namespace jaus::test {
+namespace {
+
+namespace msg = jss::msg;
+constexpr std::uint8_t kReady = 1;
+constexpr std::uint8_t kStandby = 2;
+constexpr std::uint8_t kEmergency = 5;
+
+TEST(JssFaceManagement, StandbyAndResumeFromTheControllerWithReportStatus) {
+  FaceNode node;
+  EXPECT_EQ(node.status_of(kClientA, kDriver), kReady);
+  // Standby only stops: RA obeys it from anyone (JSS would ignore it from a
+  // non-controller; the stop wins). Resume is the controller's.
+  node.send(kClientA, kDriver, msg::Standby{});
+  node.run_for(50ms);
+  EXPECT_EQ(node.status_of(kClientA, kDriver), kStandby);
+  node.send(kClientA, kDriver, msg::Resume{});
+  node.run_for(50ms);
+  EXPECT_EQ(node.status_of(kClientA, kDriver), kStandby);
+
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  node.send(kClientA, kDriver, msg::Resume{});
+  node.run_for(50ms);
+  EXPECT_EQ(node.status_of(kClientA, kDriver), kReady);
+  node.send(kClientA, kDriver, msg::Standby{});
+  node.run_for(50ms);
+  EXPECT_EQ(node.status_of(kClientA, kDriver), kStandby);
+  node.send(kClientA, kDriver, msg::Resume{});
+  node.run_for(50ms);
+  EXPECT_EQ(node.status_of(kClientA, kDriver), kReady);
+  const auto raw = node.ask<msg::ReportStatus>(kClientA, kDriver, msg::QueryStatus{});
+  ASSERT_TRUE(raw.has_value());
+  EXPECT_EQ(raw->reserved, 0u);
+}
+
+TEST(JssFaceManagement, AJssStopHoldsUntilThatClientClearsIt) {
+  FaceNode node;
+  node.send(kClientA, kDriver, msg::SetEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+  EXPECT_EQ(node.status_of(kClientB, kDriver), kEmergency);
+
+  // Another JSS client's Clear does not undo it, nor does an RA peer's.
+  node.send(kClientB, kDriver, msg::ClearEmergency{{1}});
+  node.send_ra(kRaDriver, jaus::msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+
+  // A second component of the same client node (its alias node) is not that sender either.
+  node.send(jss::JssId{42, 1, 2}, kDriver, msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+
+  node.send(kClientA, kDriver, msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_NE(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
+TEST(JssFaceManagement, AJssStopHoldsWhileTheClientIsSilent) {
+  FaceNode node;
+  node.send(kClientA, kDriver, msg::SetEmergency{{1}});
+  node.run_for(60s);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+  // Its alias slot is kept (the node holds state for it): its Clear still counts.
+  node.send(kClientA, kDriver, msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_NE(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
+}  // namespace
+}  // namespace jaus::test

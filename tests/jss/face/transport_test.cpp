@@ -1,0 +1,145 @@
+// The face's transport part: ACK, duplicates, large messages both ways,
+// malformed input, the bounded alias slots.
+#include "face_node.hpp"
+
+namespace jaus::test {
+namespace {
+
+namespace msg = jss::msg;
+
+TEST(JssFaceTransport, AnAckRequestedMessageIsAnsweredAfterDelivery) {
+  FaceNode node;
+  const std::uint16_t sequence = node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, /*ack=*/true);
+  node.run_for(20ms);
+  ASSERT_EQ(node.acks().size(), 1u);
+  const jss::JudpHeader& ack = node.acks()[0];
+  EXPECT_EQ(ack.sequence, sequence);
+  EXPECT_EQ(ack.destination, kClientA);
+  EXPECT_EQ(ack.source, kDriver);
+  EXPECT_EQ(node.counters().acks_sent, 1u);
+  EXPECT_TRUE(node.take<msg::ReportHeartbeatPulse>(kClientA, kDriver).has_value());
+  // Broadcasts are not acknowledged (as JRM).
+  node.send(kClientA, kEveryone, msg::QueryHeartbeatPulse{}, /*ack=*/true);
+  node.run_for(20ms);
+  EXPECT_EQ(node.acks().size(), 1u);
+}
+
+TEST(JssFaceTransport, ACopyIsAcknowledgedButNotActedOnExceptAStop) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  const std::uint16_t sequence = node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true);
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, sequence);
+  node.run_for(20ms);
+  EXPECT_EQ(node.counters().duplicates, 1u);
+  EXPECT_EQ(node.acks().size(), 2u);
+  EXPECT_EQ(node.take_all<msg::ReportHeartbeatPulse>(kClientA).size(), 1u);
+
+  // The same sequence number from another client is no copy.
+  node.send(kClientB, kDriver, msg::QueryHeartbeatPulse{}, false, sequence);
+  node.run_for(20ms);
+  EXPECT_EQ(node.take_all<msg::ReportHeartbeatPulse>(kClientB).size(), 1u);
+
+  // A copy of Set Emergency is acted on (the stop is never lost to the filter).
+  const auto to_ra = node.counters().messages_to_ra;
+  const std::uint16_t stop = node.send(kClientA, kDriver, msg::SetEmergency{{1}});
+  node.send(kClientA, kDriver, msg::SetEmergency{{1}}, false, stop);
+  node.run_for(20ms);
+  EXPECT_EQ(node.counters().messages_to_ra, to_ra + 2);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
+TEST(JssFaceTransport, LargeMessagesBothWays) {
+  jss_face::FaceConfig config;
+  config.max_packet_contents = 64;  // Report Services is several packets
+  FaceNode node(config);
+  const auto before = node.datagrams_sent();
+  const auto report = node.ask<msg::ReportServices>(kClientA, kNodeManager, msg::QueryServices{});
+  ASSERT_TRUE(report.has_value());  // put back together by the test's reassembler
+  EXPECT_GT(node.datagrams_sent() - before, 2u);
+  EXPECT_EQ(node.counters().large_messages_sent, 1u);
+
+  // In: a Register Services over several packets.
+  msg::RegisterServices registration;
+  for (int i = 0; i < 40; ++i) registration.services.push_back({"urn:example:service:" + std::to_string(i), 1, 0});
+  jss::JudpHeader h;
+  h.source = kClientA;
+  h.destination = kNodeManager;
+  h.sequence = 500;
+  const auto datagrams = jss::make_judp_datagrams(h, jss::encode_contents(registration), 200);
+  ASSERT_TRUE(datagrams.has_value());
+  ASSERT_GT(datagrams->size(), 2u);
+  for (const auto& d : *datagrams) node.receive(d);
+  EXPECT_EQ(node.counters().large_messages_received, 1u);
+  EXPECT_EQ(node.counters().malformed, 0u);
+  EXPECT_EQ(node.counters().unsupported, 0u);
+
+  // A middle packet with no first: malformed, dropped.
+  h.sequence = 900;
+  node.receive(jss::make_judp_datagrams(h, jss::encode_contents(registration), 200)->at(1));
+  EXPECT_EQ(node.counters().malformed, 1u);
+}
+
+TEST(JssFaceTransport, MalformedInputIsCountedLoggedAndNeverActedOn) {
+  FaceNode node;
+  const std::vector<std::uint8_t> not_as5669a = {0x01, 0x00, 0x11};
+  node.receive(not_as5669a);
+  jss::JudpHeader h;
+  h.source = kClientA;
+  h.destination = kDriver;
+  // Request Control with two bytes of body.
+  node.receive(jss::make_judp_datagram(h, std::vector<std::uint8_t>{0x0D, 0x00, 5, 5}));
+  // A source that is a wildcard.
+  h.source = jss::JssId{42, 1, 255};
+  node.receive(jss::make_judp_datagram(h, jss::encode_contents(msg::RequestControl{{5}})));
+  // One byte of contents.
+  h.source = kClientA;
+  node.receive(jss::make_judp_datagram(h, std::vector<std::uint8_t>{0x0D}));
+  node.run_for(50ms);
+  EXPECT_EQ(node.counters().malformed, 4u);
+  EXPECT_EQ(node.counters().datagrams_received, 4u);
+  EXPECT_FALSE(node.driver().control().controller().has_value());
+  EXPECT_TRUE(node.received().empty());
+  EXPECT_FALSE(node.log().empty());
+
+  // Not for us, and a message no service handles.
+  node.send(kClientA, jss::JssId{1, 1, 99}, msg::QueryHeartbeatPulse{});
+  node.send(kClientA, kDriver, msg::QueryElementCount{});
+  EXPECT_EQ(node.counters().not_for_us, 1u);
+  EXPECT_EQ(node.counters().unsupported, 1u);
+}
+
+TEST(JssFaceTransport, AFullSlotTableRefusesANewClientButNeverItsStop) {
+  jss_face::FaceConfig config;
+  config.max_clients = 2;
+  FaceNode node(config);
+  // Two clients hold state (control): their slots are kept.
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  ASSERT_EQ(node.request_control(kClientB, kVelocity, 5), msg::confirm_control::kControlAccepted);
+  // A third is refused what needs an alias, and told nothing.
+  EXPECT_FALSE(node.request_control(kClientC, kDriver, 9).has_value());
+  EXPECT_EQ(node.counters().clients_refused, 1u);
+  EXPECT_EQ(node.driver().control().controller()->authority, 5);
+  // What the face answers itself needs no slot.
+  EXPECT_TRUE(node.ask<msg::ReportHeartbeatPulse>(kClientC, kDriver, msg::QueryHeartbeatPulse{}));
+  // Its stop is obeyed all the same.
+  node.send(kClientC, kDriver, msg::SetEmergency{{1}});
+  node.run_for(20ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
+TEST(JssFaceTransport, ASlotWithNoStateGoesToANewClient) {
+  jss_face::FaceConfig config;
+  config.max_clients = 1;
+  FaceNode node(config);
+  ASSERT_TRUE(node.ask<msg::ReportControl>(kClientA, kDriver, msg::QueryControl{}));
+  node.run_for(1s);
+  // A holds nothing: B takes the slot, and A is forgotten.
+  EXPECT_EQ(node.request_control(kClientB, kDriver, 5), msg::confirm_control::kControlAccepted);
+  EXPECT_EQ(node.counters().clients_refused, 0u);
+  // Now B holds control: A cannot get its slot back.
+  EXPECT_FALSE(node.ask<msg::ReportControl>(kClientA, kDriver, msg::QueryControl{}).has_value());
+  EXPECT_EQ(node.counters().clients_refused, 1u);
+}
+
+}  // namespace
+}  // namespace jaus::test
