@@ -18,28 +18,15 @@
 #include <set>
 
 #include "core_translators.hpp"
-#include "face_bytes.hpp"
+#include "jaus/jss/messages/core.hpp"
+#include "jaus/messages/core_messages.hpp"
 #include "jaus/node/node.hpp"
 
 namespace jaus::jss_face {
 namespace {
 
-namespace id {
-constexpr std::uint16_t kSetAuthority = 0x0001;
-constexpr std::uint16_t kRequestControl = 0x000D;
-constexpr std::uint16_t kReleaseControl = 0x000E;
-constexpr std::uint16_t kConfirmControl = 0x000F;
-constexpr std::uint16_t kRejectControl = 0x0010;
-constexpr std::uint16_t kQueryAuthority = 0x2001;
-constexpr std::uint16_t kQueryStatus = 0x2002;
-constexpr std::uint16_t kQueryTimeout = 0x2003;
-constexpr std::uint16_t kQueryControl = 0x200D;
-constexpr std::uint16_t kReportAuthority = 0x4001;
-constexpr std::uint16_t kReportTimeout = 0x4003;
-constexpr std::uint16_t kReportControl = 0x400D;
-}  // namespace id
-
-constexpr std::uint8_t kControlReleased = 0;
+namespace msg = jss::msg;
+namespace ra = jaus::msg;
 
 class AccessControlTranslator final : public ServiceTranslator {
  public:
@@ -51,12 +38,12 @@ class AccessControlTranslator final : public ServiceTranslator {
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
     if (ra_id == kNodeManagerId) return false;
     switch (message_id) {
-      case id::kSetAuthority:
-      case id::kRequestControl:
-      case id::kReleaseControl:
-      case id::kQueryAuthority:
-      case id::kQueryTimeout:
-      case id::kQueryControl:
+      case msg::SetAuthority::code:
+      case msg::RequestControl::code:
+      case msg::ReleaseControl::code:
+      case msg::QueryAuthority::code:
+      case msg::QueryTimeout::code:
+      case msg::QueryControl::code:
         return true;
       default:
         return false;
@@ -65,40 +52,40 @@ class AccessControlTranslator final : public ServiceTranslator {
 
   bool from_jss(const JssInbound& m, FacePort& port) override {
     if (!handles(m.message_id, m.ra_component.component)) return false;
-    const std::size_t expected = (m.message_id == id::kSetAuthority || m.message_id == id::kRequestControl) ? 1 : 0;
-    if (m.body.size() != expected) {
-      port.malformed("JSS message " + hex_id(m.message_id) + " from " + m.origin.client.to_string(),
-                     std::to_string(m.body.size()) + " body bytes where " + std::to_string(expected) + " belong");
-      return true;
-    }
     switch (m.message_id) {
-      case id::kRequestControl:
-        port.send_ra(m.origin, m.ra_component, id::kRequestControl, m.body, m.standing);
+      case msg::RequestControl::code:
+        if (decode_jss<msg::RequestControl>(m, port))  // same byte: the authority
+          port.send_ra(m.origin, m.ra_component, ra::RequestComponentControl::code, m.body, m.standing);
         return true;
-      case id::kReleaseControl: {
+      case msg::ReleaseControl::code: {
+        if (!decode_jss<msg::ReleaseControl>(m, port)) return true;
         const auto controller = controller_of(m, port);
-        port.send_ra(m.origin, m.ra_component, id::kReleaseControl, {}, m.standing);
+        port.send_ra(m.origin, m.ra_component, ra::ReleaseComponentControl::code, {}, m.standing);
         // JSS answers a release with Reject Control 0 (RA answers nothing):
         // the controller's release, or a release of a component nobody controls.
         if (!controller || *controller == m.origin.client)
-          port.reply(m.origin, m.our_component, ContentsWriter(id::kRejectControl).u8(kControlReleased));
+          reply_jss(port, m.origin, m.our_component, msg::RejectControl{{msg::reject_control::kControlReleased}});
         return true;
       }
-      case id::kQueryControl:
-        port.send_ra(m.origin, m.ra_component, id::kQueryControl, {}, m.standing);
+      case msg::QueryControl::code:
+        if (decode_jss<msg::QueryControl>(m, port))
+          port.send_ra(m.origin, m.ra_component, ra::QueryComponentControl::code, {}, m.standing);
         return true;
-      case id::kQueryAuthority:
-        port.send_ra(m.origin, m.ra_component, id::kQueryAuthority, {}, m.standing);
+      case msg::QueryAuthority::code:
+        if (decode_jss<msg::QueryAuthority>(m, port))
+          port.send_ra(m.origin, m.ra_component, ra::QueryComponentAuthority::code, {}, m.standing);
         return true;
-      case id::kQueryTimeout:
-        port.reply(m.origin, m.our_component, ContentsWriter(id::kReportTimeout).u8(port.config().controller_timeout_s));
+      case msg::QueryTimeout::code:
+        if (decode_jss<msg::QueryTimeout>(m, port))
+          reply_jss(port, m.origin, m.our_component, msg::ReportTimeout{{port.config().controller_timeout_s}});
         return true;
-      case id::kSetAuthority: {
+      case msg::SetAuthority::code: {
         // Controller only (others are ignored without reply, as JSS commands are).
+        if (!decode_jss<msg::SetAuthority>(m, port)) return true;
         const auto controller = controller_of(m, port);
         if (!controller || *controller != m.origin.client) return true;
         silent_confirms_.insert({m.origin.client, m.our_component});
-        port.send_ra(m.origin, m.ra_component, id::kRequestControl, m.body, m.standing);
+        port.send_ra(m.origin, m.ra_component, ra::RequestComponentControl::code, m.body, m.standing);
         return true;
       }
       default:
@@ -108,32 +95,35 @@ class AccessControlTranslator final : public ServiceTranslator {
 
   bool from_ra(const RaOutbound& m, FacePort& port) override {
     switch (m.header.command_code) {
-      case id::kConfirmControl: {
-        if (m.payload.size() != 1) return false;
+      case ra::ConfirmComponentControl::code: {
+        const auto confirm = decode_ra<ra::ConfirmComponentControl>(m);
+        if (!confirm) return false;
         if (silent_confirms_.erase({m.to.client, m.our_component}) > 0) return true;  // Set Authority's
-        port.reply(m.to, m.our_component, ContentsWriter(id::kConfirmControl).u8(m.payload[0]));
+        reply_jss(port, m.to, m.our_component, msg::ConfirmControl{{confirm->response_code}});
         return true;
       }
-      case id::kRejectControl:
+      case ra::RejectComponentControl::code:
         silent_confirms_.erase({m.to.client, m.our_component});
-        port.reply(m.to, m.our_component, ContentsWriter(id::kRejectControl).u8(kControlReleased));
+        reply_jss(port, m.to, m.our_component, msg::RejectControl{{msg::reject_control::kControlReleased}});
         return true;
-      case id::kReportControl: {
-        if (m.payload.size() != 5) return false;
-        // RA: subsystem, node, component, instance, authority (u8 each).
-        const Address controller{m.payload[0], m.payload[1], m.payload[2], m.payload[3]};
-        const jss::JssId jss = controller == Address{} ? jss::JssId{} : port.jss_id_for(controller);
-        port.reply(m.to, m.our_component,
-                   ContentsWriter(id::kReportControl).u16(jss.subsystem).u8(jss.node).u8(jss.component).u8(m.payload[4]));
+      case ra::ReportComponentControl::code: {
+        const auto report = decode_ra<ra::ReportComponentControl>(m);
+        if (!report) return false;
+        msg::ReportControl jss_report;
+        if (report->controller != Address{}) jss_report.controller = port.jss_id_for(report->controller);
+        jss_report.authority = report->authority;
+        reply_jss(port, m.to, m.our_component, jss_report);
         return true;
       }
-      case id::kReportAuthority:
-        if (m.payload.size() != 1) return false;
-        port.reply(m.to, m.our_component, ContentsWriter(id::kReportAuthority).u8(m.payload[0]));
+      case ra::ReportComponentAuthority::code: {
+        const auto report = decode_ra<ra::ReportComponentAuthority>(m);
+        if (!report) return false;
+        reply_jss(port, m.to, m.our_component, msg::ReportAuthority{{report->authority}});
         return true;
-      case id::kQueryStatus:
+      }
+      case ra::QueryComponentStatus::code:
         // The RA component checks that its (alias) controller is alive.
-        port.reply(m.to, m.our_component, ContentsWriter(id::kQueryStatus));
+        reply_jss(port, m.to, m.our_component, msg::QueryStatus{});
         return true;
       default:
         return false;
@@ -141,9 +131,7 @@ class AccessControlTranslator final : public ServiceTranslator {
   }
 
   void forget(const jss::JssId& client_node) override {
-    std::erase_if(silent_confirms_, [&](const auto& entry) {
-      return entry.first.subsystem == client_node.subsystem && entry.first.node == client_node.node;
-    });
+    std::erase_if(silent_confirms_, [&](const auto& entry) { return client_node.matches(entry.first); });
   }
 
  private:

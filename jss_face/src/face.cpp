@@ -11,7 +11,7 @@
 
 #include "aliases.hpp"
 #include "builtin_translators.hpp"
-#include "face_bytes.hpp"
+#include "face_text.hpp"
 #include "face_events.hpp"
 #include "face_transport.hpp"
 #include "id_map.hpp"

@@ -2,22 +2,21 @@
 // Pulse itself (the RA component would answer the same, but the face knows
 // it is alive). No unsolicited heartbeat: JSS has none.
 #include "core_translators.hpp"
-#include "face_bytes.hpp"
+#include "jaus/jss/messages/core.hpp"
 
 namespace jaus::jss_face {
 namespace {
 
-constexpr std::uint16_t kQueryHeartbeatPulse = 0x2202;
-constexpr std::uint16_t kReportHeartbeatPulse = 0x4202;
+namespace msg = jss::msg;
 
 class LivenessTranslator final : public ServiceTranslator {
  public:
   std::string_view name() const override { return "liveness"; }
   std::vector<ServiceUri> services(std::uint8_t) const override { return {core_service("Liveness")}; }
-  bool handles(std::uint16_t id, std::uint8_t) const override { return id == kQueryHeartbeatPulse; }
+  bool handles(std::uint16_t id, std::uint8_t) const override { return id == msg::QueryHeartbeatPulse::code; }
   bool from_jss(const JssInbound& m, FacePort& port) override {
-    if (m.message_id != kQueryHeartbeatPulse) return false;
-    port.reply(m.origin, m.our_component, ContentsWriter(kReportHeartbeatPulse));
+    if (m.message_id != msg::QueryHeartbeatPulse::code) return false;
+    if (decode_jss<msg::QueryHeartbeatPulse>(m, port)) reply_jss(port, m.origin, m.our_component, msg::ReportHeartbeatPulse{});
     return true;
   }
   bool from_ra(const RaOutbound&, FacePort&) override { return false; }

@@ -1,47 +1,26 @@
 // Management (jss-notes.md 3.4) on every component but the node manager: the
 // commands are the same bytes in both dialects and go to the RA component
-// from the client's alias, so its rules hold: Resume, Standby, Shutdown and
-// Reset from the controller only; Set Emergency from anyone, a hold that only
-// the same alias's Clear Emergency (or the local clear) releases - nothing a
-// JSS client does undoes a stop it did not make. Query Status -> RA Query
-// Component Status; Report Component Status -> Report Status (the state in
-// the low nibble, the u32 reserved: 0). A client's Report Status (its answer
-// to the controller check's Query Status) goes to the component as a sign of
-// life.
+// from the client's alias, so its rules hold: Resume, Shutdown and Reset from
+// the controller only (Standby from anyone: it only stops, RA's rule); Set
+// Emergency from anyone, a hold that only the same alias's Clear Emergency
+// (or the local clear) releases - nothing a JSS client does undoes a stop it
+// did not make. Query Status -> RA Query Component Status; Report Component
+// Status -> Report Status (the state in the low nibble, the u32 reserved: 0).
+// A client's Report Status (its answer to the controller check's Query
+// Status) goes to the component as a sign of life.
 #include "core_translators.hpp"
-#include "face_bytes.hpp"
+#include "jaus/jss/messages/core.hpp"
+#include "jaus/messages/core_messages.hpp"
 
 namespace jaus::jss_face {
 namespace {
 
-namespace id {
-constexpr std::uint16_t kShutdown = 0x0002;
-constexpr std::uint16_t kStandby = 0x0003;
-constexpr std::uint16_t kResume = 0x0004;
-constexpr std::uint16_t kReset = 0x0005;
-constexpr std::uint16_t kSetEmergency = 0x0006;
-constexpr std::uint16_t kClearEmergency = 0x0007;
-constexpr std::uint16_t kQueryStatus = 0x2002;
-constexpr std::uint16_t kReportStatus = 0x4002;
-}  // namespace id
+namespace msg = jss::msg;
 
-// Body size of each message this translator takes.
-std::optional<std::size_t> body_size_of(std::uint16_t message_id) {
-  switch (message_id) {
-    case id::kShutdown:
-    case id::kStandby:
-    case id::kResume:
-    case id::kReset:
-    case id::kQueryStatus:
-      return 0;
-    case id::kSetEmergency:
-    case id::kClearEmergency:
-      return 2;
-    case id::kReportStatus:
-      return 5;
-    default:
-      return std::nullopt;
-  }
+// Checks the body is M's, then hands the same bytes to the RA component.
+template <class M>
+void forward(const JssInbound& m, FacePort& port) {
+  if (decode_jss<M>(m, port)) port.send_ra(m.origin, m.ra_component, M::code, m.body, m.standing);
 }
 
 class ManagementTranslator final : public ServiceTranslator {
@@ -52,25 +31,46 @@ class ManagementTranslator final : public ServiceTranslator {
     return {core_service("Management")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
-    return ra_id != kNodeManagerId && body_size_of(message_id).has_value();
+    if (ra_id == kNodeManagerId) return false;
+    switch (message_id) {
+      case msg::Shutdown::code:
+      case msg::Standby::code:
+      case msg::Resume::code:
+      case msg::Reset::code:
+      case msg::SetEmergency::code:
+      case msg::ClearEmergency::code:
+      case msg::QueryStatus::code:
+      case msg::ReportStatus::code:
+        return true;
+      default:
+        return false;
+    }
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {
     if (!handles(m.message_id, m.ra_component.component)) return false;
-    if (m.body.size() != *body_size_of(m.message_id)) {
-      port.malformed("JSS message " + hex_id(m.message_id) + " from " + m.origin.client.to_string(),
-                     std::to_string(m.body.size()) + " body bytes where " +
-                         std::to_string(*body_size_of(m.message_id)) + " belong");
-      return true;
+    switch (m.message_id) {
+      case msg::Shutdown::code: forward<msg::Shutdown>(m, port); break;
+      case msg::Standby::code: forward<msg::Standby>(m, port); break;
+      case msg::Resume::code: forward<msg::Resume>(m, port); break;
+      case msg::Reset::code: forward<msg::Reset>(m, port); break;
+      case msg::SetEmergency::code: forward<msg::SetEmergency>(m, port); break;
+      case msg::ClearEmergency::code: forward<msg::ClearEmergency>(m, port); break;
+      case msg::QueryStatus::code: forward<msg::QueryStatus>(m, port); break;
+      case msg::ReportStatus::code: forward<msg::ReportStatus>(m, port); break;  // = RA Report Component Status
+      default: return false;
     }
-    // Same code, same bytes (RA Report Component Status included).
-    port.send_ra(m.origin, m.ra_component, m.message_id, m.body, m.standing);
     return true;
   }
 
   bool from_ra(const RaOutbound& m, FacePort& port) override {
-    if (m.header.command_code != id::kReportStatus || m.payload.size() != 5) return false;
-    port.reply(m.to, m.our_component, ContentsWriter(id::kReportStatus).u8(m.payload[0] & 0x0F).u32(0));
+    if (m.header.command_code != jaus::msg::ReportComponentStatus::code) return false;
+    const auto status = decode_ra<jaus::msg::ReportComponentStatus>(m);
+    if (!status) return false;
+    msg::ReportStatus report;
+    report.status = static_cast<std::uint8_t>(status->primary_status & 0x0F);
+    report.reserved = 0;
+    reply_jss(port, m.to, m.our_component, report);
     return true;
   }
 };
