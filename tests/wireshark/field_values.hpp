@@ -105,7 +105,7 @@ inline std::string joined(const std::vector<Json>* values) {
 // Items that organise the tree rather than carry a decoded value.
 inline bool structural(const std::string& key) {
   const auto last = key.substr(key.rfind('.') + 1);
-  return last == "pv" || last == "count" || last == "index" || last == "length" || last == "name" ||
+  return last == "pv" || last == "count" || last == "index" || last == "length" || last == "name" || last == "tag" ||
          key.find(".pv.") != std::string::npos;
 }
 

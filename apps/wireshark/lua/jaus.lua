@@ -189,7 +189,8 @@ K.int = function(c, d, tree)
   local r = c.tvb(c.off, d.s)
   local v = d.signed and int_at(c, d.s) or uint_at(c, d.s)
   local item = tree:add_le(d.f, r)
-  if d.vs and d.vs[v] then item:add(d.fname, r, d.vs[v]):set_generated() end
+  -- The name, or the number when the value has none (as the codec's JSON shows it).
+  if d.vs then item:add(d.fname, r, d.vs[v] or tostring(v)):set_generated() end
   c.values[d.n or d.a] = v
   c.off = c.off + d.s
   return true
@@ -317,7 +318,7 @@ K.bytes = function(c, d, tree)
     end
   end
   if n == 0 then
-    tree:add(d.f, ByteArray.new())
+    tree:add(d.f, "")  -- an empty FT_BYTES value without a range is given as a string
     return true
   end
   local r = c.tvb(c.off, n)

@@ -116,7 +116,9 @@ K.embedded = function(c, d, tree)
   if n > c.lim - c.off then
     return fail(c, count, string.format("%s: byte count %d but %d bytes left", d.a, n, c.lim - c.off))
   end
-  if n > 0 then
+  if n < 2 then  -- user data (list elements of a user-defined format): no message ID
+    if n > 0 then tree:add(d.fhex, c.tvb(c.off, n)) else tree:add(d.fhex, "") end
+  else
     local item = tree:add(d.f, c.tvb(c.off, n))
     dissect_jss_contents(c.tvb, c.off, n, item, d.fhex)
   end
