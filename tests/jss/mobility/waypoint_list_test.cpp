@@ -120,7 +120,9 @@ TEST_F(JssWaypointList, TheJudgesFourWaypointsAreReachedInOrder) {
           const auto target =
               v_.ask<jss::msg::ReportLocalWaypoint>(kJssWaypointDriver, jss::msg::QueryLocalWaypoint{{0x01}});
           EXPECT_TRUE(target);
-          if (target) EXPECT_NEAR(target->x_m, kSquare[*uid - 1].x_m, 1e-3);
+          if (target) {
+            EXPECT_NEAR(target->x_m, kSquare[*uid - 1].x_m, 1e-3);
+          }
           speed_checked = true;
         }
         for (std::size_t i = 0; i < kSquare.size(); ++i) closest[i] = std::min(closest[i], distance(here(), kSquare[i]));
