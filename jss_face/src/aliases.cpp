@@ -17,10 +17,9 @@ std::optional<std::uint8_t> AliasTable::find(const jss::JssId& client) const {
 
 std::optional<AliasTable::Assigned> AliasTable::assign(const jss::JssId& client, rt::TimePoint now,
                                                         const Reusable& reusable) {
-  if (auto slot = find(client)) {
-    slots_[*slot - 1].last_heard = now;
-    return Assigned{*slot, std::nullopt};
-  }
+  // An existing slot is not "heard" here: the face's own event queries use
+  // it too, and only the client's messages (heard()) keep it.
+  if (auto slot = find(client)) return Assigned{*slot, std::nullopt};
   const jss::JssId node = client_node_of(client);
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     if (slots_[i].client) continue;

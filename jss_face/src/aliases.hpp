@@ -44,7 +44,8 @@ class AliasTable {
   using Reusable = std::function<bool(std::uint8_t slot, const jss::JssId& client_node)>;
   // The slot of the client's node, made if needed: a free one, else the least
   // recently heard reusable one, whose client `forgotten` names. nullopt:
-  // every slot is taken by a client that holds state.
+  // every slot is taken by a client that holds state. (Only heard() and a new
+  // slot count as hearing from the client.)
   struct Assigned {
     std::uint8_t slot = 0;
     std::optional<jss::JssId> forgotten;  // a client node that lost its slot to this one

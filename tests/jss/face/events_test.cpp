@@ -166,5 +166,20 @@ TEST(JssFaceEvents, TheEventTableIsBoundedPerClient) {
   EXPECT_TRUE(node.ask<msg::ConfirmEventRequest>(kClientB, kDriver, create_event(1, 0, 1.0, queries[2])));
 }
 
+TEST(JssFaceEvents, EventsEndWhenTheirClientIsForgotten) {
+  jss_face::FaceConfig config;
+  config.event_timeout_min = 0;  // events never time out: only the client's silence ends them
+  FaceNode node(config);
+  ASSERT_TRUE(node.ask<msg::ConfirmEventRequest>(
+      kClientA, kDriver, create_event(1, msg::event_type::kPeriodic, 1.0, jss::encode_contents(msg::QueryStatus{}))));
+  node.run_for(4min);
+  EXPECT_GT(node.take_all<msg::Event>(kClientA).size(), 200u);
+  // Silent for 5 minutes, holding nothing in the node: forgotten, its events end.
+  node.run_for(90s);
+  node.drop(kClientA, msg::Event::code);
+  node.run_for(5s);
+  EXPECT_EQ(node.count(kClientA, msg::Event::code), 0u);
+}
+
 }  // namespace
 }  // namespace jaus::test
