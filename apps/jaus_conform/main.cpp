@@ -8,11 +8,14 @@
 #include <CLI/CLI.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
+#include <algorithm>
 #include <csignal>
+#include <functional>
 #include <fstream>
 #include <iostream>
 
 #include "jaus/base/version.hpp"
+#include "jaus/conform/jss_case.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
 #include "jaus/ocu/discover.hpp"
@@ -63,8 +66,8 @@ bool write_file(const std::string& path, const std::string& text) {
 // and reports are written as usual.
 class StopOnSignals {
  public:
-  StopOnSignals(boost::asio::io_context& io, jaus::ocu::OcuSession& session)
-      : signals_(io, SIGINT, SIGTERM), session_(session) {
+  StopOnSignals(boost::asio::io_context& io, std::function<void()> request_stop)
+      : signals_(io, SIGINT, SIGTERM), request_stop_(std::move(request_stop)) {
     arm();
   }
 
@@ -72,22 +75,109 @@ class StopOnSignals {
   void arm() {
     signals_.async_wait([this](const boost::system::error_code& ec, int) {
       if (ec) return;  // cancelled: the run is over
-      session_.request_stop();
+      request_stop_();
       arm();
     });
   }
   boost::asio::signal_set signals_;
-  jaus::ocu::OcuSession& session_;
+  std::function<void()> request_stop_;
 };
+
+bool write_reports(const Options& o, const jaus::conform::RunReport& report) {
+  bool written = true;
+  if (!o.junit.empty()) written = write_file(o.junit, jaus::conform::junit_xml(report)) && written;
+  if (!o.report.empty()) written = write_file(o.report, jaus::conform::markdown_report(report)) && written;
+  return written;
+}
+
+int finish(const Options& o, const jaus::conform::RunReport& report) {
+  std::cout << jaus::conform::summary_line(report) << "\n";
+  const bool written = write_reports(o, report);
+  if (report.results.empty())
+    return bad_usage(o.skip.empty() ? "no case matches --only " + o.only
+                                    : "no case left by --only '" + o.only + "' and --skip '" + o.skip + "'");
+  return report.passed() && written ? kExitPassed : kExitFailures;
+}
+
+// --profile jss: a JSS client (ocu::JssSession, AS5669A) discovers the node
+// the JSS way and runs the JSS cases on each component it lists.
+int run_jss(const Options& o, const jaus::transport::Ipv4Endpoint& to, jaus::rt::Duration reply_timeout,
+            jaus::rt::Duration wait) {
+  using namespace jaus;
+  std::vector<jss::JssId> requested;
+  for (const auto& text : o.components) {
+    const auto id = jss::JssId::parse(text);
+    if (!id || !id->is_valid() || id->is_broadcast())
+      return bad_usage("--component " + text + ": expected a JSS ID S.N.C (subsystem 1..65534, node and component 1..254)");
+    requested.push_back(*id);
+  }
+  ocu::JssSessionOptions session_options;
+  session_options.self = conform::kJssRunnerId;
+  session_options.to = {to};
+  session_options.name = "jaus-conform";
+  if (!o.bind.empty()) {
+    auto bind = transport::parse_endpoint(o.bind, 0);
+    if (!bind) return bad_usage("--bind " + o.bind + ": " + bind.error().message());
+    session_options.bind = *bind;
+  }
+  boost::asio::io_context io;  // the runner's, its second client's and the signals'
+  auto session = ocu::JssSession::open(session_options, &io);
+  if (!session) return bad_usage(session.error().message());
+  const StopOnSignals signals(io, [&s = **session] { s.request_stop(); });
+  auto found = conform::discover_jss_components(**session, wait, reply_timeout);
+  if (!found || found->empty()) {
+    std::cerr << "jaus-conform: no JSS node answered at " << transport::to_string(to) << " within " << o.wait_s
+              << " s\n";
+    return kExitBadUsage;
+  }
+  std::vector<conform::JssComponentUnderTest> components;
+  for (const auto& component : *found)
+    if (requested.empty() || std::find(requested.begin(), requested.end(), component.id) != requested.end())
+      components.push_back(component);
+  for (const auto& id : requested)
+    if (std::none_of(found->begin(), found->end(), [&](const auto& c) { return c.id == id; }))
+      components.push_back(conform::JssComponentUnderTest{id, "", {}, false});
+  // The second client: beside the runner, on its io_context, a port of its own.
+  const conform::JssClientOpener open_client =
+      [&](const jss::JssId& self) -> Expected<std::unique_ptr<ocu::JssSession>> {
+    ocu::JssSessionOptions options = session_options;
+    options.self = self;
+    options.bind.port = 0;
+    options.name = "jaus-conform (second client)";
+    return ocu::JssSession::open(std::move(options), &io);
+  };
+  conform::RunReport report;
+  report.node = transport::to_string(to);
+  report.profile = conform::Profile::jss;
+  conform::RunOptions run_options;
+  run_options.profile = conform::Profile::jss;
+  run_options.reply_timeout = reply_timeout;
+  run_options.only = o.only;
+  run_options.skip = o.skip;
+  const auto cases = conform::all_jss_cases();
+  for (const auto& component : components) {
+    std::cout << "== " << component.id.to_string() << (component.name.empty() ? "" : " " + component.name) << "\n";
+    auto results = conform::run_jss_cases(**session, component, *found, cases, run_options, open_client,
+                                          [](const conform::CaseResult& r) {
+                                            std::cout << conform::case_line(r) << std::endl;
+                                          });
+    for (auto& r : results) report.results.push_back(std::move(r));
+    if ((*session)->interrupted()) break;
+  }
+  return finish(o, report);
+}
 
 int run(const Options& o) {
   using namespace jaus;
   auto to = transport::parse_endpoint(o.to);
   if (!to) return bad_usage("--to " + o.to + ": " + to.error().message());
   const auto profile = conform::parse_profile(o.profile);
-  if (!profile) return bad_usage("--profile " + o.profile + ": expected ra or openjaus");
+  if (!profile) return bad_usage("--profile " + o.profile + ": expected ra, openjaus or jss");
   if (!(o.timeout_s > 0 && o.timeout_s <= 60)) return bad_usage("--timeout must be more than 0 and at most 60 s");
   if (!(o.wait_s > 0 && o.wait_s <= 60)) return bad_usage("--wait must be more than 0 and at most 60 s");
+  if (*profile == conform::Profile::jss)
+    return run_jss(o, *to, std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(o.timeout_s)),
+                   std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(o.wait_s)));
   std::vector<Address> requested;
   for (const auto& text : o.components) {
     const auto address = Address::parse(text);
@@ -106,7 +196,7 @@ int run(const Options& o) {
   boost::asio::io_context io;  // the session's, and the signals'
   auto session = ocu::OcuSession::open(session_options, &io);
   if (!session) return bad_usage(session.error().message());
-  const StopOnSignals signals(io, **session);
+  const StopOnSignals signals(io, [&s = **session] { s.request_stop(); });
   const auto reply_timeout = std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(o.timeout_s));
   const auto wait = std::chrono::duration_cast<rt::Duration>(std::chrono::duration<double>(o.wait_s));
 
@@ -147,14 +237,7 @@ int run(const Options& o) {
     for (auto& r : results) report.results.push_back(std::move(r));
     if ((*session)->interrupted()) break;
   }
-  std::cout << conform::summary_line(report) << "\n";
-  bool written = true;
-  if (!o.junit.empty()) written = write_file(o.junit, conform::junit_xml(report)) && written;
-  if (!o.report.empty()) written = write_file(o.report, conform::markdown_report(report)) && written;
-  if (report.results.empty())
-    return bad_usage(o.skip.empty() ? "no case matches --only " + o.only
-                                    : "no case left by --only '" + o.only + "' and --skip '" + o.skip + "'");
-  return report.passed() && written ? kExitPassed : kExitFailures;
+  return finish(o, report);
 }
 
 }  // namespace
@@ -162,7 +245,7 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
   CLI::App app{
       "jaus-conform: component conformance tests against a JAUS node on the network (ours or any other "
-      "RA 3.x implementation). Discovers the node, runs the cases that apply to each component and prints one "
+      "RA 3.x implementation, or a SAE JAUS node with --profile jss). Discovers the node, runs the cases that apply to each component and prints one "
       "line per case (pass, fail with the reason, skip with why) and a summary. Exit 0 when every applicable case "
       "passes, 1 on failures, 2 on bad usage or when no node answers. docs/conformance.md lists the cases."};
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -173,11 +256,13 @@ int main(int argc, char** argv) {
   app.add_option("--to", o.to, "the node to test: A.B.C.D[:PORT] (port 3794 when left out)")
       ->type_name("ADDR[:PORT]")
       ->required();
-  app.add_option("--component", o.components, "test only this component, S.N.C.I (repeatable)")->type_name("S.N.C.I");
+  app.add_option("--component", o.components,
+                 "test only this component, S.N.C.I (repeatable; a JSS ID S.N.C with --profile jss)")
+      ->type_name("S.N.C.I");
   app.add_option("--profile", o.profile,
-                 "ra (the RA as written) or openjaus (the common RA 3.3 implementation's "
-                 "documented quirks accepted)")
-      ->type_name("ra|openjaus")
+                 "ra (the RA as written), openjaus (the common RA 3.3 implementation's "
+                 "documented quirks accepted) or jss (SAE JAUS core and mobility services over AS5669A)")
+      ->type_name("ra|openjaus|jss")
       ->capture_default_str();
   app.add_option("--junit", o.junit, "write JUnit XML to FILE")->type_name("FILE");
   app.add_option("--report", o.report, "write a readable Markdown report to FILE")->type_name("FILE");

@@ -19,11 +19,22 @@ std::string_view to_string(Verdict verdict) {
   return "?";
 }
 
-std::string_view to_string(Profile profile) { return profile == Profile::ra ? "ra" : "openjaus"; }
+std::string_view to_string(Profile profile) {
+  switch (profile) {
+    case Profile::ra:
+      return "ra";
+    case Profile::openjaus:
+      return "openjaus";
+    case Profile::jss:
+      return "jss";
+  }
+  return "?";
+}
 
 std::optional<Profile> parse_profile(std::string_view text) {
   if (text == "ra") return Profile::ra;
   if (text == "openjaus") return Profile::openjaus;
+  if (text == "jss") return Profile::jss;
   return std::nullopt;
 }
 

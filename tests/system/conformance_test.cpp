@@ -106,7 +106,7 @@ TEST(JausConformUsage, BadArgumentsAreExit2AndOneLine) {
   const auto log = std::filesystem::temp_directory_path() / ("jaus-conform-bad-" + std::to_string(::getpid()) + ".log");
   ChildProcess conform({JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--profile", "nasa"}, log.string());
   EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
-  EXPECT_TRUE(conform.output_contains("jaus-conform: --profile nasa: expected ra or openjaus")) << conform.output();
+  EXPECT_TRUE(conform.output_contains("jaus-conform: --profile nasa: expected ra, openjaus or jss")) << conform.output();
   if (!HasFailure()) std::filesystem::remove(log);  // kept when it failed, to look at
 }
 

@@ -19,6 +19,7 @@
 
 #include "jaus/core/address.hpp"
 #include "jaus/core/header.hpp"
+#include "jaus/jss/jss_id.hpp"
 #include "jaus/ocu/session.hpp"
 
 namespace jaus::conform {
@@ -28,8 +29,10 @@ std::string_view to_string(Verdict verdict);
 
 // `ra` checks the RA as written; `openjaus` accepts the documented quirks of
 // the common RA 3.3 implementation (docs/conformance.md lists them), so a
-// team testing a node built on it sees only real differences.
-enum class Profile { ra, openjaus };
+// team testing a node built on it sees only real differences; `jss` runs the
+// SAE JAUS (AS5710 core, AS6009 mobility) cases over AS5669A instead
+// (jss_case.hpp).
+enum class Profile { ra, openjaus, jss };
 std::string_view to_string(Profile profile);
 std::optional<Profile> parse_profile(std::string_view text);
 
@@ -54,6 +57,10 @@ struct Exchanged {
   std::vector<std::uint8_t> payload;
   rt::Duration at{};  // since the case started
   bool second = false;  // by or to the runner's second OCU (CaseContext::second())
+  // Set for a JSS message (--profile jss): the peer's JSS ID (the destination
+  // when sent, the source when received); header.command_code holds the JSS
+  // message ID and payload the body after it.
+  std::optional<jss::JssId> jss_peer{};
 };
 
 struct CaseOutcome {

@@ -38,6 +38,11 @@ struct CaseResult {
   CaseOutcome outcome;
   rt::Duration took{};
   std::vector<Exchanged> exchange;
+  // A JSS component (--profile jss): its JSS ID names it instead of `component`.
+  std::optional<jss::JssId> jss_component{};
+
+  // "1.1.33.1" (RA) or "1.1.33" (JSS).
+  std::string component_text() const { return jss_component ? jss_component->to_string() : component.to_string(); }
 };
 
 struct RunReport {

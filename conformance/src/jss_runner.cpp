@@ -1,0 +1,116 @@
+// The JSS profile's runner: learns the components of a JSS node by JSS
+// discovery, picks the cases that apply to each (by the services it lists),
+// runs them one after another and keeps every result with its exchange, in
+// the RA profiles' CaseResult so the reports are the same.
+#include <algorithm>
+
+#include "jaus/conform/jss_case.hpp"
+
+namespace jaus::conform {
+
+bool JssComponentUnderTest::has(std::string_view service) const {
+  return std::any_of(services.begin(), services.end(), [&](const ocu::JssService& s) {
+    if (s.uri == service) return true;
+    const auto colon = s.uri.rfind(':');
+    return colon != std::string::npos && std::string_view(s.uri).substr(colon + 1) == service;
+  });
+}
+
+jss::JssId second_jss_client_id(const jss::JssId& runner) {
+  return jss::JssId{runner.subsystem, static_cast<std::uint8_t>(runner.node % 254 + 1), runner.component};
+}
+
+Expected<ocu::JssSession*> JssCaseContext::second() {
+  if (second_client) return second_client.get();
+  if (!open_client)
+    return unexpected(make_error(ErrorCode::invalid_argument, "a second client: the run was given no way to open one"));
+  auto opened = open_client(second_jss_client_id(session.self()));
+  if (!opened) return unexpected(make_error(opened.error().code, "a second client: " + opened.error().message()));
+  second_client = std::move(*opened);
+  second_recorder = second_client->listen([this](const ocu::JssReceived& r) {
+    if (r.source() != target()) return;
+    Exchanged e;
+    e.header.command_code = r.message_id();
+    if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
+    e.at = session.clock().now() - started;
+    e.second = true;
+    e.jss_peer = r.source();
+    exchange.push_back(std::move(e));
+  });
+  return second_client.get();
+}
+
+JssCaseContext::~JssCaseContext() {
+  if (second_client) second_client->unlisten(second_recorder);
+}
+
+std::vector<const JssConformanceCase*> all_jss_cases() {
+  std::vector<const JssConformanceCase*> all;
+  for (auto suite : {jss_core_cases(), jss_mobility_cases()})
+    for (const auto& c : suite) all.push_back(&c);
+  return all;
+}
+
+std::vector<JssComponentUnderTest> components_of(const ocu::JssSystem& system) {
+  std::vector<JssComponentUnderTest> components;
+  for (const auto& subsystem : system.subsystems)
+    for (const auto& node : subsystem.nodes)
+      for (const auto& component : node.components)
+        components.push_back(
+            JssComponentUnderTest{component.id, component.name, component.services, subsystem.services_listed});
+  std::sort(components.begin(), components.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  return components;
+}
+
+Expected<std::vector<JssComponentUnderTest>> discover_jss_components(ocu::JssSession& session, rt::Duration wait,
+                                                                     rt::Duration reply_timeout) {
+  ocu::JssDiscoveryOptions options;
+  options.timeout = wait;
+  // A node that is up answers at once; a second try within the wait catches a lost datagram.
+  options.identification_period = std::min<rt::Duration>(std::chrono::seconds(1), wait);
+  options.query_timeout = reply_timeout;
+  auto system = ocu::discover_jss(session, options);
+  if (!system) return unexpected(system.error());
+  return components_of(*system);
+}
+
+std::vector<CaseResult> run_jss_cases(ocu::JssSession& session, const JssComponentUnderTest& component,
+                                      const std::vector<JssComponentUnderTest>& node_components,
+                                      const std::vector<const JssConformanceCase*>& cases, const RunOptions& options,
+                                      const JssClientOpener& open_client, const ResultListener& on_result) {
+  std::vector<CaseResult> results;
+  for (const JssConformanceCase* test_case : cases) {
+    const std::string_view id = test_case->describe.id;
+    if (!options.only.empty() && id.find(options.only) == std::string_view::npos) continue;
+    if (!options.skip.empty() && id.find(options.skip) != std::string_view::npos) continue;
+    CaseResult result{&test_case->describe, Address{}, component.name, {}, {}, {}, component.id};
+    if (session.interrupted()) {
+      result.outcome = {Verdict::fail, "interrupted before it ran"};
+    } else if (std::string why = test_case->not_applicable ? test_case->not_applicable(component) : std::string();
+               !why.empty()) {
+      result.outcome = {Verdict::skip, "does not apply: " + why};
+    } else {
+      JssCaseContext context{session, component, options.reply_timeout, {}, session.clock().now(), open_client};
+      context.node_components = &node_components;
+      // What the component sends the runner during the case, for the report.
+      const auto recorder = session.listen([&](const ocu::JssReceived& r) {
+        if (r.source() != component.id) return;
+        Exchanged e;
+        e.header.command_code = r.message_id();
+        if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
+        e.at = session.clock().now() - context.started;
+        e.jss_peer = r.source();
+        context.exchange.push_back(std::move(e));
+      });
+      result.outcome = test_case->run(context);
+      session.unlisten(recorder);
+      result.took = session.clock().now() - context.started;
+      result.exchange = std::move(context.exchange);
+    }
+    if (on_result) on_result(result);
+    results.push_back(std::move(result));
+  }
+  return results;
+}
+
+}  // namespace jaus::conform
