@@ -104,6 +104,12 @@ TEST_F(JssWaypointList, TheJudgesFourWaypointsAreReachedInOrder) {
   EXPECT_EQ(third->next_uid, 4);
   EXPECT_EQ(third->element_data, jss::encode_contents(waypoint(kSquare[2])));
   EXPECT_EQ(active(), 0);
+  // An every-change event on the active element, as a COP would watch it.
+  jss::msg::CreateEvent watch{};
+  watch.request_id = 9;
+  watch.event_type = jss::msg::event_type::kEveryChange;
+  watch.query_message = jss::encode_contents(jss::msg::QueryActiveElement{});
+  ASSERT_TRUE(v_.ask<jss::msg::ConfirmEventRequest>(kJssWaypointDriver, watch));
 
   v_.send(kJssWaypointDriver, execute(1.0, 1));
   std::vector<std::uint16_t> order;
@@ -138,6 +144,14 @@ TEST_F(JssWaypointList, TheJudgesFourWaypointsAreReachedInOrder) {
   v_.keep_alive_for(kJssWaypointDriver, 2s);
   EXPECT_LT(v_.speed_mps(), 0.02);
   EXPECT_EQ(active(), 0);
+  // The event said each change once: 0 (its first report), 1, 2, 3, 4, 0.
+  std::vector<std::uint16_t> changes;
+  while (auto event = v_.take<jss::msg::Event>(kJssWaypointDriver)) {
+    auto report = jss::decode_contents<jss::msg::ReportActiveElement>(event->report_message);
+    ASSERT_TRUE(report);
+    changes.push_back(report->element_uid);
+  }
+  EXPECT_EQ(changes, (std::vector<std::uint16_t>{0, 1, 2, 3, 4, 0}));
 }
 
 TEST_F(JssWaypointList, InvalidListsAreRejectedWithTheirCodes) {
