@@ -123,6 +123,22 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.platform = platform_settings(config);
   h.emergency.scope = config.emergency_scope;
   h.emergency.state_directory = config.state_directory;
+
+  // The JSS face; its identification and controller timeout are the node's (the host copies them).
+  const JssConfig& j = config.jss;
+  h.jss.enabled = j.enabled;
+  if (j.enabled) {
+    h.jss.subsystem = j.subsystem;
+    if (auto ids = jss_component_ids(config)) h.jss.component_ids = std::move(*ids);  // checked when loaded
+    h.jss.client_alias_subsystem = j.client_alias_subsystem;
+    h.jss.max_clients = j.max_clients;
+    h.jss.max_events = j.max_events;
+    h.jss.max_events_per_client = j.max_events_per_client;
+    h.jss.event_timeout_min = j.event_timeout_min;
+    h.jss.change_poll_period = seconds(j.change_poll_period_s);
+    h.jss.max_packet_contents = j.max_packet_contents;
+    h.link.jss_multicast = j.multicast;
+  }
   return h;
 }
 

@@ -98,6 +98,14 @@ constexpr NumberRange kPositiveTimeoutRange{0, false, kMaxSeconds, "a number of 
 constexpr NumberRange kRateRange{0, false, 1092, "a number > 0 and <= 1092"};
 constexpr NumberRange kTotalRateRange{0, false, 1'000'000, "a number > 0 and <= 1000000"};
 constexpr NumberRange kDeadmanPeriodsRange{1, true, 1000, "a number 1..1000"};
+// The JSS face: subsystem IDs are 16-bit there (65535 = all); event IDs and
+// alias slots are 8-bit; AS5669A peers take up to 4079 contents bytes a packet.
+constexpr long long kJssSubsystemMax = 65534;
+constexpr long long kMaxJssClients = 254;
+constexpr long long kMaxJssEvents = 65535;
+constexpr long long kMaxJssEventsPerClient = 255;
+constexpr long long kMinPacketContents = 64, kMaxPacketContents = 4079;
+constexpr NumberRange kPollPeriodRange{0.01, true, 10, "a number of seconds 0.01..10"};
 
 // Empty when `text` is a valid identification string, else what is wrong.
 std::string identification_problem(std::string_view key, std::string_view text) {
@@ -141,6 +149,7 @@ struct SourceLines {
   int platform = 0;         // the 'platform' key
   int clearpath = 0;        // the 'clearpath' key
   std::vector<int> peers;   // one per transport.peers entry
+  int jss = 0;              // the 'jss' key
 };
 
 int line_at(const std::vector<int>& lines, std::size_t i) { return i < lines.size() ? lines[i] : 0; }
@@ -237,6 +246,43 @@ std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines
   return std::nullopt;
 }
 
+std::optional<Issue> check_jss(const JausdConfig& c, const SourceLines& lines) {
+  const JssConfig& j = c.jss;
+  if (!j.enabled) return std::nullopt;
+  if (j.subsystem && (*j.subsystem < 1 || *j.subsystem > kJssSubsystemMax))
+    return Issue{lines.jss, "'jss.subsystem' must be an integer 1..65534, got " + std::to_string(*j.subsystem)};
+  if (j.client_alias_subsystem < kAddressMin || j.client_alias_subsystem > kAddressMax)
+    return Issue{lines.jss, "'client_alias_subsystem' must be an integer 1..254, got " +
+                                std::to_string(j.client_alias_subsystem)};
+  if (j.client_alias_subsystem == c.subsystem)
+    return Issue{lines.jss, "'client_alias_subsystem' (" + std::to_string(j.client_alias_subsystem) +
+                                ") must differ from the node's subsystem: JSS clients' RA aliases would pose as "
+                                "nodes of this subsystem"};
+  if (j.multicast && (!j.multicast->is_multicast() || j.multicast->port == 0))
+    return Issue{lines.jss, "'jss.multicast' must be a group 224.0.0.0..239.255.255.255 with a port, got " +
+                                jaus::transport::to_string(*j.multicast)};
+  if (j.max_clients < 1 || j.max_clients > kMaxJssClients)
+    return Issue{lines.jss, "'max_clients' must be an integer 1..254, got " + std::to_string(j.max_clients)};
+  if (j.max_events < 1 || j.max_events > kMaxJssEvents)
+    return Issue{lines.jss, "'max_events' must be an integer 1..65535, got " + std::to_string(j.max_events)};
+  if (j.max_events_per_client < 1 || j.max_events_per_client > kMaxJssEventsPerClient)
+    return Issue{lines.jss, "'max_events_per_client' must be an integer 1..255, got " +
+                                std::to_string(j.max_events_per_client)};
+  if (j.max_events_per_client > j.max_events)
+    return Issue{lines.jss, "'max_events_per_client' (" + std::to_string(j.max_events_per_client) +
+                                ") must not exceed 'max_events' (" + std::to_string(j.max_events) + ")"};
+  if (auto issue = check_number("change_poll_period_s", j.change_poll_period_s, kPollPeriodRange)) {
+    issue->line = lines.jss;
+    return issue;
+  }
+  if (j.max_packet_contents < static_cast<std::size_t>(kMinPacketContents) ||
+      j.max_packet_contents > static_cast<std::size_t>(kMaxPacketContents))
+    return Issue{lines.jss, "'max_packet_contents' must be an integer 64..4079, got " +
+                                std::to_string(j.max_packet_contents)};
+  if (auto ids = jss_component_ids(c); !ids) return Issue{ids.error().line ? ids.error().line : lines.jss, ids.error().what};
+  return std::nullopt;
+}
+
 std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (c.subsystem < kAddressMin || c.subsystem > kAddressMax)
     return Issue{0, "'subsystem' must be an integer 1..254, got " + std::to_string(c.subsystem)};
@@ -297,6 +343,7 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (!one_of(c.log_level, kLogLevels))
     return Issue{0, "'level' must be one of " + join(kLogLevels) + ", got " + jaus::quoted(c.log_level)};
   if (auto issue = check_transport(c.transport, lines)) return issue;
+  if (auto issue = check_jss(c, lines)) return issue;
   if (auto ok = jaus::components::check_cameras_config(c.cameras); !ok) return Issue{lines.cameras, ok.error().message()};
   if (auto ok = jaus::components::check_arm_config(c.manipulator); !ok)
     return Issue{lines.manipulator, ok.error().message()};
@@ -325,6 +372,57 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
 }
 
 }  // namespace
+
+jaus::Expected<std::map<std::uint8_t, std::uint8_t>, JssComponentProblem> jss_component_ids(const JausdConfig& config) {
+  using Problem = JssComponentProblem;
+  std::map<std::uint8_t, std::uint8_t> ids;   // RA component ID -> JSS component ID
+  std::map<std::uint8_t, int> renamed_at;     // RA component ID -> the entry's line
+  for (const auto& entry : config.jss.components) {
+    if (entry.id < kAddressMin || entry.id > kAddressMax)
+      return jaus::unexpected(Problem{entry.line, "JSS component ID of " + jaus::quoted(entry.component) +
+                                                      " must be an integer 1..254, got " + std::to_string(entry.id)});
+    std::vector<const ComponentSpec*> named;
+    for (const auto& spec : config.components)
+      if (spec.name == entry.component) named.push_back(&spec);
+    if (named.empty())
+      for (const auto& spec : config.components)
+        if (spec.kind == entry.component) named.push_back(&spec);
+    if (named.empty()) {
+      std::vector<std::string> known;
+      for (const auto& spec : config.components) known.push_back(spec.name);
+      return jaus::unexpected(Problem{entry.line, "jss.components: no component named " +
+                                                      jaus::quoted(entry.component) + " (components: " + join(known) +
+                                                      ")"});
+    }
+    // One RA component ID is one JSS component (instances share it).
+    const std::uint8_t ra = named.front()->id;
+    if (std::any_of(named.begin(), named.end(), [&](const ComponentSpec* spec) { return spec->id != ra; })) {
+      std::vector<std::string> names;
+      for (const auto* spec : named) names.push_back(spec->name);
+      return jaus::unexpected(Problem{entry.line, "jss.components: " + jaus::quoted(entry.component) +
+                                                      " is the kind of several components (" + join(names) +
+                                                      "): name one of them"});
+    }
+    if (const auto [at, inserted] = renamed_at.emplace(ra, entry.line); !inserted)
+      return jaus::unexpected(Problem{entry.line, "jss.components: RA component " + std::to_string(ra) +
+                                                      " given a JSS ID twice" + first_at(at->second)});
+    ids[ra] = entry.id;
+  }
+  // No two RA components may end up as one JSS component.
+  std::map<std::uint8_t, std::uint8_t> owner;  // JSS ID -> RA component ID
+  for (const auto& spec : config.components) {
+    const auto mapped = ids.find(spec.id);
+    const std::uint8_t jss_id = mapped == ids.end() ? spec.id : mapped->second;
+    const auto [it, inserted] = owner.emplace(jss_id, spec.id);
+    if (!inserted && it->second != spec.id) {
+      const auto line = renamed_at.contains(spec.id) ? renamed_at[spec.id] : renamed_at[it->second];
+      return jaus::unexpected(Problem{line, "jss.components: JSS component ID " + std::to_string(jss_id) +
+                                                " would be both RA component " + std::to_string(it->second) +
+                                                " and RA component " + std::to_string(spec.id)});
+    }
+  }
+  return ids;
+}
 
 jaus::Expected<void> validate(const JausdConfig& config) {
   if (auto issue = check(config, SourceLines{}))
@@ -427,6 +525,54 @@ ComponentSpec component(const YAML::Node& node) {
 }
 
 // The simulated vehicle of the mobility components (components/vehicle/simulated_vehicle.hpp).
+// jss: the JSS face (docs/configuration.md "jss").
+void read_jss(const Entry& section, JssConfig& j) {
+  read_map(
+      section.value, "jss", section.key_line,
+      {{"enabled", [&](const Entry& e) { j.enabled = boolean(e); }},
+       {"subsystem",
+        [&](const Entry& e) {
+          if (e.is_null()) j.subsystem.reset();
+          else j.subsystem = integer<std::uint16_t>(e, 1, kJssSubsystemMax);
+        }},
+       {"components",
+        [&](const Entry& e) {
+          j.components.clear();
+          if (e.is_null()) return;
+          if (!e.value.IsMap()) e.must_be("a map of component names (or kinds) to JSS component IDs 1..254");
+          std::map<std::string, int> seen;
+          for (auto it = e.value.begin(); it != e.value.end(); ++it) {
+            const YAML::Node key = it->first;
+            const YAML::Node value = it->second;
+            if (!key.IsScalar()) fail(line_of(key), "jss.components keys must be component names, got " + describe(key));
+            const int line = line_of(key);
+            if (const auto [first, inserted] = seen.emplace(key.Scalar(), line); !inserted)
+              fail(line, "duplicate key " + jaus::quoted(key.Scalar()) + " in jss.components" + first_at(first->second));
+            const Entry id{key.Scalar(), line, value};
+            j.components.push_back(JssComponentId{key.Scalar(), integer<std::uint8_t>(id, kAddressMin, kAddressMax), line});
+          }
+        }},
+       {"client_alias_subsystem",
+        [&](const Entry& e) { j.client_alias_subsystem = integer<std::uint8_t>(e, kAddressMin, kAddressMax); }},
+       {"multicast",
+        [&](const Entry& e) {
+          if (e.is_null()) j.multicast.reset();
+          else j.multicast = endpoint(e);
+          if (j.multicast && !j.multicast->is_multicast())
+            fail(e.value_line(), "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
+                                     jaus::quoted(jaus::transport::ipv4_to_string(j.multicast->address)));
+        }},
+       {"max_clients", [&](const Entry& e) { j.max_clients = integer<std::size_t>(e, 1, kMaxJssClients); }},
+       {"max_events", [&](const Entry& e) { j.max_events = integer<std::size_t>(e, 1, kMaxJssEvents); }},
+       {"max_events_per_client",
+        [&](const Entry& e) { j.max_events_per_client = integer<std::size_t>(e, 1, kMaxJssEventsPerClient); }},
+       {"event_timeout_min", [&](const Entry& e) { j.event_timeout_min = integer<std::uint8_t>(e, 0, 255); }},
+       {"change_poll_period_s", [&](const Entry& e) { j.change_poll_period_s = number(e, kPollPeriodRange); }},
+       {"max_packet_contents", [&](const Entry& e) {
+          j.max_packet_contents = integer<std::size_t>(e, kMinPacketContents, kMaxPacketContents);
+        }}});
+}
+
 void read_vehicle(const Entry& section, jaus::components::SimulatedVehicleConfig& v) {
   const auto in_range = [](const NumberRange& range) {
     return [&range](double& target) { return [&range, &target](const Entry& e) { target = number(e, range); }; };
@@ -593,6 +739,11 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
             t.peers.push_back(StaticPeer{p.endpoint, p.framing.value_or(t.framing)});
             lines.peers.push_back(p.line);
           }
+        }},
+       {"jss",
+        [&](const Entry& s) {
+          lines.jss = s.key_line;
+          read_jss(s, c.jss);
         }},
        {"emergency_scope",
         [&](const Entry& e) {

@@ -71,6 +71,32 @@ struct LivenessSettings {  // peers unheard this long are forgotten
   std::size_t max_entries = 1024;
 };
 
+// The JSS face (docs/jss.md, docs/configuration.md "jss"): SAE JAUS spoken
+// on the same port by the same components. Identification and the
+// controller timeout are the node's own keys.
+struct JssComponentId {
+  std::string component;  // a component's name, or a kind with one component
+  std::uint8_t id = 0;    // its JSS component ID, 1..254
+  int line = 0;
+  bool operator==(const JssComponentId&) const = default;
+};
+
+struct JssConfig {
+  bool enabled = true;
+  std::optional<std::uint16_t> subsystem;  // 1..65534; absent: the RA subsystem
+  std::vector<JssComponentId> components;  // those not listed keep their RA component ID
+  std::uint8_t client_alias_subsystem = 250;  // 1..254, no RA node may use it
+  // Where JSS broadcasts and datagrams for unknown JSS IDs go; absent = none.
+  std::optional<jaus::transport::Ipv4Endpoint> multicast =
+      jaus::transport::Ipv4Endpoint{0xEFFF0001, jaus::transport::kJausPort};  // 239.255.0.1:3794
+  std::size_t max_clients = 64;            // JSS client nodes at once, 1..254
+  std::size_t max_events = 256;            // all clients' events together
+  std::size_t max_events_per_client = 32;  // 1..255
+  std::uint8_t event_timeout_min = 1;      // Report Event Timeout; 0: events never expire
+  double change_poll_period_s = 0.1;       // every-change events look this often
+  std::size_t max_packet_contents = 1400;  // larger contents go as a large message
+};
+
 struct JausdConfig {
   // identification
   std::uint8_t subsystem = 1;  // 1..254
@@ -103,6 +129,7 @@ struct JausdConfig {
   // Where Set Emergency holds persist across restarts; empty: $STATE_DIRECTORY
   // (systemd's StateDirectory=), else not persisted (a warning at start).
   std::string state_directory;
+  JssConfig jss;
 
   // node_manager 1.1, communicator 35.1, primitive_driver 33.1, global_pose_sensor 38.1,
   // velocity_state_sensor 42.1, visual_sensor 37.1, primitive_manipulator 49.1
@@ -133,6 +160,16 @@ ConfigResult load_config_file(const std::string& path);
 // error (text from memory names no place to load code from).
 ConfigResult load_config_string(std::string_view yaml, std::string_view name,
                                 const std::optional<std::filesystem::path>& plugin_folder = std::nullopt);
+
+// jss.components resolved: the JSS component ID of each RA component ID it
+// renames (a name is a component's name, else a kind that exactly one
+// component has), or the first problem (an unknown or ambiguous name, a JSS ID
+// given twice or already another component's) with the entry's line.
+struct JssComponentProblem {
+  int line = 0;
+  std::string what;
+};
+jaus::Expected<std::map<std::uint8_t, std::uint8_t>, JssComponentProblem> jss_component_ids(const JausdConfig& config);
 
 // One line per loaded plugin, its name, file and kinds, for the log at start.
 std::vector<std::string> plugin_summaries(const JausdConfig& config);

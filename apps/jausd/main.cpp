@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
   if (cl.check_config) {
     std::cout << source << ": ok (subsystem " << int{config.subsystem} << ", node " << int{config.node} << ", "
               << config.components.size() << " components, bind " << jaus::transport::to_string(config.transport.bind)
-              << ")\n";
+              << (config.jss.enabled ? ", JSS on" : ", JSS off") << ")\n";
     // Valid but open: said, not refused (an operator may mean it; README, "Open it to an OCU elsewhere").
     for (const auto& warning : warnings) std::cerr << source << ": warning: " << warning << "\n";
     return kExitOk;
@@ -156,6 +156,13 @@ int main(int argc, char** argv) {
   const auto& link = *(*host)->udp_link();
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
                jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
+  if (const auto* face = (*host)->jss_face()) {
+    const auto manager = face->jss_id_of(jaus::Address{config.subsystem, config.node, 1, 1});
+    logger->info("JSS (SAE JAUS, AS5669A) on {} as subsystem {}, node manager {}, group {}",
+                 jaus::transport::to_string(link.local_endpoint()),
+                 int{config.jss.subsystem.value_or(config.subsystem)}, manager ? manager->to_string() : "?",
+                 config.jss.multicast ? jaus::transport::to_string(*config.jss.multicast) : "none");
+  }
   logger->info("configuration {}", source);
   for (const auto& plugin : jausd::plugin_summaries(config)) logger->info("{}", plugin);
   for (const auto& warning : warnings) logger->warn("{}", warning);

@@ -8,6 +8,24 @@ NodeHost::NodeHost(HostConfig config, rt::LogFn log)
     : config_(std::move(config)), log_(log ? std::move(log) : rt::silent_log()) {
   config_.link.subsystem = config_.node.subsystem;
   config_.link.node = config_.node.node;
+  if (config_.jss.enabled) {
+    // One identity and one controller timeout for both dialects.
+    auto& jss = config_.jss;
+    const auto& identity = config_.settings.identity;
+    jss.subsystem_name = identity.subsystem_name;
+    jss.subsystem_type = identity.subsystem_type;
+    jss.node_name = identity.node_name;
+    const auto timeout_s = std::chrono::ceil<std::chrono::seconds>(config_.settings.defaults.controller_timeout).count();
+    jss.controller_timeout_s = static_cast<std::uint8_t>(std::clamp<long long>(timeout_s, 0, 255));
+    config_.link.jss_self = jss_node_manager_id();
+  }
+}
+
+jss::JssId NodeHost::jss_node_manager_id() const {
+  const auto& jss = config_.jss;
+  const auto mapped = jss.component_ids.find(1);
+  return jss::JssId{jss.subsystem.value_or(config_.node.subsystem), config_.node.node,
+                    mapped == jss.component_ids.end() ? std::uint8_t{1} : mapped->second};
 }
 
 Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asio::io_context& io, rt::LogFn log) {
@@ -30,6 +48,20 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     return node->holds_state_for(subsystem, node_id);
   });
   if (auto added = h->add_components(&io); !added) return unexpected(added.error());
+  if (h->config_.jss.enabled) {
+    transport::UdpLink* udp = h->udp_link_.get();
+    h->make_jss_face([udp](const jss::JssId& to, std::span<const std::uint8_t> datagram) {
+      udp->transmit_jss(to, datagram);
+    });
+    h->udp_link_->on_jss_datagram([face = h->jss_face_.get()](std::span<const std::uint8_t> datagram,
+                                                              rt::SenderStanding standing) {
+      face->receive(datagram, standing);
+    });
+    // No hijack of a JSS client's ID either while its alias holds state here.
+    h->udp_link_->pin_jss_routes_while([face = h->jss_face_.get()](std::uint16_t subsystem, std::uint8_t node_id) {
+      return face->holds_state_for(subsystem, node_id);
+    });
+  }
   h->udp_link_->start();
   return h;
 }
@@ -41,11 +73,25 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::attach(HostConfig config, node::Li
   h->scheduler_ = &scheduler;
   h->make_node(link);
   if (auto added = h->add_components(nullptr); !added) return unexpected(added.error());
+  if (h->config_.jss.enabled)
+    h->make_jss_face([host = h.get()](const jss::JssId& to, std::span<const std::uint8_t> datagram) {
+      if (host->jss_sender_) host->jss_sender_(to, datagram);
+    });
   return h;
 }
 
 void NodeHost::make_node(node::Link& link) {
-  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, link, log_);
+  node::Link* node_link = &link;
+  if (config_.jss.enabled) {
+    face_link_ = std::make_unique<jss_face::FaceLink>(link);
+    node_link = face_link_.get();
+  }
+  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, *node_link, log_);
+}
+
+void NodeHost::make_jss_face(jss_face::JssFace::DatagramSender send) {
+  jss_face_ = std::make_unique<jss_face::JssFace>(config_.jss, *node_, std::move(send), log_);
+  face_link_->attach(jss_face_.get());
 }
 
 Expected<void> NodeHost::add_components(boost::asio::io_context* io) {
@@ -196,6 +242,13 @@ const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) con
 
 NodeHost::~NodeHost() {
   stop("host destroyed");
+  // The face goes before the node and the links: nothing reaches it after.
+  if (face_link_) face_link_->attach(nullptr);
+  if (udp_link_) {
+    udp_link_->on_jss_datagram(nullptr);
+    udp_link_->pin_jss_routes_while(nullptr);
+  }
+  jss_face_.reset();
   if (platform_) platform_->stop();  // a host that never fully opened: its frame thread, before its cameras go
 }
 
@@ -249,10 +302,16 @@ void NodeHost::stop(const std::string& why) {
       reasons += std::string(reasons.empty() ? " (" : ", ") + std::to_string(l.dropped[r]) + " " +
                  std::string(transport::to_string(static_cast<transport::DropReason>(r)));
   if (!reasons.empty()) reasons += ")";
+  std::string jss;
+  if (jss_face_) {
+    const auto& f = jss_face_->counters();
+    jss = ", JSS: " + std::to_string(l.jss.datagrams_received) + " AS5669A datagrams in, " +
+          std::to_string(f.messages_to_ra) + " messages to RA, " + std::to_string(f.messages_to_jss) + " to JSS";
+  }
   log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +
                                std::to_string(l.dropped_total()) + " dropped" + reasons + ", " +
                                std::to_string(n.delivered) + " messages delivered, " +
-                               std::to_string(l.datagrams_sent) + " datagrams out");
+                               std::to_string(l.datagrams_sent) + " datagrams out" + jss);
   udp_link_->close();
 }
 

@@ -149,6 +149,17 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_TRUE(c.transport.control_from_local);  // [local]: safe by default
   EXPECT_TRUE(c.transport.verify_endpoints);
   EXPECT_EQ(c.transport.max_peers, 256u);
+  EXPECT_TRUE(c.jss.enabled);
+  EXPECT_FALSE(c.jss.subsystem);
+  EXPECT_TRUE(c.jss.components.empty());
+  EXPECT_EQ(c.jss.client_alias_subsystem, 250);
+  EXPECT_EQ(c.jss.multicast, endpoint("239.255.0.1:3794"));
+  EXPECT_EQ(c.jss.max_clients, 64u);
+  EXPECT_EQ(c.jss.max_events, 256u);
+  EXPECT_EQ(c.jss.max_events_per_client, 32u);
+  EXPECT_EQ(c.jss.event_timeout_min, 1);
+  EXPECT_EQ(c.jss.change_poll_period_s, 0.1);
+  EXPECT_EQ(c.jss.max_packet_contents, 1400u);
   ASSERT_EQ(c.components.size(), 14u);
   EXPECT_EQ(c.components[0].kind, "node_manager");
   EXPECT_EQ(c.components[0].id, 1);
@@ -239,7 +250,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 156);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 171);  // declared in the file
   EXPECT_TRUE(validate(*result));
 }
 
@@ -479,7 +490,7 @@ TEST(JausdConfigErrors, TheFileMustBeAMap) {
 TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
   expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
-               "service_connections, liveness, transport, emergency_scope, state_directory, vehicle, platform, clearpath, "
+               "service_connections, liveness, transport, jss, emergency_scope, state_directory, vehicle, platform, clearpath, "
                "cameras, manipulator, "
                "plugins, components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,
@@ -1186,6 +1197,142 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
 }
 
 // ------------------------------------------------------------ registry
+
+// ---- jss: the JSS face -------------------------------------------------------
+
+TEST(JausdConfigJss, TheSectionIsReadAndReachesTheHost) {
+  const auto c = expect_ok(R"(
+identification: {subsystem: 7, node: 3, subsystem_name: judge vehicle}
+control: {controller_timeout_s: 4.5}
+transport: {multicast: 224.1.0.1:3794}
+jss:
+  enabled: true
+  subsystem: 4242
+  components:
+    primitive_driver: 133      # by kind
+    local_waypoint_driver: 146
+    communicator: 135
+  client_alias_subsystem: 200
+  multicast: 239.255.0.9:3795
+  max_clients: 8
+  max_events: 40
+  max_events_per_client: 5
+  event_timeout_min: 0
+  change_poll_period_s: 0.25
+  max_packet_contents: 4079
+)");
+  EXPECT_EQ(c.jss.subsystem, 4242);
+  ASSERT_EQ(c.jss.components.size(), 3u);
+  EXPECT_EQ(c.jss.components[0], (JssComponentId{"primitive_driver", 133, 9}));
+  EXPECT_EQ(c.jss.client_alias_subsystem, 200);
+  EXPECT_EQ(c.jss.multicast, endpoint("239.255.0.9:3795"));
+  EXPECT_EQ(c.jss.max_clients, 8u);
+  EXPECT_EQ(c.jss.max_events, 40u);
+  EXPECT_EQ(c.jss.max_events_per_client, 5u);
+  EXPECT_EQ(c.jss.event_timeout_min, 0);
+  EXPECT_EQ(c.jss.change_poll_period_s, 0.25);
+  EXPECT_EQ(c.jss.max_packet_contents, 4079u);
+
+  const auto h = host_config(c);
+  EXPECT_TRUE(h.jss.enabled);
+  EXPECT_EQ(h.jss.subsystem, 4242);
+  EXPECT_EQ(h.jss.component_ids, (std::map<std::uint8_t, std::uint8_t>{{33, 133}, {46, 146}, {35, 135}}));
+  EXPECT_EQ(h.jss.client_alias_subsystem, 200);
+  EXPECT_EQ(h.jss.max_clients, 8u);
+  EXPECT_EQ(h.jss.max_events, 40u);
+  EXPECT_EQ(h.jss.max_events_per_client, 5u);
+  EXPECT_EQ(h.jss.event_timeout_min, 0);
+  EXPECT_EQ(h.jss.change_poll_period, std::chrono::milliseconds(250));
+  EXPECT_EQ(h.jss.max_packet_contents, 4079u);
+  EXPECT_EQ(h.link.jss_multicast, endpoint("239.255.0.9:3795"));
+  EXPECT_EQ(h.link.multicast, endpoint("224.1.0.1:3794"));  // the RA group stays the RA group
+}
+
+TEST(JausdConfigJss, OffMeansNoFaceAndNoGroup) {
+  const auto h = host_config(expect_ok("jss: {enabled: false}\n"));
+  EXPECT_FALSE(h.jss.enabled);
+  EXPECT_FALSE(h.link.jss_multicast);
+  EXPECT_FALSE(host_config(expect_ok("jss: {multicast: null}\n")).link.jss_multicast);
+  // On by default, on the JSS group.
+  EXPECT_EQ(host_config(expect_ok("")).link.jss_multicast, endpoint("239.255.0.1:3794"));
+}
+
+TEST(JausdConfigJss, AComponentIsNamedByItsNameOrItsOnlyKind) {
+  const auto c = expect_ok(R"(
+components:
+  - kind: node_manager
+  - {kind: visual_sensor, name: front camera}
+  - {kind: visual_sensor, name: rear camera, id: 57}
+jss:
+  components: {rear camera: 37, front camera: 57, node_manager: 1}
+)");
+  const auto ids = jss_component_ids(c);
+  ASSERT_TRUE(ids) << ids.error().what;
+  EXPECT_EQ(*ids, (std::map<std::uint8_t, std::uint8_t>{{57, 37}, {37, 57}, {1, 1}}));
+}
+
+TEST(JausdConfigErrors, JssValues) {
+  expect_error("jss:\n  subsystem: 0\n", 2, "'subsystem' must be an integer 1..65534, got '0'");
+  expect_error("jss:\n  subsystem: 65535\n", 2, "'subsystem' must be an integer 1..65534, got '65535'");
+  expect_error("jss:\n  client_alias_subsystem: 255\n", 2,
+               "'client_alias_subsystem' must be an integer 1..254, got '255'");
+  expect_error("identification: {subsystem: 250}\njss:\n  max_clients: 3\n", 2,
+               "'client_alias_subsystem' (250) must differ from the node's subsystem: JSS clients' RA aliases would "
+               "pose as nodes of this subsystem");
+  expect_error("jss:\n  multicast: 10.0.0.1:3794\n", 2,
+               "'multicast' must be a group 224.0.0.0..239.255.255.255, got '10.0.0.1'");
+  expect_error("jss:\n  max_clients: 255\n", 2, "'max_clients' must be an integer 1..254, got '255'");
+  expect_error("jss:\n  max_events: 0\n", 2, "'max_events' must be an integer 1..65535, got '0'");
+  expect_error("jss:\n  max_events: 4\n  max_events_per_client: 5\n", 1,
+               "'max_events_per_client' (5) must not exceed 'max_events' (4)");
+  expect_error("jss:\n  event_timeout_min: 256\n", 2, "'event_timeout_min' must be an integer 0..255, got '256'");
+  expect_error("jss:\n  change_poll_period_s: 0\n", 2,
+               "'change_poll_period_s' must be a number of seconds 0.01..10, got '0'");
+  expect_error("jss:\n  max_packet_contents: 5000\n", 2,
+               "'max_packet_contents' must be an integer 64..4079, got '5000'");
+  expect_error("jss:\n  enabled: maybe\n", 2, "'enabled' must be true or false, got 'maybe'");
+  expect_error("jss:\n  port: 3794\n", 2,
+               "unknown key 'port' in jss (known: enabled, subsystem, components, client_alias_subsystem, multicast, "
+               "max_clients, max_events, max_events_per_client, event_timeout_min, change_poll_period_s, "
+               "max_packet_contents)");
+}
+
+TEST(JausdConfigErrors, JssComponents) {
+  const std::string components =
+      " (components: node_manager, communicator, primitive_driver, global_pose_sensor, local_pose_sensor, "
+      "velocity_state_sensor, visual_sensor, primitive_manipulator, global_vector_driver, local_vector_driver, "
+      "global_waypoint_driver, local_waypoint_driver, global_path_segment_driver, local_path_segment_driver)";
+  expect_error("jss:\n  components: [33]\n", 2,
+               "'components' must be a map of component names (or kinds) to JSS component IDs 1..254, got a list");
+  expect_error("jss:\n  components:\n    primitive_driver: 255\n", 3,
+               "'primitive_driver' must be an integer 1..254, got '255'");
+  expect_error("jss:\n  components:\n    primitive_driver: 3\n    primitive_driver: 4\n", 4,
+               "duplicate key 'primitive_driver' in jss.components (first at line 3)");
+  expect_error("jss:\n  components:\n    wheel: 3\n", 3, "jss.components: no component named 'wheel'" + components);
+  // The primitive driver would become the communicator's JSS ID.
+  expect_error("jss:\n  components:\n    primitive_driver: 35\n", 3,
+               "jss.components: JSS component ID 35 would be both RA component 35 and RA component 33");
+  expect_error(R"(components:
+  - kind: node_manager
+  - {kind: visual_sensor, name: front}
+  - {kind: visual_sensor, name: rear, id: 57}
+jss:
+  components: {visual_sensor: 60}
+)",
+               6, "jss.components: 'visual_sensor' is the kind of several components (front, rear): name one of them");
+  expect_error("jss:\n  components:\n    communicator: 40\n    comms: 41\n", 4,
+               "jss.components: no component named 'comms'" + components);
+  // Off: nothing of the section is checked against the node.
+  expect_ok("identification: {subsystem: 250}\njss: {enabled: false}\n");
+}
+
+TEST(JausdConfigValidate, TheAliasSubsystemRuleHoldsAfterOverrides) {
+  auto c = expect_ok("");
+  c.subsystem = 250;  // --subsystem 250
+  const auto valid = validate(c);
+  ASSERT_FALSE(valid);
+  EXPECT_NE(valid.error().message().find("'client_alias_subsystem' (250) must differ"), std::string::npos);
+}
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
   // In the order of components/CMakeLists.txt's folders.

@@ -14,6 +14,7 @@
 #include "jaus/components/primitive_manipulator_kind.hpp"
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/node_host.hpp"
+#include "jaus/jss/judp.hpp"
 #include "jaus/testing/memory_link.hpp"
 #include "jaus/testing/virtual_time.hpp"
 #include "jaus/wire/message.hpp"
@@ -603,6 +604,93 @@ TEST_F(EmergencyHolds, AnUnreadableHoldsFileHoldsEverythingUntilTheLocalClear) {
   for (auto id : {kDriverId, kArmId, kCamerasId, kPoseId}) EXPECT_EQ(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
   EXPECT_GE(h.clear_emergency_holds_locally("test"), 1u);
   EXPECT_NE(state_of(h, kDriverId), rt::PrimaryStatus::emergency);
+}
+
+// ---- the JSS face on an attached host ------------------------------------------
+// jss.enabled: the node's link is a FaceLink around the memory link, the face
+// is made after the node; what the face sends goes through set_jss_sender's
+// function and what a JSS client sends is handed to jss_face()->receive().
+
+class AttachedJssHost : public AttachedHost {
+ protected:
+  static constexpr jss::JssId kClient{42, 1, 1};  // a JSS operator unit
+  static constexpr jss::JssId kDriver{1, 1, 33};  // our primitive driver in JSS
+
+  std::unique_ptr<NodeHost> attach_jss() {
+    HostConfig config;
+    config.jss.enabled = true;
+    config.settings.defaults.controller_timeout = 5s;
+    config.settings.identity.subsystem_name = "judged vehicle";
+    config.components = {ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}},
+                         ComponentSpec{"primitive_driver", 33, 1, 0, "", {}, 0, {}}};
+    auto host = attach(config);
+    if (host)
+      host->set_jss_sender([this](const jss::JssId& to, std::span<const std::uint8_t> datagram) {
+        sent_to_jss.push_back({to, {datagram.begin(), datagram.end()}});
+      });
+    return host;
+  }
+  void from_client(NodeHost& host, const jss::JssId& to, std::vector<std::uint8_t> contents) {
+    jss::JudpHeader header;
+    header.source = kClient;
+    header.destination = to;
+    header.sequence = sequence++;
+    host.jss_face()->receive(jss::make_judp_datagram(header, contents), rt::SenderStanding::trusted);
+  }
+  // The contents of the JSS messages sent to the client with this message ID.
+  std::vector<std::vector<std::uint8_t>> to_client(std::uint16_t message_id) const {
+    std::vector<std::vector<std::uint8_t>> out;
+    for (const auto& [to, datagram] : sent_to_jss) {
+      const auto packets = jss::decode_judp_datagram(datagram);
+      if (!packets || to != kClient) continue;
+      for (const auto& p : *packets)
+        if (jss::message_id_of(p.contents) == message_id) out.emplace_back(p.contents.begin(), p.contents.end());
+    }
+    return out;
+  }
+
+  std::vector<std::pair<jss::JssId, std::vector<std::uint8_t>>> sent_to_jss;
+  std::uint16_t sequence = 0;
+};
+
+TEST_F(AttachedJssHost, OffByDefaultOnWhenEnabledWithTheNodesIdentityAndTimeout) {
+  HostConfig off;
+  off.components = {ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}}};
+  EXPECT_EQ(attach(off)->jss_face(), nullptr);
+  auto host = attach_jss();
+  ASSERT_NE(host, nullptr);
+  ASSERT_NE(host->jss_face(), nullptr);
+  EXPECT_EQ(host->jss_face()->config().controller_timeout_s, 5);
+  EXPECT_EQ(host->jss_face()->config().subsystem_name, "judged vehicle");
+  EXPECT_EQ(host->jss_face()->jss_id_of(Address{1, 1, 33, 1}), kDriver);
+}
+
+TEST_F(AttachedJssHost, TheSenderCarriesTheFacesReplies) {
+  auto host = attach_jss();
+  ASSERT_NE(host, nullptr);
+  from_client(*host, jss::JssId{1, 1, 1}, {0x00, 0x2B, 0x02});  // Query Identification, subsystem
+  ASSERT_TRUE(testing::run_until(time, [&] { return !to_client(0x4B00).empty(); }, 1s));  // Report Identification
+  EXPECT_EQ(host->jss_face()->counters().datagrams_received, 1u);
+}
+
+TEST_F(AttachedJssHost, TheFaceLinkHandsAliasTrafficToTheFaceAndTheStopStillReachesIt) {
+  auto host = attach_jss();
+  ASSERT_NE(host, nullptr);
+  rt::Component& driver = *host->node().find(Address{1, 1, 33, 1});
+  from_client(*host, kDriver, {0x0D, 0x00, 200});  // Request Control, authority 200
+  // The RA Confirm Component Control to the client's alias went to the face, which confirmed in JSS.
+  ASSERT_TRUE(testing::run_until(time, [&] { return !to_client(0x000F).empty(); }, 1s));
+  EXPECT_EQ(to_client(0x000F).front(), (std::vector<std::uint8_t>{0x0F, 0x00, 0x00}));  // CONTROL_ACCEPTED
+  ASSERT_TRUE(driver.control().controller());
+  const Address alias = driver.control().controller()->address;
+  EXPECT_EQ(alias.subsystem, 250);
+  EXPECT_TRUE(host->jss_face()->owns(alias));
+  // Nothing for the alias went out on the RA link.
+  EXPECT_TRUE(std::none_of(received.begin(), received.end(), [](const Header& h) { return h.destination.subsystem == 250; }));
+  // The orderly stop releases control; the face, still there, tells the client in JSS (Reject Control, released).
+  host->stop("test");
+  EXPECT_FALSE(to_client(0x0010).empty());
+  host.reset();  // the face goes first, then the node and the links: no use after free (ASan)
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "jaus/host/clearpath_platform.hpp"
 #include "jaus/host/model_platform.hpp"
 #include "jaus/host/platform.hpp"
+#include "jaus/jss_face/face.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
@@ -46,6 +47,10 @@ struct HostConfig {
   PlatformSettings platform;
   // How far Set Emergency reaches, and where its holds persist (emergency_holds.hpp).
   EmergencySettings emergency;
+  // The JSS face (SAE JAUS on the same port, docs/jss.md): off unless
+  // enabled. Its identification and controller timeout are the node's
+  // (`settings`), copied when the host is made.
+  jss_face::FaceConfig jss{.enabled = false};
 };
 
 class NodeHost {
@@ -80,6 +85,15 @@ class NodeHost {
   rt::ComponentConfig component_config(std::string name, std::uint8_t component, std::uint8_t instance = 1) const;
 
   void watch(Watcher watcher) { watcher_ = std::move(watcher); }
+
+  // The JSS face when `jss.enabled`, else nullptr. An opened host's face
+  // sends through the UDP link (UdpLink::transmit_jss) and receives what it
+  // hands on; an attached host's face sends through set_jss_sender's function
+  // (nothing until one is set) and receives what the caller gives
+  // jss_face()->receive().
+  jss_face::JssFace* jss_face() { return jss_face_.get(); }
+  const jss_face::JssFace* jss_face() const { return jss_face_.get(); }
+  void set_jss_sender(jss_face::JssFace::DatagramSender sender) { jss_sender_ = std::move(sender); }
 
   // Orderly stop. Safety: every component goes to Shutdown first, which
   // commands its platform to stop (Component::enforce_stop), drops control
@@ -130,6 +144,10 @@ class NodeHost {
   // What open() and attach() share: the node on `link`, then the hardware
   // and the components.
   void make_node(node::Link& link);
+  // The face, once the node and its components exist (the face reads them).
+  void make_jss_face(jss_face::JssFace::DatagramSender send);
+  // Our node manager's JSS ID (the face's numbering of RA component 1).
+  jss::JssId jss_node_manager_id() const;
   Expected<void> add_components(boost::asio::io_context* io);  // io: an opened host's
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
@@ -156,10 +174,18 @@ class NodeHost {
   bool persisting_fails_ = false;  // the last write failed (said once per streak)
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> udp_link_;  // an opened host's
+  // The node's link when the face is on (around the UDP or the attached
+  // link): declared after that link and before the node, which uses it.
+  std::unique_ptr<jss_face::FaceLink> face_link_;
   // Declared before the node: components refer to its backends, so they outlive them.
   std::unique_ptr<Platform> platform_;
   rt::Backends backends_;  // what the components are made with: the platform's, by interface
   std::unique_ptr<node::Node> node_;
+  // After the node: it refers to the node, and the node's shutdown (Reject
+  // Component Control to aliases, ...) still goes through it. Destroyed
+  // (detached first) right after stop(), before the node and the links.
+  std::unique_ptr<jss_face::JssFace> jss_face_;
+  jss_face::JssFace::DatagramSender jss_sender_;  // an attached host's
   Watcher watcher_;
   bool stopped_ = false;
 };
