@@ -10,7 +10,6 @@
 namespace jaus::test::jss_large {
 
 using namespace jaus::jss;
-namespace msg = jaus::jss::msg;
 using namespace std::chrono_literals;
 
 std::vector<std::uint8_t> contents_of(std::size_t n, std::uint16_t id = 0x4B03) {
