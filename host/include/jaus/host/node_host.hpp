@@ -50,7 +50,12 @@ struct HostConfig {
   // The JSS face (SAE JAUS on the same port, docs/jss.md): off unless
   // enabled. Its identification and controller timeout are the node's
   // (`settings`), copied when the host is made.
-  jss_face::FaceConfig jss{.enabled = false};
+  // (Not `{.enabled = false}`: gcc's -Wmissing-field-initializers refuses a partial designated list.)
+  jss_face::FaceConfig jss = [] {
+    jss_face::FaceConfig off;
+    off.enabled = false;
+    return off;
+  }();
 };
 
 class NodeHost {
