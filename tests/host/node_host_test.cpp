@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
 #include <boost/asio/post.hpp>
 
 #include "jaus/base/virtual_time.hpp"
@@ -259,6 +260,39 @@ TEST(NodeHost, HostsConfiguredAndAddedComponentsAndStopsThemFirst) {
   EXPECT_TRUE(h.stopped());
   EXPECT_TRUE(h.node().local_components().empty());  // every component shut down and left
   h.stop("again");  // idempotent
+}
+
+// An opened host with the JSS face: AS5669A datagrams on its UDP socket reach
+// the face, and its replies go back to the learnt endpoint.
+TEST(NodeHost, AnOpenedHostAnswersJssOnItsUdpSocket) {
+  boost::asio::io_context io;
+  HostConfig config;
+  config.link.bind = transport::Ipv4Endpoint{kLoopback, 0};
+  config.jss.enabled = true;
+  config.components = {ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}}};
+  auto host = NodeHost::open(config, io);
+  ASSERT_TRUE(host) << host.error().message();
+  ASSERT_NE((*host)->jss_face(), nullptr);
+  boost::asio::ip::udp::socket client(io, boost::asio::ip::udp::endpoint(boost::asio::ip::address_v4(kLoopback), 0));
+  jss::JudpHeader header;
+  header.source = jss::JssId{42, 1, 1};
+  header.destination = jss::JssId{1, 1, 1};
+  const auto query = jss::make_judp_datagram(header, std::vector<std::uint8_t>{0x00, 0x2B, 0x02});
+  client.send_to(boost::asio::buffer(query),
+                 boost::asio::ip::udp::endpoint(boost::asio::ip::address_v4(kLoopback),
+                                                (*host)->udp_link()->local_endpoint().port));
+  std::array<std::uint8_t, 2000> buffer{};
+  std::size_t size = 0;
+  client.async_receive(boost::asio::buffer(buffer), [&](const boost::system::error_code& ec, std::size_t n) {
+    if (!ec) size = n;
+  });
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while (size == 0 && std::chrono::steady_clock::now() < deadline) io.run_for(5ms);
+  const auto reply = jss::decode_judp_datagram(std::span(buffer).first(size));
+  ASSERT_TRUE(reply) << reply.error().message();
+  EXPECT_EQ(jss::message_id_of(reply->front().contents), 0x4B00);  // Report Identification
+  EXPECT_EQ(reply->front().header.destination, header.source);
+  EXPECT_EQ((*host)->udp_link()->counters().jss.datagrams_delivered, 1u);
 }
 
 // Safety: whatever ends the event loop, every component's stop path runs
