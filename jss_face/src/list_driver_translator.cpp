@@ -63,7 +63,7 @@ class ListDriverTranslator final : public ServiceTranslator {
       case jss::msg::QueryElement::code: {
         auto query = mobility::decode_jss_body<jss::msg::QueryElement>(m.body);
         if (!query) {
-          mobility::log_malformed(port, log_, m, jss::msg::QueryElement::name, query.error());
+          mobility::log_malformed(port, m, jss::msg::QueryElement::name, query.error());
           return true;
         }
         const ListElement* e = elements.find(query->element_uid);
@@ -107,7 +107,7 @@ class ListDriverTranslator final : public ServiceTranslator {
  private:
   void set_elements(const JssInbound& m, FacePort& port) {
     auto set = mobility::decode_jss_body<jss::msg::SetElement>(m.body);
-    if (!set) return mobility::log_malformed(port, log_, m, jss::msg::SetElement::name, set.error());
+    if (!set) return mobility::log_malformed(port, m, jss::msg::SetElement::name, set.error());
     if (!mobility::client_controls(port, m)) return ignored(m, port, "Set Element", "it does not control it");
     std::vector<ListElement> elements;
     elements.reserve(set->elements.size());
@@ -130,7 +130,7 @@ class ListDriverTranslator final : public ServiceTranslator {
 
   void delete_elements(const JssInbound& m, FacePort& port) {
     auto del = mobility::decode_jss_body<jss::msg::DeleteElement>(m.body);
-    if (!del) return mobility::log_malformed(port, log_, m, jss::msg::DeleteElement::name, del.error());
+    if (!del) return mobility::log_malformed(port, m, jss::msg::DeleteElement::name, del.error());
     if (!mobility::client_controls(port, m)) return ignored(m, port, "Delete Element", "it does not control it");
     auto removed = drivers_->state(m.ra_component).elements.remove(del->element_uids);
     if (!removed) return reject(m, port, del->request_id, removed.error());
@@ -139,7 +139,7 @@ class ListDriverTranslator final : public ServiceTranslator {
 
   void execute(const JssInbound& m, FacePort& port) {
     auto run = mobility::decode_jss_body<jss::msg::ExecuteList>(m.body);
-    if (!run) return mobility::log_malformed(port, log_, m, jss::msg::ExecuteList::name, run.error());
+    if (!run) return mobility::log_malformed(port, m, jss::msg::ExecuteList::name, run.error());
     if (!mobility::client_controls(port, m)) return ignored(m, port, "Execute List", "it does not control it");
     if (!WaypointDrivers::ready(port, m.ra_component))
       return ignored(m, port, "Execute List", "the driver is not Ready");

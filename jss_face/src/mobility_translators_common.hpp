@@ -121,8 +121,7 @@ void reply_jss(FacePort& port, const ReplyTo& to, const jss::JssId& our_componen
 }
 
 // A JSS body that did not decode: the face counts and logs it; never acted on.
-inline void log_malformed(FacePort& port, TranslatorLog&, const JssInbound& m, std::string_view what,
-                          const Error& error) {
+inline void log_malformed(FacePort& port, const JssInbound& m, std::string_view what, const Error& error) {
   port.malformed(std::string(what) + " from " + who(m), error.message());
 }
 

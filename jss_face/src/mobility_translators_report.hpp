@@ -35,7 +35,7 @@ class ReportTranslator : public ServiceTranslator {
     if (m.message_id != JssQuery::code) return command(m, port);
     auto query = decode_jss_body<JssQuery>(m.body);
     if (!query) {
-      log_malformed(port, log_, m, JssQuery::name, query.error());
+      log_malformed(port, m, JssQuery::name, query.error());
       return true;
     }
     RaQuery ra{};

@@ -29,7 +29,7 @@ class PrimitiveDriverTranslator final
     if (m.message_id != jss::msg::SetWrenchEffort::code) return false;
     auto set = mobility::decode_jss_body<jss::msg::SetWrenchEffort>(m.body);
     if (!set) {
-      mobility::log_malformed(port, log(), m, jss::msg::SetWrenchEffort::name, set.error());
+      mobility::log_malformed(port, m, jss::msg::SetWrenchEffort::name, set.error());
       return true;
     }
     mobility::send_ra(port, m, wrench_effort_to_ra(*set), log());

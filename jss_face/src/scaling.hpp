@@ -10,10 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 
-#include "jaus/base/time.hpp"
 
 namespace jaus::jss_face::scaling {
 

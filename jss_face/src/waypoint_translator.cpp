@@ -62,7 +62,7 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
  private:
   void set_waypoint(const JssInbound& m, FacePort& port) {
     auto set = mobility::decode_jss_body<jss::msg::SetLocalWaypoint>(m.body);
-    if (!set) return mobility::log_malformed(port, log_, m, jss::msg::SetLocalWaypoint::name, set.error());
+    if (!set) return mobility::log_malformed(port, m, jss::msg::SetLocalWaypoint::name, set.error());
     if (!mobility::client_controls(port, m)) return refused(m, port, "Set Local Waypoint", "it does not control it");
     auto& s = drivers_->state(m.ra_component);
     s.loaded = WaypointDriverState::Loaded::single_waypoint;
@@ -75,7 +75,7 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
 
   void query_waypoint(const JssInbound& m, FacePort& port) {
     auto query = mobility::decode_jss_body<jss::msg::QueryLocalWaypoint>(m.body);
-    if (!query) return mobility::log_malformed(port, log_, m, jss::msg::QueryLocalWaypoint::name, query.error());
+    if (!query) return mobility::log_malformed(port, m, jss::msg::QueryLocalWaypoint::name, query.error());
     auto waypoint = drivers_->current_waypoint(port, m.ra_component);
     if (!waypoint) return;  // answered only when a waypoint exists
     jss::msg::ReportLocalWaypoint report{};
@@ -86,7 +86,7 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
 
   void set_speed(const JssInbound& m, FacePort& port) {
     auto set = mobility::decode_jss_body<jss::msg::SetTravelSpeed>(m.body);
-    if (!set) return mobility::log_malformed(port, log_, m, jss::msg::SetTravelSpeed::name, set.error());
+    if (!set) return mobility::log_malformed(port, m, jss::msg::SetTravelSpeed::name, set.error());
     if (!mobility::client_controls(port, m)) return refused(m, port, "Set Travel Speed", "it does not control it");
     if (!WaypointDrivers::ready(port, m.ra_component))
       return refused(m, port, "Set Travel Speed", "the driver is not Ready");
