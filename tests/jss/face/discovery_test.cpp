@@ -52,7 +52,9 @@ TEST(JssFaceDiscovery, EveryComponentAnswersQueryIdentificationType4WithItsName)
   ASSERT_EQ(reports.size(), 3u);
   for (const auto& [from, report] : reports) {
     EXPECT_EQ(report.type, msg::identification_type::kComponent);
-    if (from == kDriver) EXPECT_EQ(report.identification, "driver");
+    if (from == kDriver) {
+      EXPECT_EQ(report.identification, "driver");
+    }
   }
   const auto node_report =
       node.ask<msg::ReportIdentification>(kClientA, kNodeManager, msg::QueryIdentification{{jaus::msg::identification::kNode}});
