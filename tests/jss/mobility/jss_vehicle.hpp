@@ -167,6 +167,8 @@ class JssVehicle {
     }
     return confirm->response_code;
   }
+  // The client falls silent: no more Request Control (nor anything else the test does not send).
+  void stop_keeping_control() { held_.clear(); }
   void release_control(const jss::JssId& to) {
     held_.erase(to);
     send(to, jss::msg::ReleaseControl{});

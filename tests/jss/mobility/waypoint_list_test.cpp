@@ -220,6 +220,20 @@ TEST_F(JssWaypointList, SetEmergencyDuringTheRouteStopsAndNothingResumesIt) {
   EXPECT_EQ(travel_speed(), 0.0);
 }
 
+TEST_F(JssWaypointList, ASilentClientLosesControlAndTheRouteStops) {
+  load_square();
+  v_.send(kJssWaypointDriver, execute(1.0, 1));
+  ASSERT_TRUE(v_.run_until([&] { return v_.speed_mps() > 0.5; }, 10s));
+  v_.stop_keeping_control();
+  // Silent past the RA controller timeout (3 s): control ends, the route halts.
+  ASSERT_TRUE(v_.run_until([&] { return !v_.host().node().find(kRaWaypointDriver)->control().controller(); }, 5s));
+  ASSERT_TRUE(v_.run_until([&] { return v_.speed_mps() < 0.02; }, 3s));
+  EXPECT_FALSE(v_.waypoint_driver().driving());
+  v_.run_for(3s);
+  EXPECT_LT(v_.speed_mps(), 0.02);
+  EXPECT_EQ(active(), 0);
+}
+
 TEST_F(JssWaypointList, LeavingReadyResetsTheTravelSpeed) {
   load_square();
   v_.send(kJssWaypointDriver, execute(1.0, 1));
