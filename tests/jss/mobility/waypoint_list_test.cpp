@@ -252,10 +252,20 @@ TEST_F(JssWaypointList, LeavingReadyResetsTheTravelSpeed) {
 }
 
 TEST_F(JssWaypointList, ASingleWaypointWaitsForItsTravelSpeed) {
+  // Set in Standby (any controlled state), then Resume: the route starts at
+  // JSS's speed after entering Ready, 0, until Set Travel Speed.
+  v_.send(kJssWaypointDriver, jss::msg::Standby{});
+  v_.run_for(50ms);
+  ASSERT_EQ(v_.state_of(kRaWaypointDriver), rt::PrimaryStatus::standby);
   auto w = waypoint({5, 0});
   w.waypoint_tolerance_m = 1.0;
   v_.send(kJssWaypointDriver, w);
+  v_.send(kJssWaypointDriver, jss::msg::SetTravelSpeed{{2.0}});  // not Ready: not executed
   v_.run_for(50ms);
+  EXPECT_EQ(v_.waypoint_driver().waypoints().size(), 1u);
+  v_.send(kJssWaypointDriver, jss::msg::Resume{});
+  v_.run_for(50ms);
+  ASSERT_EQ(v_.state_of(kRaWaypointDriver), rt::PrimaryStatus::ready);
   const auto report =
       v_.ask<jss::msg::ReportLocalWaypoint>(kJssWaypointDriver, jss::msg::QueryLocalWaypoint{{0xFF}});
   ASSERT_TRUE(report);
