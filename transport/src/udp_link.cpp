@@ -327,18 +327,19 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
     }
   }
   const rt::SenderStanding standing =
-      standing_of(from, learnt, counters_.delivered_unrecorded, counters_.delivered_observer, node());
+      standing_of(from, learnt, counters_.delivered_unrecorded, counters_.delivered_observer, node);
   if (options_.relay) relay(from, header, datagram.last(kHeaderSize + unframed->packet.payload.size()));
   ++counters_.packets_delivered;
   if (handler_) handler_(unframed->packet, unframed->framing, standing);
 }
 
+template <class Who>
 rt::SenderStanding UdpLink::standing_of(const Ipv4Endpoint& from, Learnt learnt, std::uint64_t& unrecorded,
-                                        std::uint64_t& observer, const std::string& who) {
+                                        std::uint64_t& observer, Who who) {
   if (learnt == Learnt::rejected) {
     ++unrecorded;
     repeated_lines_.write("senders not recorded", rt::LogLevel::warn, [&] {
-      return "node " + who + " at " + to_string(from) +
+      return "node " + who() + " at " + to_string(from) +
              " not recorded (route table full, or its host's endpoints all hold state): delivered as unrecorded [" +
              std::to_string(unrecorded) + " so far]";
     });
@@ -407,7 +408,7 @@ void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> dat
     }
   }
   const rt::SenderStanding standing =
-      standing_of(from, learnt, counters_.jss.delivered_unrecorded, counters_.jss.delivered_observer, node());
+      standing_of(from, learnt, counters_.jss.delivered_unrecorded, counters_.jss.delivered_observer, node);
   ++counters_.jss.datagrams_delivered;
   jss_handler_(datagram, standing);
 }

@@ -210,9 +210,12 @@ class UdpLink final : public node::Link {
   void count_drop(DropReason reason) { ++counters_.dropped[static_cast<std::size_t>(reason)]; }
   bool allowed(std::uint32_t address) const;
   bool may_control(std::uint32_t address) const;
-  // The standing of a sender whose route learn() answered with `learnt`, counted.
+  // The standing of a sender whose route learn() answered with `learnt`,
+  // counted; `who` names it, built only for a line that is written.
+  // (Defined and used in udp_link.cpp only.)
+  template <class Who>
   rt::SenderStanding standing_of(const Ipv4Endpoint& from, Learnt learnt, std::uint64_t& unrecorded,
-                                 std::uint64_t& observer, const std::string& who);
+                                 std::uint64_t& observer, Who who);
   // send_to, through the amplification guard when verify_endpoints is on:
   // what goes to learnt endpoints the routes chose.
   void send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
