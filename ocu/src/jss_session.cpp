@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <random>
 
 #include "jaus/ocu/names.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
@@ -262,6 +263,12 @@ Expected<std::unique_ptr<JssSession>> JssSession::open(JssSessionOptions options
     io = impl->owned_io.get();
   }
   impl->io = io;
+  if (impl->options.first_sequence) {
+    impl->next_sequence = *impl->options.first_sequence;
+  } else {
+    std::random_device entropy;
+    impl->next_sequence = static_cast<std::uint16_t>(std::uniform_int_distribution<unsigned>(0, 0xFFFF)(entropy));
+  }
   impl->runtime = std::make_unique<transport::AsioRuntime>(*io);
   impl->clock = impl->runtime.get();
   impl->scheduler = impl->runtime.get();
@@ -283,6 +290,7 @@ Expected<std::unique_ptr<JssSession>> JssSession::attach(JssSessionOptions optio
                                  "an attached JSS session needs a clock, a scheduler, transmit, connect and wait"));
   auto impl = std::make_unique<Impl>(std::move(options));
   impl->environment = std::move(environment);
+  impl->next_sequence = impl->options.first_sequence.value_or(0);
   impl->clock = impl->environment.clock;
   impl->scheduler = impl->environment.scheduler;
   impl->repeated = std::make_unique<rt::RepeatedLines>(*impl->clock, *impl->scheduler, impl->options.log);

@@ -65,6 +65,12 @@ struct JssSessionOptions {
   // subsystem and node): JSS type 20001 is an OCU.
   std::string name = "jausctl";
   std::uint16_t identification_type = 20001;
+  // The first sequence number. JSS nodes drop a message whose source and
+  // sequence number they saw in the last 10 s as a duplicate (answered, not
+  // acted on), so two runs of one JSS ID must not both start at 0 (a Clear
+  // Emergency right after the run that set it would be dropped). None: a
+  // random one on UDP, 0 when attached (tests stay deterministic).
+  std::optional<std::uint16_t> first_sequence;
   // Larger contents go as a large message (first/middle/last packets).
   std::size_t max_packet_contents = jss::kDefaultMaxPacketContents;
   // Large messages received: bounded in number, bytes and time (dropped ones are counted).
