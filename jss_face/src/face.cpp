@@ -42,7 +42,8 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
         ids_(config_, n),
         aliases_(config_.client_alias_subsystem, config_.max_clients),
         events_(config_, env_.clock, env_.scheduler, *this, log_),
-        lines_(env_.clock, env_.scheduler, log_) {
+        lines_(env_.clock, env_.scheduler,
+               [this](rt::LogLevel level, const std::string& text) { log(level, text); }) {
     for (auto& t : core_translators(config_)) translators_.push_back(std::move(t));
     for (auto& t : mobility_translators(config_)) translators_.push_back(std::move(t));
     schedule_housekeeping();
