@@ -51,23 +51,33 @@ class ListDriverTranslator final : public ServiceTranslator {
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {
-    if (m.ra_component.component != kLocalWaypointDriverComponent) return false;
+    if (m.ra_component.component != kLocalWaypointDriverComponent || !handles(m.message_id, m.ra_component.component))
+      return false;
+    answer(m, port);
+    // Execute List reaches the RA driver itself; the rest only the face.
+    if (m.message_id != jss::msg::ExecuteList::code) WaypointDrivers::heard(port, m, log_);
+    return true;
+  }
+  bool from_ra(const RaOutbound&, FacePort&) override { return false; }
+
+ private:
+  void answer(const JssInbound& m, FacePort& port) {
     auto& elements = drivers_->state(m.ra_component).elements;
     switch (m.message_id) {
       case jss::msg::SetElement::code:
         set_elements(m, port);
-        return true;
+        return;
       case jss::msg::DeleteElement::code:
         delete_elements(m, port);
-        return true;
+        return;
       case jss::msg::QueryElement::code: {
         auto query = mobility::decode_jss_body<jss::msg::QueryElement>(m.body);
         if (!query) {
           mobility::log_malformed(port, m, jss::msg::QueryElement::name, query.error());
-          return true;
+          return;
         }
         const ListElement* e = elements.find(query->element_uid);
-        if (e == nullptr) return true;  // answered only for an existing element
+        if (e == nullptr) return;  // answered only for an existing element
         jss::msg::ReportElement report{};
         report.element_uid = e->uid;
         report.previous_uid = e->previous_uid;
@@ -75,36 +85,34 @@ class ListDriverTranslator final : public ServiceTranslator {
         report.format = e->format;
         report.element_data = e->data;
         mobility::reply_jss(port, m.origin, m.our_component, report);
-        return true;
+        return;
       }
       case jss::msg::QueryElementList::code: {
         jss::msg::ReportElementList report{};
         report.element_uids = elements.in_order();
         mobility::reply_jss(port, m.origin, m.our_component, report);
-        return true;
+        return;
       }
       case jss::msg::QueryElementCount::code: {
         jss::msg::ReportElementCount report{};
         report.element_count = static_cast<std::uint16_t>(elements.size());
         mobility::reply_jss(port, m.origin, m.our_component, report);
-        return true;
+        return;
       }
       case jss::msg::ExecuteList::code:
         execute(m, port);
-        return true;
+        return;
       case jss::msg::QueryActiveElement::code: {
         jss::msg::ReportActiveElement report{};
         report.element_uid = drivers_->active_element(port, m.ra_component);
         mobility::reply_jss(port, m.origin, m.our_component, report);
-        return true;
+        return;
       }
       default:
-        return false;
+        return;
     }
   }
-  bool from_ra(const RaOutbound&, FacePort&) override { return false; }
 
- private:
   void set_elements(const JssInbound& m, FacePort& port) {
     auto set = mobility::decode_jss_body<jss::msg::SetElement>(m.body);
     if (!set) return mobility::log_malformed(port, m, jss::msg::SetElement::name, set.error());

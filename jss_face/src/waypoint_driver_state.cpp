@@ -98,6 +98,16 @@ double WaypointDrivers::travel_speed(FacePort& port, const Address& ra_driver) {
   return s.speed_mps;
 }
 
+void WaypointDrivers::heard(FacePort& port, const JssInbound& m, mobility::TranslatorLog& log) {
+  if (m.origin.event_id || !mobility::client_controls(port, m)) return;
+  mobility::send_ra(port, m, msg::QueryTravelSpeed{}, log);
+}
+
+bool WaypointDrivers::is_heard_answer(const RaOutbound& m) {
+  return m.header.command_code == msg::ReportTravelSpeed::code &&
+         m.header.source.component == kLocalWaypointDriverComponent && !m.to.event_id;
+}
+
 bool WaypointDrivers::left_ready(FacePort& port, const Address& ra_driver, const WaypointDriverState& s) {
   const auto* d = driver(port, ra_driver);
   if (d == nullptr || d->state() != rt::PrimaryStatus::ready) return true;

@@ -78,6 +78,17 @@ class WaypointDrivers {
   // JSS travel speed: 0 unless the driver is Ready.
   double travel_speed(FacePort& port, const Address& ra_driver);
 
+  // A message the face answers itself (list manager, active element, travel
+  // speed, local waypoint) reaches no RA component, yet RA counts any
+  // traffic from the controller as proof it is alive: so the controlling
+  // client's message is shown to the RA driver as RA Query Travel Speed
+  // from its alias, whose answer the waypoint translator drops. A client
+  // that polls the list driver keeps control as one polling a pose sensor
+  // does. Nothing for other senders or for events' queries.
+  static void heard(FacePort& port, const JssInbound& m, mobility::TranslatorLog& log);
+  // That query's answer (RA Report Travel Speed from the driver to an alias).
+  static bool is_heard_answer(const RaOutbound& m);
+
  private:
   void watch(FacePort& port);
   void check_left_ready();

@@ -43,6 +43,7 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
         return true;
       case jss::msg::QueryLocalWaypoint::code:
         query_waypoint(m, port);
+        WaypointDrivers::heard(port, m, log_);
         return true;
       case jss::msg::SetTravelSpeed::code:
         set_speed(m, port);
@@ -51,13 +52,15 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
         jss::msg::ReportTravelSpeed report{};
         report.speed_mps = drivers_->travel_speed(port, m.ra_component);
         mobility::reply_jss(port, m.origin, m.our_component, report);
+        WaypointDrivers::heard(port, m, log_);
         return true;
       }
       default:
         return false;
     }
   }
-  bool from_ra(const RaOutbound&, FacePort&) override { return false; }
+  // The RA answer to the liveness query of WaypointDrivers::heard: dropped.
+  bool from_ra(const RaOutbound& m, FacePort&) override { return WaypointDrivers::is_heard_answer(m); }
 
  private:
   void set_waypoint(const JssInbound& m, FacePort& port) {
