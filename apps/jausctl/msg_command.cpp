@@ -114,7 +114,7 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
   });
 
   auto* doc_cmd = msg->add_subcommand(
-      "doc", "Print docs/messages.md (--dialect jss: docs/jss-messages.md), generated from the descriptions");
+      "doc", "Print docs/messages.md (jss: docs/jss-messages.md), generated from the descriptions");
   add_dialect(doc_cmd);
   doc_cmd->callback([&exit_code, dialect] {
     std::cout << (*dialect == "jss" ? jaus::jss::messages_markdown() : jaus::msg::messages_markdown());

@@ -9,97 +9,15 @@
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/post.hpp>
 #include <csignal>
-#include <cstdlib>
-#include <fcntl.h>
-#include <fstream>
 #include <future>
 #include <nlohmann/json.hpp>
-#include <spawn.h>
-#include <sstream>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
+#include "jausctl_process.hpp"
 #include "target_node.hpp"
-
-extern char** environ;
 
 namespace jausctl::test {
 namespace {
-
-struct Result {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// jausctl as a child process; stdout and stderr go to files (no pipe to keep drained).
-class Jausctl {
- public:
-  explicit Jausctl(const std::vector<std::string>& args, const std::string& stdin_text = "") {
-    char dir_template[] = "/tmp/jausctl_cli_XXXXXX";
-    dir_ = mkdtemp(dir_template);
-    { std::ofstream(dir_ + "/in") << stdin_text; }
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, (dir_ + "/in").c_str(), O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, (dir_ + "/out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_addopen(&actions, 2, (dir_ + "/err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    std::vector<std::string> all{JAUSCTL_PATH};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, JAUSCTL_PATH, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~Jausctl() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-    std::system(("rm -rf " + dir_).c_str());
-  }
-
-  bool started() const { return pid_ > 0; }
-  std::string out() const { return read_file(dir_ + "/out"); }
-  // Waits (up to 20 s: an ASan binary starting on a loaded machine) until stdout holds `text`.
-  bool wait_for_output(const std::string& text) const {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (out().find(text) == std::string::npos) {
-      if (std::chrono::steady_clock::now() > deadline) return false;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return true;
-  }
-  void signal(int sig) const { kill(pid_, sig); }
-  Result finish() {
-    Result r;
-    int status = 0;
-    if (waitpid(pid_, &status, 0) == pid_ && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-    pid_ = -1;
-    r.out = out();
-    r.err = read_file(dir_ + "/err");
-    return r;
-  }
-
- private:
-  std::string dir_;
-  pid_t pid_ = -1;
-};
-
-Result run(const std::vector<std::string>& args, const std::string& stdin_text = "") {
-  Jausctl child(args, stdin_text);
-  EXPECT_TRUE(child.started());
-  return child.finish();
-}
 
 std::size_t line_count(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 

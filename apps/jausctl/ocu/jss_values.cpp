@@ -3,6 +3,7 @@
 // catalogue. No I/O but the output of the msg commands.
 #include <charconv>
 #include <cstdio>
+#include <optional>
 #include <random>
 
 #include "jaus/base/hex.hpp"
@@ -27,6 +28,18 @@ std::string fresh_jss_id() {
   std::uniform_int_distribution<int> node(1, 254);
   return std::to_string(kDefaultJssOcuId.subsystem) + "." + std::to_string(node(entropy)) + "." +
          std::to_string(kDefaultJssOcuId.component);
+}
+
+// The top-level field a JSON decode missed: the codec says "'presence_vector' is missing".
+std::optional<std::string> missing_field(const jaus::Error& e) {
+  static constexpr std::string_view kMissing = "' is missing";
+  const std::string& d = e.detail;
+  if (e.code != jaus::ErrorCode::json || d.size() <= kMissing.size() + 1 || d.front() != '\'' ||
+      d.compare(d.size() - kMissing.size(), kMissing.size(), kMissing) != 0)
+    return std::nullopt;
+  std::string name = d.substr(1, d.size() - kMissing.size() - 1);
+  if (name.find_first_of("'.[ ") != std::string::npos) return std::nullopt;
+  return name;
 }
 
 std::string one_line(const Json& json) { return json.dump(-1, ' ', false, Json::error_handler_t::replace); }
@@ -79,9 +92,16 @@ Parsed<JssPreparedQuery> prepare_jss_query(const jaus::jss::MessageInfo& query, 
   if (!jaus::jss::find_message(report_id)) return invalid("no report is known for " + std::string(query.name));
   if (!fields.is_object()) return invalid("--fields must be a JSON object");
   Json message{{"id", code_text(query.id)}, {"fields", fields}};
-  auto contents = jaus::jss::contents_from_json(message);
-  if (!contents) return invalid(std::string(query.name) + ": " + describe_error(contents.error()));
-  return JssPreparedQuery{std::move(*contents), report_id};
+  // Fields not given are 0 (as for RA queries): each one the codec misses is added, once.
+  for (std::size_t added = 0;; ++added) {
+    auto contents = jaus::jss::contents_from_json(message);
+    if (contents) return JssPreparedQuery{std::move(*contents), report_id};
+    const jaus::Error& e = contents.error();
+    const auto field = missing_field(e);
+    if (!field || message["fields"].contains(*field) || added >= 16)
+      return invalid(std::string(query.name) + ": " + describe_error(e));
+    message["fields"][*field] = 0;
+  }
 }
 
 Parsed<std::vector<std::uint8_t>> prepare_jss_message(const Json& message) {
