@@ -481,18 +481,18 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       auto info = ocu::parse_jss_message(*code);
       if (!info) return void(exit_code = bad_input("subscribe", info.error().message()));
       // A report names the event by its query (Report X -> Query X); a query is taken as it is.
-      const auto* query = *info;
-      if (query->message_class == jaus::jss::MessageClass::inform)
-        query = jaus::jss::find_message(static_cast<std::uint16_t>(query->id - 0x2000));
-      if (!query || query->message_class != jaus::jss::MessageClass::query)
+      const auto* query_info = *info;
+      if (query_info->message_class == jaus::jss::MessageClass::inform)
+        query_info = jaus::jss::find_message(static_cast<std::uint16_t>(query_info->id - 0x2000));
+      if (!query_info || query_info->message_class != jaus::jss::MessageClass::query)
         return void(exit_code = bad_input("subscribe", std::string((*info)->name) + " is neither a report nor a query"));
-      auto fields = ocu::Json::object();
+      auto query_fields = ocu::Json::object();
       if (!pv->empty()) {
         auto parsed_pv = ocu::parse_presence_vector(*pv);
         if (!parsed_pv) return void(exit_code = bad_input("subscribe", "--pv: " + parsed_pv.error().message()));
-        fields["presence_vector"] = *parsed_pv;
+        query_fields["presence_vector"] = *parsed_pv;
       }
-      auto prepared = ocu::prepare_jss_query(*query, fields);
+      auto prepared = ocu::prepare_jss_query(*query_info, query_fields);
       if (!prepared) return void(exit_code = bad_input("subscribe", prepared.error().message()));
       if (*every_change == !rate->empty())
         return void(exit_code = bad_input("subscribe", "give either --rate HZ or --every-change"));
