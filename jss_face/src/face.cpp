@@ -340,9 +340,10 @@ void JssFace::from_node(const Header& header, std::span<const std::uint8_t> payl
 }
 bool JssFace::holds_state_for(std::uint16_t subsystem, std::uint8_t node) const {
   const jss::JssId client_node{subsystem, node, jss::JssId::kAll};
+  // Events need no slot (a heartbeat's are answered by the face alone).
+  if (impl_->events_.has_events_of(client_node)) return true;
   const auto slot = impl_->aliases_.find(client_node);
-  return slot && (impl_->node_.holds_state_for(impl_->aliases_.alias_subsystem(), *slot) ||
-                  impl_->events_.has_events_of(client_node));
+  return slot && impl_->node_.holds_state_for(impl_->aliases_.alias_subsystem(), *slot);
 }
 std::optional<jss::JssId> JssFace::jss_id_of(const Address& ra_component) const {
   return impl_->ids_.jss_id_of(ra_component);

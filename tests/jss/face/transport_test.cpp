@@ -127,6 +127,25 @@ TEST(JssFaceTransport, AFullSlotTableRefusesANewClientButNeverItsStop) {
   EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
 }
 
+TEST(JssFaceTransport, AClientHoldsStateWhileItControlsOrHasEvents) {
+  FaceNode node;
+  EXPECT_FALSE(node.face().holds_state_for(kClientA.subsystem, kClientA.node));
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  EXPECT_TRUE(node.face().holds_state_for(kClientA.subsystem, kClientA.node));
+  ASSERT_TRUE(node.ask<msg::RejectControl>(kClientA, kDriver, msg::ReleaseControl{}));
+  node.run_for(20ms);
+  EXPECT_FALSE(node.face().holds_state_for(kClientA.subsystem, kClientA.node));
+  msg::CreateEvent event;
+  event.request_id = 1;
+  event.requested_rate_hz = 1;
+  event.query_message = jss::encode_contents(msg::QueryHeartbeatPulse{});
+  ASSERT_TRUE(node.ask<msg::ConfirmEventRequest>(kClientA, kDriver, event));
+  EXPECT_TRUE(node.face().holds_state_for(kClientA.subsystem, kClientA.node));
+  // A client whose only state is an event the face answers alone (no alias slot).
+  ASSERT_TRUE(node.ask<msg::ConfirmEventRequest>(kClientB, kDriver, event));
+  EXPECT_TRUE(node.face().holds_state_for(kClientB.subsystem, kClientB.node));
+}
+
 TEST(JssFaceTransport, ASlotWithNoStateGoesToANewClient) {
   jss_face::FaceConfig config;
   config.max_clients = 1;
