@@ -60,6 +60,18 @@ TEST(JssFaceManagement, AJssStopHoldsUntilThatClientClearsIt) {
   EXPECT_NE(node.driver().state(), rt::PrimaryStatus::emergency);
 }
 
+TEST(JssFaceManagement, ABroadcastSetEmergencyStopsEveryComponentAndIsNotAcknowledged) {
+  FaceNode node;
+  node.send(kClientA, kEveryone, msg::SetEmergency{{1}}, /*ack=*/true);
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+  EXPECT_EQ(node.host().node().find(Address{1, 1, 42, 1})->state(), rt::PrimaryStatus::emergency);
+  EXPECT_TRUE(node.acks().empty());
+  node.send(kClientA, kEveryone, msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_NE(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
 TEST(JssFaceManagement, AJssStopHoldsWhileTheClientIsSilent) {
   FaceNode node;
   node.send(kClientA, kDriver, msg::SetEmergency{{1}});
