@@ -10,7 +10,8 @@
 //   Query Control    -> RA Query Component Control; the controller's RA
 //                       address in the report becomes its JSS ID
 //   Query Timeout    -> Report Timeout (the RA controller timeout)
-//   Query Authority  -> RA Query Component Authority
+//   Query Authority  -> RA Query Component Authority; reported as the current
+//                       authority (the controller's while controlled, AS5710)
 //   Set Authority    -> from the controller: RA Request Component Control at
 //                       the new authority (its Confirm is not passed on: JSS
 //                       Set Authority has no reply)
@@ -118,7 +119,13 @@ class AccessControlTranslator final : public ServiceTranslator {
       case ra::ReportComponentAuthority::code: {
         const auto report = decode_ra<ra::ReportComponentAuthority>(m);
         if (!report) return false;
-        reply_jss(port, m.to, m.our_component, msg::ReportAuthority{{report->authority}});
+        // JSS reports the *current* authority: the controller's while the
+        // component is controlled, its own (RA's answer) while it is free.
+        std::uint8_t authority = report->authority;
+        if (const rt::Component* component = port.node().find(m.header.source);
+            component != nullptr && component->control().controller())
+          authority = component->control().controller()->authority;
+        reply_jss(port, m.to, m.our_component, msg::ReportAuthority{{authority}});
         return true;
       }
       case ra::QueryComponentStatus::code:

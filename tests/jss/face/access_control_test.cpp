@@ -45,6 +45,13 @@ TEST(JssFaceAccessControl, AHigherAuthorityPreemptsAndTheOldControllerGetsReject
   EXPECT_EQ(report->authority, 9);
 }
 
+TEST(JssFaceAccessControl, ReportAuthorityOfAFreeComponentIsItsOwn) {
+  FaceNode node;
+  const auto report = node.ask<msg::ReportAuthority>(kClientA, kDriver, msg::QueryAuthority{});
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->authority, node.driver().control().own_authority());
+}
+
 TEST(JssFaceAccessControl, ReportTimeoutIsTheControllerTimeout) {
   jss_face::FaceConfig config;
   config.controller_timeout_s = 3;
@@ -95,6 +102,10 @@ TEST(JssFaceAccessControl, SetAuthorityFromTheControllerChangesItsAuthorityWitho
   node.run_for(50ms);
   EXPECT_EQ(node.count(kClientA, msg::ConfirmControl::code), 0u);
   EXPECT_EQ(node.driver().control().controller()->authority, 7);
+  // Report Authority is the current authority: the controller's.
+  const auto current = node.ask<msg::ReportAuthority>(kClientB, kDriver, msg::QueryAuthority{});
+  ASSERT_TRUE(current.has_value());
+  EXPECT_EQ(current->authority, 7);
   // From another client: ignored.
   node.send(kClientB, kDriver, msg::SetAuthority{{9}});
   node.run_for(50ms);
