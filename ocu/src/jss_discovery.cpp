@@ -90,6 +90,16 @@ void learn_subsystem(JssSession& session, Gathering& g, const JssDiscoveryOption
   }
 }
 
+// A node's name: Query Identification (node) to its discovery component, else its first component.
+void name_node(JssSession& session, const jss::JssId& discovery, JssNode& node, const JssDiscoveryOptions& options) {
+  if (node.components.empty()) return;
+  const jss::JssId asked = discovery.node == node.id ? discovery : node.components.front().id;
+  msg::QueryIdentification query;
+  query.query_type = msg::identification::kNode;
+  if (auto report = session.query<msg::ReportIdentification>(asked, query, options.query_timeout))
+    node.name = report->identification;
+}
+
 }  // namespace
 
 bool JssComponent::has(std::string_view uri) const {
@@ -168,6 +178,11 @@ Expected<JssSystem> discover_jss(JssSession& session, const JssDiscoveryOptions&
       node.id = key.first;
       node.components.push_back(std::move(c));
     }
+    if (options.component_names)
+      for (auto& [node_id, node] : nodes) {
+        name_node(session, g.subsystem.discovery, node, options);
+        if (session.interrupted()) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
+      }
     for (auto& [node_id, node] : nodes) g.subsystem.nodes.push_back(std::move(node));
     system.subsystems.push_back(std::move(g.subsystem));
   }

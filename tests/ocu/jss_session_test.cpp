@@ -32,6 +32,8 @@ TEST_F(JssOcuTest, DiscoversTheSubsystemItsComponentsTheirNamesAndServices) {
   const auto velocity = subsystem.with("VelocityStateSensor");
   ASSERT_EQ(velocity.size(), 1u);
   EXPECT_EQ(velocity[0]->id, kJssVelocity);
+  ASSERT_EQ(subsystem.nodes.size(), 1u);
+  EXPECT_EQ(subsystem.nodes[0].name, "vehicle");
   ASSERT_NE(system->find(kJssNodeManager), nullptr);
   EXPECT_TRUE(system->find(kJssNodeManager)->has("urn:jaus:jss:core:Discovery"));
 }

@@ -30,7 +30,9 @@ Json discovery_json(const JssSystem& system) {
                                   {"name", c.name.empty() ? Json(nullptr) : Json(c.name)},
                                   {"services", std::move(services)}});
       }
-      nodes.push_back(Json{{"node", node.id}, {"components", std::move(components)}});
+      nodes.push_back(Json{{"node", node.id},
+                           {"name", node.name.empty() ? Json(nullptr) : Json(node.name)},
+                           {"components", std::move(components)}});
     }
     subsystems.push_back(Json{{"subsystem", s.id},
                               {"name", s.name},
@@ -69,7 +71,8 @@ std::string discovery_table(const JssSystem& system) {
     out += pad(std::to_string(s.id), 12) + pad("subsystem (" + identification_class(s.type) + ")", 20) +
            pad(std::to_string(s.type), 6) + s.name + "\n";
     for (const auto& node : s.nodes) {
-      out += pad(std::to_string(s.id) + "." + std::to_string(node.id), 12) + pad("node", 20) + pad("-", 6) + "\n";
+      out += pad(std::to_string(s.id) + "." + std::to_string(node.id), 12) + pad("node", 20) + pad("-", 6) +
+             (node.name.empty() ? "(no identification)" : node.name) + "\n";
       for (const auto& c : node.components) {
         out += pad(c.id.to_string(), 12) + pad("component", 20) + pad("-", 6) +
                (c.name.empty() ? "(no identification)" : c.name) + "\n";

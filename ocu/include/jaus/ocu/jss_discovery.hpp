@@ -3,7 +3,8 @@
 // subsystem, resent every identification_period until a subsystem answers;
 // then, for each subsystem that answered, Query Configuration (nodes and
 // components), Query Service List (core v1.1; Query Services, v1.0, when it
-// is not answered) and Query Identification type 4 for each component's name.
+// is not answered), Query Identification type 4 for each component's name
+// and type 3 of each node (asked of its discovery component, else its first).
 // The result is typed: subsystems, nodes, components with names and service
 // URIs. Bounded whatever peers send.
 #pragma once
@@ -37,6 +38,7 @@ struct JssComponent {
 
 struct JssNode {
   std::uint8_t id = 0;
+  std::string name;  // Report Identification type 3 (asked of a component of the node); empty when not answered
   std::vector<JssComponent> components;
 };
 
