@@ -89,6 +89,9 @@ std::string discovery_table(const JssSystem& system) {
 int run_jss_discover(JssSession& session, jaus::rt::Duration wait, bool json, CommandIo io) {
   JssDiscoveryOptions options;
   options.timeout = wait;
+  // Within a wait of seconds a lost broadcast is asked again at once, as the RA discover does (the library's
+  // default, 5 s, is for a client that waits for nodes to come up).
+  options.identification_period = std::chrono::milliseconds(500);
   auto system = discover_jss(session, options);
   if (!system) {
     if (system.error().code == jaus::ErrorCode::interrupted) {
