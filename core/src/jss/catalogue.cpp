@@ -282,9 +282,9 @@ std::string messages_markdown() {
   std::string out = R"(# Supported JSS messages
 
 Generated from the JSS message descriptions (`core/include/jaus/jss/messages/`)
-by `jss_messages_doc` (built with the tests); a test fails when this file and
-the descriptions disagree. Regenerate with
-`build/<tree>/tests/jss/codec/jss_messages_doc > docs/jss-messages.md`.
+by `jausctl msg doc --dialect jss` (or `jss_messages_doc`, built with the
+tests); a test fails when this file and the descriptions disagree. Regenerate
+with `jausctl msg doc --dialect jss > docs/jss-messages.md`.
 The face that speaks them is described in docs/jss.md.
 
 ## Conventions
