@@ -137,14 +137,18 @@ int run_jss(const Options& o, const jaus::transport::Ipv4Endpoint& to, jaus::rt:
   for (const auto& id : requested)
     if (std::none_of(found->begin(), found->end(), [&](const auto& c) { return c.id == id; }))
       components.push_back(conform::JssComponentUnderTest{id, "", {}, false});
-  // The second client: beside the runner, on its io_context, a port of its own.
-  const conform::JssClientOpener open_client =
-      [&](const jss::JssId& self) -> Expected<std::unique_ptr<ocu::JssSession>> {
+  // The second client: beside the runner, on its io_context, a port of its own, one for the whole run.
+  std::unique_ptr<ocu::JssSession> second_client;
+  const conform::JssClientOpener open_client = [&](const jss::JssId& self) -> Expected<ocu::JssSession*> {
+    if (second_client) return second_client.get();
     ocu::JssSessionOptions options = session_options;
     options.self = self;
     options.bind.port = 0;
     options.name = "jaus-conform (second client)";
-    return ocu::JssSession::open(std::move(options), &io);
+    auto opened = ocu::JssSession::open(std::move(options), &io);
+    if (!opened) return unexpected(opened.error());
+    second_client = std::move(*opened);
+    return second_client.get();
   };
   conform::RunReport report;
   report.node = transport::to_string(to);

@@ -51,9 +51,12 @@ inline Expected<ocu::JssReceived> await_from(JssCaseContext& c, ocu::JssSession&
 template <class R>
 Expected<R> decode(const ocu::JssReceived& received) {
   auto decoded = jss::decode_contents<R>(received.contents);
-  if (!decoded)
-    return unexpected(make_error(ErrorCode::malformed,
-                                 std::string(R::name) + " does not decode: " + decoded.error().message()));
+  if (!decoded) {
+    std::string why(R::name);  // appended, not concatenated: gcc 12's -Warray-bounds false positive
+    why += " does not decode: ";
+    why += decoded.error().message();
+    return unexpected(make_error(ErrorCode::malformed, std::move(why)));
+  }
   return decoded;
 }
 
@@ -70,6 +73,31 @@ template <class R, class Q>
 Expected<R> ask(JssCaseContext& c, const Q& query, std::optional<rt::Duration> timeout = std::nullopt) {
   return ask_from<R>(c, c.session, query, timeout);
 }
+
+// Messages with `id` from the target to `session`, heard from construction
+// on (a reply may come while another session waits: both run on one loop).
+class Heard {
+ public:
+  Heard(JssCaseContext& c, ocu::JssSession& session, std::uint16_t id) : session_(session) {
+    listener_ = session.listen([this, id, target = c.target()](const ocu::JssReceived& r) {
+      if (r.source() == target && r.message_id() == id) messages_.push_back(r);
+    });
+  }
+  ~Heard() { session_.unlisten(listener_); }
+  Heard(const Heard&) = delete;
+  Heard& operator=(const Heard&) = delete;
+  // The first one, waiting up to `timeout` for it.
+  std::optional<ocu::JssReceived> first(rt::Duration timeout) {
+    session_.run_until([&] { return !messages_.empty(); }, timeout);
+    if (messages_.empty()) return std::nullopt;
+    return messages_.front();
+  }
+
+ private:
+  ocu::JssSession& session_;
+  ocu::JssSession::ListenerId listener_ = 0;
+  std::vector<ocu::JssReceived> messages_;
+};
 
 // Lets `d` pass, hearing what comes meanwhile.
 inline void pause(JssCaseContext& c, rt::Duration d) { c.session.run_for(d); }

@@ -104,6 +104,8 @@ CaseOutcome primitive_driver_non_controller_ignored(JssCaseContext& c) {
   if (!authority) return fail("Query Authority: " + authority.error().message());
   auto second = c.second();
   if (!second) return fail(second.error().message());
+  auto found = status_of(c);
+  if (!found) return fail(found.error().message());
   JssControlHeld held(c, **second, *authority);
   if (!held.granted()) return skip("the second client is not granted control: " + held.what());
   send_from(c, **second, c.target(), m::Resume{});
@@ -113,7 +115,7 @@ CaseOutcome primitive_driver_non_controller_ignored(JssCaseContext& c) {
   pause(c, 200ms);
   auto reported = reported_linear_x(c);
   send_from(c, **second, c.target(), effort_x(0));
-  send_from(c, **second, c.target(), m::Standby{});
+  if (*found == kStandby) send_from(c, **second, c.target(), m::Standby{});  // as it was found
   if (!reported) return fail(reported.error().message());
   if (std::abs(*reported) > kEffortTolerance)
     return fail("Set Wrench Effort 5 % from a non-controller: reported " + number(*reported, 3) + " %");

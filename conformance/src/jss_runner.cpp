@@ -21,12 +21,12 @@ jss::JssId second_jss_client_id(const jss::JssId& runner) {
 }
 
 Expected<ocu::JssSession*> JssCaseContext::second() {
-  if (second_client) return second_client.get();
+  if (second_client) return second_client;
   if (!open_client)
     return unexpected(make_error(ErrorCode::invalid_argument, "a second client: the run was given no way to open one"));
   auto opened = open_client(second_jss_client_id(session.self()));
   if (!opened) return unexpected(make_error(opened.error().code, "a second client: " + opened.error().message()));
-  second_client = std::move(*opened);
+  second_client = *opened;
   second_recorder = second_client->listen([this](const ocu::JssReceived& r) {
     if (r.source() != target()) return;
     Exchanged e;
@@ -37,7 +37,7 @@ Expected<ocu::JssSession*> JssCaseContext::second() {
     e.jss_peer = r.source();
     exchange.push_back(std::move(e));
   });
-  return second_client.get();
+  return second_client;
 }
 
 JssCaseContext::~JssCaseContext() {

@@ -32,10 +32,12 @@ struct JssComponentUnderTest {
   bool has(std::string_view service) const;
 };
 
-// Where a case's other JSS clients come from (a second requester for
+// Where a case's second JSS client comes from (a second requester for
 // preemption and emergencies held by two clients): on UDP beside the
-// runner's session for jaus-conform, attached to a face in tests.
-using JssClientOpener = std::function<Expected<std::unique_ptr<ocu::JssSession>>(const jss::JssId& self)>;
+// runner's session for jaus-conform, attached to a face in tests. One for
+// the whole run, owned by the opener (a node learns a JSS ID's endpoint:
+// a fresh port for every case would be a JSS ID moving between ports).
+using JssClientOpener = std::function<Expected<ocu::JssSession*>(const jss::JssId& self)>;
 
 // The runner's JSS ID: an operator subsystem beside jausctl's (200.1.1), so
 // both can talk to one node at once.
@@ -51,7 +53,7 @@ struct JssCaseContext {
   std::vector<Exchanged> exchange;
   rt::TimePoint started{};
   JssClientOpener open_client;  // empty: no second client can be opened
-  std::unique_ptr<ocu::JssSession> second_client{};
+  ocu::JssSession* second_client = nullptr;
   ocu::JssSession::ListenerId second_recorder = 0;
   // Every component the runner knows on the node (to find, e.g., the local
   // pose sensor beside a waypoint driver).
