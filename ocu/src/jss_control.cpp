@@ -102,17 +102,25 @@ Expected<std::unique_ptr<JssControlHold>> JssControlHold::take(JssSession& sessi
                 std::string(reject ? jss_reject_control_text(reject->response_code) : "(does not decode)"));
     } else if (m.message_id() == msg::ConfirmControl::code) {
       auto confirm = jss::decode_contents<msg::ConfirmControl>(m.contents);
+      if (confirm && confirm->response_code == msg::confirm_control::kControlAccepted) raw->confirmed_ = true;
       if (confirm && confirm->response_code != 0 && confirm->response_code <= 2)
         raw->lose("re-request answered " +
                   std::string(to_string(static_cast<JssControlResponse>(confirm->response_code))));
     }
   });
   // The component's timeout decides how often control is requested again.
-  if (auto timeout = query_jss_timeout(session, component, options.request_timeout)) hold->timeout_s_ = *timeout;
-  const rt::Duration half = std::chrono::milliseconds(500) * hold->timeout_s_;
-  hold->refresh_period_ =
-      std::max(hold->timeout_s_ == 0 ? options.refresh_when_no_timeout : half, options.min_refresh);
-  if (hold->held()) hold->schedule_refresh();
+  rt::Duration period = options.refresh_when_unknown;
+  if (auto timeout = query_jss_timeout(session, component, options.request_timeout)) {
+    hold->timeout_s_ = *timeout;
+    period = *timeout == 0 ? options.refresh_when_no_timeout : std::chrono::milliseconds(500) * *timeout;
+  }
+  hold->refresh_period_ = std::max(period, options.min_refresh);
+  hold->next_refresh_ = session.clock().now() + hold->refresh_period_;
+  if (hold->held())
+    hold->refresh_timer_ = session.scheduler().call_at(hold->next_refresh_, [raw] {
+      raw->refresh_timer_ = rt::kNoTimer;
+      raw->refresh();
+    });
   return hold;
 }
 
@@ -122,20 +130,26 @@ JssControlHold::~JssControlHold() {
   session_.unlisten(listener_);
 }
 
-void JssControlHold::schedule_refresh() {
-  refresh_timer_ = session_.scheduler().call_at(session_.clock().now() + refresh_period_, [this] {
+void JssControlHold::refresh() {
+  if (!held()) return;
+  const auto now = session_.clock().now();
+  const bool due = now >= next_refresh_;
+  if (due || !confirmed_) {
+    msg::RequestControl request;
+    request.authority = options_.authority;
+    session_.send(component_, request);  // the Confirm Control comes to the listener
+    if (due) {
+      ++refreshes_;
+      next_refresh_ = now + refresh_period_;
+    }
+    confirmed_ = false;
+  }
+  // Unconfirmed: again after a resend period (never past the next refresh).
+  const auto next = confirmed_ ? next_refresh_ : std::min(next_refresh_, now + kJssQueryResendPeriod);
+  refresh_timer_ = session_.scheduler().call_at(next, [this] {
     refresh_timer_ = rt::kNoTimer;
     refresh();
   });
-}
-
-void JssControlHold::refresh() {
-  if (!held()) return;
-  msg::RequestControl request;
-  request.authority = options_.authority;
-  session_.send(component_, request);  // the Confirm Control comes to the listener
-  ++refreshes_;
-  schedule_refresh();
 }
 
 void JssControlHold::lose(std::string reason) {

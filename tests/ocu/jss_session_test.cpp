@@ -127,6 +127,20 @@ TEST_F(JssOcuTest, AControlHoldKeepsControlPastTheTimeoutAndReleases) {
   EXPECT_FALSE(control->controlled());
 }
 
+TEST_F(JssOcuTest, AControlHoldKeepsControlUnderLoss) {
+  ocu::JssControlHold::Options options;
+  options.authority = 5;
+  options.request_timeout = 5s;
+  auto hold = ocu::JssControlHold::take(*session, kJssDriver, options);
+  ASSERT_TRUE(hold) << hold.error().message();
+  set_loss(0.3, 11);  // a re-request or its Confirm lost is sent again after 250 ms
+  EXPECT_TRUE((*hold)->hold_for(30s)) << (*hold)->lost_reason();
+  set_loss(0, 11);
+  auto control = ocu::query_jss_control(*session, kJssDriver);
+  ASSERT_TRUE(control);
+  EXPECT_EQ(control->controller, session->self());
+}
+
 TEST_F(JssOcuTest, ASilentClientLosesControlWithinTheTimeout) {
   auto granted = ocu::request_jss_control(*session, kJssDriver, 5);
   ASSERT_TRUE(granted) << granted.error().message();

@@ -46,7 +46,10 @@ Expected<std::uint8_t> query_jss_authority(JssSession& session, const jss::JssId
 
 // Holds control while the session runs: requests it, asks the component's
 // timeout, and requests again every half of it (every refresh_when_no_timeout
-// when the component has none). Ends on Reject Control from the component,
+// when the component has none, refresh_when_unknown when it does not say).
+// Over a lossy link a re-request (or its Confirm) may be lost: it is sent
+// again every 250 ms until confirmed, so a timeout passes only when every
+// datagram of half of it is lost. Ends on Reject Control from the component,
 // on a re-request answered with anything but CONTROL_ACCEPTED, or on
 // release(). The destructor releases when still held (best effort, 1 s).
 class JssControlHold {
@@ -55,6 +58,7 @@ class JssControlHold {
     std::uint8_t authority = 0;
     rt::Duration request_timeout = kJssDefaultTimeout;
     rt::Duration refresh_when_no_timeout = std::chrono::seconds(5);
+    rt::Duration refresh_when_unknown = std::chrono::seconds(1);  // Query Timeout not answered
     // Never re-request more often than this (a 1 s timeout: every 500 ms).
     rt::Duration min_refresh = std::chrono::milliseconds(100);
   };
@@ -87,7 +91,7 @@ class JssControlHold {
 
  private:
   JssControlHold(JssSession& session, const jss::JssId& component, Options options);
-  void schedule_refresh();
+  // Sends Request Control when due, or again while the last one is unconfirmed; sets the next timer.
   void refresh();
   void lose(std::string reason);
 
@@ -102,6 +106,8 @@ class JssControlHold {
   std::function<void(const std::string&)> on_lost_;
   JssSession::ListenerId listener_ = 0;
   rt::TimerId refresh_timer_ = rt::kNoTimer;
+  rt::TimePoint next_refresh_{};
+  bool confirmed_ = true;  // the last Request Control was answered CONTROL_ACCEPTED
 };
 
 }  // namespace jaus::ocu
