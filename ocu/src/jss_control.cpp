@@ -11,10 +11,9 @@ namespace {
 using namespace std::chrono_literals;
 namespace msg = jss::msg;
 
-
 Error decode_failure(const jss::JssId& from, std::string_view what, const Error& error) {
-  return make_error(ErrorCode::malformed, std::string(what) + " from " + from.to_string() + " does not decode: " +
-                                              error.message());
+  return make_error(ErrorCode::malformed,
+                    std::string(what) + " from " + from.to_string() + " does not decode: " + error.message());
 }
 
 }  // namespace
@@ -41,8 +40,8 @@ Expected<JssControlResponse> request_jss_control(JssSession& session, const jss:
   msg::RequestControl request;
   request.authority = authority;
   const auto contents = jss::encode_contents(request);
-  auto reply = session.request_contents(component, contents, {msg::ConfirmControl::code, msg::RejectControl::code},
-                                        timeout);
+  auto reply =
+      session.request_contents(component, contents, {msg::ConfirmControl::code, msg::RejectControl::code}, timeout);
   if (!reply) return unexpected(reply.error());
   if (reply->message_id() == msg::RejectControl::code) return JssControlResponse::not_available;
   auto confirm = jss::decode_contents<msg::ConfirmControl>(reply->contents);
@@ -90,8 +89,8 @@ Expected<std::unique_ptr<JssControlHold>> JssControlHold::take(JssSession& sessi
   auto response = request_jss_control(session, component, options.authority, options.request_timeout);
   if (!response) return unexpected(response.error());
   if (*response != JssControlResponse::accepted)
-    return unexpected(make_error(ErrorCode::refused, component.to_string() + " refused control: " +
-                                                         std::string(to_string(*response))));
+    return unexpected(make_error(ErrorCode::refused,
+                                 component.to_string() + " refused control: " + std::string(to_string(*response))));
   std::unique_ptr<JssControlHold> hold(new JssControlHold(session, component, options));
   JssControlHold* raw = hold.get();
   hold->listener_ = session.listen([raw](const JssReceived& m) {
@@ -181,7 +180,8 @@ Expected<void> JssControlHold::release(rt::Duration timeout) {
   const auto deadline = session_.clock().now() + std::min(timeout, JssSession::kLongestCleanup);
   while (!released && session_.clock().now() < deadline) {
     session_.send_contents(component_, contents);
-    session_.run_cleanup_until([&] { return released; }, std::min<rt::Duration>(kJssQueryResendPeriod, deadline - session_.clock().now()));
+    session_.run_cleanup_until([&] { return released; },
+                               std::min<rt::Duration>(kJssQueryResendPeriod, deadline - session_.clock().now()));
   }
   session_.unlisten(id);
   if (!released) return unexpected(no_jss_reply_error(component_, timeout));

@@ -57,7 +57,8 @@ void learn_subsystem(JssSession& session, Gathering& g, const JssDiscoveryOption
   const jss::JssId discovery = g.subsystem.discovery;
   msg::QueryConfiguration query_configuration;
   query_configuration.query_field = msg::identification::kSubsystem;
-  if (auto configuration = session.query<msg::ReportConfiguration>(discovery, query_configuration, options.query_timeout)) {
+  if (auto configuration =
+          session.query<msg::ReportConfiguration>(discovery, query_configuration, options.query_timeout)) {
     for (const auto& node : configuration->nodes)
       for (const auto& entry : node.components)
         if (JssComponent* c = component_of(g, node.node_id, entry.component_id, options, left_out))
@@ -166,8 +167,8 @@ Expected<JssSystem> discover_jss(JssSession& session, const JssDiscoveryOptions&
   session.unlisten(listener);
   if (session.interrupted()) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
   if (found.empty())
-    return unexpected(make_error(ErrorCode::timeout, "no JSS subsystem answered Query Identification within " +
-                                                         seconds_text(options.timeout)));
+    return unexpected(make_error(
+        ErrorCode::timeout, "no JSS subsystem answered Query Identification within " + seconds_text(options.timeout)));
   JssSystem system;
   for (auto& [id, g] : found) {
     learn_subsystem(session, g, options, left_out);

@@ -1,6 +1,7 @@
 #include "jaus/ocu/jss_events.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 namespace jaus::ocu {
 
@@ -23,6 +24,11 @@ std::string_view jss_reject_event_text(std::uint8_t code) {
   }
 }
 
+std::uint8_t JssEvent::take_request_id() {
+  static std::atomic<std::uint8_t> next{0};  // sessions on several threads share it
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
 JssEvent::JssEvent(JssSession& session, const jss::JssId& provider, std::vector<std::uint8_t> query,
                    JssEventOptions options, Callback callback)
     : session_(session),
@@ -39,8 +45,8 @@ Expected<std::unique_ptr<JssEvent>> JssEvent::create(JssSession& session, const 
   if (query.size() < jss::kMessageIdSize)
     return unexpected(make_error(ErrorCode::invalid_argument, "an event needs a query message (its ID at least)"));
   if (provider.is_broadcast())
-    return unexpected(make_error(ErrorCode::invalid_argument, "an event is created with one component, not " +
-                                                                  provider.to_string()));
+    return unexpected(
+        make_error(ErrorCode::invalid_argument, "an event is created with one component, not " + provider.to_string()));
   std::unique_ptr<JssEvent> event(new JssEvent(session, provider, std::move(query), options, std::move(callback)));
   msg::CreateEvent create;
   create.request_id = event->take_request_id();
@@ -59,10 +65,12 @@ Expected<std::unique_ptr<JssEvent>> JssEvent::create(JssSession& session, const 
   event->confirmed_rate_hz_ = answer->rate_hz;
   event->open_ = true;
   // Core v1.1 providers cancel an event not refreshed within their event timeout.
-  if (auto timeout = session.query<msg::ReportEventTimeout>(provider, msg::QueryEventTimeout{}, options.request_timeout))
+  if (auto timeout =
+          session.query<msg::ReportEventTimeout>(provider, msg::QueryEventTimeout{}, options.request_timeout))
     event->provider_timeout_min_ = timeout->timeout_min;
   const rt::Duration half = std::chrono::seconds(30) * event->provider_timeout_min_;
-  event->refresh_period_ = std::max(event->provider_timeout_min_ == 0 ? options.refresh_when_unknown : half, kMinRefresh);
+  event->refresh_period_ =
+      std::max(event->provider_timeout_min_ == 0 ? options.refresh_when_unknown : half, kMinRefresh);
   if (event->open_) event->schedule_refresh();
   return event;
 }

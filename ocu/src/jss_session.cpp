@@ -49,8 +49,7 @@ struct JssSession::Impl {
     bool refused = false;
   };
 
-  explicit Impl(JssSessionOptions o)
-      : options(std::move(o)), reassembler(options.reassembly) {
+  explicit Impl(JssSessionOptions o) : options(std::move(o)), reassembler(options.reassembly) {
     if (!options.log) options.log = rt::silent_log();
   }
 
@@ -117,8 +116,8 @@ std::uint16_t JssSession::Impl::send(const jss::JssId& to, std::span<const std::
   const std::uint16_t first_sequence = next_sequence;
   header.sequence = first_sequence;
   // Broadcasts are never split: they go whole (the receivers' limit is theirs).
-  const std::size_t limit =
-      to.is_broadcast() ? std::max<std::size_t>(contents.size(), 2) : std::max<std::size_t>(options.max_packet_contents, 3);
+  const std::size_t limit = to.is_broadcast() ? std::max<std::size_t>(contents.size(), 2)
+                                              : std::max<std::size_t>(options.max_packet_contents, 3);
   auto datagrams = jss::make_judp_datagrams(header, contents, limit);
   if (!datagrams) {  // contents over 65521 bytes in a packet: nothing sent
     repeated->write(rt::Repeated{"jss session: not sent"}, rt::LogLevel::error, [&] {
@@ -184,8 +183,10 @@ void JssSession::Impl::handle(const jss::JudpPacket& packet) {
     ++counters.acks_received;
     for (AckWait* wait : ack_waits)
       if (wait->to == h.source && wait->sequence == h.sequence) {
-        if (h.ack_nak == jss::JudpAckNak::ack) wait->acked = true;
-        else wait->refused = true;
+        if (h.ack_nak == jss::JudpAckNak::ack)
+          wait->acked = true;
+        else
+          wait->refused = true;
       }
     return;
   }
@@ -274,9 +275,11 @@ Expected<std::unique_ptr<JssSession>> JssSession::open(JssSessionOptions options
   impl->scheduler = impl->runtime.get();
   impl->repeated = std::make_unique<rt::RepeatedLines>(*impl->clock, *impl->scheduler, impl->options.log);
   Impl* raw = impl.get();
-  auto socket = detail::JssSocket::open(
-      *io, raw->options.bind, raw->options.multicast, raw->options.log,
-      [raw](const transport::Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) { raw->receive(datagram, from); });
+  auto socket =
+      detail::JssSocket::open(*io, raw->options.bind, raw->options.multicast, raw->options.log,
+                              [raw](const transport::Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
+                                raw->receive(datagram, from);
+                              });
   if (!socket) return unexpected(socket.error());
   impl->socket = std::move(*socket);
   return std::unique_ptr<JssSession>(new JssSession(std::move(impl)));
@@ -334,8 +337,8 @@ ArrivalResult JssSession::send_contents_must_arrive_through_stop(const jss::JssI
 }
 
 ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssId& to,
-                                           std::span<const std::uint8_t> contents, jss::JudpPriority priority,
-                                           MustArrivePolicy policy, bool through_stop) {
+                                            std::span<const std::uint8_t> contents, jss::JudpPriority priority,
+                                            MustArrivePolicy policy, bool through_stop) {
   Impl& impl = *this;
   ArrivalResult result;
   const auto started = session.clock().now();
@@ -373,10 +376,10 @@ ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssI
   }
   impl.ack_waits.erase(std::find(impl.ack_waits.begin(), impl.ack_waits.end(), &wait));
   result.elapsed = session.clock().now() - started;
-  result.outcome = wait.acked               ? Arrival::acknowledged
-                   : wait.refused           ? Arrival::refused
+  result.outcome = wait.acked                               ? Arrival::acknowledged
+                   : wait.refused                           ? Arrival::refused
                    : session.interrupted() && !through_stop ? Arrival::interrupted
-                                            : Arrival::unacknowledged;
+                                                            : Arrival::unacknowledged;
   return result;
 }
 
@@ -408,8 +411,7 @@ Expected<JssReceived> JssSession::request_contents(const jss::JssId& to, std::sp
   std::optional<JssReceived> reply;
   const ListenerId id = listen([&](const JssReceived& r) {
     if (reply || !to.matches(r.source())) return;
-    if (!reply_ids.empty() && std::find(reply_ids.begin(), reply_ids.end(), r.message_id()) == reply_ids.end())
-      return;
+    if (!reply_ids.empty() && std::find(reply_ids.begin(), reply_ids.end(), r.message_id()) == reply_ids.end()) return;
     reply = r;
   });
   const auto period = std::max<rt::Duration>(resend_every, 1ms);

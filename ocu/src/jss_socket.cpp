@@ -10,14 +10,17 @@ using asio::ip::udp;
 
 namespace {
 
-udp::endpoint to_asio(const transport::Ipv4Endpoint& e) { return udp::endpoint(asio::ip::address_v4(e.address), e.port); }
+udp::endpoint to_asio(const transport::Ipv4Endpoint& e) {
+  return udp::endpoint(asio::ip::address_v4(e.address), e.port);
+}
 transport::Ipv4Endpoint from_asio(const udp::endpoint& e) {
   return transport::Ipv4Endpoint{e.address().to_v4().to_uint(), e.port()};
 }
 
 std::string bind_error(const transport::Ipv4Endpoint& endpoint, const boost::system::error_code& ec) {
   if (ec == asio::error::address_in_use) return to_string(endpoint) + " is already in use";
-  if (ec == boost::system::errc::address_not_available) return to_string(endpoint) + " is not an address of this machine";
+  if (ec == boost::system::errc::address_not_available)
+    return to_string(endpoint) + " is not an address of this machine";
   return "cannot bind " + to_string(endpoint) + ": " + ec.message();
 }
 
@@ -64,7 +67,8 @@ Expected<void> JssSocket::bind(transport::Ipv4Endpoint bind, std::optional<trans
   group_->socket.open(udp::v4(), ec);
   if (!ec) group_->socket.set_option(udp::socket::reuse_address(true), ec);
   if (!ec) group_->socket.bind(to_asio(*multicast), ec);
-  if (!ec) group_->socket.set_option(asio::ip::multicast::join_group(asio::ip::address_v4(multicast->address), interface), ec);
+  if (!ec)
+    group_->socket.set_option(asio::ip::multicast::join_group(asio::ip::address_v4(multicast->address), interface), ec);
   if (ec) return degrade("cannot receive", ec);
   return {};
 }

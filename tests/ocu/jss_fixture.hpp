@@ -52,10 +52,11 @@ class JssOcuTest : public ::testing::Test {
     host->set_jss_sender([this](const jss::JssId& to, std::span<const std::uint8_t> datagram) {
       face_datagrams.emplace_back(datagram.begin(), datagram.end());
       if (lost(face_to_session_loss)) return;
-      time.call_at(time.now() + latency, [this, to, bytes = std::vector<std::uint8_t>(datagram.begin(), datagram.end())] {
-        for (auto& [id, receive] : receivers_)
-          if (to.matches(id) && receive) receive(bytes);
-      });
+      time.call_at(time.now() + latency,
+                   [this, to, bytes = std::vector<std::uint8_t>(datagram.begin(), datagram.end())] {
+                     for (auto& [id, receive] : receivers_)
+                       if (to.matches(id) && receive) receive(bytes);
+                   });
     });
     testing::run_until(
         time,
@@ -114,7 +115,7 @@ class JssOcuTest : public ::testing::Test {
   double face_to_session_loss = 0;
   std::unique_ptr<host::NodeHost> host;
   ocu::JssSession* session = nullptr;
-  std::vector<std::vector<std::uint8_t>> face_datagrams;  // everything the face sent
+  std::vector<std::vector<std::uint8_t>> face_datagrams;                           // everything the face sent
   std::map<jss::JssId, std::vector<std::vector<std::uint8_t>>> session_datagrams;  // what each session sent
 
  private:

@@ -152,7 +152,10 @@ TEST(JssJausctlInput, BadInputIsOneLineAndExitTwo) {
 }
 
 TEST(JssJausctlInput, MsgDecodesTheNotesWorkedExample) {
-  const auto r = run({"msg", "decode", "0200110001010101000101" "2a00002b020000", "--dialect", "jss"});
+  const auto r = run({"msg", "decode",
+                      "0200110001010101000101"
+                      "2a00002b020000",
+                      "--dialect", "jss"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   ASSERT_EQ(json["packets"].size(), 1u);

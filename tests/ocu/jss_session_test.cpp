@@ -88,15 +88,15 @@ TEST_F(JssOcuTest, SetEmergencyIsResentUntilAckedAndStopsTheDriverUnderLoss) {
   set_loss(0.4, 3);
   msg::SetEmergency stop;
   stop.emergency_code = 1;
-  const auto arrival = session->send_must_arrive(kJssDriver, stop, jss::JudpPriority::safety_critical,
-                                                 ocu::MustArrivePolicy{50ms, 40});
+  const auto arrival =
+      session->send_must_arrive(kJssDriver, stop, jss::JudpPriority::safety_critical, ocu::MustArrivePolicy{50ms, 40});
   EXPECT_EQ(arrival.outcome, ocu::Arrival::acknowledged);
   EXPECT_EQ(ra_driver().state(), rt::PrimaryStatus::emergency);
   msg::ClearEmergency clear;
   clear.emergency_code = 1;
-  EXPECT_EQ(session->send_must_arrive(kJssDriver, clear, jss::JudpPriority::normal, ocu::MustArrivePolicy{50ms, 40})
-                .outcome,
-            ocu::Arrival::acknowledged);
+  EXPECT_EQ(
+      session->send_must_arrive(kJssDriver, clear, jss::JudpPriority::normal, ocu::MustArrivePolicy{50ms, 40}).outcome,
+      ocu::Arrival::acknowledged);
   EXPECT_NE(ra_driver().state(), rt::PrimaryStatus::emergency);
 }
 
@@ -194,6 +194,29 @@ TEST_F(JssOcuTest, PeriodicEventsDeliverTheReportsUntilCancelled) {
   const auto count = reports.size();
   session->run_for(1s);
   EXPECT_EQ(reports.size(), count);
+}
+
+TEST_F(JssOcuTest, TwoEventsOfOneProviderEachGetTheirOwnReports) {
+  int velocity = 0;
+  int status = 0;
+  ocu::JssEventOptions options;
+  options.rate_hz = 5;
+  auto first = ocu::JssEvent::create(
+      *session, kJssVelocity, msg::QueryVelocityState{}, options,
+      [&](const ocu::JssEventReport& r) { velocity += r.report_id() == msg::ReportVelocityState::code; });
+  ASSERT_TRUE(first) << first.error().message();
+  options.rate_hz = 2;
+  auto second =
+      ocu::JssEvent::create(*session, kJssVelocity, msg::QueryStatus{}, options,
+                            [&](const ocu::JssEventReport& r) { status += r.report_id() == msg::ReportStatus::code; });
+  ASSERT_TRUE(second) << second.error().message();
+  EXPECT_NE((*first)->event_id(), (*second)->event_id());
+  session->run_for(2s);
+  EXPECT_GE(velocity, 9);
+  EXPECT_GE(status, 3);
+  EXPECT_LE(status, 5);
+  ASSERT_TRUE((*second)->cancel());
+  EXPECT_TRUE((*first)->open());
 }
 
 TEST_F(JssOcuTest, AnEventOnAQueryTheProviderLacksIsRejected) {
@@ -302,8 +325,8 @@ TEST(JssSessionOptions, AnInvalidOrBroadcastIdIsRefused) {
   rt::VirtualTime time;
   ocu::JssSessionOptions options;
   options.self = jss::JssId{200, 255, 1};
-  ocu::JssEnvironment env{&time, &time, [](const jss::JssId&, std::span<const std::uint8_t>) {},
-                          [](auto) {}, testing::stepper(time)};
+  ocu::JssEnvironment env{&time, &time, [](const jss::JssId&, std::span<const std::uint8_t>) {}, [](auto) {},
+                          testing::stepper(time)};
   auto session = ocu::JssSession::attach(options, env);
   ASSERT_FALSE(session);
   EXPECT_EQ(session.error().code, ErrorCode::invalid_argument);

@@ -81,9 +81,9 @@ class FirstReply {
 jaus::Expected<msg::ReportStatus> query_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout) {
   auto report = session.query<msg::ReportStatus>(target, msg::QueryStatus{}, timeout);
   if (!report && report.error().code != jaus::ErrorCode::timeout && report.error().code != jaus::ErrorCode::interrupted)
-    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::malformed, "Report Status from " + target.to_string() +
-                                                                             " does not decode: " +
-                                                                             report.error().message()));
+    return jaus::unexpected(
+        jaus::make_error(jaus::ErrorCode::malformed,
+                         "Report Status from " + target.to_string() + " does not decode: " + report.error().message()));
   return report;
 }
 
@@ -122,8 +122,8 @@ int run_jss_send(JssSession& session, const JssId& target, const std::vector<std
   const auto start = session.clock().now();
   const auto id = jaus::jss::message_id_of(message);
   if (id < kFirstQueryId && !target.is_broadcast()) {
-    const auto priority = id == msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical
-                                                        : jaus::jss::JudpPriority::normal;
+    const auto priority =
+        id == msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical : jaus::jss::JudpPriority::normal;
     const auto arrival = session.send_contents_must_arrive(target, message, priority);
     if (arrival.outcome != Arrival::acknowledged)
       return fail(io, "send", not_arrived_text(message_name(message), target, arrival));
@@ -165,8 +165,8 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
   if (!report)
     return fail(io, "emergency", what + " acknowledged, but " + report.error().message() + " to show its state");
   if (set && !is_emergency(*report))
-    return fail(io, "emergency", target.to_string() + " is in " + primary_status_text(report->status) +
-                                     " after Set Emergency");
+    return fail(io, "emergency",
+                target.to_string() + " is in " + primary_status_text(report->status) + " after Set Emergency");
   const auto settle_until = session.clock().now() + std::min<jaus::rt::Duration>(timeout, kClearSettles);
   while (!set && is_emergency(*report) && session.clock().now() < settle_until) {
     session.run_for(kClearPoll);
@@ -175,8 +175,9 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
     report = std::move(again);
   }
   if (!set && is_emergency(*report))
-    return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, " +
-                                     "the platform's own stop does, or " + session.self().to_string() + " never set it");
+    return fail(io, "emergency",
+                target.to_string() + " is still in Emergency: another sender holds it, " +
+                    "the platform's own stop does, or " + session.self().to_string() + " never set it");
   io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " by " << session.self().to_string()
          << " (state " << primary_status_text(report->status) << ")\n";
   return kExitOk;
@@ -188,9 +189,10 @@ int run_jss_control(JssSession& session, const JssControlCommand& command, Comma
   options.authority = command.authority;
   options.request_timeout = command.timeout;
   auto hold = JssControlHold::take(session, command.target, options);
-  if (!hold) return fail(io, "control", hold.error().code == jaus::ErrorCode::refused
-                                            ? what + " refused: " + hold.error().message()
-                                            : hold.error().message());
+  if (!hold)
+    return fail(io, "control",
+                hold.error().code == jaus::ErrorCode::refused ? what + " refused: " + hold.error().message()
+                                                              : hold.error().message());
   io.out << what << " granted to " << session.self().to_string() << " (authority " << int{command.authority}
          << "; timeout " << int{(*hold)->timeout_s()} << " s, requested again every "
          << seconds_text((*hold)->refresh_period()) << ")\n"
@@ -201,8 +203,9 @@ int run_jss_control(JssSession& session, const JssControlCommand& command, Comma
   if (!held) return fail(io, "control", what + " lost after " + elapsed + ": " + (*hold)->lost_reason());
   auto released = (*hold)->release(command.timeout);
   if (!released)
-    return fail(io, "control", what + ": Release Control not answered (" + released.error().message() +
-                                   "); its timeout ends the control");
+    return fail(
+        io, "control",
+        what + ": Release Control not answered (" + released.error().message() + "); its timeout ends the control");
   io.out << what << " released after " << elapsed << "\n";
   return kExitOk;
 }
@@ -216,19 +219,19 @@ int run_jss_subscribe(JssSession& session, const JssSubscribeCommand& command, C
   options.type = command.every_change ? JssEventType::every_change : JssEventType::periodic;
   options.rate_hz = command.rate_hz;
   options.request_timeout = command.timeout;
-  auto event = JssEvent::create(session, command.target, command.query.contents, options,
-                                [&](const JssEventReport& report) {
-                                  meter.tick(clock.now());
-                                  auto json = jaus::jss::contents_to_json(report.report);
-                                  if (!json) {
-                                    io.err << "jausctl subscribe: " << json.error().message() << "\n";
-                                    return;
-                                  }
-                                  (*json)["source"] = report.provider.to_string();
-                                  (*json)["event"] = Json{{"event_id", report.event_id}, {"sequence", report.sequence}};
-                                  io.out << json_line(*json) << "\n" << std::flush;
-                                  output_broken = !io.out;
-                                });
+  auto event =
+      JssEvent::create(session, command.target, command.query.contents, options, [&](const JssEventReport& report) {
+        meter.tick(clock.now());
+        auto json = jaus::jss::contents_to_json(report.report);
+        if (!json) {
+          io.err << "jausctl subscribe: " << json.error().message() << "\n";
+          return;
+        }
+        (*json)["source"] = report.provider.to_string();
+        (*json)["event"] = Json{{"event_id", report.event_id}, {"sequence", report.sequence}};
+        io.out << json_line(*json) << "\n" << std::flush;
+        output_broken = !io.out;
+      });
   if (!event) return fail(io, "subscribe", event.error().message());
   io.err << "jausctl subscribe: " << label << (command.every_change ? " on every change" : "") << " at "
          << hz_text((*event)->confirmed_rate_hz()) << " Hz (event " << int{(*event)->event_id()} << ")\n";

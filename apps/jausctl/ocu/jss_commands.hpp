@@ -67,8 +67,8 @@ int run_jss_control(JssSession& session, const JssControlCommand& command, Comma
 
 struct JssSubscribeCommand {
   jaus::jss::JssId target;
-  JssPreparedQuery query;        // the event's query (a report given on the command line: its query)
-  bool every_change = false;     // else periodic at rate_hz
+  JssPreparedQuery query;     // the event's query (a report given on the command line: its query)
+  bool every_change = false;  // else periodic at rate_hz
   double rate_hz = 1;
   std::optional<std::uint64_t> count;
   std::optional<jaus::rt::Duration> run_for;

@@ -79,7 +79,8 @@ std::string discovery_table(const JssSystem& system) {
         out += services_line(c);
       }
     }
-    if (!s.services_listed) out += std::string(14, ' ') + "(no service list: Query Service List and Query Services unanswered)\n";
+    if (!s.services_listed)
+      out += std::string(14, ' ') + "(no service list: Query Service List and Query Services unanswered)\n";
   }
   return out;
 }
@@ -99,9 +100,11 @@ int run_jss_discover(JssSession& session, jaus::rt::Duration wait, bool json, Co
       return kExitFailure;
     }
     std::string asked;
-    for (const auto& peer : session.options().to) asked += (asked.empty() ? "" : ", ") + jaus::transport::to_string(peer);
+    for (const auto& peer : session.options().to)
+      asked += (asked.empty() ? "" : ", ") + jaus::transport::to_string(peer);
     if (const auto& group = session.options().multicast)
-      asked += (asked.empty() ? "the multicast group " : " and the multicast group ") + jaus::transport::to_string(*group);
+      asked +=
+          (asked.empty() ? "the multicast group " : " and the multicast group ") + jaus::transport::to_string(*group);
     io.err << "jausctl discover: " << system.error().message() << " (asked " << asked << ")\n";
     return kExitFailure;
   }

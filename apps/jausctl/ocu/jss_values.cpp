@@ -121,7 +121,7 @@ int jss_msg_decode(const std::string& hex, CommandIo io) {
   }
   // A datagram starts with the AS5669A version byte; anything else is contents (message ID + body).
   auto json = !bytes->empty() && (*bytes)[0] == jaus::jss::kAs5669aVersion ? jaus::jss::datagram_to_json(*bytes)
-                                                                             : jaus::jss::contents_to_json(*bytes);
+                                                                           : jaus::jss::contents_to_json(*bytes);
   if (!json) {
     io.err << "jausctl msg decode: " << json.error().message() << "\n";
     return kExitBadInput;

@@ -23,7 +23,7 @@ std::string_view to_string(JssControlResponse response);
 std::string_view jss_reject_control_text(std::uint8_t code);
 
 struct JssControlStatus {
-  jss::JssId controller;   // 0.0.0 when nobody controls it
+  jss::JssId controller;  // 0.0.0 when nobody controls it
   std::uint8_t authority = 0;
   bool controlled() const { return controller.is_valid(); }
 };

@@ -44,9 +44,9 @@ struct JssNode {
 
 struct JssSubsystem {
   std::uint16_t id = 0;
-  std::string name;           // Report Identification type 2
-  std::uint16_t type = 0;     // 10001 vehicle, 20001 OCU, ...
-  jss::JssId discovery;       // who answered (the Discovery service)
+  std::string name;              // Report Identification type 2
+  std::uint16_t type = 0;        // 10001 vehicle, 20001 OCU, ...
+  jss::JssId discovery;          // who answered (the Discovery service)
   bool services_listed = false;  // Query Service List or Query Services answered
   std::vector<JssNode> nodes;
   // The components with `uri` (see JssComponent::has), in ID order.

@@ -57,8 +57,8 @@ class JssEvent {
                                                     std::vector<std::uint8_t> query, JssEventOptions options,
                                                     Callback callback);
   template <class Query>
-  static Expected<std::unique_ptr<JssEvent>> create(JssSession& session, const jss::JssId& provider,
-                                                    const Query& query, JssEventOptions options, Callback callback) {
+  static Expected<std::unique_ptr<JssEvent>> create(JssSession& session, const jss::JssId& provider, const Query& query,
+                                                    JssEventOptions options, Callback callback) {
     return create(session, provider, jss::encode_contents(query), options, std::move(callback));
   }
   // Cancels the event when still open (best effort, no wait).
@@ -96,7 +96,10 @@ class JssEvent {
            Callback callback);
   // Sends `contents` (Create, Update or Cancel Event with `request_id`) until answered.
   Expected<Answer> request(const std::vector<std::uint8_t>& contents, std::uint8_t request_id, bool through_stop);
-  std::uint8_t take_request_id() { return next_request_id_++; }
+  // Request IDs come from one counter for every event of the process: the
+  // provider's Confirm/Reject names only the request ID, and each JssEvent
+  // hears every answer from its provider.
+  static std::uint8_t take_request_id();
   void heard(const JssReceived& message);
   void schedule_refresh();
   void refresh();
@@ -109,7 +112,6 @@ class JssEvent {
   Callback callback_;
   JssSession::ListenerId listener_ = 0;
   std::uint8_t event_id_ = 0;
-  std::uint8_t next_request_id_ = 1;
   std::optional<std::uint8_t> pending_request_;  // waited for by request()
   std::optional<Answer> answer_;
   std::optional<std::uint8_t> refresh_request_;  // an Update Event sent by the refresh timer

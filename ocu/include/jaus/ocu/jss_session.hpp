@@ -94,8 +94,8 @@ struct JssEnvironment {
 
 // A JSS message addressed to us (or broadcast), reassembled when large.
 struct JssReceived {
-  jss::JudpHeader header;               // of its (first) packet
-  std::vector<std::uint8_t> contents;   // u16 message ID, then the body
+  jss::JudpHeader header;              // of its (first) packet
+  std::vector<std::uint8_t> contents;  // u16 message ID, then the body
   std::uint16_t message_id() const { return jss::message_id_of(contents); }
   const jss::JssId& source() const { return header.source; }
 };
@@ -177,7 +177,8 @@ class JssSession {
   Expected<JssReceived> await_reply(const jss::JssId& from, std::vector<std::uint16_t> ids, rt::Duration timeout);
   // Sends the query now and every `resend_every` until a reply comes (at most `timeout`).
   Expected<JssReceived> request_contents(const jss::JssId& to, std::span<const std::uint8_t> query,
-                                         std::vector<std::uint16_t> reply_ids, rt::Duration timeout = kJssDefaultTimeout,
+                                         std::vector<std::uint16_t> reply_ids,
+                                         rt::Duration timeout = kJssDefaultTimeout,
                                          rt::Duration resend_every = kJssQueryResendPeriod);
   // Typed: query<msg::ReportStatus>(to, msg::QueryStatus{}). Errors as
   // request_contents, or the reply's decode error.
@@ -192,7 +193,9 @@ class JssSession {
 
   // As OcuSession: runs until `done()`, `limit` passed or a stop requested.
   bool run_until(const std::function<bool()>& done, rt::Duration limit);
-  void run_for(rt::Duration limit) { run_until([] { return false; }, limit); }
+  void run_for(rt::Duration limit) {
+    run_until([] { return false; }, limit);
+  }
   static constexpr rt::Duration kLongestCleanup = std::chrono::seconds(1);
   bool run_cleanup_until(const std::function<bool()>& done, rt::Duration limit);
   void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
