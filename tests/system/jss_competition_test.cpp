@@ -50,7 +50,7 @@ class JssCompetition : public ::testing::Test {
     ocu::SessionOptions options;
     options.self = kRaOperator;
     options.to = {*transport::parse_endpoint(std::string(kNode) + ":3794")};
-    options.bind = *transport::parse_endpoint(std::string(kRaHost) + ":0", 0);
+    options.bind = *transport::parse_endpoint(kRaHost, 0);  // any free port
     auto opened = ocu::OcuSession::open(options, &io);
     ASSERT_TRUE(opened) << opened.error().message();
     ra = std::move(*opened);

@@ -29,7 +29,7 @@ inline std::unique_ptr<ocu::JssSession> open_jss_operator(const jss::JssId& self
   options.self = self;
   options.name = name;
   auto node = transport::parse_endpoint(node_address + ":3794");
-  auto bind = transport::parse_endpoint(bind_address + ":0", 0);
+  auto bind = transport::parse_endpoint(bind_address, 0);  // any free port
   EXPECT_TRUE(node && bind) << node_address << " " << bind_address;
   if (!node || !bind) return nullptr;
   options.to = {*node};
