@@ -178,8 +178,9 @@ TEST_F(JssJudge, TheJudgesOperatorUnitDiscoversManagesAndDrivesFourWaypointsOver
             m::reject_control::kControlReleased);
   // Shutdown is final: the component may answer Report Status Shutdown (3), or nothing any more.
   judge->run_for(300ms);
-  if (auto after = judge->query<m::ReportStatus>(target, m::QueryStatus{}, 1s))
+  if (auto after = judge->query<m::ReportStatus>(target, m::QueryStatus{}, 1s)) {
     EXPECT_EQ(after->status & 0x0F, 3) << "after Shutdown";
+  }
 
   // 4. Query Velocity State (0x0140) and Query Local Pose (0x0043, 0x0103): the requested AND available fields.
   const std::vector<std::pair<std::uint16_t, std::uint16_t>> presence_queries{
@@ -194,8 +195,11 @@ TEST_F(JssJudge, TheJudgesOperatorUnitDiscoversManagesAndDrivesFourWaypointsOver
     const auto reported = presence_vector_of(reply->contents);
     EXPECT_EQ(reported & ~pv, 0) << std::hex << "asked 0x" << pv << ", reported 0x" << reported;
     EXPECT_NE(reported, 0) << std::hex << "asked 0x" << pv << ": nothing available";
-    if (is_velocity) EXPECT_TRUE(jss::decode_contents<m::ReportVelocityState>(reply->contents));
-    else EXPECT_TRUE(jss::decode_contents<m::ReportLocalPose>(reply->contents));
+    if (is_velocity) {
+      EXPECT_TRUE(jss::decode_contents<m::ReportVelocityState>(reply->contents));
+    } else {
+      EXPECT_TRUE(jss::decode_contents<m::ReportLocalPose>(reply->contents));
+    }
   }
 
   // 5. Four local waypoints (a 3 m square back to the start) into the list driver, executed.
