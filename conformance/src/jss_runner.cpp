@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "jaus/conform/jss_case.hpp"
+#include "jaus/jss/all.hpp"
 
 namespace jaus::conform {
 
@@ -37,6 +38,12 @@ Expected<ocu::JssSession*> JssCaseContext::second() {
     e.jss_peer = r.source();
     exchange.push_back(std::move(e));
   });
+  // One round trip first: a node verifies a new endpoint (the amplification
+  // guard's challenge) before it sends it more than replies, and a case's
+  // first exchange may be a Reject Control it must hear.
+  (void)second_client->request_contents(target(), jss::encode_contents(jss::msg::QueryHeartbeatPulse{}),
+                                        {jss::msg::ReportHeartbeatPulse::code}, reply_timeout);
+  second_client->run_for(std::chrono::milliseconds(100));
   return second_client;
 }
 
