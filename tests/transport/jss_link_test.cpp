@@ -339,6 +339,31 @@ TEST_F(JssLink, AJssEndpointIsChallengedAndVerifiedByItsAck) {
   EXPECT_EQ(link->counters().jss.amplification.replies_held, 1u);
 }
 
+// A JSS client is challenged at its first datagram, even when the reply fits
+// what it sent: it may send nothing more for a half timeout (it keeps control
+// by re-requesting it every 1.5 s), and a later unsolicited message (Reject
+// Control when another client takes over) must not wait for that.
+TEST_F(JssLink, AJssEndpointIsChallengedAtItsFirstDatagramSoLaterMessagesAreNotHeld) {
+  UdpLinkOptions options;
+  options.verify_endpoints = true;
+  open(options);
+  auto& client_socket = peer_socket();
+  const Ipv4Endpoint client = endpoint_of(client_socket);
+  link->receive_datagram(client, query_identification(kClient));  // 18 bytes
+  auto got = take(client_socket);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].size(), kJssChallengeSize);
+  const auto challenge = jss::decode_judp_datagram(got[0]);
+  ASSERT_TRUE(challenge) << challenge.error().message();
+  link->receive_datagram(client,
+                         jss_datagram(kClient, kSelf, {}, challenge->front().header.sequence, jss::JudpAckNak::ack));
+  EXPECT_EQ(link->counters().jss.amplification.endpoints_verified, 1u);
+  // Later, unasked: sent at once.
+  link->transmit_jss(kClient, jss_datagram(kSelf, kClient, {0x10, 0x00, 0x00}));
+  EXPECT_EQ(take(client_socket).size(), 1u);
+  EXPECT_EQ(link->counters().jss.amplification.replies_held, 0u);
+}
+
 TEST_F(JssLink, AnEndpointThatNeverAcksGetsNoMoreThanItSent) {
   UdpLinkOptions options;
   options.verify_endpoints = true;

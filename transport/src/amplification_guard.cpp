@@ -140,8 +140,10 @@ std::vector<AmplificationGuard::Held> AmplificationGuard::release(const Ipv4Endp
   return out;
 }
 
-std::optional<std::uint16_t> AmplificationGuard::due_challenge(State& state, std::size_t size, rt::TimePoint now) {
-  if (state.verified || state.held.empty()) return std::nullopt;
+std::optional<std::uint16_t> AmplificationGuard::due_challenge(State& state, std::size_t size, rt::TimePoint now,
+                                                              bool at_first_contact) {
+  if (state.verified) return std::nullopt;
+  if (state.held.empty() && !(at_first_contact && !state.challenged_at)) return std::nullopt;
   if (state.challenged_at && now - *state.challenged_at < options_.challenge_interval) return std::nullopt;
   if (state.sent + size > state.received) return std::nullopt;  // wait for the sender's next datagram
   if (!state.challenge) {
@@ -174,12 +176,13 @@ std::optional<Header> AmplificationGuard::challenge(const Ipv4Endpoint& to, Fram
 }
 
 std::optional<std::vector<std::uint8_t>> AmplificationGuard::challenge_jss(const Ipv4Endpoint& to,
-                                                                           const jss::JssId& self, rt::TimePoint now) {
+                                                                           const jss::JssId& self, rt::TimePoint now,
+                                                                           bool at_first_contact) {
   const auto it = endpoints_.find(to);
   if (it == endpoints_.end()) return std::nullopt;
   State& state = it->second;
   if (!state.jss_source.is_valid()) return std::nullopt;  // never heard: nowhere to address it
-  const auto sequence = due_challenge(state, kJssChallengeSize, now);
+  const auto sequence = due_challenge(state, kJssChallengeSize, now, at_first_contact);
   if (!sequence) return std::nullopt;
   jss::JudpHeader h;
   h.ack_nak = jss::JudpAckNak::ack_requested;

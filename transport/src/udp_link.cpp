@@ -403,7 +403,11 @@ void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> dat
         sync_amplification_counters();
         return;
       }
-      send_challenge(from, Framing::as5669a);  // its budget grew: a challenge may fit now
+      // Challenged at once, before its first reply (amplification_guard.hpp:
+      // a JSS client may not send again for a half timeout), or again when
+      // something is held and its budget grew.
+      if (const auto challenge = jss_guard_.challenge_jss(from, jss_self(), clock_.now(), /*at_first_contact=*/true))
+        send_to(from, Framing::as5669a, *challenge);
       sync_amplification_counters();
     }
   }

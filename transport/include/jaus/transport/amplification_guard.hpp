@@ -24,7 +24,12 @@
 // AS5669A Query Heartbeat Pulse (contents 02 22) with ACK requested, from our
 // node manager's JSS ID, and the answer an AS5669A ACK (flag 3, header only)
 // with the same sequence number (received_jss, challenge_jss). The link keeps
-// one guard per dialect, as it keeps one route table per dialect.
+// one guard per dialect, as it keeps one route table per dialect. A JSS
+// endpoint is challenged at its first datagram, not only once a reply is
+// held: a JSS client keeps control by re-requesting it only every half
+// timeout (1.5 s), so a Reject Control held for want of budget would wait
+// that long for the budget to grow; verified at first contact, the client
+// gets it at once.
 #pragma once
 
 #include <array>
@@ -113,8 +118,10 @@ class AmplificationGuard {
                                   rt::TimePoint now);
   // The AS5669A challenge to `to`, if one is due: a complete datagram from
   // `self` (our node manager's JSS ID) to the JSS ID last heard from `to`.
+  // `at_first_contact`: due also when nothing is held, if this endpoint was
+  // never challenged (within the budget, as every challenge).
   std::optional<std::vector<std::uint8_t>> challenge_jss(const Ipv4Endpoint& to, const jss::JssId& self,
-                                                         rt::TimePoint now);
+                                                         rt::TimePoint now, bool at_first_contact = false);
 
   // Drops what was held longer than hold_time.
   void expire(rt::TimePoint now);
@@ -141,7 +148,8 @@ class AmplificationGuard {
   // Whether an answer (ACK or NAK of a challenge) with `sequence` verifies the endpoint.
   bool answers(State& state, std::uint16_t sequence);
   // The sequence number of a challenge of `size` bytes due now, counted as sent.
-  std::optional<std::uint16_t> due_challenge(State& state, std::size_t size, rt::TimePoint now);
+  std::optional<std::uint16_t> due_challenge(State& state, std::size_t size, rt::TimePoint now,
+                                             bool at_first_contact = false);
   void drop_held(State& state);
   std::uint16_t next_sequence();
 
