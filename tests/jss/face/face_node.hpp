@@ -1,10 +1,8 @@
-// A node with its JSS face under virtual time, and JSS clients that speak
-// AS5669A datagrams straight to it: a node host (node manager, primitive
-// driver on the simulated vehicle, velocity state sensor) attached to a
-// FaceLink around a memory link, the face made on host->node() as jausd
-// makes it; every datagram the face sends is kept (ACKs included), and
-// large messages are put back together. An RA peer (kRaOperator) talks to
-// the node directly; what the node sends it is kept too.
+// A node with its JSS face under virtual time (jss_face_host.hpp: node
+// manager, primitive driver on the simulated vehicle, velocity state
+// sensor), and JSS clients that speak AS5669A datagrams straight to it. An
+// RA peer (kRaOperator) talks to the node directly; what the node sends it
+// is kept too.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -17,19 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "jaus/base/virtual_time.hpp"
-#include "jaus/host/node_host.hpp"
 #include "jaus/jss/all.hpp"
 #include "jaus/jss/judp.hpp"
-#include "jaus/jss/large_message.hpp"
-#include "jaus/jss_face/face.hpp"
 #include "jaus/messages/all.hpp"
-#include "jaus/testing/memory_link.hpp"
-#include "jaus/testing/virtual_time.hpp"
+#include "jss_face_host.hpp"
 
 namespace jaus::test {
-
-using namespace std::chrono_literals;
 
 inline const jss::JssId kNodeManager{1, 1, 1};
 inline const jss::JssId kDriver{1, 1, 33};
@@ -41,69 +32,23 @@ inline const jss::JssId kClientA{42, 1, 1};
 inline const jss::JssId kClientB{43, 1, 1};
 inline const jss::JssId kClientC{44, 1, 1};
 
-struct Received {
-  jss::JudpHeader header;
-  std::vector<std::uint8_t> contents;
-};
-
-class FaceNode {
+class FaceNode : public JssFaceHost {
  public:
   explicit FaceNode(jss_face::FaceConfig config = {})
-      : network_(time_, time_), link_(network_.attach(1, 1)), face_link_(link_) {
-    host::HostConfig c;
-    c.settings.identity.subsystem_name = "face-test";
-    c.settings.identity.node_name = "vehicle";
-    c.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}},
-                    host::ComponentSpec{"primitive_driver", 33, 1, 0, "driver", {}, 0, {}},
-                    host::ComponentSpec{"velocity_state_sensor", 42, 1, 0, "", {}, 0, {}}};
-    auto attached = host::NodeHost::attach(std::move(c), face_link_, time_, time_);
-    if (!attached) throw std::runtime_error(attached.error().message());
-    host_ = std::move(*attached);
-    link_.deliver_to(host_->node());
-    link_.on_transmit([this](const Header& h, std::span<const std::uint8_t> packet) {
+      : JssFaceHost({host::ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}},
+                     host::ComponentSpec{"primitive_driver", 33, 1, 0, "driver", {}, 0, {}},
+                     host::ComponentSpec{"velocity_state_sensor", 42, 1, 0, "", {}, 0, {}}},
+                    "face-test", std::move(config)) {
+    link().on_transmit([this](const Header& h, std::span<const std::uint8_t> packet) {
       if (h.destination == kRaOperator) ra_received_.push_back({h, {packet.begin() + kHeaderSize, packet.end()}});
     });
-    face_ = std::make_unique<jss_face::JssFace>(
-        std::move(config), host_->node(),
-        [this](const jss::JssId&, std::span<const std::uint8_t> datagram) { from_face(datagram); },
-        [this](rt::LogLevel, const std::string& line) { log_.push_back(line); });
-    face_link_.attach(face_.get());
     wait_ready();
   }
-  ~FaceNode() {
-    host_->stop("test over");
-    face_link_.attach(nullptr);
-    face_.reset();
-    link_.on_receive({});
-    link_.set_connected(false);
-  }
-  FaceNode(const FaceNode&) = delete;
-  FaceNode& operator=(const FaceNode&) = delete;
+  // The host stops after this class's members are gone: no more taps into them.
+  ~FaceNode() { link().on_transmit({}); }
 
-  rt::VirtualTime& time() { return time_; }
-  host::NodeHost& host() { return *host_; }
-  jss_face::JssFace& face() { return *face_; }
-  const jss_face::FaceCounters& counters() const { return face_->counters(); }
-  const std::vector<std::string>& log() const { return log_; }
-  rt::Component& driver() { return *host_->node().find(kRaDriver); }
-  void run_for(rt::Duration d) { testing::run_for(time_, d); }
-  bool run_until(const std::function<bool()>& done, rt::Duration limit = 500ms) {
-    return testing::run_until(time_, done, limit);
-  }
-  bool wait_ready(rt::Duration limit = 10s) {
-    return run_until(
-        [&] {
-          for (const rt::Component* c : host_->node().local_components())
-            if (c->state() != rt::PrimaryStatus::ready) return false;
-          return true;
-        },
-        limit);
-  }
+  rt::Component& driver() { return *host().node().find(kRaDriver); }
 
-  // One raw datagram to the face.
-  void receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing = rt::SenderStanding::trusted) {
-    face_->receive(datagram, standing);
-  }
   // `from` sends `message` to `to` in one datagram; returns its sequence number.
   template <class M>
   std::uint16_t send(const jss::JssId& from, const jss::JssId& to, const M& message, bool ack = false,
@@ -130,12 +75,12 @@ class FaceNode {
   // The oldest R to `client` from `from`, taken out.
   template <class R>
   std::optional<R> take(const jss::JssId& client, const jss::JssId& from) {
-    for (auto it = received_.begin(); it != received_.end(); ++it) {
+    for (auto it = kept().begin(); it != kept().end(); ++it) {
       if (it->header.destination != client || it->header.source != from || jss::message_id_of(it->contents) != R::code)
         continue;
       auto decoded = jss::decode_contents<R>(it->contents);
       EXPECT_TRUE(decoded.has_value()) << R::name << ": " << (decoded ? "" : decoded.error().message());
-      received_.erase(it);
+      kept().erase(it);
       if (!decoded) return std::nullopt;
       return *decoded;
     }
@@ -145,30 +90,27 @@ class FaceNode {
   template <class R>
   std::vector<std::pair<jss::JssId, R>> take_all(const jss::JssId& client) {
     std::vector<std::pair<jss::JssId, R>> out;
-    for (auto it = received_.begin(); it != received_.end();) {
+    for (auto it = kept().begin(); it != kept().end();) {
       if (it->header.destination != client || jss::message_id_of(it->contents) != R::code) {
         ++it;
         continue;
       }
       if (auto decoded = jss::decode_contents<R>(it->contents)) out.emplace_back(it->header.source, *decoded);
-      it = received_.erase(it);
+      it = kept().erase(it);
     }
     return out;
   }
   std::size_t count(const jss::JssId& client, std::uint16_t id) const {
     std::size_t n = 0;
-    for (const auto& r : received_) n += r.header.destination == client && jss::message_id_of(r.contents) == id;
+    for (const auto& r : received()) n += r.header.destination == client && jss::message_id_of(r.contents) == id;
     return n;
   }
   void drop(const jss::JssId& client, std::uint16_t id) {
-    std::erase_if(received_, [&](const Received& r) {
+    std::erase_if(kept(), [&](const Received& r) {
       return r.header.destination == client && jss::message_id_of(r.contents) == id;
     });
   }
-  void clear() { received_.clear(); }
-  const std::deque<Received>& received() const { return received_; }
-  const std::vector<jss::JudpHeader>& acks() const { return acks_; }
-  std::size_t datagrams_sent() const { return datagrams_; }
+  void clear() { kept().clear(); }
 
   // Request Control: the Confirm Control response code (nullopt: none came).
   std::optional<std::uint8_t> request_control(const jss::JssId& client, const jss::JssId& to, std::uint8_t authority) {
@@ -193,7 +135,7 @@ class FaceNode {
     h.source = kRaOperator;
     h.destination = to;
     h.data_size = static_cast<std::uint16_t>(*size);
-    host_->node().receive(PacketView{h, std::span(payload).first(*size)});
+    host().node().receive(PacketView{h, std::span(payload).first(*size)});
   }
   std::size_t ra_count(std::uint16_t code) const {
     std::size_t n = 0;
@@ -202,43 +144,8 @@ class FaceNode {
   }
 
  private:
-  void from_face(std::span<const std::uint8_t> datagram) {
-    ++datagrams_;
-    auto packets = jss::decode_judp_datagram(datagram);
-    if (!packets) {
-      ADD_FAILURE() << "the face sent a malformed datagram: " << packets.error().message();
-      return;
-    }
-    for (const auto& p : *packets) {
-      if (p.header.ack_nak == jss::JudpAckNak::ack) {
-        EXPECT_TRUE(p.contents.empty()) << "an ACK carries no contents";
-        acks_.push_back(p.header);
-        continue;
-      }
-      auto whole = reassembler_.add(p, time_.now());
-      if (!whole) {
-        ADD_FAILURE() << "a packet of the face's large message does not fit: " << whole.error().message();
-        continue;
-      }
-      if (!whole->has_value()) continue;
-      received_.push_back(Received{(*whole)->header, std::move((*whole)->contents)});
-      if (received_.size() > 4096) received_.pop_front();  // bounded: a test reads what it waits for
-    }
-  }
-
   std::uint16_t sequence_ = 1;
-  rt::VirtualTime time_;
-  testing::MemoryNetwork network_;
-  testing::MemoryLink& link_;
-  jss_face::FaceLink face_link_;
-  std::unique_ptr<host::NodeHost> host_;
-  std::unique_ptr<jss_face::JssFace> face_;
-  jss::LargeMessageReassembler reassembler_;
-  std::deque<Received> received_;
-  std::vector<jss::JudpHeader> acks_;
-  std::size_t datagrams_ = 0;
   std::vector<std::pair<Header, std::vector<std::uint8_t>>> ra_received_;
-  std::vector<std::string> log_;
 };
 
 }  // namespace jaus::test
