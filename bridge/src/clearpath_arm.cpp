@@ -21,17 +21,12 @@ using components::JointSample;
 using components::kJointLimitSlack;
 
 using detail::CommandStream;
+using detail::number_text;
 using detail::outcome_text;
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;  // Clearpath joint angles: [-pi, pi]
-
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // The JAUS range of a joint the platform can reach: its limits within
 // Clearpath's +-pi after mapping (lo > hi: none).
@@ -54,7 +49,7 @@ Expected<void> check_clearpath_arm_config(const ArmConfig& arm, const ClearpathA
   if (config.data_rate_hz < 1 || config.data_rate_hz > 100)
     return bad("data_rate_hz " + std::to_string(config.data_rate_hz) + " outside 1..100");
   if (!(config.control_rate_hz > 0 && config.control_rate_hz <= 1000))
-    return bad("control_rate_hz " + text(config.control_rate_hz) + " outside (0, 1000]");
+    return bad("control_rate_hz " + number_text(config.control_rate_hz) + " outside (0, 1000]");
   std::set<std::uint8_t> ids;
   for (std::size_t i = 0; i < arm.joints.size(); ++i) {
     const auto& joint = arm.joints[i];
@@ -63,11 +58,11 @@ Expected<void> check_clearpath_arm_config(const ArmConfig& arm, const ClearpathA
     if (joint.prismatic) return bad(label + ": prismatic, but Clearpath joints are angles");
     if (!ids.insert(map.clearpath_joint).second)
       return bad(label + ": Clearpath joint " + std::to_string(map.clearpath_joint) + " is mapped twice");
-    if (map.sign != 1 && map.sign != -1) return bad(label + ": sign " + text(map.sign) + " is not +1 or -1");
+    if (map.sign != 1 && map.sign != -1) return bad(label + ": sign " + number_text(map.sign) + " is not +1 or -1");
     if (!std::isfinite(map.offset_rad)) return bad(label + ": offset_rad is not finite");
     const auto [lo, hi] = reachable(joint, map);
     if (lo >= hi)
-      return bad(label + ": limits [" + text(joint.min_position) + ", " + text(joint.max_position) +
+      return bad(label + ": limits [" + number_text(joint.min_position) + ", " + number_text(joint.max_position) +
                  "] rad are beyond Clearpath's [-pi, pi] with this sign and offset");
   }
   return {};
@@ -206,11 +201,11 @@ struct ClearpathArm::State {
       const std::string label = components::joint_label(geometry, i);
       if (!std::isfinite(v) || v < lo - kJointLimitSlack || v > hi + kJointLimitSlack)
         return refuse(ErrorCode::out_of_range,
-                      label + ": " + what + " " + text(v) + " outside [" + text(lo) + ", " + text(hi) + "]");
+                      label + ": " + what + " " + number_text(v) + " outside [" + number_text(lo) + ", " + number_text(hi) + "]");
       if (!positions_check) continue;
       const double angle = to_clearpath(i, std::clamp(v, jc.min_position, jc.max_position));
       if (std::abs(angle) > kPi + kJointLimitSlack)
-        return refuse(ErrorCode::out_of_range, label + ": position " + text(v) + " is " + text(angle) +
+        return refuse(ErrorCode::out_of_range, label + ": position " + number_text(v) + " is " + number_text(angle) +
                                                    " rad on Clearpath joint " +
                                                    std::to_string(map(i).clearpath_joint) + ", outside [-pi, pi]");
     }

@@ -23,6 +23,7 @@ using components::MountCommand;
 using components::MountState;
 
 using detail::CommandStream;
+using detail::number_text;
 using detail::outcome_text;
 
 namespace {
@@ -31,12 +32,6 @@ constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kMountLimitDeg = 180.0;  // 0x0400 pan and tilt range
 constexpr double kMaxZoomFactor = 320.0;  // 0x0400 zoom range
 constexpr auto kDropLogInterval = std::chrono::seconds(1);
-
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // One axis of a mapped mount, in JAUS units (rad, or percent for zoom).
 struct AxisState {
@@ -133,11 +128,11 @@ Expected<void> check_clearpath_cameras_config(const std::vector<CameraConfig>& c
   if (config.data_rate_hz < 1 || config.data_rate_hz > 100)
     return bad("Clearpath cameras: data_rate_hz " + std::to_string(config.data_rate_hz) + " outside 1..100");
   if (!(config.rate_hz > 0 && config.rate_hz <= 1000))
-    return bad("Clearpath cameras: rate_hz " + text(config.rate_hz) + " outside (0, 1000]");
+    return bad("Clearpath cameras: rate_hz " + number_text(config.rate_hz) + " outside (0, 1000]");
   if (!(config.tolerance_deg > 0) || !std::isfinite(config.tolerance_deg))
-    return bad("Clearpath cameras: tolerance_deg " + text(config.tolerance_deg) + " must be > 0");
+    return bad("Clearpath cameras: tolerance_deg " + number_text(config.tolerance_deg) + " must be > 0");
   if (!(config.zoom_tolerance > 0) || !std::isfinite(config.zoom_tolerance))
-    return bad("Clearpath cameras: zoom_tolerance " + text(config.zoom_tolerance) + " must be > 0");
+    return bad("Clearpath cameras: zoom_tolerance " + number_text(config.zoom_tolerance) + " must be > 0");
   std::set<std::uint8_t> ids, mounts;
   for (const ClearpathMountConfig& m : config.mounts) {
     const std::string label = mount_label(m);
@@ -146,23 +141,23 @@ Expected<void> check_clearpath_cameras_config(const std::vector<CameraConfig>& c
     if (camera == cameras.end()) return bad(label + ": no such camera");
     if (!ids.insert(m.camera_id).second) return bad(label + ": camera mapped twice");
     if (!mounts.insert(m.mount).second) return bad(label + ": mount used by another camera");
-    if (m.pan_sign != 1 && m.pan_sign != -1) return bad(label + ": pan_sign " + text(m.pan_sign) + " is not +1 or -1");
+    if (m.pan_sign != 1 && m.pan_sign != -1) return bad(label + ": pan_sign " + number_text(m.pan_sign) + " is not +1 or -1");
     if (m.tilt_sign != 1 && m.tilt_sign != -1)
-      return bad(label + ": tilt_sign " + text(m.tilt_sign) + " is not +1 or -1");
+      return bad(label + ": tilt_sign " + number_text(m.tilt_sign) + " is not +1 or -1");
     if (!(std::abs(m.pan_offset_deg) <= kMountLimitDeg))
-      return bad(label + ": pan_offset_deg " + text(m.pan_offset_deg) + " outside [-180, 180]");
+      return bad(label + ": pan_offset_deg " + number_text(m.pan_offset_deg) + " outside [-180, 180]");
     if (!(std::abs(m.tilt_offset_deg) <= kMountLimitDeg))
-      return bad(label + ": tilt_offset_deg " + text(m.tilt_offset_deg) + " outside [-180, 180]");
+      return bad(label + ": tilt_offset_deg " + number_text(m.tilt_offset_deg) + " outside [-180, 180]");
     const bool no_zoom = m.zoom_min_factor == 0 && m.zoom_max_factor == 0;
     const auto factor_ok = [](double f) { return f > 0 && f <= kMaxZoomFactor; };
     if (!no_zoom && !(factor_ok(m.zoom_min_factor) && factor_ok(m.zoom_max_factor)))
-      return bad(label + ": zoom factors " + text(m.zoom_min_factor) + ", " + text(m.zoom_max_factor) +
+      return bad(label + ": zoom factors " + number_text(m.zoom_min_factor) + ", " + number_text(m.zoom_max_factor) +
                  " must both be 0 (no zoom) or both in (0, 320]");
     const auto check_reach = [&](const char* name, const MountAxis& axis, const AngleMap& map) -> Expected<void> {
       if (!axis.movable()) return {};
       const auto [lo, hi] = reachable(axis, map);
       if (lo < hi) return {};
-      return bad(label + ": " + name + " limits [" + text(axis.min) + ", " + text(axis.max) +
+      return bad(label + ": " + name + " limits [" + number_text(axis.min) + ", " + number_text(axis.max) +
                  "] rad are beyond the mount's +-180 deg with this sign and offset");
     };
     if (auto ok = check_reach("pan", camera->pan, AngleMap{m.pan_sign, m.pan_offset_deg}); !ok) return ok;

@@ -1,5 +1,6 @@
 // What the bridge's backends share when they command a Clearpath platform:
-// a one-line text for a command's outcome, and an ordered command stream.
+// a one-line text for a command's outcome and for a number, and an ordered
+// command stream.
 // Private to bridge/src.
 #pragma once
 
@@ -31,6 +32,13 @@ inline std::string outcome_text(const cp::CommandOutcome& o) {
     case cp::CommandError::queue_full: return "refused: too many commands waiting";
   }
   return "failed";
+}
+
+// A number as a log line shows it (shortest form, as `<<` writes it).
+inline std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 // One ordered stream of commands to the platform: one in flight at a time,

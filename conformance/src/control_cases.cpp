@@ -339,7 +339,9 @@ CaseOutcome silent_requester(CaseContext& c) {
   return pass(notes);
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> control_cases() {
   static const std::vector<ConformanceCase> list{
       {"control.round_trip", "grants or refuses control; a granted controller is reported and released",
        "Part 3, Code 000Dh Request Component Control, Code 000Eh Release Component Control, Code 200Dh Query "
@@ -373,9 +375,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> control_cases() { return cases(); }
 
 }  // namespace jaus::conform

@@ -233,7 +233,9 @@ CaseOutcome queries_in_every_state(CaseContext& c) {
   return pass(asked + " answered in " + states);
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> core_cases() {
   static const std::vector<ConformanceCase> list{
       {"core.identification", "answers Query Identification (component) with Report Identification type 4",
        "Part 3, Code 2B00h Query Identification; wire notes: Liveness and discovery", nullptr, identification},
@@ -263,9 +265,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> core_cases() { return cases(); }
 
 }  // namespace jaus::conform

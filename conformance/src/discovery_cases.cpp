@@ -49,7 +49,7 @@ std::string identification_level(std::uint8_t type) {
   return "type " + std::to_string(type);
 }
 
-CaseOutcome identification(CaseContext& c) {
+CaseOutcome identification_at_each_level(CaseContext& c) {
   std::string seen;
   for (const std::uint8_t type :
        {msg::identification::kSubsystem, msg::identification::kNode, msg::identification::kComponent}) {
@@ -333,13 +333,15 @@ CaseOutcome configuration_event(CaseContext& c) {
               " Events on change, each Report Configuration listing this node, none after Cancel");
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> discovery_cases() {
   static const std::vector<ConformanceCase> list{
       {"discovery.identification",
        "answers Query Identification for its subsystem (2), node (3) and itself (4), each with the type asked",
        "RA 3.3 Code 2B00h Query Identification, Code 4B00h Report Identification; wire notes: Liveness and "
        "discovery",
-       not_a_node_manager, identification},
+       not_a_node_manager, identification_at_each_level},
       {"discovery.configuration",
        "Report Configuration (subsystem and node) lists this node and its components; each listed answers, each "
        "answering is listed",
@@ -362,9 +364,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> discovery_cases() { return cases(); }
 
 }  // namespace jaus::conform

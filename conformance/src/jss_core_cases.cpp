@@ -23,7 +23,7 @@ std::string seconds_text(rt::Duration d) {
 
 // --- discovery ----------------------------------------------------------
 
-CaseOutcome identification(JssCaseContext& c) {
+CaseOutcome jss_identification(JssCaseContext& c) {
   send(c, m::QueryIdentification{{4}});
   auto reply = await_from(c, c.session, {m::ReportIdentification::code});
   if (!reply) {
@@ -149,7 +149,7 @@ CaseOutcome discovery_configuration(JssCaseContext& c) {
 
 // --- liveness -----------------------------------------------------------
 
-CaseOutcome heartbeat(JssCaseContext& c) {
+CaseOutcome jss_heartbeat(JssCaseContext& c) {
   auto report = ask<m::ReportHeartbeatPulse>(c, m::QueryHeartbeatPulse{});
   if (!report) return fail(report.error().message());
   return pass("Report Heartbeat Pulse");
@@ -641,10 +641,12 @@ JssConformanceCase make(std::string_view id, std::string_view title, std::string
                             std::move(run)};
 }
 
-const std::vector<JssConformanceCase>& suite() {
+}  // namespace
+
+std::span<const JssConformanceCase> jss_core_cases() {
   static const std::vector<JssConformanceCase> cases{
       make("jss.identification", "Query Identification (component) is answered with Report Identification type 4",
-           "AS5710 Discovery; jss-notes 3.6", nullptr, identification),
+           "AS5710 Discovery; jss-notes 3.6", nullptr, jss_identification),
       make("jss.discovery.identification",
            "Query Identification types 2 and 3 are answered with the type asked, a subsystem's and a node's",
            "AS5710 Discovery; jss-notes 3.6", unless_discovery, discovery_identification),
@@ -655,7 +657,7 @@ const std::vector<JssConformanceCase>& suite() {
            "Report Configuration lists every component with services on the node, instance 0",
            "AS5710 Discovery; jss-notes 3.6", unless_discovery, discovery_configuration),
       make("jss.liveness.heartbeat", "Query Heartbeat Pulse is answered with Report Heartbeat Pulse",
-           "AS5710 Liveness; jss-notes 3.5", unless_liveness, heartbeat),
+           "AS5710 Liveness; jss-notes 3.5", unless_liveness, jss_heartbeat),
       make("jss.control.round_trip",
            "Request Control at its authority: Confirm Control 0, Report Control names the client; Release: Reject "
            "Control 0",
@@ -700,9 +702,5 @@ const std::vector<JssConformanceCase>& suite() {
   };
   return cases;
 }
-
-}  // namespace
-
-std::span<const JssConformanceCase> jss_core_cases() { return suite(); }
 
 }  // namespace jaus::conform

@@ -437,7 +437,9 @@ JssConformanceCase make(std::string_view id, std::string_view title, std::string
                             std::move(run)};
 }
 
-const std::vector<JssConformanceCase>& suite() {
+}  // namespace
+
+std::span<const JssConformanceCase> jss_mobility_cases() {
   static const std::vector<JssConformanceCase> cases{
       make("jss.primitive_driver.effort",
            "its controller's Set Wrench Effort in Ready is reported; leaving Ready zeroes it and Resume does not "
@@ -473,9 +475,5 @@ const std::vector<JssConformanceCase>& suite() {
   };
   return cases;
 }
-
-}  // namespace
-
-std::span<const JssConformanceCase> jss_mobility_cases() { return suite(); }
 
 }  // namespace jaus::conform

@@ -336,7 +336,9 @@ CaseOutcome hold_on_stop(CaseContext& c) {
               (not_judged.empty() ? "" : " (not judged: " + not_judged + ")"));
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> manipulator_cases() {
   static const std::vector<ConformanceCase> list{
       {"manipulator.joint_count", "every joint report lists as many joints as its specifications",
        "Part 3, Code 4600h Report Manipulator Specifications, Code 4602h Report Joint Positions, Code 4603h Report "
@@ -360,9 +362,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> manipulator_cases() { return cases(); }
 
 }  // namespace jaus::conform

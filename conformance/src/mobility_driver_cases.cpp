@@ -521,7 +521,9 @@ using LocalVectorDriver = VectorDriver<LocalVector>;
 constexpr const char* kControlReference =
     "Part 3, Code 000Dh Request Component Control (commands are the controller's)";
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> mobility_driver_cases() {
   static const std::vector<ConformanceCase> list{
       {"mobility.global_vector.non_controller_ignored", "Set Global Vector from a non-controller is never executed",
        "Part 3, Code 0407h Set Global Vector, Code 4407h Report Global Vector; Code 000Dh Request Component Control",
@@ -592,9 +594,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> mobility_driver_cases() { return cases(); }
 
 }  // namespace jaus::conform

@@ -246,7 +246,9 @@ CaseOutcome no_resume_after_stop(CaseContext& c) {
       "still zero after the way back");
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> primitive_driver_cases() {
   static const std::vector<ConformanceCase> list{
       {"driver.effort_reported", "its controller's Set Wrench Effort is reported by Report Wrench Effort",
        "Part 3, Code 0405h Set Wrench Effort, Code 4405h Report Wrench Effort (the current commanded effort)",
@@ -269,9 +271,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> primitive_driver_cases() { return cases(); }
 
 }  // namespace jaus::conform

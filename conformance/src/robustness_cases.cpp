@@ -70,7 +70,9 @@ CaseOutcome overlong_command(CaseContext& c) {
   return pass("an overlong Set Emergency changed nothing (" + state_text(*after) + ")");
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> robustness_cases() {
   static const std::vector<ConformanceCase> list{
       {"robust.unknown_code", "an unknown code gets no reply and the component keeps answering",
        "Part 2 (unknown messages are ignored); issue 14", nullptr, unknown_code},
@@ -81,9 +83,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> robustness_cases() { return cases(); }
 
 }  // namespace jaus::conform

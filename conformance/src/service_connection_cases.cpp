@@ -316,7 +316,9 @@ CaseOutcome refusals(CaseContext& c) {
               ", 0 Hz: " + std::to_string(too_slow->confirm.response_code));
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> service_connection_cases() {
   static const std::vector<ConformanceCase> list{
       {"sc.create", "Create Service Connection for a report it provides is confirmed at most at the asked rate",
        "Part 3, Code 0008h Create Service Connection, Code 0009h Confirm Service Connection",
@@ -342,9 +344,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> service_connection_cases() { return cases(); }
 
 }  // namespace jaus::conform

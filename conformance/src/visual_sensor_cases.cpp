@@ -182,7 +182,9 @@ CaseOutcome image_in_advertised_format(CaseContext& c) {
               (large ? " in a large data set of " + std::to_string(packets) + " packets" : " in one packet"));
 }
 
-const std::vector<ConformanceCase>& cases() {
+}  // namespace
+
+std::span<const ConformanceCase> visual_sensor_cases() {
   static const std::vector<ConformanceCase> list{
       {"visual.count_and_selection",
        "the camera count is 1..255, the selected camera one of them, and its controller's selection is reported",
@@ -200,9 +202,5 @@ const std::vector<ConformanceCase>& cases() {
   };
   return list;
 }
-
-}  // namespace
-
-std::span<const ConformanceCase> visual_sensor_cases() { return cases(); }
 
 }  // namespace jaus::conform

@@ -26,7 +26,7 @@
 namespace jaus::jss_face {
 namespace {
 
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 namespace ra = jaus::msg;
 
 class AccessControlTranslator final : public ServiceTranslator {
@@ -39,12 +39,12 @@ class AccessControlTranslator final : public ServiceTranslator {
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
     if (ra_id == kNodeManagerId) return false;
     switch (message_id) {
-      case msg::SetAuthority::code:
-      case msg::RequestControl::code:
-      case msg::ReleaseControl::code:
-      case msg::QueryAuthority::code:
-      case msg::QueryTimeout::code:
-      case msg::QueryControl::code:
+      case jss_msg::SetAuthority::code:
+      case jss_msg::RequestControl::code:
+      case jss_msg::ReleaseControl::code:
+      case jss_msg::QueryAuthority::code:
+      case jss_msg::QueryTimeout::code:
+      case jss_msg::QueryControl::code:
         return true;
       default:
         return false;
@@ -54,35 +54,35 @@ class AccessControlTranslator final : public ServiceTranslator {
   bool from_jss(const JssInbound& m, FacePort& port) override {
     if (!handles(m.message_id, m.ra_component.component)) return false;
     switch (m.message_id) {
-      case msg::RequestControl::code:
-        if (decode_jss<msg::RequestControl>(m, port))  // same byte: the authority
+      case jss_msg::RequestControl::code:
+        if (decode_jss<jss_msg::RequestControl>(m, port))  // same byte: the authority
           port.send_ra(m.origin, m.ra_component, ra::RequestComponentControl::code, m.body, m.standing);
         return true;
-      case msg::ReleaseControl::code: {
-        if (!decode_jss<msg::ReleaseControl>(m, port)) return true;
+      case jss_msg::ReleaseControl::code: {
+        if (!decode_jss<jss_msg::ReleaseControl>(m, port)) return true;
         const auto controller = controller_of(m, port);
         port.send_ra(m.origin, m.ra_component, ra::ReleaseComponentControl::code, {}, m.standing);
         // JSS answers a release with Reject Control 0 (RA answers nothing):
         // the controller's release, or a release of a component nobody controls.
         if (!controller || *controller == m.origin.client)
-          reply_jss(port, m.origin, m.our_component, msg::RejectControl{{msg::reject_control::kControlReleased}});
+          reply_jss(port, m.origin, m.our_component, jss_msg::RejectControl{{jss_msg::reject_control::kControlReleased}});
         return true;
       }
-      case msg::QueryControl::code:
-        if (decode_jss<msg::QueryControl>(m, port))
+      case jss_msg::QueryControl::code:
+        if (decode_jss<jss_msg::QueryControl>(m, port))
           port.send_ra(m.origin, m.ra_component, ra::QueryComponentControl::code, {}, m.standing);
         return true;
-      case msg::QueryAuthority::code:
-        if (decode_jss<msg::QueryAuthority>(m, port))
+      case jss_msg::QueryAuthority::code:
+        if (decode_jss<jss_msg::QueryAuthority>(m, port))
           port.send_ra(m.origin, m.ra_component, ra::QueryComponentAuthority::code, {}, m.standing);
         return true;
-      case msg::QueryTimeout::code:
-        if (decode_jss<msg::QueryTimeout>(m, port))
-          reply_jss(port, m.origin, m.our_component, msg::ReportTimeout{{port.config().controller_timeout_s}});
+      case jss_msg::QueryTimeout::code:
+        if (decode_jss<jss_msg::QueryTimeout>(m, port))
+          reply_jss(port, m.origin, m.our_component, jss_msg::ReportTimeout{{port.config().controller_timeout_s}});
         return true;
-      case msg::SetAuthority::code: {
+      case jss_msg::SetAuthority::code: {
         // Controller only (others are ignored without reply, as JSS commands are).
-        if (!decode_jss<msg::SetAuthority>(m, port)) return true;
+        if (!decode_jss<jss_msg::SetAuthority>(m, port)) return true;
         const auto controller = controller_of(m, port);
         if (!controller || *controller != m.origin.client) return true;
         silent_confirms_.insert({m.origin.client, m.our_component});
@@ -100,17 +100,17 @@ class AccessControlTranslator final : public ServiceTranslator {
         const auto confirm = decode_ra<ra::ConfirmComponentControl>(m);
         if (!confirm) return false;
         if (silent_confirms_.erase({m.to.client, m.our_component}) > 0) return true;  // Set Authority's
-        reply_jss(port, m.to, m.our_component, msg::ConfirmControl{{confirm->response_code}});
+        reply_jss(port, m.to, m.our_component, jss_msg::ConfirmControl{{confirm->response_code}});
         return true;
       }
       case ra::RejectComponentControl::code:
         silent_confirms_.erase({m.to.client, m.our_component});
-        reply_jss(port, m.to, m.our_component, msg::RejectControl{{msg::reject_control::kControlReleased}});
+        reply_jss(port, m.to, m.our_component, jss_msg::RejectControl{{jss_msg::reject_control::kControlReleased}});
         return true;
       case ra::ReportComponentControl::code: {
         const auto report = decode_ra<ra::ReportComponentControl>(m);
         if (!report) return false;
-        msg::ReportControl jss_report;
+        jss_msg::ReportControl jss_report;
         if (report->controller != Address{}) jss_report.controller = port.jss_id_for(report->controller);
         jss_report.authority = report->authority;
         reply_jss(port, m.to, m.our_component, jss_report);
@@ -125,12 +125,12 @@ class AccessControlTranslator final : public ServiceTranslator {
         if (const rt::Component* component = port.node().find(m.header.source);
             component != nullptr && component->control().controller())
           authority = component->control().controller()->authority;
-        reply_jss(port, m.to, m.our_component, msg::ReportAuthority{{authority}});
+        reply_jss(port, m.to, m.our_component, jss_msg::ReportAuthority{{authority}});
         return true;
       }
       case ra::QueryComponentStatus::code:
         // The RA component checks that its (alias) controller is alive.
-        reply_jss(port, m.to, m.our_component, msg::QueryStatus{});
+        reply_jss(port, m.to, m.our_component, jss_msg::QueryStatus{});
         return true;
       default:
         return false;

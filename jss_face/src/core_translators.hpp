@@ -43,7 +43,8 @@ template <class M>
 void reply_jss(FacePort& port, const ReplyTo& to, const jss::JssId& from, const M& message) {
   auto contents = jss::try_encode_contents(message);
   if (!contents) {
-    port.log(rt::LogLevel::error, "cannot encode " + std::string(M::name) + ": " + contents.error().message());
+    port.log(rt::LogLevel::error, std::string(M::name) + " to " + to.client.to_string() +
+                                      " not encoded: " + contents.error().message());
     return;
   }
   port.reply(to, from, *contents);

@@ -16,7 +16,7 @@
 namespace jaus::jss_face {
 namespace {
 
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 namespace identification = jaus::msg::identification;
 constexpr std::uint8_t kAll = jss::JssId::kAll;
 constexpr std::size_t kMaxList = 255;  // u8 counts
@@ -36,14 +36,14 @@ class DiscoveryTranslator final : public ServiceTranslator {
     return {core_service("Discovery")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
-    if (message_id == msg::QueryIdentification::code) return true;
+    if (message_id == jss_msg::QueryIdentification::code) return true;
     if (ra_id != kNodeManagerId) return false;
     switch (message_id) {
-      case msg::RegisterServices::code:
-      case msg::QueryConfiguration::code:
-      case msg::QuerySubsystemList::code:
-      case msg::QueryServices::code:
-      case msg::QueryServiceList::code:
+      case jss_msg::RegisterServices::code:
+      case jss_msg::QueryConfiguration::code:
+      case jss_msg::QuerySubsystemList::code:
+      case jss_msg::QueryServices::code:
+      case jss_msg::QueryServiceList::code:
         return true;
       default:
         return false;
@@ -53,24 +53,24 @@ class DiscoveryTranslator final : public ServiceTranslator {
   bool from_jss(const JssInbound& m, FacePort& port) override {
     if (!handles(m.message_id, m.ra_component.component)) return false;
     switch (m.message_id) {
-      case msg::QueryIdentification::code:
-        if (auto q = decode_jss<msg::QueryIdentification>(m, port)) identification(m, *q, port);
+      case jss_msg::QueryIdentification::code:
+        if (auto q = decode_jss<jss_msg::QueryIdentification>(m, port)) identification(m, *q, port);
         break;
-      case msg::QueryConfiguration::code:
-        if (decode_jss<msg::QueryConfiguration>(m, port)) configuration(m, port);
+      case jss_msg::QueryConfiguration::code:
+        if (decode_jss<jss_msg::QueryConfiguration>(m, port)) configuration(m, port);
         break;
-      case msg::QuerySubsystemList::code:
-        if (decode_jss<msg::QuerySubsystemList>(m, port))
-          reply_jss(port, m.origin, m.our_component, msg::ReportSubsystemList{{{m.our_component}}});
+      case jss_msg::QuerySubsystemList::code:
+        if (decode_jss<jss_msg::QuerySubsystemList>(m, port))
+          reply_jss(port, m.origin, m.our_component, jss_msg::ReportSubsystemList{{{m.our_component}}});
         break;
-      case msg::QueryServices::code:
-        if (auto q = decode_jss<msg::QueryServices>(m, port)) query_services(m, *q, port);
+      case jss_msg::QueryServices::code:
+        if (auto q = decode_jss<jss_msg::QueryServices>(m, port)) query_services(m, *q, port);
         break;
-      case msg::QueryServiceList::code:
-        if (auto q = decode_jss<msg::QueryServiceList>(m, port)) query_service_list(m, *q, port);
+      case jss_msg::QueryServiceList::code:
+        if (auto q = decode_jss<jss_msg::QueryServiceList>(m, port)) query_service_list(m, *q, port);
         break;
-      case msg::RegisterServices::code:
-        if (auto r = decode_jss<msg::RegisterServices>(m, port)) register_services(m, *r, port);
+      case jss_msg::RegisterServices::code:
+        if (auto r = decode_jss<jss_msg::RegisterServices>(m, port)) register_services(m, *r, port);
         break;
       default:
         return false;
@@ -100,20 +100,20 @@ class DiscoveryTranslator final : public ServiceTranslator {
     return all;
   }
 
-  void identification(const JssInbound& m, const msg::QueryIdentification& q, FacePort& port) {
+  void identification(const JssInbound& m, const jss_msg::QueryIdentification& q, FacePort& port) {
     const FaceConfig& config = port.config();
     const bool manager = m.ra_component.component == kNodeManagerId;
-    msg::ReportIdentification report;
+    jss_msg::ReportIdentification report;
     report.query_type = q.query_type;
     if (q.query_type == identification::kSubsystem && manager) {
       report.type = config.subsystem_type;
       report.identification = config.subsystem_name;
     } else if (q.query_type == identification::kNode && manager) {
-      report.type = msg::identification_type::kNode;
+      report.type = jss_msg::identification_type::kNode;
       report.identification = config.node_name;
     } else if (q.query_type == identification::kComponent) {
       const rt::Component* component = port.node().find(m.ra_component);
-      report.type = msg::identification_type::kComponent;
+      report.type = jss_msg::identification_type::kComponent;
       report.identification = component != nullptr ? component->name() : "component";
     } else {
       return;  // the system (type 1) is not ours to name; types 2 and 3 are the node manager's
@@ -124,8 +124,8 @@ class DiscoveryTranslator final : public ServiceTranslator {
 
   void configuration(const JssInbound& m, FacePort& port) {
     // One node: ours, with every component (instance 0: JSS components).
-    msg::ReportConfiguration report;
-    msg::ConfigurationNode node;
+    jss_msg::ReportConfiguration report;
+    jss_msg::ConfigurationNode node;
     node.node_id = m.our_component.node;
     for (const Ours& c : ours(port)) node.components.push_back({c.jss.component, 0});
     report.nodes.push_back(std::move(node));
@@ -133,8 +133,8 @@ class DiscoveryTranslator final : public ServiceTranslator {
   }
 
   // One component's entry of Report Services / Report Service List.
-  static msg::ServicesComponent entry_of(const Ours& c, FacePort& port, const std::string& filter) {
-    msg::ServicesComponent entry;
+  static jss_msg::ServicesComponent entry_of(const Ours& c, FacePort& port, const std::string& filter) {
+    jss_msg::ServicesComponent entry;
     entry.component_id = c.jss.component;
     entry.instance_id = 0;
     for (auto& s : port.services_of(c.ra.component)) {
@@ -145,7 +145,7 @@ class DiscoveryTranslator final : public ServiceTranslator {
     return entry;
   }
 
-  void query_services(const JssInbound& m, const msg::QueryServices& q, FacePort& port) {
+  void query_services(const JssInbound& m, const jss_msg::QueryServices& q, FacePort& port) {
     // An empty node list, an empty component list or 255 means all (IOP's fallback sends none).
     bool all = q.nodes.empty();
     std::vector<std::uint8_t> wanted;
@@ -157,17 +157,17 @@ class DiscoveryTranslator final : public ServiceTranslator {
         wanted.push_back(id);
       }
     }
-    msg::ServicesNode node;
+    jss_msg::ServicesNode node;
     node.node_id = m.our_component.node;
     for (const Ours& c : ours(port))
       if (all || std::find(wanted.begin(), wanted.end(), c.jss.component) != wanted.end())
         node.components.push_back(entry_of(c, port, {}));
-    msg::ReportServices report;
+    jss_msg::ReportServices report;
     if (!node.components.empty()) report.nodes.push_back(std::move(node));
     reply_jss(port, m.origin, m.our_component, report);
   }
 
-  void query_service_list(const JssInbound& m, const msg::QueryServiceList& q, FacePort& port) {
+  void query_service_list(const JssInbound& m, const jss_msg::QueryServiceList& q, FacePort& port) {
     const std::uint16_t our_subsystem = m.our_component.subsystem;
     std::map<std::uint8_t, std::string> wanted;  // our component (255: all) -> search filter
     for (const auto& subsystem : q.subsystems) {
@@ -178,7 +178,7 @@ class DiscoveryTranslator final : public ServiceTranslator {
           wanted.emplace(component.component_id, component.search_filter.value_or(""));
       }
     }
-    msg::ServicesNode node;
+    jss_msg::ServicesNode node;
     node.node_id = m.our_component.node;
     for (const Ours& c : ours(port)) {
       if (auto it = wanted.find(c.jss.component); it != wanted.end())
@@ -186,12 +186,12 @@ class DiscoveryTranslator final : public ServiceTranslator {
       else if (auto every = wanted.find(kAll); every != wanted.end())
         node.components.push_back(entry_of(c, port, every->second));
     }
-    msg::ReportServiceList report;
+    jss_msg::ReportServiceList report;
     if (!node.components.empty()) report.subsystems.push_back({our_subsystem, {std::move(node)}});
     reply_jss(port, m.origin, m.our_component, report);
   }
 
-  void register_services(const JssInbound& m, const msg::RegisterServices& r, FacePort& port) {
+  void register_services(const JssInbound& m, const jss_msg::RegisterServices& r, FacePort& port) {
     auto& kept = registered_[m.origin.client];
     for (const auto& s : r.services) {
       const ServiceUri service{s.uri, s.major_version, s.minor_version};

@@ -10,10 +10,10 @@
 namespace jaus::jss_face {
 namespace {
 
-namespace msg = jss::msg;
-namespace reject = jss::msg::reject_event;
-constexpr std::uint8_t kPeriodic = msg::event_type::kPeriodic;
-constexpr std::uint8_t kEveryChange = msg::event_type::kEveryChange;
+namespace jss_msg = jss::msg;
+namespace event_reject = jss::msg::reject_event;
+constexpr std::uint8_t kPeriodic = jss_msg::event_type::kPeriodic;
+constexpr std::uint8_t kEveryChange = jss_msg::event_type::kEveryChange;
 
 bool is_query(std::uint16_t message_id) { return message_id >= 0x2000 && message_id < 0x4000; }
 
@@ -33,12 +33,12 @@ EventEngine::~EventEngine() {
 
 bool EventEngine::is_events_message(std::uint16_t message_id) {
   switch (message_id) {
-    case msg::CreateEvent::code:
-    case msg::UpdateEvent::code:
-    case msg::CancelEvent::code:
-    case msg::CreateCommandEvent::code:
-    case msg::QueryEvents::code:
-    case msg::QueryEventTimeout::code:
+    case jss_msg::CreateEvent::code:
+    case jss_msg::UpdateEvent::code:
+    case jss_msg::CancelEvent::code:
+    case jss_msg::CreateCommandEvent::code:
+    case jss_msg::QueryEvents::code:
+    case jss_msg::QueryEventTimeout::code:
       return true;
     default:
       return false;
@@ -61,20 +61,20 @@ void EventEngine::send(const jss::JssId& to, const jss::JssId& from, std::span<c
 
 void EventEngine::from_jss(const JssInbound& m) {
   switch (m.message_id) {
-    case msg::CreateEvent::code: return create(m);
-    case msg::UpdateEvent::code: return update(m);
-    case msg::CancelEvent::code: return cancel(m);
-    case msg::QueryEvents::code: return query_events(m);
-    case msg::QueryEventTimeout::code: {
-      msg::ReportEventTimeout report;
+    case jss_msg::CreateEvent::code: return create(m);
+    case jss_msg::UpdateEvent::code: return update(m);
+    case jss_msg::CancelEvent::code: return cancel(m);
+    case jss_msg::QueryEvents::code: return query_events(m);
+    case jss_msg::QueryEventTimeout::code: {
+      jss_msg::ReportEventTimeout report;
       report.timeout_min = config_.event_timeout_min;
       return send(m.origin.client, m.our_component, jss::encode_contents(report));
     }
-    case msg::CreateCommandEvent::code: {
+    case jss_msg::CreateCommandEvent::code: {
       // Core v1.1 command events: no service here supports them (as IOP).
-      const auto request = decode<msg::CreateCommandEvent>(m);
+      const auto request = decode<jss_msg::CreateCommandEvent>(m);
       if (!request) return;
-      return reject(m, request->request_id, reject::kMessageNotSupported, "command events are not supported");
+      return reject(m, request->request_id, event_reject::kMessageNotSupported, "command events are not supported");
     }
     default:
       return;
@@ -83,19 +83,19 @@ void EventEngine::from_jss(const JssInbound& m) {
 
 std::optional<std::uint8_t> EventEngine::check_setup(const JssInbound& m, std::uint8_t type, double requested_hz,
                                                      std::span<const std::uint8_t> query, Setup& setup) const {
-  if (type != kPeriodic && type != kEveryChange) return reject::kInvalidEventSetup;
-  if (query.size() < 2) return reject::kInvalidEventSetup;
+  if (type != kPeriodic && type != kEveryChange) return event_reject::kInvalidEventSetup;
+  if (query.size() < 2) return event_reject::kInvalidEventSetup;
   const std::uint16_t query_id = jss::message_id_of(query);
   if (!is_query(query_id) || is_events_message(query_id) || !host_.answers(query_id, m.ra_component.component))
-    return reject::kMessageNotSupported;
+    return event_reject::kMessageNotSupported;
   setup.type = type;
   if (type == kPeriodic) {
-    if (requested_hz <= 0) return reject::kInvalidEventSetup;
+    if (requested_hz <= 0) return event_reject::kInvalidEventSetup;
     // The wire's step is 1092/65535 Hz: 5 Hz arrives as 4.9989. Rounded to
     // 0.01 Hz (within a step, so the confirmed value encodes the same) the
     // rate is what the client meant: 5 Events a second, not 4.
     setup.rate_hz = std::min(std::round(requested_hz * 100.0) / 100.0, kMaxRateHz);
-    if (setup.rate_hz <= 0) return reject::kInvalidEventSetup;
+    if (setup.rate_hz <= 0) return event_reject::kInvalidEventSetup;
   } else {
     setup.rate_hz = 0;
   }
@@ -103,12 +103,12 @@ std::optional<std::uint8_t> EventEngine::check_setup(const JssInbound& m, std::u
 }
 
 void EventEngine::create(const JssInbound& m) {
-  const auto request = decode<msg::CreateEvent>(m);
+  const auto request = decode<jss_msg::CreateEvent>(m);
   if (!request) return;
   // An event is state the node must end when its client goes: not for a
   // client the transport could not record.
   if (m.standing == rt::SenderStanding::unrecorded)
-    return reject(m, request->request_id, reject::kConnectionRefused, "the node cannot record this client");
+    return reject(m, request->request_id, event_reject::kConnectionRefused, "the node cannot record this client");
   Setup setup;
   if (auto code = check_setup(m, request->event_type, request->requested_rate_hz, request->query_message, setup))
     return reject(m, request->request_id, *code, "invalid event setup, or the query is not supported");
@@ -126,7 +126,7 @@ void EventEngine::create(const JssInbound& m) {
   } else {
     const auto event_id = free_event_id(client_node);
     if (!event_id || count_of(client_node) >= config_.max_events_per_client || events_.size() >= config_.max_events)
-      return reject(m, request->request_id, reject::kConnectionRefused,
+      return reject(m, request->request_id, event_reject::kConnectionRefused,
                     "event table full (jss.max_events_per_client, jss.max_events)");
     event = &events_[Key{client_node, *event_id}];
     event->client = m.origin.client;
@@ -145,11 +145,11 @@ void EventEngine::create(const JssInbound& m) {
 }
 
 void EventEngine::update(const JssInbound& m) {
-  const auto request = decode<msg::UpdateEvent>(m);
+  const auto request = decode<jss_msg::UpdateEvent>(m);
   if (!request) return;
   const auto it = events_.find(Key{client_node_of(m.origin.client), request->event_id});
   if (it == events_.end() || it->second.our_component != m.our_component)
-    return reject(m, request->request_id, reject::kInvalidEventIdForUpdate, "no such event");
+    return reject(m, request->request_id, event_reject::kInvalidEventIdForUpdate, "no such event");
   Setup setup;
   if (auto code = check_setup(m, request->event_type, request->requested_rate_hz, request->query_message, setup))
     return reject(m, request->request_id, *code, "invalid event setup, or the query is not supported");
@@ -166,28 +166,28 @@ void EventEngine::update(const JssInbound& m) {
 }
 
 void EventEngine::cancel(const JssInbound& m) {
-  const auto request = decode<msg::CancelEvent>(m);
+  const auto request = decode<jss_msg::CancelEvent>(m);
   if (!request) return;
   const auto it = events_.find(Key{client_node_of(m.origin.client), request->event_id});
   if (it == events_.end() || it->second.our_component != m.our_component)
-    return reject(m, request->request_id, reject::kInvalidEventIdForUpdate, "no such event");
+    return reject(m, request->request_id, event_reject::kInvalidEventIdForUpdate, "no such event");
   stop(it->second);
   confirm(m.origin.client, m.our_component, request->request_id, it->second);
   events_.erase(it);
 }
 
 void EventEngine::query_events(const JssInbound& m) {
-  const auto query = decode<msg::QueryEvents>(m);
+  const auto query = decode<jss_msg::QueryEvents>(m);
   if (!query) return;
   const auto& filter = query->filter;
-  msg::ReportEvents report;
+  jss_msg::ReportEvents report;
   for (const auto& [key, e] : events_) {
     if (e.our_component != m.our_component || report.events.size() == 255) continue;
-    const bool wanted = filter.tag == msg::events_filter::kAll ||
-                        (filter.tag == msg::events_filter::kMessageId && jss::message_id_of(e.query) == filter.value) ||
-                        (filter.tag == msg::events_filter::kEventType && e.type == filter.value) ||
-                        (filter.tag == msg::events_filter::kEventId && e.event_id == filter.value);
-    if (wanted) report.events.push_back(msg::EventEntry{e.type, e.event_id, e.query});
+    const bool wanted = filter.tag == jss_msg::events_filter::kAll ||
+                        (filter.tag == jss_msg::events_filter::kMessageId && jss::message_id_of(e.query) == filter.value) ||
+                        (filter.tag == jss_msg::events_filter::kEventType && e.type == filter.value) ||
+                        (filter.tag == jss_msg::events_filter::kEventId && e.event_id == filter.value);
+    if (wanted) report.events.push_back(jss_msg::EventEntry{e.type, e.event_id, e.query});
   }
   send(m.origin.client, m.our_component, jss::encode_contents(report));
 }
@@ -197,7 +197,7 @@ void EventEngine::reject(const JssInbound& m, std::uint8_t request_id, std::uint
     return "jss: event request " + std::to_string(request_id) + " from " + m.origin.client.to_string() + " to " +
            m.our_component.to_string() + " rejected (code " + std::to_string(code) + "): " + why;
   });
-  msg::RejectEventRequest reply;
+  jss_msg::RejectEventRequest reply;
   reply.request_id = request_id;
   reply.response_code = code;
   reply.error_message = std::string(why).substr(0, 80);
@@ -205,7 +205,7 @@ void EventEngine::reject(const JssInbound& m, std::uint8_t request_id, std::uint
 }
 
 void EventEngine::confirm(const jss::JssId& to, const jss::JssId& from, std::uint8_t request_id, const Event& event) {
-  msg::ConfirmEventRequest reply;
+  jss_msg::ConfirmEventRequest reply;
   reply.request_id = request_id;
   reply.event_id = event.event_id;
   reply.confirmed_rate_hz = event.rate_hz;
@@ -282,7 +282,7 @@ void EventEngine::on_report(const ReplyTo& to, const jss::JssId& our_component, 
       return;
     event.last_report.emplace(report.begin(), report.end());
   }
-  msg::Event wrapped;
+  jss_msg::Event wrapped;
   wrapped.event_id = event.event_id;
   wrapped.sequence_number = event.sequence++;
   wrapped.report_message.assign(report.begin(), report.end());

@@ -7,16 +7,16 @@
 namespace jaus::jss_face {
 namespace {
 
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 
 class LivenessTranslator final : public ServiceTranslator {
  public:
   std::string_view name() const override { return "liveness"; }
   std::vector<ServiceUri> services(std::uint8_t) const override { return {core_service("Liveness")}; }
-  bool handles(std::uint16_t id, std::uint8_t) const override { return id == msg::QueryHeartbeatPulse::code; }
+  bool handles(std::uint16_t id, std::uint8_t) const override { return id == jss_msg::QueryHeartbeatPulse::code; }
   bool from_jss(const JssInbound& m, FacePort& port) override {
-    if (m.message_id != msg::QueryHeartbeatPulse::code) return false;
-    if (decode_jss<msg::QueryHeartbeatPulse>(m, port)) reply_jss(port, m.origin, m.our_component, msg::ReportHeartbeatPulse{});
+    if (m.message_id != jss_msg::QueryHeartbeatPulse::code) return false;
+    if (decode_jss<jss_msg::QueryHeartbeatPulse>(m, port)) reply_jss(port, m.origin, m.our_component, jss_msg::ReportHeartbeatPulse{});
     return true;
   }
   bool from_ra(const RaOutbound&, FacePort&) override { return false; }

@@ -15,7 +15,7 @@
 namespace jaus::jss_face {
 namespace {
 
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 
 // Checks the body is M's, then hands the same bytes to the RA component.
 template <class M>
@@ -33,14 +33,14 @@ class ManagementTranslator final : public ServiceTranslator {
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
     if (ra_id == kNodeManagerId) return false;
     switch (message_id) {
-      case msg::Shutdown::code:
-      case msg::Standby::code:
-      case msg::Resume::code:
-      case msg::Reset::code:
-      case msg::SetEmergency::code:
-      case msg::ClearEmergency::code:
-      case msg::QueryStatus::code:
-      case msg::ReportStatus::code:
+      case jss_msg::Shutdown::code:
+      case jss_msg::Standby::code:
+      case jss_msg::Resume::code:
+      case jss_msg::Reset::code:
+      case jss_msg::SetEmergency::code:
+      case jss_msg::ClearEmergency::code:
+      case jss_msg::QueryStatus::code:
+      case jss_msg::ReportStatus::code:
         return true;
       default:
         return false;
@@ -50,14 +50,14 @@ class ManagementTranslator final : public ServiceTranslator {
   bool from_jss(const JssInbound& m, FacePort& port) override {
     if (!handles(m.message_id, m.ra_component.component)) return false;
     switch (m.message_id) {
-      case msg::Shutdown::code: forward<msg::Shutdown>(m, port); break;
-      case msg::Standby::code: forward<msg::Standby>(m, port); break;
-      case msg::Resume::code: forward<msg::Resume>(m, port); break;
-      case msg::Reset::code: forward<msg::Reset>(m, port); break;
-      case msg::SetEmergency::code: forward<msg::SetEmergency>(m, port); break;
-      case msg::ClearEmergency::code: forward<msg::ClearEmergency>(m, port); break;
-      case msg::QueryStatus::code: forward<msg::QueryStatus>(m, port); break;
-      case msg::ReportStatus::code: forward<msg::ReportStatus>(m, port); break;  // = RA Report Component Status
+      case jss_msg::Shutdown::code: forward<jss_msg::Shutdown>(m, port); break;
+      case jss_msg::Standby::code: forward<jss_msg::Standby>(m, port); break;
+      case jss_msg::Resume::code: forward<jss_msg::Resume>(m, port); break;
+      case jss_msg::Reset::code: forward<jss_msg::Reset>(m, port); break;
+      case jss_msg::SetEmergency::code: forward<jss_msg::SetEmergency>(m, port); break;
+      case jss_msg::ClearEmergency::code: forward<jss_msg::ClearEmergency>(m, port); break;
+      case jss_msg::QueryStatus::code: forward<jss_msg::QueryStatus>(m, port); break;
+      case jss_msg::ReportStatus::code: forward<jss_msg::ReportStatus>(m, port); break;  // = RA Report Component Status
       default: return false;
     }
     return true;
@@ -67,7 +67,7 @@ class ManagementTranslator final : public ServiceTranslator {
     if (m.header.command_code != jaus::msg::ReportComponentStatus::code) return false;
     const auto status = decode_ra<jaus::msg::ReportComponentStatus>(m);
     if (!status) return false;
-    msg::ReportStatus report;
+    jss_msg::ReportStatus report;
     report.status = static_cast<std::uint8_t>(status->primary_status & 0x0F);
     report.reserved = 0;
     reply_jss(port, m.to, m.our_component, report);

@@ -22,6 +22,8 @@
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/wire/message.hpp"
 
+#include "core_translators.hpp"
+
 namespace jaus::jss_face::mobility {
 
 // Copies every field of `from` into the field of `to` at the same place of
@@ -107,18 +109,8 @@ void send_ra(FacePort& port, const JssInbound& from, const M& message, Translato
   port.send_ra(from.origin, from.ra_component, M::code, *payload, from.standing);
 }
 
-// Sends a JSS message from our component (values out of their fields' range,
-// a bug of ours, are logged and not sent).
-template <class M>
-void reply_jss(FacePort& port, const ReplyTo& to, const jss::JssId& our_component, const M& message) {
-  auto contents = jss::try_encode_contents(message);
-  if (!contents) {
-    port.log(rt::LogLevel::error, std::string(M::name) + " to " + to.client.to_string() +
-                                      " not encoded: " + contents.error().message());
-    return;
-  }
-  port.reply(to, our_component, *contents);
-}
+// reply_jss (a JSS message from our component) is the core translators' one.
+using jaus::jss_face::reply_jss;
 
 // A JSS body that did not decode: the face counts and logs it; never acted on.
 inline void log_malformed(FacePort& port, const JssInbound& m, std::string_view what, const Error& error) {

@@ -9,7 +9,7 @@ namespace jaus::ocu {
 namespace {
 
 using namespace std::chrono_literals;
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 
 Error decode_failure(const jss::JssId& from, std::string_view what, const Error& error) {
   return make_error(ErrorCode::malformed,
@@ -37,14 +37,14 @@ std::string_view jss_reject_control_text(std::uint8_t code) {
 
 Expected<JssControlResponse> request_jss_control(JssSession& session, const jss::JssId& component,
                                                  std::uint8_t authority, rt::Duration timeout) {
-  msg::RequestControl request;
+  jss_msg::RequestControl request;
   request.authority = authority;
   const auto contents = jss::encode_contents(request);
   auto reply =
-      session.request_contents(component, contents, {msg::ConfirmControl::code, msg::RejectControl::code}, timeout);
+      session.request_contents(component, contents, {jss_msg::ConfirmControl::code, jss_msg::RejectControl::code}, timeout);
   if (!reply) return unexpected(reply.error());
-  if (reply->message_id() == msg::RejectControl::code) return JssControlResponse::not_available;
-  auto confirm = jss::decode_contents<msg::ConfirmControl>(reply->contents);
+  if (reply->message_id() == jss_msg::RejectControl::code) return JssControlResponse::not_available;
+  auto confirm = jss::decode_contents<jss_msg::ConfirmControl>(reply->contents);
   if (!confirm) return unexpected(decode_failure(component, "Confirm Control", confirm.error()));
   if (confirm->response_code > 2)
     return unexpected(make_error(ErrorCode::malformed, "Confirm Control from " + component.to_string() +
@@ -54,14 +54,14 @@ Expected<JssControlResponse> request_jss_control(JssSession& session, const jss:
 }
 
 Expected<void> release_jss_control(JssSession& session, const jss::JssId& component, rt::Duration timeout) {
-  const auto contents = jss::encode_contents(msg::ReleaseControl{});
-  auto reply = session.request_contents(component, contents, {msg::RejectControl::code}, timeout);
+  const auto contents = jss::encode_contents(jss_msg::ReleaseControl{});
+  auto reply = session.request_contents(component, contents, {jss_msg::RejectControl::code}, timeout);
   if (!reply) return unexpected(reply.error());
   return {};
 }
 
 Expected<JssControlStatus> query_jss_control(JssSession& session, const jss::JssId& component, rt::Duration timeout) {
-  auto report = session.query<msg::ReportControl>(component, msg::QueryControl{}, timeout);
+  auto report = session.query<jss_msg::ReportControl>(component, jss_msg::QueryControl{}, timeout);
   if (!report) return unexpected(report.error());
   JssControlStatus status;
   status.controller = report->controller;
@@ -70,13 +70,13 @@ Expected<JssControlStatus> query_jss_control(JssSession& session, const jss::Jss
 }
 
 Expected<std::uint8_t> query_jss_timeout(JssSession& session, const jss::JssId& component, rt::Duration timeout) {
-  auto report = session.query<msg::ReportTimeout>(component, msg::QueryTimeout{}, timeout);
+  auto report = session.query<jss_msg::ReportTimeout>(component, jss_msg::QueryTimeout{}, timeout);
   if (!report) return unexpected(report.error());
   return report->timeout_s;
 }
 
 Expected<std::uint8_t> query_jss_authority(JssSession& session, const jss::JssId& component, rt::Duration timeout) {
-  auto report = session.query<msg::ReportAuthority>(component, msg::QueryAuthority{}, timeout);
+  auto report = session.query<jss_msg::ReportAuthority>(component, jss_msg::QueryAuthority{}, timeout);
   if (!report) return unexpected(report.error());
   return report->authority;
 }
@@ -95,13 +95,13 @@ Expected<std::unique_ptr<JssControlHold>> JssControlHold::take(JssSession& sessi
   JssControlHold* raw = hold.get();
   hold->listener_ = session.listen([raw](const JssReceived& m) {
     if (m.source() != raw->component_ || !raw->held()) return;
-    if (m.message_id() == msg::RejectControl::code) {
-      auto reject = jss::decode_contents<msg::RejectControl>(m.contents);
+    if (m.message_id() == jss_msg::RejectControl::code) {
+      auto reject = jss::decode_contents<jss_msg::RejectControl>(m.contents);
       raw->lose("Reject Control: " +
                 std::string(reject ? jss_reject_control_text(reject->response_code) : "(does not decode)"));
-    } else if (m.message_id() == msg::ConfirmControl::code) {
-      auto confirm = jss::decode_contents<msg::ConfirmControl>(m.contents);
-      if (confirm && confirm->response_code == msg::confirm_control::kControlAccepted) raw->confirmed_ = true;
+    } else if (m.message_id() == jss_msg::ConfirmControl::code) {
+      auto confirm = jss::decode_contents<jss_msg::ConfirmControl>(m.contents);
+      if (confirm && confirm->response_code == jss_msg::confirm_control::kControlAccepted) raw->confirmed_ = true;
       if (confirm && confirm->response_code != 0 && confirm->response_code <= 2)
         raw->lose("re-request answered " +
                   std::string(to_string(static_cast<JssControlResponse>(confirm->response_code))));
@@ -134,7 +134,7 @@ void JssControlHold::refresh() {
   const auto now = session_.clock().now();
   const bool due = now >= next_refresh_;
   if (due || !confirmed_) {
-    msg::RequestControl request;
+    jss_msg::RequestControl request;
     request.authority = options_.authority;
     session_.send(component_, request);  // the Confirm Control comes to the listener
     if (due) {
@@ -172,10 +172,10 @@ Expected<void> JssControlHold::release(rt::Duration timeout) {
   if (refresh_timer_ != rt::kNoTimer) session_.scheduler().cancel(refresh_timer_);
   refresh_timer_ = rt::kNoTimer;
   // Also after Ctrl-C: resend until the Reject Control (released) comes, at most kLongestCleanup.
-  const auto contents = jss::encode_contents(msg::ReleaseControl{});
+  const auto contents = jss::encode_contents(jss_msg::ReleaseControl{});
   bool released = false;
   const auto id = session_.listen([&](const JssReceived& m) {
-    if (m.source() == component_ && m.message_id() == msg::RejectControl::code) released = true;
+    if (m.source() == component_ && m.message_id() == jss_msg::RejectControl::code) released = true;
   });
   const auto deadline = session_.clock().now() + std::min(timeout, JssSession::kLongestCleanup);
   while (!released && session_.clock().now() < deadline) {

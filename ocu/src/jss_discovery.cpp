@@ -9,7 +9,7 @@ namespace jaus::ocu {
 
 namespace {
 
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 
 bool uri_matches(const std::string& uri, std::string_view wanted) {
   if (uri == wanted) return true;
@@ -40,7 +40,7 @@ JssComponent* component_of(Gathering& g, std::uint8_t node, std::uint8_t compone
   return &c;
 }
 
-void add_services(Gathering& g, const std::vector<msg::ServicesNode>& nodes, const JssDiscoveryOptions& options,
+void add_services(Gathering& g, const std::vector<jss_msg::ServicesNode>& nodes, const JssDiscoveryOptions& options,
                   std::size_t& left_out) {
   for (const auto& node : nodes)
     for (const auto& entry : node.components) {
@@ -55,38 +55,38 @@ void add_services(Gathering& g, const std::vector<msg::ServicesNode>& nodes, con
 // Query Configuration, then the service list (v1.1, else Query Services v1.0), then names.
 void learn_subsystem(JssSession& session, Gathering& g, const JssDiscoveryOptions& options, std::size_t& left_out) {
   const jss::JssId discovery = g.subsystem.discovery;
-  msg::QueryConfiguration query_configuration;
-  query_configuration.query_field = msg::identification::kSubsystem;
+  jss_msg::QueryConfiguration query_configuration;
+  query_configuration.query_field = jss_msg::identification::kSubsystem;
   if (auto configuration =
-          session.query<msg::ReportConfiguration>(discovery, query_configuration, options.query_timeout)) {
+          session.query<jss_msg::ReportConfiguration>(discovery, query_configuration, options.query_timeout)) {
     for (const auto& node : configuration->nodes)
       for (const auto& entry : node.components)
         if (JssComponent* c = component_of(g, node.node_id, entry.component_id, options, left_out))
           c->instance = entry.instance_id;
   }
   if (session.interrupted()) return;
-  msg::QueryServiceList query_list;
-  msg::ServiceListQuerySubsystem wanted;
+  jss_msg::QueryServiceList query_list;
+  jss_msg::ServiceListQuerySubsystem wanted;
   wanted.subsystem_id = g.subsystem.id;
-  wanted.nodes.push_back(msg::ServiceListQueryNode{jss::JssId::kAll, {msg::ServiceListQueryComponent{}}});
+  wanted.nodes.push_back(jss_msg::ServiceListQueryNode{jss::JssId::kAll, {jss_msg::ServiceListQueryComponent{}}});
   query_list.subsystems.push_back(wanted);
-  if (auto list = session.query<msg::ReportServiceList>(discovery, query_list, options.query_timeout)) {
+  if (auto list = session.query<jss_msg::ReportServiceList>(discovery, query_list, options.query_timeout)) {
     g.subsystem.services_listed = true;
     for (const auto& s : list->subsystems)
       if (s.subsystem_id == g.subsystem.id) add_services(g, s.nodes, options, left_out);
   } else if (!session.interrupted()) {
     // A core v1.0 node: Query Services with no node listed asks for all (as IOP's fallback).
-    if (auto services = session.query<msg::ReportServices>(discovery, msg::QueryServices{}, options.query_timeout)) {
+    if (auto services = session.query<jss_msg::ReportServices>(discovery, jss_msg::QueryServices{}, options.query_timeout)) {
       g.subsystem.services_listed = true;
       add_services(g, services->nodes, options, left_out);
     }
   }
   if (!options.component_names) return;
-  msg::QueryIdentification query_name;
-  query_name.query_type = msg::identification::kComponent;
+  jss_msg::QueryIdentification query_name;
+  query_name.query_type = jss_msg::identification::kComponent;
   for (auto& [key, c] : g.components) {
     if (session.interrupted()) return;
-    if (auto name = session.query<msg::ReportIdentification>(c.id, query_name, options.query_timeout))
+    if (auto name = session.query<jss_msg::ReportIdentification>(c.id, query_name, options.query_timeout))
       c.name = name->identification;
   }
 }
@@ -95,9 +95,9 @@ void learn_subsystem(JssSession& session, Gathering& g, const JssDiscoveryOption
 void name_node(JssSession& session, const jss::JssId& discovery, JssNode& node, const JssDiscoveryOptions& options) {
   if (node.components.empty()) return;
   const jss::JssId asked = discovery.node == node.id ? discovery : node.components.front().id;
-  msg::QueryIdentification query;
-  query.query_type = msg::identification::kNode;
-  if (auto report = session.query<msg::ReportIdentification>(asked, query, options.query_timeout))
+  jss_msg::QueryIdentification query;
+  query.query_type = jss_msg::identification::kNode;
+  if (auto report = session.query<jss_msg::ReportIdentification>(asked, query, options.query_timeout))
     node.name = report->identification;
 }
 
@@ -135,11 +135,11 @@ Expected<JssSystem> discover_jss(JssSession& session, const JssDiscoveryOptions&
   std::map<std::uint16_t, Gathering> found;
   std::size_t left_out = 0;
   const auto listener = session.listen([&](const JssReceived& m) {
-    if (m.message_id() != msg::ReportIdentification::code) return;
+    if (m.message_id() != jss_msg::ReportIdentification::code) return;
     const jss::JssId source = m.source();
     if (source.subsystem == session.self().subsystem || found.count(source.subsystem) > 0) return;
-    auto report = jss::decode_contents<msg::ReportIdentification>(m.contents);
-    if (!report || report->query_type != msg::identification::kSubsystem) return;
+    auto report = jss::decode_contents<jss_msg::ReportIdentification>(m.contents);
+    if (!report || report->query_type != jss_msg::identification::kSubsystem) return;
     if (found.size() >= options.max_subsystems) {
       ++left_out;
       return;
@@ -150,8 +150,8 @@ Expected<JssSystem> discover_jss(JssSession& session, const JssDiscoveryOptions&
     g.subsystem.type = report->type;
     g.subsystem.discovery = source;
   });
-  msg::QueryIdentification query;
-  query.query_type = msg::identification::kSubsystem;
+  jss_msg::QueryIdentification query;
+  query.query_type = jss_msg::identification::kSubsystem;
   const auto started = session.clock().now();
   const auto deadline = started + options.timeout;
   const auto period = std::max<rt::Duration>(options.identification_period, std::chrono::milliseconds(10));

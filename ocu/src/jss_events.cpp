@@ -7,19 +7,19 @@ namespace jaus::ocu {
 
 namespace {
 
-namespace msg = jss::msg;
+namespace jss_msg = jss::msg;
 constexpr rt::Duration kMinRefresh = std::chrono::seconds(1);
 
 }  // namespace
 
 std::string_view jss_reject_event_text(std::uint8_t code) {
   switch (code) {
-    case msg::reject_event::kPeriodicNotSupported: return "periodic events not supported";
-    case msg::reject_event::kChangeBasedNotSupported: return "change-based events not supported";
-    case msg::reject_event::kConnectionRefused: return "connection refused";
-    case msg::reject_event::kInvalidEventSetup: return "invalid event setup";
-    case msg::reject_event::kMessageNotSupported: return "message not supported";
-    case msg::reject_event::kInvalidEventIdForUpdate: return "invalid event ID for update";
+    case jss_msg::reject_event::kPeriodicNotSupported: return "periodic events not supported";
+    case jss_msg::reject_event::kChangeBasedNotSupported: return "change-based events not supported";
+    case jss_msg::reject_event::kConnectionRefused: return "connection refused";
+    case jss_msg::reject_event::kInvalidEventSetup: return "invalid event setup";
+    case jss_msg::reject_event::kMessageNotSupported: return "message not supported";
+    case jss_msg::reject_event::kInvalidEventIdForUpdate: return "invalid event ID for update";
     default: return "unknown response code";
   }
 }
@@ -48,7 +48,7 @@ Expected<std::unique_ptr<JssEvent>> JssEvent::create(JssSession& session, const 
     return unexpected(
         make_error(ErrorCode::invalid_argument, "an event is created with one component, not " + provider.to_string()));
   std::unique_ptr<JssEvent> event(new JssEvent(session, provider, std::move(query), options, std::move(callback)));
-  msg::CreateEvent create;
+  jss_msg::CreateEvent create;
   create.request_id = event->take_request_id();
   create.event_type = static_cast<std::uint8_t>(options.type);
   create.requested_rate_hz = options.type == JssEventType::periodic ? std::clamp(options.rate_hz, 0.0, 1092.0) : 0.0;
@@ -66,7 +66,7 @@ Expected<std::unique_ptr<JssEvent>> JssEvent::create(JssSession& session, const 
   event->open_ = true;
   // Core v1.1 providers cancel an event not refreshed within their event timeout.
   if (auto timeout =
-          session.query<msg::ReportEventTimeout>(provider, msg::QueryEventTimeout{}, options.request_timeout))
+          session.query<jss_msg::ReportEventTimeout>(provider, jss_msg::QueryEventTimeout{}, options.request_timeout))
     event->provider_timeout_min_ = timeout->timeout_min;
   const rt::Duration half = std::chrono::seconds(30) * event->provider_timeout_min_;
   event->refresh_period_ =
@@ -78,7 +78,7 @@ Expected<std::unique_ptr<JssEvent>> JssEvent::create(JssSession& session, const 
 JssEvent::~JssEvent() {
   cancel_refresh();
   if (open_) {  // best effort: the provider's event timeout ends it otherwise
-    msg::CancelEvent cancel;
+    jss_msg::CancelEvent cancel;
     cancel.request_id = take_request_id();
     cancel.event_id = event_id_;
     session_.send(provider_, cancel);
@@ -110,17 +110,17 @@ Expected<JssEvent::Answer> JssEvent::request(const std::vector<std::uint8_t>& co
 void JssEvent::heard(const JssReceived& m) {
   if (m.source() != provider_) return;
   const auto id = m.message_id();
-  if (id == msg::Event::code) {
+  if (id == jss_msg::Event::code) {
     if (!open_) return;
-    auto event = jss::decode_contents<msg::Event>(m.contents);
+    auto event = jss::decode_contents<jss_msg::Event>(m.contents);
     if (!event || event->event_id != event_id_) return;
     if (last_sequence_) events_missed_ += static_cast<std::uint8_t>(event->sequence_number - *last_sequence_ - 1);
     last_sequence_ = event->sequence_number;
     ++events_received_;
     if (callback_)
       callback_(JssEventReport{provider_, event->event_id, event->sequence_number, std::move(event->report_message)});
-  } else if (id == msg::ConfirmEventRequest::code) {
-    auto confirm = jss::decode_contents<msg::ConfirmEventRequest>(m.contents);
+  } else if (id == jss_msg::ConfirmEventRequest::code) {
+    auto confirm = jss::decode_contents<jss_msg::ConfirmEventRequest>(m.contents);
     if (!confirm) return;
     if (pending_request_ && confirm->request_id == *pending_request_) {
       answer_ = Answer{true, confirm->event_id, confirm->confirmed_rate_hz, std::nullopt};
@@ -133,8 +133,8 @@ void JssEvent::heard(const JssReceived& m) {
       ended_by_provider_ = true;
       cancel_refresh();
     }
-  } else if (id == msg::RejectEventRequest::code) {
-    auto reject = jss::decode_contents<msg::RejectEventRequest>(m.contents);
+  } else if (id == jss_msg::RejectEventRequest::code) {
+    auto reject = jss::decode_contents<jss_msg::RejectEventRequest>(m.contents);
     if (!reject) return;
     if (pending_request_ && reject->request_id == *pending_request_) {
       answer_ = Answer{false, 0, 0, reject->response_code};
@@ -161,7 +161,7 @@ void JssEvent::cancel_refresh() {
 
 void JssEvent::refresh() {
   if (!open_) return;
-  msg::UpdateEvent update;
+  jss_msg::UpdateEvent update;
   update.request_id = take_request_id();
   update.event_type = static_cast<std::uint8_t>(options_.type);
   update.requested_rate_hz = options_.type == JssEventType::periodic ? std::clamp(options_.rate_hz, 0.0, 1092.0) : 0.0;
@@ -174,7 +174,7 @@ void JssEvent::refresh() {
 
 Expected<void> JssEvent::update(JssEventType type, double rate_hz) {
   if (!open_) return unexpected(make_error(ErrorCode::invalid_argument, "the event is not open"));
-  msg::UpdateEvent update;
+  jss_msg::UpdateEvent update;
   update.request_id = take_request_id();
   update.event_type = static_cast<std::uint8_t>(type);
   update.requested_rate_hz = type == JssEventType::periodic ? std::clamp(rate_hz, 0.0, 1092.0) : 0.0;
@@ -197,7 +197,7 @@ Expected<void> JssEvent::cancel() {
   if (!open_) return {};
   cancel_refresh();
   open_ = false;  // no more Events taken, whatever the answer
-  msg::CancelEvent cancel;
+  jss_msg::CancelEvent cancel;
   cancel.request_id = take_request_id();
   cancel.event_id = event_id_;
   auto answer = request(jss::encode_contents(cancel), cancel.request_id, true);

@@ -45,11 +45,6 @@ Json codes_json(const std::map<std::uint16_t, std::uint32_t>& codes) {
   return out;
 }
 
-std::string pad(std::string text, std::size_t width) {
-  if (text.size() < width) text.append(width - text.size(), ' ');
-  return text + "  ";
-}
-
 std::string row(const std::string& address, const std::string& kind, const std::optional<Identification>& ident) {
   std::string type = "-";
   std::string authority = "-";
@@ -59,13 +54,13 @@ std::string row(const std::string& address, const std::string& kind, const std::
     authority = std::to_string(ident->authority);
     name = ident->name;
   }
-  return pad(address, 12) + pad(kind, 28) + pad(type, 6) + pad(authority, 4) + name + "\n";
+  return table_cell(address, 12) + table_cell(kind, 28) + table_cell(type, 6) + table_cell(authority, 4) + name + "\n";
 }
 
 // "            accepts   0x0001 0x0002 ..." under the row, wrapped at 100 columns.
 std::string code_line(const std::string& label, const std::map<std::uint16_t, std::uint32_t>& codes) {
   constexpr std::size_t kWidth = 100;
-  const std::string indent = std::string(12, ' ') + pad(label, 8);
+  const std::string indent = std::string(12, ' ') + table_cell(label, 8);
   if (codes.empty()) return indent + "-\n";
   std::string out;
   std::string line = indent;
@@ -81,6 +76,11 @@ std::string code_line(const std::string& label, const std::map<std::uint16_t, st
 }
 
 }  // namespace
+
+std::string table_cell(std::string text, std::size_t width) {
+  if (text.size() < width) text.append(width - text.size(), ' ');
+  return text + "  ";
+}
 
 Json discovery_json(const Discovery& discovery) {
   Json subsystems = Json::array();
@@ -110,7 +110,7 @@ Json discovery_json(const Discovery& discovery) {
 }
 
 std::string discovery_table(const Discovery& discovery) {
-  std::string out = pad("ADDRESS", 12) + pad("KIND", 28) + pad("TYPE", 6) + pad("AUTH", 4) + "IDENTIFICATION\n";
+  std::string out = table_cell("ADDRESS", 12) + table_cell("KIND", 28) + table_cell("TYPE", 6) + table_cell("AUTH", 4) + "IDENTIFICATION\n";
   for (const auto& [sid, s] : discovery.subsystems()) {
     const std::string kind = "subsystem" + (s.identification ? " (" + identification_class(s.identification->type) + ")" : "");
     out += row(std::to_string(sid), kind, s.identification);

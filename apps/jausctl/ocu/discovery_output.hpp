@@ -2,6 +2,7 @@
 // scripts. Sans-I/O: strings and JSON out.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "jaus/ocu/discovery.hpp"
@@ -18,5 +19,8 @@ Json discovery_json(const Discovery& discovery);
 // One row per subsystem, node and component, each component followed by what
 // it accepts and provides.
 std::string discovery_table(const Discovery& discovery);
+
+// A cell of discover's tables: `text` padded to `width`, then two spaces.
+std::string table_cell(std::string text, std::size_t width);
 
 }  // namespace jausctl::ocu

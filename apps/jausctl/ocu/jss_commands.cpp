@@ -15,7 +15,7 @@ namespace jausctl::ocu {
 
 namespace {
 
-namespace msg = jaus::jss::msg;
+namespace jss_msg = jaus::jss::msg;
 using jaus::jss::JssId;
 
 constexpr std::uint16_t kFirstQueryId = 0x2000;  // below: commands
@@ -78,8 +78,8 @@ class FirstReply {
   JssSession::ListenerId id_;
 };
 
-jaus::Expected<msg::ReportStatus> query_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout) {
-  auto report = session.query<msg::ReportStatus>(target, msg::QueryStatus{}, timeout);
+jaus::Expected<jss_msg::ReportStatus> query_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout) {
+  auto report = session.query<jss_msg::ReportStatus>(target, jss_msg::QueryStatus{}, timeout);
   if (!report && report.error().code != jaus::ErrorCode::timeout && report.error().code != jaus::ErrorCode::interrupted)
     return jaus::unexpected(
         jaus::make_error(jaus::ErrorCode::malformed,
@@ -87,7 +87,7 @@ jaus::Expected<msg::ReportStatus> query_status(JssSession& session, const JssId&
   return report;
 }
 
-bool is_emergency(const msg::ReportStatus& report) {
+bool is_emergency(const jss_msg::ReportStatus& report) {
   return (report.status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
 }
 
@@ -123,7 +123,7 @@ int run_jss_send(JssSession& session, const JssId& target, const std::vector<std
   const auto id = jaus::jss::message_id_of(message);
   if (id < kFirstQueryId && !target.is_broadcast()) {
     const auto priority =
-        id == msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical : jaus::jss::JudpPriority::normal;
+        id == jss_msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical : jaus::jss::JudpPriority::normal;
     const auto arrival = session.send_contents_must_arrive(target, message, priority);
     if (arrival.outcome != Arrival::acknowledged)
       return fail(io, "send", not_arrived_text(message_name(message), target, arrival));
@@ -142,9 +142,9 @@ int run_jss_send(JssSession& session, const JssId& target, const std::vector<std
 }
 
 int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::rt::Duration timeout, CommandIo io) {
-  msg::SetEmergency set_message;
+  jss_msg::SetEmergency set_message;
   set_message.emergency_code = 1;  // STOP, the only code JSS defines
-  msg::ClearEmergency clear_message;
+  jss_msg::ClearEmergency clear_message;
   clear_message.emergency_code = 1;
   const auto arrival = set ? session.send_must_arrive(target, set_message, jaus::jss::JudpPriority::safety_critical)
                            : session.send_must_arrive(target, clear_message);

@@ -1,16 +1,12 @@
 // `jausctl discover --dialect jss`: what discover_jss found, as a table or JSON.
 #include "jaus/ocu/jss_discovery.hpp"
 #include "jaus/ocu/names.hpp"
+#include "discovery_output.hpp"
 #include "jss_commands.hpp"
 
 namespace jausctl::ocu {
 
 namespace {
-
-std::string pad(std::string text, std::size_t width) {
-  if (text.size() < width) text.append(width - text.size(), ' ');
-  return text + "  ";
-}
 
 std::string version_text(const JssService& s) { return std::to_string(s.major) + "." + std::to_string(s.minor); }
 
@@ -48,7 +44,7 @@ Json discovery_json(const JssSystem& system) {
 // "            services  Transport 1.1, Events 1.1, ..." wrapped at 100 columns.
 std::string services_line(const JssComponent& c) {
   constexpr std::size_t kWidth = 100;
-  const std::string indent = std::string(14, ' ') + pad("services", 8);
+  const std::string indent = std::string(14, ' ') + table_cell("services", 8);
   if (c.services.empty()) return indent + "-\n";
   std::string out;
   std::string line = indent;
@@ -66,15 +62,15 @@ std::string services_line(const JssComponent& c) {
 }
 
 std::string discovery_table(const JssSystem& system) {
-  std::string out = pad("JSS ID", 12) + pad("KIND", 20) + pad("TYPE", 6) + "IDENTIFICATION\n";
+  std::string out = table_cell("JSS ID", 12) + table_cell("KIND", 20) + table_cell("TYPE", 6) + "IDENTIFICATION\n";
   for (const auto& s : system.subsystems) {
-    out += pad(std::to_string(s.id), 12) + pad("subsystem (" + identification_class(s.type) + ")", 20) +
-           pad(std::to_string(s.type), 6) + s.name + "\n";
+    out += table_cell(std::to_string(s.id), 12) + table_cell("subsystem (" + identification_class(s.type) + ")", 20) +
+           table_cell(std::to_string(s.type), 6) + s.name + "\n";
     for (const auto& node : s.nodes) {
-      out += pad(std::to_string(s.id) + "." + std::to_string(node.id), 12) + pad("node", 20) + pad("-", 6) +
+      out += table_cell(std::to_string(s.id) + "." + std::to_string(node.id), 12) + table_cell("node", 20) + table_cell("-", 6) +
              (node.name.empty() ? "(no identification)" : node.name) + "\n";
       for (const auto& c : node.components) {
-        out += pad(c.id.to_string(), 12) + pad("component", 20) + pad("-", 6) +
+        out += table_cell(c.id.to_string(), 12) + table_cell("component", 20) + table_cell("-", 6) +
                (c.name.empty() ? "(no identification)" : c.name) + "\n";
         out += services_line(c);
       }

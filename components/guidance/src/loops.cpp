@@ -6,14 +6,16 @@
 
 #include "jaus/components/navigation_frames.hpp"
 
+#include "argument_checks.hpp"
+
 namespace jaus::components::guidance {
+
+using detail::bad;
+using detail::positive;
 
 namespace {
 
 double finite_or_zero(double v) { return std::isfinite(v) ? v : 0; }
-bool positive(double v) { return std::isfinite(v) && v > 0; }
-
-Error bad(const char* what) { return make_error(ErrorCode::invalid_argument, what); }
 
 }  // namespace
 

@@ -6,7 +6,11 @@
 #include <optional>
 #include <utility>
 
+#include "argument_checks.hpp"
+
 namespace jaus::components::guidance {
+
+using detail::bad;
 
 namespace {
 
@@ -16,7 +20,6 @@ constexpr int kMinDepth = 3;               // at least 8 pieces a segment
 constexpr int kMaxDepth = 14;              // at most 16384 pieces a segment
 constexpr double kSearchBack_m = 1.0;      // how far behind its progress a vehicle may be found
 
-Error bad(const char* what) { return make_error(ErrorCode::invalid_argument, what); }
 bool finite(const Point2& p) { return std::isfinite(p.x_m) && std::isfinite(p.y_m); }
 bool finite(const Pose2& p) { return finite(p.position()) && std::isfinite(p.yaw_rad); }
 

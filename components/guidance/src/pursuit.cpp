@@ -5,12 +5,14 @@
 #include <numbers>
 #include <utility>
 
+#include "argument_checks.hpp"
+
 namespace jaus::components::guidance {
 
-namespace {
+using detail::bad;
+using detail::positive;
 
-bool positive(double v) { return std::isfinite(v) && v > 0; }
-Error bad(const char* what) { return make_error(ErrorCode::invalid_argument, what); }
+namespace {
 
 // `p` in the body frame of `pose`: (ahead, right).
 Point2 to_body(const Pose2& pose, const Point2& p) {

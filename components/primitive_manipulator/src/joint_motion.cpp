@@ -17,7 +17,7 @@ constexpr double kTimeSlack = 1e-9;  // s
 // 0 (not limited) -> infinity; negative limits count by their size.
 double rate_limit(double v) { return v == 0 || !std::isfinite(v) ? kInfinity : std::abs(v); }
 
-Expected<JointTrajectory> refused(std::string why) {
+Expected<JointTrajectory> refused_motion(std::string why) {
   return unexpected(make_error(ErrorCode::out_of_range, std::move(why)));
 }
 
@@ -43,8 +43,8 @@ double JointTrajectory::Profile::position(double tau, double duration) const {
 Expected<JointTrajectory> JointTrajectory::plan(const ArmConfig& config, const std::vector<double>& start,
                                                 const std::vector<TimedJointPose>& poses) {
   const std::size_t n = config.joints.size();
-  if (start.size() != n) return refused("the motion starts from " + std::to_string(start.size()) + " joints");
-  if (poses.empty()) return refused("a motion has at least one pose");
+  if (start.size() != n) return refused_motion("the motion starts from " + std::to_string(start.size()) + " joints");
+  if (poses.empty()) return refused_motion("a motion has at least one pose");
   JointTrajectory out;
   out.start_ = start;
   std::vector<double> from = start;
@@ -54,12 +54,12 @@ Expected<JointTrajectory> JointTrajectory::plan(const ArmConfig& config, const s
     std::ostringstream where;
     where << "pose " << p + 1 << " at " << pose.time_s << " s";
     if (pose.positions.size() != n || pose.limits.size() != n)
-      return refused(where.str() + " has " + std::to_string(pose.positions.size()) + " joints, the arm " +
+      return refused_motion(where.str() + " has " + std::to_string(pose.positions.size()) + " joints, the arm " +
                      std::to_string(n));
     if (!std::isfinite(pose.time_s) || pose.time_s < from_s - kTimeSlack) {
       std::ostringstream why;
       why << where.str() << " comes before the previous pose (" << from_s << " s)";
-      return refused(why.str());
+      return refused_motion(why.str());
     }
     Segment segment;
     segment.start_s = from_s;
@@ -84,7 +84,7 @@ Expected<JointTrajectory> JointTrajectory::plan(const ArmConfig& config, const s
           if (std::isfinite(accel)) why << ", acceleration " << accel;
           if (std::isfinite(decel)) why << ", deceleration " << decel;
           why << ")";
-          return refused(why.str());
+          return refused_motion(why.str());
         }
         profile.cruise = cruise;
         profile.accel_s = std::isfinite(accel) ? cruise / accel : 0.0;

@@ -12,8 +12,7 @@ namespace jaus::components {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2 * kPi;
+constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr double kMaxThousandths = 65.535;  // an unsigned short x 0.001
 
 struct Range {
@@ -24,11 +23,11 @@ struct Range {
 Range range_of(JointQuantity q) {
   switch (q) {
     case JointQuantity::position:
-      return {8 * kPi, 10};
+      return {8 * std::numbers::pi, 10};
     case JointQuantity::velocity:
-      return {10 * kPi, 5};
+      return {10 * std::numbers::pi, 5};
     case JointQuantity::acceleration:
-      return {10 * kPi, 20};
+      return {10 * std::numbers::pi, 20};
     case JointQuantity::force_torque:
       return {1000, 500};
   }
