@@ -85,8 +85,11 @@ TEST_F(NodeManagerTest, LeavesOtherSubsystemsToTheCommunicator) {
   // From the communicator only: one a second, as from the node manager before.
   const auto announced = outbox.to<msg::ReportHeartbeatPulse>(kEverySubsystem);
   EXPECT_EQ(announced.size(), 3u);
-  for (const auto& sent : outbox.sent)
-    if (sent.header.destination == kEverySubsystem) EXPECT_EQ(sent.header.source, config.address);
+  for (const auto& sent : outbox.sent) {
+    if (sent.header.destination == kEverySubsystem) {
+      EXPECT_EQ(sent.header.source, config.address);
+    }
+  }
 }
 
 TEST_F(NodeManagerTest, AnswersIdentificationAtEachLevel) {

@@ -79,9 +79,11 @@ TEST_P(OurKindsConform, EveryApplicableCasePassesAndThoseOfItsKindRun) {
   ASSERT_EQ(results.size(), all_cases().size() - 1);  // all but the silent-requester case
   for (const auto& r : results) {
     EXPECT_NE(r.outcome.verdict, Verdict::fail) << describe(results);
-    for (const auto prefix : tested.passing)
-      if (std::string_view(r.test_case->id).starts_with(prefix))
+    for (const auto prefix : tested.passing) {
+      if (std::string_view(r.test_case->id).starts_with(prefix)) {
         EXPECT_EQ(r.outcome.verdict, Verdict::pass) << r.test_case->id << "\n" << describe(results);
+      }
+    }
   }
   // Left as found: nobody in control (once the last Release arrives), the
   // vehicle not driven, the arm back.

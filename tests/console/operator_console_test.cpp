@@ -219,7 +219,9 @@ TEST_F(OperatorConsoleTest, ArmJointsAreClampedToTheirLimits) {
   EXPECT_TRUE(node.frames(1, "error").empty());
 
   node.page_sends(1, {{"type", "arm"}, {"target", "1.1.49.1"}, {"joints", {1.0}}});
-  if (joints.size() != 1) EXPECT_FALSE(node.frames(1, "error").empty()) << "a wrong joint count is refused";
+  if (joints.size() != 1) {
+    EXPECT_FALSE(node.frames(1, "error").empty()) << "a wrong joint count is refused";
+  }
 }
 
 TEST_F(OperatorConsoleTest, WaypointsAreLoadedAndResumeDrivesThem) {

@@ -119,7 +119,8 @@ struct Client {
   // Reads the greeting first (hello, tree), then sends `text` and reads the answer.
   std::string round_trip(const std::string& text) {
     if (!greeted) {
-      greeting = read() + "|" + read();
+      const std::string first = read();  // its own statement: the operands of + may be read in either order
+      greeting = first + "|" + read();
       greeted = true;
     }
     ws.text(true);

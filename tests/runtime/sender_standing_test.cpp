@@ -252,7 +252,7 @@ class StandingNodeTest : public ::testing::Test {
     h.source = source;
     h.destination = kDriver;
     h.data_size = static_cast<std::uint16_t>(*size);
-    encode_header_unchecked(h, std::span(bytes).first<kHeaderSize>());
+    encode_header_unchecked(h, std::span(bytes).template first<kHeaderSize>());
     bytes.resize(kHeaderSize + *size);
     const auto packet = decode_packet(bytes);
     ASSERT_TRUE(packet);

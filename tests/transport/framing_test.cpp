@@ -72,7 +72,9 @@ TEST(Framing, NonJausDatagramsAreDroppedWithTheirReason) {
     EXPECT_EQ(drop_reason(result.error()), c.reason) << c.what << ": " << result.error().message();
     EXPECT_FALSE(result.error().detail.empty()) << c.what;
     // Offsets are in the datagram: a header's fields come after the 8-byte OPC prefix.
-    if (c.reason == DropReason::bad_header) EXPECT_GE(result.error().offset, kOpcPrefix.size()) << c.what;
+    if (c.reason == DropReason::bad_header) {
+      EXPECT_GE(result.error().offset, kOpcPrefix.size()) << c.what;
+    }
   }
   const std::vector<std::uint8_t> huge(kMaxDatagramSize + 1, 0x4A);
   auto oversized = unframe(huge);

@@ -44,8 +44,8 @@ struct DriveNodeOptions {
   components::Steering steering = components::Steering::differential;
   // The driver kinds under test, each at its kind's ID, instance 1, authority
   // `driver_authority`, with these options.
-  std::vector<std::string> drivers;
-  std::map<std::string, std::string> driver_options;
+  std::vector<std::string> drivers{};  // {}: a designated initializer may leave it out (GCC's -Wmissing-field-initializers)
+  std::map<std::string, std::string> driver_options{};
   std::uint8_t driver_authority = 1;
   std::uint8_t operator_authority = 5;  // above the drivers': an operator takes over
 };
