@@ -430,7 +430,7 @@ CaseOutcome list_driver_execute(JssCaseContext& c) {
 
 // --- the suite ----------------------------------------------------------
 
-JssConformanceCase make(std::string_view id, std::string_view title, std::string_view reference,
+JssConformanceCase mobility_case(std::string_view id, std::string_view title, std::string_view reference,
                         std::string_view service, std::function<CaseOutcome(JssCaseContext&)> run) {
   return JssConformanceCase{ConformanceCase{id, title, reference, nullptr, nullptr},
                             [service](const JssComponentUnderTest& c) { return unless_has(c, service); },
@@ -441,34 +441,34 @@ JssConformanceCase make(std::string_view id, std::string_view title, std::string
 
 std::span<const JssConformanceCase> jss_mobility_cases() {
   static const std::vector<JssConformanceCase> cases{
-      make("jss.primitive_driver.effort",
+      mobility_case("jss.primitive_driver.effort",
            "its controller's Set Wrench Effort in Ready is reported; leaving Ready zeroes it and Resume does not "
            "bring it back",
            "AS6009 PrimitiveDriver; jss-notes 4.1", "PrimitiveDriver", primitive_driver_effort),
-      make("jss.primitive_driver.non_controller_ignored", "Set Wrench Effort from a non-controller is not executed",
+      mobility_case("jss.primitive_driver.non_controller_ignored", "Set Wrench Effort from a non-controller is not executed",
            "AS6009 PrimitiveDriver; jss-notes 3.3, 4.1", "PrimitiveDriver", primitive_driver_non_controller_ignored),
-      make("jss.velocity_state.presence",
+      mobility_case("jss.velocity_state.presence",
            "Query Velocity State gets the requested AND available fields (0x0140, 0x0001, none)",
            "AS6009 VelocityStateSensor; jss-notes 0.4, 4.2", "VelocityStateSensor", velocity_state_presence),
-      make("jss.local_pose.presence",
+      mobility_case("jss.local_pose.presence",
            "Query Local Pose gets the requested AND available fields (0x0043, 0x0103, none)",
            "AS6009 LocalPoseSensor; jss-notes 0.4, 4.3", "LocalPoseSensor", local_pose_presence),
-      make("jss.local_pose.values", "Report Local Pose's angles are within +-pi", "AS6009 LocalPoseSensor; jss-notes 4.3",
+      mobility_case("jss.local_pose.values", "Report Local Pose's angles are within +-pi", "AS6009 LocalPoseSensor; jss-notes 4.3",
            "LocalPoseSensor", local_pose_values),
-      make("jss.global_pose.presence",
+      mobility_case("jss.global_pose.presence",
            "Query Global Pose gets the requested AND available fields (0x0007, 0x0143, none)",
            "AS6009 GlobalPoseSensor; jss-notes 0.4, 4.4", "GlobalPoseSensor", global_pose_presence),
-      make("jss.local_waypoint.echo",
+      mobility_case("jss.local_waypoint.echo",
            "its controller's Set Local Waypoint is what Report Local Waypoint gives; Query Travel Speed is answered",
            "AS6009 LocalWaypointDriver; jss-notes 4.5", "LocalWaypointDriver", local_waypoint_echo),
-      make("jss.local_waypoint.non_controller_ignored", "Set Local Waypoint from a non-controller is not executed",
+      mobility_case("jss.local_waypoint.non_controller_ignored", "Set Local Waypoint from a non-controller is not executed",
            "AS6009 LocalWaypointDriver; jss-notes 3.3, 4.5", "LocalWaypointDriver",
            local_waypoint_non_controller_ignored),
-      make("jss.list_manager.validity",
+      mobility_case("jss.list_manager.validity",
            "Set/Delete Element keep the list valid with the Reject codes of the standard; count, list and links "
            "follow; a non-controller is ignored",
            "AS6009 ListManager; jss-notes 4.6", "ListManager", list_manager_validity),
-      make("jss.list_driver.execute",
+      mobility_case("jss.list_driver.execute",
            "Execute List in Ready makes an element of the list active at the given speed; Standby ends it (active "
            "element 0, speed 0)",
            "AS6009 LocalWaypointListDriver; jss-notes 4.6", "LocalWaypointListDriver", list_driver_execute),

@@ -230,7 +230,7 @@ CaseOutcome out_of_range_refused_whole(CaseContext& c) {
 }
 
 // Set Joint Velocities from a non-controller moves nothing.
-CaseOutcome non_controller_ignored(CaseContext& c) {
+CaseOutcome arm_non_controller_ignored(CaseContext& c) {
   auto controller = current_controller(c);
   if (!controller) return fail(controller.error().message());
   if (*controller == c.session.self()) return skip("the runner controls it");
@@ -351,7 +351,7 @@ std::span<const ConformanceCase> manipulator_cases() {
       {"manipulator.non_controller_ignored", "Set Joint Velocities from a non-controller moves nothing",
        "Part 3, Code 000Dh Request Component Control (commands are the controller's), Code 4602h Report Joint "
        "Positions",
-       unless_moved_by_velocities, non_controller_ignored},
+       unless_moved_by_velocities, arm_non_controller_ignored},
       {"manipulator.hold_on_stop",
        "Standby, Set Emergency, Reset, the release of control and a takeover each hold every joint; the way back "
        "moves none",

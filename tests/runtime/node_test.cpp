@@ -14,9 +14,9 @@ using namespace std::chrono_literals;
 
 // What a node handed its link, in order (the link is jaus::testing's: nodes
 // on one memory network, a packet arriving 1 ms after it left).
-class Sent {
+class LinkTransmissions {
  public:
-  explicit Sent(testing::MemoryLink& link) {
+  explicit LinkTransmissions(testing::MemoryLink& link) {
     link.on_transmit([this](const Header& header, std::span<const std::uint8_t> packet) {
       EXPECT_EQ(header, *decode_header(packet));  // the node hands over the header it wrote
       packets.emplace_back(packet.begin(), packet.end());
@@ -97,7 +97,7 @@ class NodeTest : public ::testing::Test {
   testing::MemoryNetwork network{time, time, 1ms};
   testing::MemoryLink& link_a = network.attach(1, 1);
   testing::MemoryLink& link_b = network.attach(2, 1);
-  Sent sent_a{link_a}, sent_b{link_b};
+  LinkTransmissions sent_a{link_a}, sent_b{link_b};
   std::vector<std::string> logs;
   std::unique_ptr<node::Node> a, b;
   TestDriver* driver = nullptr;
@@ -336,7 +336,7 @@ TEST(NodeWithManager, SubsystemsFoundAndLostChangeTheListWithAnEvent) {
   node::NodeConfig config;
   config.subsystem = 2;
   auto& link = network.attach(config.subsystem, config.node);
-  Sent sent(link);
+  LinkTransmissions sent(link);
   node::Node node(config, time, time, link);
   rt::ComponentConfig manager_config;
   manager_config.name = "node manager";

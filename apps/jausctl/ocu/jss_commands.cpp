@@ -9,6 +9,7 @@
 #include "jaus/ocu/jss_events.hpp"
 #include "jaus/ocu/names.hpp"
 #include "jaus/ocu/rate_meter.hpp"
+#include "command_output.hpp"
 #include "jss_commands.hpp"
 
 namespace jausctl::ocu {
@@ -19,13 +20,6 @@ namespace jss_msg = jaus::jss::msg;
 using jaus::jss::JssId;
 
 constexpr std::uint16_t kFirstQueryId = 0x2000;  // below: commands
-constexpr jaus::rt::Duration kClearSettles = std::chrono::seconds(1);
-constexpr jaus::rt::Duration kClearPoll = std::chrono::milliseconds(100);
-
-int fail(CommandIo io, std::string_view command, const std::string& why) {
-  io.err << "jausctl " << command << ": " << why << "\n";
-  return kExitFailure;
-}
 
 // The JSON of received contents, as `jausctl msg decode --dialect jss` prints them, with who sent them.
 jaus::Expected<Json> received_json(const JssReceived& message) {
@@ -45,11 +39,6 @@ std::string message_name(std::span<const std::uint8_t> contents) {
   return info ? std::string(info->name) : code_text(id);
 }
 
-std::string transmissions_text(const ArrivalResult& result) {
-  return std::to_string(result.transmissions) + (result.transmissions == 1 ? " transmission" : " transmissions") +
-         " in " + seconds_text(result.elapsed);
-}
-
 std::string not_arrived_text(const std::string& what, const JssId& target, const ArrivalResult& result) {
   switch (result.outcome) {
     case Arrival::refused: return what + " to " + target.to_string() + " refused (NAK)";
@@ -61,15 +50,15 @@ std::string not_arrived_text(const std::string& what, const JssId& target, const
 }
 
 // The first message from `from` after this is made, kept while a command is retransmitted.
-class FirstReply {
+class FirstJssReply {
  public:
-  FirstReply(JssSession& session, const JssId& from)
+  FirstJssReply(JssSession& session, const JssId& from)
       : session_(session), id_(session.listen([this, from](const JssReceived& r) {
           if (!reply_ && from.matches(r.source())) reply_ = r;
         })) {}
-  ~FirstReply() { session_.unlisten(id_); }
-  FirstReply(const FirstReply&) = delete;
-  FirstReply& operator=(const FirstReply&) = delete;
+  ~FirstJssReply() { session_.unlisten(id_); }
+  FirstJssReply(const FirstJssReply&) = delete;
+  FirstJssReply& operator=(const FirstJssReply&) = delete;
   const std::optional<JssReceived>& reply() const { return reply_; }
 
  private:
@@ -118,7 +107,7 @@ int run_jss_query(JssSession& session, const JssId& target, const JssPreparedQue
 
 int run_jss_send(JssSession& session, const JssId& target, const std::vector<std::uint8_t>& message,
                  jaus::rt::Duration timeout, CommandIo io) {
-  const FirstReply first(session, target);
+  const FirstJssReply first(session, target);
   const auto start = session.clock().now();
   const auto id = jaus::jss::message_id_of(message);
   if (id < kFirstQueryId && !target.is_broadcast()) {

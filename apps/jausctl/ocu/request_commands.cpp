@@ -10,18 +10,13 @@
 #include "jaus/ocu/must_arrive.hpp"
 #include "jaus/ocu/names.hpp"
 #include "jaus/ocu/repeated_query.hpp"
+#include "command_output.hpp"
 #include "image_file.hpp"
 #include "ocu_commands.hpp"
 
 namespace jausctl::ocu {
 
 namespace {
-
-int fail(CommandIo io, std::string_view command, const std::string& why) {
-  io.err << "jausctl " << command << ": " << why << "\n";
-  return kExitFailure;
-}
-int fail(CommandIo io, std::string_view command, const jaus::Error& why) { return fail(io, command, why.message()); }
 
 // The status report of `target`, decoded.
 jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& session,
@@ -39,18 +34,8 @@ jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& sessio
   return report;
 }
 
-// After Clear Emergency: how long the component may take to leave Emergency, asked this often.
-constexpr jaus::rt::Duration kClearSettles = std::chrono::seconds(1);
-constexpr jaus::rt::Duration kClearPoll = std::chrono::milliseconds(100);
-
 bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
   return (report.primary_status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
-}
-
-// "10 transmissions in 0.5 s"
-std::string transmissions_text(const ArrivalResult& result) {
-  return std::to_string(result.transmissions) + (result.transmissions == 1 ? " transmission" : " transmissions") +
-         " in " + seconds_text(result.elapsed);
 }
 
 // Why a command that must arrive did not, in one line: "Set Emergency to
