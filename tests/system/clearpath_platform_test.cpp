@@ -194,7 +194,7 @@ TEST_F(ClearpathPlatformUdp, CorruptedFramesAreNeverActedOn) {
                             {"control", kDriver, "--authority", "10", "--rate", "10", "--for", "5", "--send",
                              R"({"name":"Set Wrench Effort","fields":{"propulsive_linear_effort_x_percent":50}})"},
                             "127.0.0.34:0");
-  EXPECT_EQ(controller->wait(60s), 0) << controller->output();
+  EXPECT_EQ(controller->wait(60s), 0) << controller->output() << jausd->output();
   ASSERT_TRUE(sim->wait_for(stopped, 5s));
   const auto states = sim->states();
   ASSERT_FALSE(states.empty());
