@@ -31,6 +31,19 @@ std::uint32_t ClientCore::next_timestamp(rt::TimePoint now) {
 
 namespace {
 
+// A request's subscription field: 0 a single reply, kCancelSubscription a
+// cancel, else a rate; nullopt for a message without one.
+std::optional<std::uint16_t> subscription_field(const AnyMessage& message) {
+  std::optional<std::uint16_t> field;
+  visit([&](const auto& m) { if constexpr (requires { m.subscription; }) field = m.subscription; }, message);
+  return field;
+}
+
+bool is_subscription_setting(const AnyMessage& message) {
+  const auto field = subscription_field(message);
+  return field && *field != 0 && *field != kCancelSubscription;
+}
+
 // Every id of `older` is among those of `newer` (channels, joints).
 template <class Record, class Id>
 bool ids_covered(const std::vector<Record>& newer, const std::vector<Record>& older, Id Record::*id) {
@@ -52,10 +65,11 @@ bool covers(const AnyMessage& newer, const AnyMessage& older) {
   // Requests: a single reply (0) leaves the subscription alone (spec,
   // "Subscriptions"), so it neither replaces a rate or cancel nor is
   // answered by one.
-  std::optional<bool> newer_once, older_once;
-  visit([&](const auto& m) { if constexpr (requires { m.subscription; }) newer_once = m.subscription == 0; }, newer);
-  visit([&](const auto& m) { if constexpr (requires { m.subscription; }) older_once = m.subscription == 0; }, older);
-  return newer_once == older_once;
+  const auto newer_field = subscription_field(newer), older_field = subscription_field(older);
+  const auto once = [](const std::optional<std::uint16_t>& field) {
+    return field ? std::optional<bool>(*field == 0) : std::nullopt;
+  };
+  return once(newer_field) == once(older_field);
 }
 
 }  // namespace
@@ -235,6 +249,7 @@ std::vector<std::uint8_t> ClientCore::take_frame(rt::TimePoint now) {
       frame.clear();
       continue;
     }
+    if (!pending.first_sent) pending.first_sent = now;
     ++pending.attempts;
     pending.deadline = now + config_.ack_timeout;
     in_flight_.emplace(AckKey{pending.kind.type, ts}, std::move(pending));
@@ -258,7 +273,17 @@ std::deque<ClientCore::Pending>::iterator ClientCore::next_waiting() {
   return std::find_if(queue_.begin(), queue_.end(), [&](const Pending& p) { return !in_flight(p.kind); });
 }
 
-bool ClientCore::retry_or_finish(Pending pending, std::uint16_t result) {
+bool ClientCore::answered_since_first_send(const Pending& pending) const {
+  return last_ack_ && pending.first_sent && *last_ack_ >= *pending.first_sent;
+}
+
+// False when the command used its attempts and no ACK to anything came back
+// since its first send: the platform does not hear us, and the caller takes
+// the link down. Otherwise the platform answers other commands (only this
+// one's frames or ACKs were lost, as on a noisy line): it finishes no_ack and
+// the link stays up, so one unlucky request does not fail a working platform;
+// a subscription, being wanted state, is asked again after resubscribe_delay.
+bool ClientCore::retry_or_finish(Pending pending, std::uint16_t result, rt::TimePoint now) {
   // A newer command of its kind waits (or a setpoint of its kind went out):
   // resending the older one would land after it, so it ends here.
   const bool newer = std::any_of(queue_.begin(), queue_.end(), [&](const Pending& waiting) {
@@ -269,8 +294,13 @@ bool ClientCore::retry_or_finish(Pending pending, std::uint16_t result) {
     return true;
   }
   if (pending.attempts >= config_.max_attempts) {
+    ++counters_.commands_unanswered;
+    const bool heard = answered_since_first_send(pending);
+    if (heard && is_subscription_setting(pending.message) &&
+        subscriptions_.contains({pending.kind.type, pending.kind.selector}))
+      resubscribe_at_[pending.kind] = now + config_.resubscribe_delay;
     finish(pending, CommandOutcome{CommandError::no_ack, result, pending.attempts});
-    return false;
+    return heard;
   }
   ++counters_.retries;
   set_state(ConnectionState::retrying);
@@ -302,17 +332,39 @@ void ClientCore::tick(rt::TimePoint now) {
     expired.push_back(std::move(it->second));
     it = in_flight_.erase(it);
   }
-  bool exhausted = false;
+  bool unheard = false;
   for (auto& pending : expired) {
     ++counters_.timeouts;
-    if (!retry_or_finish(std::move(pending), 0)) exhausted = true;
+    if (!retry_or_finish(std::move(pending), 0, now)) unheard = true;
   }
-  if (exhausted) {
+  if (unheard) {
     mark_down(now);  // nothing got through: reconnect
     return;
   }
+  rerequest_due_subscriptions(now);
   // Data expected but none for too long: the link is dead.
   if (!subscriptions_.empty() && now - last_rx_ > config_.data_silence) mark_down(now);
+}
+
+void ClientCore::rerequest_due_subscriptions(rt::TimePoint now) {
+  for (auto it = resubscribe_at_.begin(); it != resubscribe_at_.end();) {
+    if (it->second > now) {
+      ++it;
+      continue;
+    }
+    const Kind kind = it->first;
+    it = resubscribe_at_.erase(it);
+    const auto wanted = subscriptions_.find({kind.type, kind.selector});
+    if (wanted == subscriptions_.end()) continue;  // given up meanwhile
+    // The application asked again itself meanwhile: that request stands.
+    const bool asked = std::any_of(queue_.begin(), queue_.end(), [&](const Pending& p) {
+      return p.kind == kind && is_subscription_setting(p.message);
+    });
+    if (asked) continue;
+    ++counters_.subscriptions_rerequested;
+    // Never refused, like the re-requests of a reconnect: one per kind at most.
+    enqueue(Pending(wanted->second, kind), false);
+  }
 }
 
 void ClientCore::on_bytes(std::span<const std::uint8_t> bytes, rt::TimePoint now) {
@@ -336,6 +388,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
     if (on_data_) on_data_(*envelope);
     return;
   }
+  last_ack_ = now;
   const auto it = in_flight_.find(AckKey{frame.header.type, frame.header.timestamp});
   if (it == in_flight_.end()) {
     ++counters_.acks_unmatched;
@@ -352,7 +405,7 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
   if ((ack->result & kAckBadChecksum) != 0) {
     // The platform did not get it: resend with a new timestamp.
     ++counters_.bad_checksum_acks;
-    retry_or_finish(std::move(pending), ack->result);
+    retry_or_finish(std::move(pending), ack->result, now);  // this ACK shows the platform hears us
     return;
   }
   ++counters_.acks_refused;  // a definite refusal: report, do not retry
@@ -413,6 +466,7 @@ void ClientCore::mark_down(rt::TimePoint now) {
   // new one when it wants motion again.
   counters_.setpoints_dropped += setpoints_.size();
   setpoints_.clear();
+  resubscribe_at_.clear();  // a reconnect asks for every subscription again
   wants_reconnect_ = true;
   reconnect_at_ = now + backoff_;
   backoff_ = std::min(backoff_ * 2, config_.backoff_max);

@@ -418,3 +418,85 @@ TEST(ClearpathClientQueue, ASingleReplyDoesNotReplaceASubscription) {
   EXPECT_EQ(link.platform().subscription_count(), 1u);
   EXPECT_EQ(link.client.counters().commands_superseded, 0u);
 }
+
+// What an unanswered command means. A request whose every attempt lost its
+// ACK while the platform answers other commands (a noisy line) finishes
+// no_ack on a live link, and a subscription is asked again later; with no
+// ACK to anything since its first send, the platform does not hear us and
+// the link goes down.
+TEST(ClearpathClientQueue, ARequestUnansweredWhileOthersAreAnsweredLeavesTheLinkUpAndIsAskedAgain) {
+  LossyLink link;
+  int power_acks_seen = 0;
+  link.drop_ack = [&](const cp::FrameHeader& h) {
+    return h.type == cp::RequestPowerStatus::kType && power_acks_seen++ < 4;  // every first attempt's ACK
+  };
+  std::vector<cp::CommandOutcome> outcomes;
+  cp::RequestPowerStatus power;
+  power.subscription = 5;
+  link.client.subscribe(power, [&](const cp::CommandOutcome& o) { outcomes.push_back(o); });
+  for (int i = 0; i < 12; ++i) {  // meanwhile the platform answers other requests
+    link.client.send(cp::RequestPlatformName{});
+    link.run_for(100ms);
+  }
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_EQ(outcomes[0].error, cp::CommandError::no_ack);
+  EXPECT_EQ(outcomes[0].attempts, 4);
+  EXPECT_NE(link.client.state(), cp::ConnectionState::down);
+  EXPECT_EQ(link.client.counters().reconnects, 0u);
+  EXPECT_EQ(link.client.counters().commands_unanswered, 1u);
+  EXPECT_EQ(link.client.counters().subscriptions_rerequested, 0u);  // not before resubscribe_delay
+
+  link.run_for(1s);
+  EXPECT_EQ(link.client.counters().subscriptions_rerequested, 1u);
+  // Four attempts, then the fifth request (the connection's first frame of this type was its cancel).
+  const auto requests = link.written_of<cp::RequestPowerStatus>();
+  const auto at_five_hz = std::count_if(requests.begin(), requests.end(), [](const auto& r) { return r.subscription == 5; });
+  EXPECT_EQ(at_five_hz, 5);
+  EXPECT_EQ(requests.back().subscription, 5);
+  EXPECT_EQ(link.client.waiting_commands(), 0u);  // the fifth was answered
+  EXPECT_EQ(link.client.state(), cp::ConnectionState::connected);
+  EXPECT_EQ(link.platform().subscription_count(), 1u);
+}
+
+TEST(ClearpathClientQueue, AGivenUpSubscriptionIsNotAskedAgain) {
+  LossyLink link;
+  link.drop_ack = [](const cp::FrameHeader& h) { return h.type == cp::RequestPowerStatus::kType; };
+  cp::RequestPowerStatus power;
+  power.subscription = 5;
+  link.client.subscribe(power, [&](const cp::CommandOutcome& o) {
+    if (o.error == cp::CommandError::no_ack) link.client.unsubscribe(cp::RequestPowerStatus::kType);
+  });
+  for (int i = 0; i < 30; ++i) {
+    link.client.send(cp::RequestPlatformName{});
+    link.run_for(100ms);
+  }
+  EXPECT_EQ(link.client.counters().subscriptions_rerequested, 0u);
+  EXPECT_NE(link.client.state(), cp::ConnectionState::down);
+  const auto requests = link.written_of<cp::RequestPowerStatus>();
+  ASSERT_FALSE(requests.empty());
+  EXPECT_EQ(requests.back().subscription, cp::kCancelSubscription);
+}
+
+TEST(ClearpathClientQueue, ACommandUnansweredWhileNothingIsAnsweredTakesTheLinkDown) {
+  LossyLink link;
+  link.drop_ack = [](const cp::FrameHeader&) { return true; };  // data flows, no ACK comes back
+  cp::RequestSafetyStatus safety;
+  safety.subscription = 20;
+  std::vector<cp::CommandOutcome> outcomes;
+  link.client.subscribe(safety, [&](const cp::CommandOutcome& o) { outcomes.push_back(o); });
+  std::vector<cp::ConnectionState> states;
+  link.client.on_state([&](cp::ConnectionState s) { states.push_back(s); });
+  for (int i = 0; i < 12; ++i) {  // motion renewed meanwhile
+    link.client.set_setpoint(velocity(0.5), link.now());
+    link.run_for(100ms);
+  }
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_EQ(outcomes[0].error, cp::CommandError::no_ack);
+  EXPECT_EQ(outcomes[0].attempts, 4);
+  EXPECT_GT(link.client.counters().data_received, 0u);  // the request was applied, only the ACKs were lost
+  // Down at the fourth timeout: the setpoint stream ended there, and a reconnect re-arms none.
+  ASSERT_FALSE(states.empty());
+  EXPECT_NE(std::find(states.begin(), states.end(), cp::ConnectionState::down), states.end());
+  EXPECT_EQ(link.client.counters().setpoints_dropped, 1u);
+  EXPECT_EQ(link.client.counters().subscriptions_rerequested, 0u);
+}

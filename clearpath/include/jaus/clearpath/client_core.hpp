@@ -22,7 +22,13 @@ namespace jaus::clearpath {
 
 struct ClientConfig {
   std::chrono::milliseconds ack_timeout{250};
-  int max_attempts = 4;  // first send + retries
+  // First send + retries. A command that exhausts them takes the link down
+  // only when no ACK to anything came back since its first send (the command
+  // path is dead); otherwise it finishes CommandError::no_ack on a live link.
+  int max_attempts = 4;
+  // A subscription request that finished no_ack on a live link is asked
+  // again after this (subscriptions are wanted state, not one-off commands).
+  std::chrono::milliseconds resubscribe_delay{1000};
   // Current setpoints are resent this often to feed the platform's watchdog...
   std::chrono::milliseconds setpoint_period{50};
   // ...but only while they are younger than this (since set_setpoint): the
@@ -74,6 +80,8 @@ struct ClientCounters {
   std::uint64_t setpoints_dropped = 0;  // the link went down: a reconnect never re-arms them
   std::uint64_t commands_superseded = 0;    // finished superseded (never written, or not retried)
   std::uint64_t commands_refused_full = 0;  // finished queue_full
+  std::uint64_t commands_unanswered = 0;    // finished no_ack
+  std::uint64_t subscriptions_rerequested = 0;  // asked again after a no_ack on a live link
 };
 
 class ClientCore {
@@ -169,6 +177,7 @@ class ClientCore {
     CommandCallback done;
     int attempts = 0;
     std::optional<rt::TimePoint> deadline;  // unset: waiting in the queue
+    std::optional<rt::TimePoint> first_sent;
     bool stale = false;  // a setpoint of its kind was written after it: never retried
   };
   // An ACK names the (type, timestamp) it answers.
@@ -191,7 +200,9 @@ class ClientCore {
   void supersede_for_setpoint(const AnyMessage& setpoint, std::uint16_t type);
   bool in_flight(const Kind& kind) const;
   std::deque<Pending>::iterator next_waiting();
-  bool retry_or_finish(Pending pending, std::uint16_t result);
+  bool retry_or_finish(Pending pending, std::uint16_t result, rt::TimePoint now);
+  bool answered_since_first_send(const Pending& pending) const;
+  void rerequest_due_subscriptions(rt::TimePoint now);
   void supersede(Pending& pending);
   void finish(Pending& pending, CommandOutcome outcome);
   void fail_all(CommandError error);
@@ -211,7 +222,10 @@ class ClientCore {
   std::map<AckKey, Pending> in_flight_;
   std::map<std::pair<std::uint16_t, std::uint8_t>, AnyMessage> subscriptions_;
   std::map<std::uint16_t, Setpoint> setpoints_;
+  // Subscriptions whose request finished no_ack on a live link: asked again then.
+  std::map<Kind, rt::TimePoint> resubscribe_at_;
   rt::TimePoint last_rx_{};
+  std::optional<rt::TimePoint> last_ack_;  // any ACK, matched or not: the platform hears us
   bool wants_reconnect_ = true;
   rt::TimePoint reconnect_at_{};
   std::chrono::milliseconds backoff_;
