@@ -304,7 +304,7 @@ ClearpathArm::ClearpathArm(PlatformConnection& platform, rt::Scheduler& schedule
       const auto self = weak.lock();
       if (!self || outcome.ok()) return;
       self->platform.log(rt::LogLevel::warn, std::string("Clearpath arm: ") + what + " subscription not applied (" +
-                                                 outcome_text(outcome) + ")");
+                                                 detail::subscription_outcome_text(outcome) + ")");
     };
   };
   cp::RequestAbsoluteJoints joints;

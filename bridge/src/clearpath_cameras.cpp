@@ -417,7 +417,7 @@ ClearpathCameras::ClearpathCameras(PlatformConnection& platform, rt::Scheduler& 
       const auto self = weak.lock();
       if (!self || outcome.ok()) return;
       self->platform.log(rt::LogLevel::warn, label + ": pan/tilt/zoom subscription (0x4400) not applied (" +
-                                                 outcome_text(outcome) + ")");
+                                                 detail::subscription_outcome_text(outcome) + ")");
     });
   }
 }

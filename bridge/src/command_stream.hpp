@@ -34,6 +34,13 @@ inline std::string outcome_text(const cp::CommandOutcome& o) {
   return "failed";
 }
 
+// A subscription's outcome: one unanswered or cut by the link is asked for
+// again by the client (after resubscribe_delay, or at the reconnect).
+inline std::string subscription_outcome_text(const cp::CommandOutcome& o) {
+  const bool asked_again = o.error == cp::CommandError::no_ack || o.error == cp::CommandError::link_down;
+  return outcome_text(o) + (asked_again ? "; asked again" : "");
+}
+
 // A number as a log line shows it (shortest form, as `<<` writes it).
 inline std::string number_text(double v) {
   std::ostringstream s;
