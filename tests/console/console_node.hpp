@@ -14,6 +14,7 @@
 
 #include "drive_node.hpp"
 #include "jaus/console/operator_console.hpp"
+#include "jaus/testing/components_ready.hpp"
 
 namespace jaus::test {
 
@@ -109,16 +110,8 @@ class ConsoleNode {
     return testing::run_until(time_, done, limit);
   }
   bool wait_ready(rt::Duration limit = 10s) {
-    const bool ready = run_until(
-        [&] {
-          for (const rt::Component* c : host_->node().local_components())
-            if (c->state() != rt::PrimaryStatus::ready) return false;
-          return true;
-        },
-        limit);
-    for (const rt::Component* c : host_->node().local_components())
-      if (c->state() != rt::PrimaryStatus::ready)
-        ADD_FAILURE() << c->address().to_string() << " is not Ready: " << static_cast<int>(c->state());
+    const bool ready = run_until([&] { return testing::all_components_ready(host_->node()); }, limit);
+    for (const auto& component : testing::components_not_ready(host_->node())) ADD_FAILURE() << component << " is not Ready";
     return ready;
   }
 

@@ -22,6 +22,7 @@
 #include "jaus/jss/judp.hpp"
 #include "jaus/jss/large_message.hpp"
 #include "jaus/jss_face/face.hpp"
+#include "jaus/testing/components_ready.hpp"
 #include "jaus/testing/memory_link.hpp"
 #include "jaus/testing/virtual_time.hpp"
 
@@ -73,13 +74,7 @@ class JssFaceHost {
     return testing::run_until(time_, done, limit);
   }
   bool wait_ready(rt::Duration limit = 10s) {
-    return run_until(
-        [&] {
-          for (const rt::Component* c : host_->node().local_components())
-            if (c->state() != rt::PrimaryStatus::ready) return false;
-          return true;
-        },
-        limit);
+    return run_until([&] { return testing::all_components_ready(host_->node()); }, limit);
   }
   // One raw datagram to the face.
   void receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing = rt::SenderStanding::trusted) {

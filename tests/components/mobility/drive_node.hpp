@@ -24,6 +24,7 @@
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/ocu/session.hpp"
+#include "jaus/testing/components_ready.hpp"
 #include "jaus/testing/memory_link.hpp"
 #include "jaus/testing/virtual_time.hpp"
 #include "memory_ocu.hpp"
@@ -146,13 +147,7 @@ class DriveNode {
   }
   // Every component Ready (the drivers wait for the primitive driver's specifications).
   bool wait_ready(rt::Duration limit = 10s) {
-    return run_until(
-        [&] {
-          for (const rt::Component* c : host_->node().local_components())
-            if (c->state() != rt::PrimaryStatus::ready) return false;
-          return true;
-        },
-        limit);
+    return run_until([&] { return testing::all_components_ready(host_->node()); }, limit);
   }
 
   // The operator sends `message` to `to` and waits up to `timeout` for a reply
