@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
+#include <cstddef>
 #include <cstdlib>
 #include <iterator>
 #include <map>
@@ -27,7 +28,12 @@
 #define JAUS_FLOOD_TEST_ASAN 1
 #endif
 #ifdef JAUS_FLOOD_TEST_ASAN
+#if __has_include(<sanitizer/allocator_interface.h>)
 #include <sanitizer/allocator_interface.h>
+#else
+// GCC ships no allocator_interface.h; its libasan has the function all the same.
+extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
+#endif
 #else
 #include <malloc.h>
 #endif
