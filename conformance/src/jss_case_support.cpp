@@ -19,10 +19,14 @@ Expected<ControlSeen> control_of(JssCaseContext& c) {
   return ControlSeen{report->controller, report->authority};
 }
 
-Expected<std::uint8_t> authority_of(JssCaseContext& c) {
-  auto report = ask<jss::msg::ReportAuthority>(c, jss::msg::QueryAuthority{});
-  if (!report) return unexpected(report.error());
-  return report->authority;
+FreeTarget free_target(JssCaseContext& c) {
+  auto control = control_of(c);
+  if (!control) return {0, fail("Query Control: " + control.error().message())};
+  if (control->controller.is_valid())
+    return {0, skip("controlled by " + control->controller.to_string() + ": the case would take it away")};
+  auto authority = ask<jss::msg::ReportAuthority>(c, jss::msg::QueryAuthority{});
+  if (!authority) return {0, fail("Query Authority: " + authority.error().message())};
+  return {authority->authority, std::nullopt};
 }
 
 JssControlHeld::JssControlHeld(JssCaseContext& c, ocu::JssSession& who, std::uint8_t authority)

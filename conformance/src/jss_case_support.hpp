@@ -4,6 +4,7 @@
 // component's management status. Private to the conformance library.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -158,8 +159,15 @@ inline std::string unless_has(const JssComponentUnderTest& component, std::strin
   return component.has(service) ? std::string() : "it lists no " + std::string(service) + " service";
 }
 
-// The authority to request control at: the component's own (Query Authority), so it is never refused for
-// being too low, and one below 255 so another client can still take over.
-Expected<std::uint8_t> authority_of(JssCaseContext& c);
+// What a case that takes control first checks: nobody controls the target (the
+// case would otherwise take it from someone), and the authority to request
+// control at: the target's own (Query Authority), never refused as too low.
+// `outcome` set: the case ends with it (fail: a query unanswered; skip:
+// someone controls it).
+struct FreeTarget {
+  std::uint8_t authority = 0;
+  std::optional<CaseOutcome> outcome;
+};
+FreeTarget free_target(JssCaseContext& c);
 
 }  // namespace jaus::conform::jss_detail

@@ -157,26 +157,17 @@ CaseOutcome jss_heartbeat(JssCaseContext& c) {
 
 // --- access control -----------------------------------------------------
 
-// Nobody controls it (the case would otherwise take it from someone).
-std::optional<CaseOutcome> unless_free(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid())
-    return skip("controlled by " + id_text(control->controller) + ": the case would take it away");
-  return std::nullopt;
-}
-
 CaseOutcome control_round_trip(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  JssControlHeld held(c, c.session, *authority);
-  if (!held.granted()) return fail("Request Control at its own authority " + std::to_string(*authority) + ": " + held.what());
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  JssControlHeld held(c, c.session, authority);
+  if (!held.granted()) return fail("Request Control at its own authority " + std::to_string(authority) + ": " + held.what());
   auto control = control_of(c);
   if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller != c.session.self() || control->authority != *authority)
+  if (control->controller != c.session.self() || control->authority != authority)
     return fail("Report Control gives " + id_text(control->controller) + " at " + std::to_string(control->authority) +
-                ", not the runner (" + id_text(c.session.self()) + ") at " + std::to_string(*authority));
+                ", not the runner (" + id_text(c.session.self()) + ") at " + std::to_string(authority));
   held.forget();
   send(c, m::ReleaseControl{});
   auto reject = await_from(c, c.session, {m::RejectControl::code});
@@ -188,24 +179,24 @@ CaseOutcome control_round_trip(JssCaseContext& c) {
   control = control_of(c);
   if (!control) return fail("Query Control: " + control.error().message());
   if (control->controller.is_valid()) return fail("still controlled by " + id_text(control->controller) + " after release");
-  return pass("Confirm Control 0, reported as controller at " + std::to_string(*authority) +
+  return pass("Confirm Control 0, reported as controller at " + std::to_string(authority) +
               ", released with Reject Control 0");
 }
 
 CaseOutcome control_insufficient_authority(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  if (*authority == 0) return skip("its authority is 0: no lower authority to ask with");
-  JssControlHeld held(c, c.session, static_cast<std::uint8_t>(*authority - 1));
-  if (held.granted()) return fail("control granted at " + std::to_string(*authority - 1) + ", below its authority " +
-                                  std::to_string(*authority));
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  if (authority == 0) return skip("its authority is 0: no lower authority to ask with");
+  JssControlHeld held(c, c.session, static_cast<std::uint8_t>(authority - 1));
+  if (held.granted()) return fail("control granted at " + std::to_string(authority - 1) + ", below its authority " +
+                                  std::to_string(authority));
   if (held.what() != "Confirm Control 2")
-    return fail("at " + std::to_string(*authority - 1) + ": " + held.what() + ", not Confirm Control 2");
+    return fail("at " + std::to_string(authority - 1) + ": " + held.what() + ", not Confirm Control 2");
   auto control = control_of(c);
   if (!control) return fail("Query Control: " + control.error().message());
   if (control->controller.is_valid()) return fail("controlled by " + id_text(control->controller) + " after the refusal");
-  return pass("Confirm Control 2 (INSUFFICIENT_AUTHORITY) at " + std::to_string(*authority - 1) + ", nobody controls it");
+  return pass("Confirm Control 2 (INSUFFICIENT_AUTHORITY) at " + std::to_string(authority - 1) + ", nobody controls it");
 }
 
 // Control held without a word for longer than the timeout is lost.
@@ -214,12 +205,12 @@ CaseOutcome control_timeout(JssCaseContext& c) {
   if (!timeout) return fail("Query Timeout: " + timeout.error().message());
   if (timeout->timeout_s == 0) return skip("Report Timeout 0: it never times its controller out");
   if (timeout->timeout_s > 20) return skip("Report Timeout " + std::to_string(timeout->timeout_s) + " s: too long to wait out");
-  if (auto busy = unless_free(c)) return *busy;
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
   const auto t = std::chrono::seconds(timeout->timeout_s);
   // Kept by asking again within the timeout...
-  JssControlHeld held(c, c.session, *authority);
+  JssControlHeld held(c, c.session, authority);
   if (!held.granted()) return skip("control not granted: " + held.what());
   bool rejected = false;
   const auto listener = c.session.listen([&](const ocu::JssReceived& r) {
@@ -263,16 +254,16 @@ CaseOutcome with_second_controlling(JssCaseContext& c, std::uint8_t authority, T
 }
 
 CaseOutcome control_preemption(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  if (*authority == 255) return skip("its authority is 255: nothing can preempt");
-  return with_second_controlling(c, *authority, [&](ocu::JssSession& second, JssControlHeld& second_held) {
-    const auto higher = static_cast<std::uint8_t>(*authority + 1);
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  if (authority == 255) return skip("its authority is 255: nothing can preempt");
+  return with_second_controlling(c, authority, [&](ocu::JssSession& second, JssControlHeld& second_held) {
+    const auto higher = static_cast<std::uint8_t>(authority + 1);
     Heard rejects(c, second, m::RejectControl::code);
     JssControlHeld mine(c, c.session, higher);
     if (!mine.granted()) return fail("the runner at " + std::to_string(higher) + " over the second client at " +
-                                     std::to_string(*authority) + ": " + mine.what() + ", not Confirm Control 0");
+                                     std::to_string(authority) + ": " + mine.what() + ", not Confirm Control 0");
     auto reject = rejects.first(c.reply_timeout);
     if (!reject) return fail("the old controller got no Reject Control within " + seconds_text(c.reply_timeout));
     second_held.forget();
@@ -284,32 +275,32 @@ CaseOutcome control_preemption(JssCaseContext& c) {
     if (!control) return fail("Query Control: " + control.error().message());
     if (control->controller != c.session.self() || control->authority != higher)
       return fail("Report Control gives " + id_text(control->controller) + " at " + std::to_string(control->authority));
-    return pass("taken at " + std::to_string(higher) + " from the second client at " + std::to_string(*authority) +
+    return pass("taken at " + std::to_string(higher) + " from the second client at " + std::to_string(authority) +
                 ", which got Reject Control 0");
   });
 }
 
 CaseOutcome control_other_refused(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  return with_second_controlling(c, *authority, [&](ocu::JssSession& second, JssControlHeld&) {
-    JssControlHeld mine(c, c.session, *authority);
-    if (mine.granted()) return fail("granted at " + std::to_string(*authority) + " while the second client held it at the same authority");
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  return with_second_controlling(c, authority, [&](ocu::JssSession& second, JssControlHeld&) {
+    JssControlHeld mine(c, c.session, authority);
+    if (mine.granted()) return fail("granted at " + std::to_string(authority) + " while the second client held it at the same authority");
     if (mine.what() != "Confirm Control 2")
       return fail("at the controller's authority: " + mine.what() + ", not Confirm Control 2");
     auto control = control_of(c);
     if (!control) return fail("Query Control: " + control.error().message());
     if (control->controller != second.self()) return fail("Report Control gives " + id_text(control->controller) + ", not the second client");
-    return pass("Confirm Control 2 at the controller's authority " + std::to_string(*authority) + ", its controller stays");
+    return pass("Confirm Control 2 at the controller's authority " + std::to_string(authority) + ", its controller stays");
   });
 }
 
 CaseOutcome control_release_by_other(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  return with_second_controlling(c, *authority, [&](ocu::JssSession& second, JssControlHeld&) {
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  return with_second_controlling(c, authority, [&](ocu::JssSession& second, JssControlHeld&) {
     send(c, m::ReleaseControl{});
     pause(c, 300ms);
     auto control = control_of(c);
@@ -331,13 +322,13 @@ CaseOutcome management_status(JssCaseContext& c) {
 }
 
 CaseOutcome management_standby_resume(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
   auto found = status_of(c);
   if (!found) return fail(found.error().message());
   if (*found != kReady && *found != kStandby) return skip("it is " + status_name(*found) + ", not Ready or Standby");
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  JssControlHeld held(c, c.session, *authority);
+  JssControlHeld held(c, c.session, authority);
   if (!held.granted()) return skip("control not granted: " + held.what());
   const std::uint8_t other = *found == kReady ? kStandby : kReady;
   if (auto moved = bring_to(c, other); !moved) return fail(moved.error().message());
@@ -350,13 +341,13 @@ CaseOutcome management_standby_resume(JssCaseContext& c) {
 // it only makes the vehicle safer, and our node takes it from anyone,
 // docs/safety.md.)
 CaseOutcome management_non_controller_ignored(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
   auto found = status_of(c);
   if (!found) return fail(found.error().message());
   if (*found != kReady && *found != kStandby) return skip("it is " + status_name(*found) + ", not Ready or Standby");
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  return with_second_controlling(c, *authority, [&](ocu::JssSession& second, JssControlHeld&) {
+  return with_second_controlling(c, authority, [&](ocu::JssSession& second, JssControlHeld&) {
     send_from(c, second, c.target(), m::Standby{});
     pause(c, 300ms);
     auto before = status_of(c);
@@ -528,7 +519,8 @@ CaseOutcome events_periodic(JssCaseContext& c) {
 }
 
 CaseOutcome events_every_change(JssCaseContext& c) {
-  if (auto busy = unless_free(c)) return *busy;
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
   auto found = status_of(c);
   if (!found) return fail(found.error().message());
   if (*found != kReady && *found != kStandby) return skip("it is " + status_name(*found) + ", not Ready or Standby");
@@ -538,14 +530,11 @@ CaseOutcome events_every_change(JssCaseContext& c) {
   const auto id = confirm->event_id;
   pause(c, 300ms);  // an Event at creation is allowed; what counts is the one after the change
   const auto before = log.count(id);
-  auto authority = authority_of(c);
   std::string outcome;
   bool changed_seen = false;
   const std::uint8_t other = *found == kReady ? kStandby : kReady;
-  if (!authority) {
-    outcome = "Query Authority: " + authority.error().message();
-  } else {
-    JssControlHeld held(c, c.session, *authority);
+  {
+    JssControlHeld held(c, c.session, uncontrolled.authority);
     if (!held.granted()) {
       (void)cancel_event(c, id);
       return skip("control not granted: " + held.what());
@@ -558,7 +547,7 @@ CaseOutcome events_every_change(JssCaseContext& c) {
       changed_seen = changed_seen || (report && (report->status & 0x0F) == other);
     }
     (void)bring_to(c, *found);
-  }
+  }  // control released before the Cancel Event
   auto cancelled = cancel_event(c, id);
   if (!outcome.empty()) return fail(outcome);
   if (!changed_seen)

@@ -56,12 +56,10 @@ m::SetWrenchEffort effort_x(double percent) {
 constexpr double kEffortTolerance = 0.01;
 
 CaseOutcome primitive_driver_effort(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid()) return skip("controlled by " + control->controller.to_string());
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  JssControlHeld held(c, c.session, *authority);
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  JssControlHeld held(c, c.session, authority);
   if (!held.granted()) return skip("control not granted: " + held.what());
   auto found = status_of(c);
   if (!found) return fail(found.error().message());
@@ -97,16 +95,14 @@ CaseOutcome primitive_driver_effort(JssCaseContext& c) {
 }
 
 CaseOutcome primitive_driver_non_controller_ignored(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid()) return skip("controlled by " + control->controller.to_string());
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
   auto second = c.second();
   if (!second) return fail(second.error().message());
   auto found = status_of(c);
   if (!found) return fail(found.error().message());
-  JssControlHeld held(c, **second, *authority);
+  JssControlHeld held(c, **second, authority);
   if (!held.granted()) return skip("the second client is not granted control: " + held.what());
   send_from(c, **second, c.target(), m::Resume{});
   pause(c, 200ms);
@@ -214,12 +210,10 @@ constexpr double kPositionTolerance = 0.001;  // m: well above a U32[+-100000] s
 constexpr double kAngleTolerance = 0.001;     // rad: above a U16[+-pi] step (9.6e-5 rad)
 
 CaseOutcome local_waypoint_echo(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid()) return skip("controlled by " + control->controller.to_string());
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  JssControlHeld held(c, c.session, *authority);
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  JssControlHeld held(c, c.session, authority);
   if (!held.granted()) return skip("control not granted: " + held.what());
   (void)bring_to(c, kStandby);  // loading never moves the vehicle in Standby
   const Spot here = where_vehicle_is(c);
@@ -240,14 +234,12 @@ CaseOutcome local_waypoint_echo(JssCaseContext& c) {
 }
 
 CaseOutcome local_waypoint_non_controller_ignored(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid()) return skip("controlled by " + control->controller.to_string());
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
   auto second = c.second();
   if (!second) return fail(second.error().message());
-  JssControlHeld held(c, **second, *authority);
+  JssControlHeld held(c, **second, authority);
   if (!held.granted()) return skip("the second client is not granted control: " + held.what());
   send_from(c, **second, c.target(), m::Standby{});
   const Spot here = where_vehicle_is(c);
@@ -313,12 +305,10 @@ std::string verdict_text(const Expected<std::optional<std::uint8_t>>& r) {
 }
 
 CaseOutcome list_manager_validity(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid()) return skip("controlled by " + control->controller.to_string());
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  JssControlHeld held(c, c.session, *authority);
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  JssControlHeld held(c, c.session, authority);
   if (!held.granted()) return skip("control not granted: " + held.what());
   (void)bring_to(c, kStandby);
   const Spot here = where_vehicle_is(c);
@@ -372,12 +362,10 @@ CaseOutcome list_manager_validity(JssCaseContext& c) {
 }
 
 CaseOutcome list_driver_execute(JssCaseContext& c) {
-  auto control = control_of(c);
-  if (!control) return fail("Query Control: " + control.error().message());
-  if (control->controller.is_valid()) return skip("controlled by " + control->controller.to_string());
-  auto authority = authority_of(c);
-  if (!authority) return fail("Query Authority: " + authority.error().message());
-  JssControlHeld held(c, c.session, *authority);
+  const auto uncontrolled = free_target(c);
+  if (uncontrolled.outcome) return *uncontrolled.outcome;
+  const std::uint8_t authority = uncontrolled.authority;
+  JssControlHeld held(c, c.session, authority);
   if (!held.granted()) return skip("control not granted: " + held.what());
   (void)bring_to(c, kStandby);
   const Spot here = where_vehicle_is(c);
