@@ -158,8 +158,10 @@ void ClientCore::subscribe(AnyMessage request, CommandCallback done) {
   AnyMessage kept = request;
   // Refused when full: then it is not kept either, or a reconnect would
   // subscribe to what the application was told failed.
-  if (enqueue(Pending(std::move(request), kind, std::move(done)), true))
+  if (enqueue(Pending(std::move(request), kind, std::move(done)), true)) {
     subscriptions_[{kind.type, kind.selector}] = std::move(kept);
+    resubscribe_at_.erase(kind);  // the application's own request stands instead
+  }
 }
 
 void ClientCore::unsubscribe(std::uint16_t request_type, std::uint8_t selector) {
@@ -172,6 +174,7 @@ void ClientCore::unsubscribe(std::uint16_t request_type, std::uint8_t selector) 
       },
       cancel);
   subscriptions_.erase(it);
+  resubscribe_at_.erase(Kind{request_type, selector});
   // Never refused: a subscription the application gave up must end, and the
   // cancel replaces any waiting request of its kind.
   enqueue(Pending(std::move(cancel), Kind{request_type, selector}), false);
@@ -354,13 +357,10 @@ void ClientCore::rerequest_due_subscriptions(rt::TimePoint now) {
     }
     const Kind kind = it->first;
     it = resubscribe_at_.erase(it);
+    // subscribe(), unsubscribe() and a reconnect drop the entry, so the
+    // subscription is still wanted and nothing asks for it now.
     const auto wanted = subscriptions_.find({kind.type, kind.selector});
-    if (wanted == subscriptions_.end()) continue;  // given up meanwhile
-    // The application asked again itself meanwhile: that request stands.
-    const bool asked = std::any_of(queue_.begin(), queue_.end(), [&](const Pending& p) {
-      return p.kind == kind && is_subscription_setting(p.message);
-    });
-    if (asked) continue;
+    if (wanted == subscriptions_.end()) continue;
     ++counters_.subscriptions_rerequested;
     // Never refused, like the re-requests of a reconnect: one per kind at most.
     enqueue(Pending(wanted->second, kind), false);

@@ -458,6 +458,36 @@ TEST(ClearpathClientQueue, ARequestUnansweredWhileOthersAreAnsweredLeavesTheLink
   EXPECT_EQ(link.platform().subscription_count(), 1u);
 }
 
+TEST(ClearpathClientQueue, TheApplicationsOwnNewerRequestStandsInsteadOfTheClientsReRequest) {
+  LossyLink link;
+  int power_acks_seen = 0;
+  link.drop_ack = [&](const cp::FrameHeader& h) {
+    return h.type == cp::RequestPowerStatus::kType && power_acks_seen++ < 4;
+  };
+  cp::RequestPowerStatus power;
+  power.subscription = 5;
+  bool unanswered = false;
+  link.client.subscribe(power, [&](const cp::CommandOutcome& o) {
+    if (o.error != cp::CommandError::no_ack) return;
+    unanswered = true;
+    cp::RequestPowerStatus faster;  // the application asks again itself, at another rate
+    faster.subscription = 10;
+    link.client.subscribe(faster);
+  });
+  for (int i = 0; i < 25 && !unanswered; ++i) {
+    link.client.send(cp::RequestPlatformName{});
+    link.run_for(100ms);
+  }
+  ASSERT_TRUE(unanswered);
+  link.run_for(2s);
+  EXPECT_EQ(link.client.counters().subscriptions_rerequested, 0u);
+  const auto requests = link.written_of<cp::RequestPowerStatus>();
+  ASSERT_FALSE(requests.empty());
+  EXPECT_EQ(requests.back().subscription, 10);
+  EXPECT_EQ(std::count_if(requests.begin(), requests.end(), [](const auto& r) { return r.subscription == 10; }), 1);
+  EXPECT_EQ(link.client.state(), cp::ConnectionState::connected);
+}
+
 TEST(ClearpathClientQueue, AGivenUpSubscriptionIsNotAskedAgain) {
   LossyLink link;
   link.drop_ack = [](const cp::FrameHeader& h) { return h.type == cp::RequestPowerStatus::kType; };
