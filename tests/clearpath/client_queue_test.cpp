@@ -428,7 +428,7 @@ TEST(ClearpathClientQueue, ARequestUnansweredWhileOthersAreAnsweredLeavesTheLink
   LossyLink link;
   int power_acks_seen = 0;
   link.drop_ack = [&](const cp::FrameHeader& h) {
-    return h.type == cp::RequestPowerStatus::kType && power_acks_seen++ < 4;  // every first attempt's ACK
+    return h.type == cp::RequestPowerStatus::kType && power_acks_seen++ < 4;  // the ACKs of its four attempts
   };
   std::vector<cp::CommandOutcome> outcomes;
   cp::RequestPowerStatus power;
