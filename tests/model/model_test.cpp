@@ -1,0 +1,175 @@
+// The RA's safety rules, proved by a model (issue 42, item 7).
+//
+// Random sequences drive a whole node under virtual time (node manager,
+// primitive driver, local vector driver; the bridge and the in-process
+// simulated Clearpath platform, whose e-stop shares jausd's emergency bit;
+// the JSS face; the emergency holds file): two RA operators (A, B) and a JSS
+// client (J) on the primitive driver, an RA operator (C) driving through the
+// vector driver, each requesting and releasing control at various
+// authorities, sending and streaming Set Wrench Effort, Set/Clear Emergency
+// (to the primitive or the vector driver), Standby, Resume, Set Component
+// Authority and Shutdown, losing its link and getting it back; the
+// platform's e-stop and pause; time passing (100 ms to 5 s); jausd
+// restarting from its holds file; the local clear (SIGUSR1). After every
+// step, and every 100 ms while time passes, the node is checked against
+// reference_model.hpp, which knows the rules and nothing of the code:
+//
+//   1. Zero when a stop says so: whenever a Set Emergency is held, the
+//      primitive driver is in Standby or shut down, the platform's e-stop
+//      or pause is on, nobody controls it (released, taken over, silent
+//      beyond controller_timeout_s) or its controller's last command is
+//      older than command_timeout_s, the last motion command jausd wrote to
+//      the platform is zero: within 50 ms of a stop jausd makes, within
+//      300 ms of one the platform makes (jausd hears it at 10 Hz).
+//   2. Only the controller moves it: a non-zero drive is the current
+//      controller's last Set Wrench Effort in effect (A's, B's or J's, each
+//      value its own), or the vector driver's while it holds the primitive
+//      driver for C's Set Local Vector; an effort from anyone else never
+//      changes it.
+//   3. Nothing resumes without its controller: after any stop the drive
+//      stays zero until the controller sends a new command in Ready (the
+//      vector driver: until C sends a new Set Local Vector).
+//   4. Every holder's hold is kept: the vehicle's latch holds exactly the
+//      parties that sent Set Emergency and have not cleared it, across
+//      restarts (the holds file), until each clears its own or the local
+//      clear; its holders never change otherwise.
+//   5. Control follows the RA's arbitration (uncontrolled: at or above the
+//      component's own authority; taken over only by a higher authority;
+//      dropped after controller_timeout_s of silence), and an idle vector
+//      driver gives the primitive driver back.
+//   6. The primitive driver's state follows the RA's lifecycle (Emergency
+//      while held; Standby only from Ready, Resume only by the controller;
+//      an Emergency returns to what it interrupted).
+// Where a rule leaves the timing open (within 60 ms of a timeout, an
+// Emergency's end before the platform confirms it, the vector driver
+// taking or giving back control), either outcome is allowed.
+//
+// Hooks left for rules being added (ReferenceModel's constexpr hooks, each
+// a property to turn on): RA datagrams from the JSS alias subsystem refused;
+// holds persisted with the holder's host; a driver's authority capped
+// (max_authority) so operators always win; a stop counter in status; a
+// one-way platform link detected.
+//
+// JAUS_MODEL_SEED (first seed), JAUS_MODEL_RUNS (sequences), JAUS_MODEL_STEPS
+// (steps each) choose the runs; a failure prints its seed, the shrunk
+// sequence as C++ for a regression test below, and the node's last log lines.
+// The soak: tests/benchmarks/bench_model_soak.
+#include <gtest/gtest.h>
+
+#include "model_runner.hpp"
+
+namespace jaus::model {
+namespace {
+
+// CI: the sanitizer tree (clang Debug, ASan) runs these within about a minute.
+constexpr std::uint64_t kDefaultSeed = 20261206;
+constexpr std::uint64_t kDefaultRuns = 120;
+constexpr std::uint64_t kDefaultSteps = 40;
+constexpr int kSlices = 4;  // tests, so that the shards share the runs
+
+std::string report(std::uint64_t seed, const Sequence& shrunk, const Failure& f) {
+  std::ostringstream o;
+  o << "seed " << seed << " breaks a rule (again: JAUS_MODEL_SEED=" << seed
+    << " JAUS_MODEL_RUNS=1 model_tests --gtest_filter='ModelBased*')\n"
+    << "after step " << f.step << " of the shrunk sequence: " << f.what << "\n"
+    << f.trace << "the shrunk sequence, for a regression test:\n"
+    << to_cpp(shrunk);
+  return o.str();
+}
+
+class ModelBased : public ::testing::TestWithParam<int> {};
+
+TEST_P(ModelBased, RandomSequencesKeepTheRules) {
+  const std::uint64_t first = env_number("JAUS_MODEL_SEED", kDefaultSeed);
+  const std::uint64_t runs = env_number("JAUS_MODEL_RUNS", kDefaultRuns);
+  const std::size_t steps = env_number("JAUS_MODEL_STEPS", kDefaultSteps);
+  RunStats stats;
+  std::size_t ran = 0;
+  for (std::uint64_t i = static_cast<std::uint64_t>(GetParam()); i < runs; i += kSlices) {
+    const std::uint64_t seed = first + i;
+    const Sequence sequence = generate(seed, steps);
+    ++ran;
+    const auto failure = run_sequence(sequence, fresh_directory("ci"), &stats);
+    if (!failure) continue;
+    const Sequence shrunk =
+        shrink(sequence, [](const Sequence& s) { return run_sequence(s, fresh_directory("shrink")).has_value(); });
+    const auto again = run_sequence(shrunk, fresh_directory("shrunk"));
+    ADD_FAILURE() << report(seed, shrunk, again.value_or(*failure));
+    return;
+  }
+  if (ran == 0) return;
+  std::cout << "[ model    ] " << ran << " sequences, " << stats.steps << " steps, " << stats.checks << " checks: "
+            << stats.moving << " moving, " << stats.stopped << " with a stop due, " << stats.held << " held\n";
+  // Not vacuous: the sequences drove the vehicle and stopped it.
+  EXPECT_GT(stats.moving, 0u);
+  EXPECT_GT(stats.stopped, 0u);
+  EXPECT_GT(stats.held, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Slices, ModelBased, ::testing::Range(0, kSlices));
+
+// ---- shrunk counterexamples and hand-written sequences, kept -----------------
+
+void expect_rules_kept(const Sequence& s) {
+  const auto failure = run_sequence(s, fresh_directory("regression"));
+  if (failure) ADD_FAILURE() << "after step " << failure->step << ": " << failure->what << "\n" << failure->trace;
+}
+
+// The model's own sanity: an operator drives, each kind of stop stops it, and
+// nothing moves again until its new command.
+TEST(ModelRegression, EachStopStopsAndNothingResumesWithoutTheController) {
+  expect_rules_kept({
+      {Kind::request_control, Party::a, 5},
+      {Kind::stick, Party::a, 60},
+      {Kind::advance, Party::a, 500},
+      {Kind::set_emergency, Party::b, 0},
+      {Kind::advance, Party::a, 500},
+      {Kind::clear_emergency, Party::b, 0},
+      {Kind::advance, Party::a, 1000},
+      {Kind::standby, Party::j, 0},
+      {Kind::advance, Party::a, 300},
+      {Kind::resume, Party::a, 0},
+      {Kind::advance, Party::a, 300},
+      {Kind::estop, Party::a, 1},
+      {Kind::advance, Party::a, 500},
+      {Kind::estop, Party::a, 0},
+      {Kind::advance, Party::a, 1000},
+      {Kind::link, Party::a, 0},
+      {Kind::advance, Party::a, 4000},
+      {Kind::link, Party::a, 1},
+      {Kind::advance, Party::a, 1000},
+  });
+}
+
+// Holds survive a restart, each holder clears its own, the local clear the rest.
+TEST(ModelRegression, HoldsSurviveARestartUntilEachHolderOrTheLocalClear) {
+  expect_rules_kept({
+      {Kind::set_emergency, Party::a, 0},
+      {Kind::set_emergency, Party::c, 0, Target::vector_driver},
+      {Kind::set_emergency, Party::j, 0},
+      {Kind::restart, Party::a, 0},
+      {Kind::advance, Party::a, 500},
+      {Kind::clear_emergency, Party::a, 0},
+      {Kind::advance, Party::a, 300},
+      {Kind::local_clear, Party::a, 0},
+      {Kind::advance, Party::a, 1000},
+  });
+}
+
+// The vector driver drives for C, an operator takes over, and nothing restarts it.
+TEST(ModelRegression, TheVectorDriverStopsForAnOperatorAndStaysStopped) {
+  expect_rules_kept({
+      {Kind::take_vector, Party::c, 0},
+      {Kind::keep_vector, Party::c, 1},
+      {Kind::advance, Party::a, 1500},
+      {Kind::drive_vector, Party::c, 50},
+      {Kind::advance, Party::a, 1000},
+      {Kind::request_control, Party::b, 2},
+      {Kind::advance, Party::a, 1000},
+      {Kind::release_control, Party::b, 0},
+      {Kind::advance, Party::a, 1000},
+  });
+}
+
+}  // namespace
+}  // namespace jaus::model
