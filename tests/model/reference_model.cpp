@@ -60,6 +60,7 @@ void ReferenceModel::start(Ms now) {
   if (!holders_.empty()) holders_since_ = now;
   if (estop_) estop_since_ = now;
   if (pause_) pause_since_ = now;
+  estop_heard_ = pause_heard_ = false;
 }
 
 std::optional<Party> ReferenceModel::controlling_operator() const {
@@ -76,6 +77,15 @@ std::optional<Party> ReferenceModel::controlling_operator() const {
 // control (and the drive stops); a command older than the command timeout is
 // no longer in effect (control is kept). Inside the margin either holds.
 void ReferenceModel::advance_to(Ms now) {
+  for (const bool estop : {true, false}) {
+    const bool pressed = estop ? estop_ : pause_;
+    bool& heard_of = estop ? estop_heard_ : pause_heard_;
+    const Ms heard_by = (estop ? estop_since_ : pause_since_) + t_.platform_deadline;
+    if (pressed && !heard_of && now >= heard_by) {
+      heard_of = true;
+      emergency_began(heard_by, 0);
+    }
+  }
   if (shutdown_) return;
   if (const auto op = controlling_operator()) {
     const Ms lost_by = heard_[static_cast<int>(*op)] + t_.controller_timeout + t_.margin;
@@ -194,14 +204,6 @@ void ReferenceModel::effort(Party p, double percent, Ms now, PdState observed) {
   heard(p, now);
   if (shutdown_ || ctl_ != ctl_of(p)) return;
   if (effective_state(now, observed) != PdState::ready) return;
-  if (emergency()) {
-    // The platform's stop, not yet heard by jausd: this command may show
-    // until the Emergency it is about to enter, never after.
-    lingering_ = percent;
-    lingering_any_ = false;
-    lingering_until_ = std::max({estop_ ? estop_since_ : 0, pause_ ? pause_since_ : 0}) + t_.platform_deadline;
-    return;
-  }
   if (command_ && command_->percent != percent) {
     lingering_ = command_->percent;
     lingering_any_ = false;
@@ -273,21 +275,31 @@ void ReferenceModel::shutdown(Party p, Ms now) {
 }
 
 // Rule: the platform's own stop holds every component on it until the
-// platform releases it; jausd commands zero once it hears of it.
+// platform releases it; jausd commands zero once it hears of it (its safety
+// status, 10 Hz: surely within platform_deadline). A stop released before
+// that may go unheard: what was commanded before it may then still be in
+// effect (the platform dropped it; jausd's periodic setpoint brings it back
+// until command_timeout_s: see the report of issue 42, item 7).
 void ReferenceModel::platform_input(bool estop, bool on, Ms now) {
   bool& flag = estop ? estop_ : pause_;
+  bool& heard_of = estop ? estop_heard_ : pause_heard_;
   Ms& since = estop ? estop_since_ : pause_since_;
   if (on == flag) return;
   if (on) {
-    const bool was = emergency();
     flag = true;
+    heard_of = false;
     since = now;
-    if (!was) emergency_began(now, t_.platform_deadline);
-  } else {
-    flag = false;
-    since = kNever;
-    emergency_may_have_ended(now);
+    return;  // advance_to() makes it a stop once jausd surely heard of it
   }
+  flag = false;
+  since = kNever;
+  if (!heard_of) {
+    // Perhaps heard: the vector driver may have stopped and given the primitive driver back.
+    driver_settle_until_ = std::max(driver_settle_until_, now + t_.driver_settle);
+    unsettled_until_ = std::max(unsettled_until_, now + t_.settle);
+  }
+  heard_of = false;
+  emergency_may_have_ended(now);
 }
 
 void ReferenceModel::local_clear(Ms now) {
@@ -317,13 +329,18 @@ void ReferenceModel::c_drives_vector(Ms now, bool vector_ready) {
   if (!vector_ready || !c_controls_vector_) return;  // Set Local Vector: its controller's, in Ready
   driver_motion_ = true;
   if (shutdown_ || ctl_ == Ctl::driver) return;
-  if (ctl_ == Ctl::none && own_authority_ <= 1) {  // the driver asks with its own authority, 1
+  // The driver asks with its own authority, 1: the RA's arbitration as for
+  // anyone (an operator below it is taken over; see driver_authority_cap()).
+  constexpr std::uint8_t kDriverAuthority = 1;
+  const bool granted = ctl_ == Ctl::none ? own_authority_ <= kDriverAuthority : kDriverAuthority > ctl_authority_;
+  if (granted) {
+    if (ctl_ != Ctl::none) disarm(now + t_.stop_deadline);  // taken over: the operator's command ends
     ctl_ = Ctl::driver;
-    ctl_authority_ = 1;
+    ctl_authority_ = kDriverAuthority;
     driver_settle_until_ = now + t_.driver_settle;
     return;
   }
-  driver_motion_ = false;  // refused: held by an operator, or its own authority is above the driver's
+  driver_motion_ = false;  // refused: held by an operator at or above it, or its own authority is above it
 }
 
 // ---- what the node must show ---------------------------------------------------

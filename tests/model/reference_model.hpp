@@ -130,6 +130,7 @@ class ReferenceModel {
   // Kept across restarts.
   std::set<Party> holders_;
   bool estop_ = false, pause_ = false;
+  bool estop_heard_ = false, pause_heard_ = false;  // pressed for platform_deadline: jausd surely heard
   Ms holders_since_ = kNever, estop_since_ = kNever, pause_since_ = kNever;
   // A jausd's own.
   Ctl ctl_ = Ctl::none;
