@@ -56,6 +56,9 @@
 // The soak: tests/benchmarks/bench_model_soak.
 #include <gtest/gtest.h>
 
+#include <iostream>
+#include <sstream>
+
 #include "model_runner.hpp"
 
 namespace jaus::model {
@@ -63,7 +66,7 @@ namespace {
 
 // CI: the sanitizer tree (clang Debug, ASan) runs these within about a minute.
 constexpr std::uint64_t kDefaultSeed = 20261206;
-constexpr std::uint64_t kDefaultRuns = 120;
+constexpr std::uint64_t kDefaultRuns = 1000;
 constexpr std::uint64_t kDefaultSteps = 40;
 constexpr int kSlices = 4;  // tests, so that the shards share the runs
 
@@ -111,15 +114,17 @@ INSTANTIATE_TEST_SUITE_P(Slices, ModelBased, ::testing::Range(0, kSlices));
 
 // ---- shrunk counterexamples and hand-written sequences, kept -----------------
 
-void expect_rules_kept(const Sequence& s) {
-  const auto failure = run_sequence(s, fresh_directory("regression"));
+RunStats expect_rules_kept(const Sequence& s) {
+  RunStats stats;
+  const auto failure = run_sequence(s, fresh_directory("regression"), &stats);
   if (failure) ADD_FAILURE() << "after step " << failure->step << ": " << failure->what << "\n" << failure->trace;
+  return stats;
 }
 
 // The model's own sanity: an operator drives, each kind of stop stops it, and
 // nothing moves again until its new command.
 TEST(ModelRegression, EachStopStopsAndNothingResumesWithoutTheController) {
-  expect_rules_kept({
+  const RunStats stats = expect_rules_kept({
       {Kind::request_control, Party::a, 5},
       {Kind::stick, Party::a, 60},
       {Kind::advance, Party::a, 500},
@@ -140,6 +145,7 @@ TEST(ModelRegression, EachStopStopsAndNothingResumesWithoutTheController) {
       {Kind::link, Party::a, 1},
       {Kind::advance, Party::a, 1000},
   });
+  EXPECT_GT(stats.moving, 5u);  // it did drive between the stops
 }
 
 // Holds survive a restart, each holder clears its own, the local clear the rest.
@@ -157,9 +163,29 @@ TEST(ModelRegression, HoldsSurviveARestartUntilEachHolderOrTheLocalClear) {
   });
 }
 
+// A JSS client's hold is persisted under its alias; after a restart the
+// client (given an alias afresh) clears its own hold, and takes control again.
+TEST(ModelRegression, AJssClientClearsItsOwnHoldAfterARestart) {
+  const RunStats stats = expect_rules_kept({
+      {Kind::request_control, Party::j, 5},
+      {Kind::stick, Party::j, 40},
+      {Kind::advance, Party::a, 500},
+      {Kind::set_emergency, Party::j, 0},
+      {Kind::set_emergency, Party::b, 0},
+      {Kind::restart, Party::a, 0},
+      {Kind::advance, Party::a, 500},
+      {Kind::clear_emergency, Party::j, 0},
+      {Kind::clear_emergency, Party::b, 0},
+      {Kind::advance, Party::a, 1000},
+      {Kind::request_control, Party::j, 5},
+      {Kind::advance, Party::a, 1000},
+  });
+  EXPECT_GT(stats.moving, 10u);  // J drove before and after
+}
+
 // The vector driver drives for C, an operator takes over, and nothing restarts it.
 TEST(ModelRegression, TheVectorDriverStopsForAnOperatorAndStaysStopped) {
-  expect_rules_kept({
+  const RunStats stats = expect_rules_kept({
       {Kind::take_vector, Party::c, 0},
       {Kind::keep_vector, Party::c, 1},
       {Kind::advance, Party::a, 1500},
@@ -170,6 +196,7 @@ TEST(ModelRegression, TheVectorDriverStopsForAnOperatorAndStaysStopped) {
       {Kind::release_control, Party::b, 0},
       {Kind::advance, Party::a, 1000},
   });
+  EXPECT_GT(stats.moving, 5u);  // the vector driver drove for C
 }
 
 }  // namespace

@@ -289,6 +289,8 @@ void ReferenceModel::platform_input(bool estop, bool on, Ms now) {
     flag = true;
     heard_of = false;
     since = now;
+    // Heard at some point in the window: the vector driver (on the platform) stops and gives control back.
+    if (driver_motion_) driver_settle_until_ = std::max(driver_settle_until_, now + t_.platform_deadline + t_.driver_settle);
     return;  // advance_to() makes it a stop once jausd surely heard of it
   }
   flag = false;
