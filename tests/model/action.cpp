@@ -28,6 +28,7 @@ const char* kind_name(Kind k) {
     case Kind::resume: return "resume";
     case Kind::set_authority: return "set_authority";
     case Kind::shutdown: return "shutdown";
+    case Kind::reset: return "reset";
     case Kind::link: return "link";
     case Kind::estop: return "estop";
     case Kind::pause: return "pause";
@@ -71,6 +72,7 @@ std::string describe(const Action& a) {
     case Kind::resume: o << name(a.who) << " sends Resume"; break;
     case Kind::set_authority: o << name(a.who) << " sets the component's authority to " << a.value; break;
     case Kind::shutdown: o << name(a.who) << " sends Shutdown"; break;
+    case Kind::reset: o << name(a.who) << " sends Reset"; break;
     case Kind::link: o << name(a.who) << "'s link " << (a.value ? "comes back" : "is lost"); break;
     case Kind::estop: o << "the platform's e-stop is " << (a.value ? "pressed" : "released"); break;
     case Kind::pause: o << "the platform's pause is " << (a.value ? "on" : "off"); break;

@@ -31,6 +31,7 @@ enum class Kind : std::uint8_t {
   resume,            // who
   set_authority,     // who, value = the primitive driver's own authority
   shutdown,          // who
+  reset,             // who (to the primitive driver)
   link,              // who, value = 1 up, 0 down (its messages are lost both ways)
   estop,             // value = 1 pressed, 0 released (the platform's hardware input)
   pause,             // value = 1 on, 0 off

@@ -202,6 +202,11 @@ bool ModelNode::shutdown(Party p) {
   return send_ra(p, kPrimitiveDriver, msg::Shutdown{});
 }
 
+bool ModelNode::reset(Party p) {
+  if (p == Party::j) return send_jss(kJssPrimitiveDriver, jss::msg::Reset{});
+  return send_ra(p, kPrimitiveDriver, msg::Reset{});
+}
+
 bool ModelNode::query_vector_driver(Party p) { return send_ra(p, kVectorDriver, msg::QueryComponentStatus{}); }
 bool ModelNode::take_vector(Party p) { return send_ra(p, kVectorDriver, msg::RequestComponentControl{{5}}); }
 bool ModelNode::release_vector(Party p) { return send_ra(p, kVectorDriver, msg::ReleaseComponentControl{}); }

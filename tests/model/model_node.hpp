@@ -75,6 +75,7 @@ class ModelNode {
   bool resume(Party p);
   bool set_authority(Party p, std::uint8_t authority);
   bool shutdown(Party p);
+  bool reset(Party p);
   bool query_vector_driver(Party p);  // keeps C alive as the vector driver's controller
   bool take_vector(Party p);
   bool release_vector(Party p);

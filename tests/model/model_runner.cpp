@@ -109,6 +109,7 @@ class Runner {
         return message(node_.set_authority(a.who, authority), [&] { model_.set_authority(a.who, authority, now); });
       }
       case Kind::shutdown: return message(node_.shutdown(a.who), [&] { model_.shutdown(a.who, now); });
+      case Kind::reset: return message(node_.reset(a.who), [&] { model_.reset(a.who, now); });
       case Kind::link: node_.set_link(a.who, a.value != 0); return std::nullopt;
       case Kind::estop:
       case Kind::pause: {
@@ -245,17 +246,19 @@ Sequence generate(std::uint64_t seed, std::size_t steps) {
     int weight;
   };
   static constexpr Weighted kWeights[] = {
-      {Kind::request_control, 20}, {Kind::release_control, 5}, {Kind::effort, 14},    {Kind::stick, 16},
-      {Kind::set_emergency, 5},    {Kind::clear_emergency, 8},  {Kind::standby, 4},    {Kind::resume, 6},
-      {Kind::set_authority, 3},    {Kind::shutdown, 1},         {Kind::link, 6},       {Kind::estop, 4},
-      {Kind::pause, 3},            {Kind::advance, 28},         {Kind::restart, 2},    {Kind::local_clear, 1},
-      {Kind::take_vector, 5},      {Kind::release_vector, 2},   {Kind::keep_vector, 4}, {Kind::drive_vector, 7},
+      {Kind::request_control, 20}, {Kind::release_control, 5}, {Kind::effort, 12},    {Kind::stick, 20},
+      {Kind::set_emergency, 4},    {Kind::clear_emergency, 8},  {Kind::standby, 4},    {Kind::resume, 6},
+      {Kind::set_authority, 3},    {Kind::shutdown, 1},         {Kind::reset, 2},      {Kind::link, 5},
+      {Kind::estop, 3},            {Kind::pause, 2},            {Kind::advance, 30},   {Kind::restart, 2},
+      {Kind::local_clear, 1},      {Kind::take_vector, 5},      {Kind::release_vector, 2}, {Kind::keep_vector, 4},
+      {Kind::drive_vector, 7},
   };
   // What the generator remembers, so that clears, releases and links coming
   // back are mostly the ones that undo something.
   std::vector<Party> holding;
   bool estop = false, pause = false;
   bool down[kParties] = {};
+  Party requester = Party::a;  // the last to request control: mostly the one that commands
   int total = 0;
   for (const auto& w : kWeights) total += w.weight;
   const auto effort = [&r] {
@@ -276,19 +279,22 @@ Sequence generate(std::uint64_t seed, std::size_t steps) {
     Action a;
     a.kind = kind;
     const Party op = r.pick({Party::a, Party::b, Party::j});
+    const Party commander = r.below(3) == 0 ? op : requester;
     switch (kind) {
       case Kind::request_control:
         a.who = op;
         a.value = r.pick({1, 2, 5});
+        requester = op;
         break;
-      case Kind::release_control:
       case Kind::standby:
-      case Kind::resume:
       case Kind::shutdown: a.who = op; break;
-      case Kind::effort: a.who = op; a.value = effort(); break;
+      case Kind::release_control:
+      case Kind::resume:
+      case Kind::reset: a.who = commander; break;
+      case Kind::effort: a.who = commander; a.value = effort(); break;
       case Kind::stick:
-        a.who = op;
-        a.value = r.below(3) == 0 ? 0 : effort();
+        a.who = commander;
+        a.value = r.below(4) == 0 ? 0 : effort();
         break;
       case Kind::set_emergency:
       case Kind::clear_emergency:
@@ -300,7 +306,7 @@ Sequence generate(std::uint64_t seed, std::size_t steps) {
         else std::erase(holding, a.who);
         break;
       case Kind::set_authority:
-        a.who = op;
+        a.who = commander;
         a.value = r.pick({0, 1, 3});
         break;
       case Kind::link: {

@@ -274,6 +274,18 @@ void ReferenceModel::shutdown(Party p, Ms now) {
   end_driver_motion(now + t_.stop_deadline);
 }
 
+// Rule: Reset (the controller's) re-initialises: Standby forgotten, the
+// drive stopped, control kept, Ready again (or Emergency, still held).
+void ReferenceModel::reset(Party p, Ms now) {
+  heard(p, now);
+  if (shutdown_ || ctl_ != ctl_of(p)) return;
+  standby_ = false;
+  standby_since_ = kNever;
+  disarm(now + t_.stop_deadline);
+  end_driver_motion(now + t_.stop_deadline);
+  unsettled_until_ = std::max(unsettled_until_, now + t_.settle);
+}
+
 // Rule: the platform's own stop holds every component on it until the
 // platform releases it; jausd commands zero once it hears of it (its safety
 // status, 10 Hz: surely within platform_deadline). A stop released before

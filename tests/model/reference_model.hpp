@@ -77,6 +77,7 @@ class ReferenceModel {
   void resume(Party p, Ms now, PdState observed);
   void set_authority(Party p, std::uint8_t authority, Ms now);
   void shutdown(Party p, Ms now);
+  void reset(Party p, Ms now);
   void heard(Party p, Ms now);  // any message from p reached the primitive driver
   void platform_input(bool estop, bool on, Ms now);
   void local_clear(Ms now);
