@@ -56,6 +56,7 @@ Options parse(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a violation shows as soon as it is found
   const Options o = parse(argc, argv);
   std::printf("bench_model_soak: %llu sequences of %llu steps from seed %llu (JAUS_MODEL_SEED=%llu)\n",
               static_cast<unsigned long long>(o.runs), static_cast<unsigned long long>(o.steps),

@@ -183,6 +183,54 @@ TEST(ModelRegression, AJssClientClearsItsOwnHoldAfterARestart) {
   EXPECT_GT(stats.moving, 10u);  // J drove before and after
 }
 
+// The Husky's e-stop shares jausd's emergency bit: a hold restored at a
+// restart while the e-stop is pressed, then cleared by its holder, leaves the
+// e-stop holding the vehicle; released, nothing moves until a new command.
+TEST(ModelRegression, AnEstopOnJausdsBitOutlastsARestoredHoldAndItsClear) {
+  const RunStats stats = expect_rules_kept({
+      {Kind::request_control, Party::a, 5},
+      {Kind::stick, Party::a, 50},
+      {Kind::advance, Party::a, 500},
+      {Kind::set_emergency, Party::b, 0},
+      {Kind::estop, Party::a, 1},
+      {Kind::restart, Party::a, 0},
+      {Kind::advance, Party::a, 500},
+      {Kind::clear_emergency, Party::b, 0},
+      {Kind::advance, Party::a, 1000},
+      {Kind::estop, Party::a, 0},
+      {Kind::advance, Party::a, 1000},
+      {Kind::request_control, Party::a, 5},
+      {Kind::advance, Party::a, 1000},
+      {Kind::pause, Party::a, 1},
+      {Kind::advance, Party::a, 400},
+      {Kind::pause, Party::a, 0},
+      {Kind::advance, Party::a, 1000},
+  });
+  EXPECT_GT(stats.moving, 10u);
+}
+
+// Standby survives an Emergency and a platform stop; only the controller's
+// Resume ends it, and nothing moves until its next command.
+TEST(ModelRegression, StandbySurvivesAnEmergencyAndOnlyTheControllerResumes) {
+  const RunStats stats = expect_rules_kept({
+      {Kind::request_control, Party::j, 2},
+      {Kind::stick, Party::j, 30},
+      {Kind::advance, Party::a, 500},
+      {Kind::standby, Party::a, 0},
+      {Kind::set_emergency, Party::c, 0, Target::vector_driver},
+      {Kind::estop, Party::a, 1},
+      {Kind::advance, Party::a, 500},
+      {Kind::clear_emergency, Party::c, 0, Target::vector_driver},
+      {Kind::estop, Party::a, 0},
+      {Kind::advance, Party::a, 800},
+      {Kind::resume, Party::b, 0},
+      {Kind::advance, Party::a, 500},
+      {Kind::resume, Party::j, 0},
+      {Kind::advance, Party::a, 1000},
+  });
+  EXPECT_GT(stats.moving, 10u);
+}
+
 // The vector driver drives for C, an operator takes over, and nothing restarts it.
 TEST(ModelRegression, TheVectorDriverStopsForAnOperatorAndStaysStopped) {
   const RunStats stats = expect_rules_kept({
