@@ -74,8 +74,10 @@ std::string describe(const Action& a) {
     case Kind::shutdown: o << name(a.who) << " sends Shutdown"; break;
     case Kind::reset: o << name(a.who) << " sends Reset"; break;
     case Kind::link: o << name(a.who) << "'s link " << (a.value ? "comes back" : "is lost"); break;
-    case Kind::estop: o << "the platform's e-stop is " << (a.value ? "pressed" : "released"); break;
-    case Kind::pause: o << "the platform's pause is " << (a.value ? "on" : "off"); break;
+    case Kind::estop:
+      o << "the platform's e-stop is " << (a.value == 2 ? "pressed for 20 ms" : a.value ? "pressed" : "released");
+      break;
+    case Kind::pause: o << "the platform's pause is " << (a.value == 2 ? "on for 20 ms" : a.value ? "on" : "off"); break;
     case Kind::advance: o << a.value << " ms pass"; break;
     case Kind::restart: o << "jausd restarts"; break;
     case Kind::local_clear: o << "the local clear (SIGUSR1)"; break;

@@ -33,8 +33,8 @@ enum class Kind : std::uint8_t {
   shutdown,          // who
   reset,             // who (to the primitive driver)
   link,              // who, value = 1 up, 0 down (its messages are lost both ways)
-  estop,             // value = 1 pressed, 0 released (the platform's hardware input)
-  pause,             // value = 1 on, 0 off
+  estop,             // value = 1 pressed, 0 released, 2 pressed for 20 ms (the platform's hardware input)
+  pause,             // value = 1 on, 0 off, 2 on for 20 ms
   advance,           // value = milliseconds of time passing (streams keep going)
   restart,           // jausd stops and starts again (holds from its state directory)
   local_clear,       // jausd's SIGUSR1: every Set Emergency holder cleared

@@ -15,6 +15,7 @@ namespace {
 
 constexpr Ms kSettle = 50;  // after each message, platform input, clear: a stop is due within it
 constexpr Ms kTick = 100;   // streams and checks while time passes
+constexpr Ms kPulse = 20;   // a platform input pressed and released at once
 
 template <class T>
 bool contains(const std::vector<T>& v, const T& x) {
@@ -116,6 +117,12 @@ class Runner {
         const bool estop = a.kind == Kind::estop;
         node_.press(estop, a.value != 0);
         model_.platform_input(estop, a.value != 0, now);
+        if (a.value == 2) {  // a pulse: shorter than the platform's 10 Hz safety status
+          node_.run_for(kPulse);
+          node_.press(estop, false);
+          model_.advance_to(node_.now());
+          model_.platform_input(estop, false, node_.now());
+        }
         return pass_settle();
       }
       case Kind::advance: return pass(a.value);
@@ -320,7 +327,8 @@ Sequence generate(std::uint64_t seed, std::size_t steps) {
       case Kind::pause: {
         bool& on = kind == Kind::estop ? estop : pause;
         a.value = r.below(4) == 0 ? r.below(2) : !on;
-        on = a.value != 0;
+        if (!on && r.below(5) == 0) a.value = 2;  // a pulse
+        on = a.value == 1;
         break;
       }
       case Kind::advance:

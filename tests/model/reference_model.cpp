@@ -274,6 +274,10 @@ void ReferenceModel::shutdown(Party p, Ms now) {
   end_driver_motion(now + t_.stop_deadline);
 }
 
+bool ReferenceModel::emergency_before_press(bool estop) const {
+  return !holders_.empty() || (estop ? pause_ : estop_);
+}
+
 // Rule: Reset (the controller's) re-initialises: Standby forgotten, the
 // drive stopped, control kept, Ready again (or Emergency, still held).
 void ReferenceModel::reset(Party p, Ms now) {
@@ -301,6 +305,7 @@ void ReferenceModel::platform_input(bool estop, bool on, Ms now) {
     flag = true;
     heard_of = false;
     since = now;
+    if (t_.every_platform_stop_ends_the_command && !emergency_before_press(estop)) emergency_began(now, t_.platform_deadline);
     // Heard at some point in the window: the vector driver (on the platform) stops and gives control back.
     if (driver_motion_) driver_settle_until_ = std::max(driver_settle_until_, now + t_.platform_deadline + t_.driver_settle);
     return;  // advance_to() makes it a stop once jausd surely heard of it

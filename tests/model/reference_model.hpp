@@ -51,6 +51,10 @@ struct ModelTiming {
   Ms platform_deadline = 300;    // a stop the platform makes: jausd's zero within this (10 Hz status)
   Ms settle = 500;               // an Emergency's end: Ready once the platform confirms, within this
   Ms driver_settle = 600;        // the vector driver takes or gives back the primitive driver within this
+  // Not promised today (see ModelRegression.DISABLED_APausePulseShorterThanTheStatusPeriodEndsTheCommand):
+  // every platform stop, even one released before jausd's next safety
+  // status, ends the command in effect.
+  bool every_platform_stop_ends_the_command = false;
 };
 
 class ReferenceModel {
@@ -119,6 +123,7 @@ class ReferenceModel {
     Ms at = 0;
   };
   bool emergency() const { return !holders_.empty() || estop_ || pause_; }
+  bool emergency_before_press(bool estop) const;  // held otherwise as `estop` (or the pause) is pressed
   bool certainly_ready(Ms now) const;
   PdState effective_state(Ms now, PdState observed) const;
   void disarm(Ms due);  // a stop: nothing the controller commanded is in effect from `due`
