@@ -10,13 +10,9 @@
 // the model allows each outcome and the runner tells it which one happened
 // (sync_*): every outcome it allows there is safe.
 //
-// Property hooks, one function each, for rules other engineers are adding
-// (see tests/model/README in the test's header comment):
-//   - accepts_ra_from_alias_subsystem(): RA datagrams that claim the JSS alias subsystem;
-//   - hold_identity(): holds persisted with the holder's host;
-//   - driver_authority_cap(): a driver's authority capped (max_authority) so operators always win;
-//   - stop_counter(): a stop counter in status (controllers notice brief stops);
-//   - one_way_platform_link(): a platform that stops hearing jausd while its data still flows.
+// Hooks for the rules being added (the alias subsystem refused, holds with
+// their host, a driver's authority capped, a stop counter, a one-way
+// platform link): at the end of the class, each with where it goes.
 #pragma once
 
 #include <array>
@@ -109,7 +105,28 @@ class ReferenceModel {
   bool allows_drive(double percent, Ms now) const;
   std::string describe(Ms now) const;
 
-  // ---- hooks for rules not promised yet (false/none today; each a property to add) ----
+  // ---- hooks: rules being added in parallel (not promised yet) -------------
+  // Each is false/none today; turning one on is one property to add:
+  //  - accepts_ra_from_alias_subsystem(): RA datagrams whose source claims the
+  //    JSS alias subsystem (250) are refused. Add a Party (an RA peer on a
+  //    memory link at 250.x) whose control requests, efforts and clears the
+  //    model ignores when this is false; ModelNode::party_of must then tell
+  //    it from J by its link, not its subsystem.
+  //  - hold_identity_includes_host(): holds persisted with the holder's host.
+  //    holders_ becomes (party, host); restart() keeps it; a clear from the
+  //    same ID on another host (a new action) no longer releases it.
+  //  - driver_authority_cap(): a driver's authority capped (max_authority,
+  //    default 1) so an operator always wins: c_drives_vector() takes
+  //    min(configured, cap) as kDriverAuthority, and request_control() lets
+  //    any operator's request displace the driver.
+  //  - stop_counter_in_status(): every stop (disarm with a command in effect,
+  //    each emergency_began, standby, a platform stop heard) counts one; the
+  //    runner reads the counter from Report Component Status and checks it
+  //    grew by at least the model's count (brief stops included).
+  //  - one_way_platform_link_detected(): a new action drops what jausd writes
+  //    to the platform (the LoopbackClient's fault injector, to_platform);
+  //    expected_states() then includes Failure within the detection time,
+  //    and zero_required() holds from then on.
   static constexpr bool accepts_ra_from_alias_subsystem() { return true; }
   static constexpr bool hold_identity_includes_host() { return false; }
   static constexpr std::optional<std::uint8_t> driver_authority_cap() { return std::nullopt; }
