@@ -56,6 +56,7 @@
 // The soak: tests/benchmarks/bench_model_soak.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -86,6 +87,9 @@ TEST_P(ModelBased, RandomSequencesKeepTheRules) {
   const std::uint64_t first = env_number("JAUS_MODEL_SEED", kDefaultSeed);
   const std::uint64_t runs = env_number("JAUS_MODEL_RUNS", kDefaultRuns);
   const std::size_t steps = env_number("JAUS_MODEL_STEPS", kDefaultSteps);
+  if (GetParam() == 0)
+    std::cout << "[ model    ] seeds " << first << ".." << first + runs - 1 << ", " << steps
+              << " steps each (JAUS_MODEL_SEED, JAUS_MODEL_RUNS, JAUS_MODEL_STEPS)\n";
   RunStats stats;
   std::size_t ran = 0;
   for (std::uint64_t i = static_cast<std::uint64_t>(GetParam()); i < runs; i += kSlices) {
@@ -241,7 +245,12 @@ TEST(ModelRegression, StandbySurvivesAnEmergencyAndOnlyTheControllerResumes) {
 // make"). The strict rule (every platform stop ends the command in effect) is
 // ModelTiming::every_platform_stop_ends_the_command; the model used by the
 // random sequences allows an unheard pulse until this is fixed.
+// jaus_add_gtests runs disabled tests too (--gtest_also_run_disabled_tests):
+// it is skipped unless JAUS_MODEL_KNOWN_BUGS is set, so CI stays green.
 TEST(ModelRegression, DISABLED_APausePulseShorterThanTheStatusPeriodEndsTheCommand) {
+  if (!std::getenv("JAUS_MODEL_KNOWN_BUGS"))
+    GTEST_SKIP() << "known bug: a platform stop pulse shorter than its safety status period goes unheard and the "
+                    "periodic setpoint drives on (run with JAUS_MODEL_KNOWN_BUGS=1)";
   ModelTiming strict;
   strict.every_platform_stop_ends_the_command = true;
   strict.platform_deadline = 150;  // the status period and a margin
