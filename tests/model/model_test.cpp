@@ -7,9 +7,10 @@
 // client (J) on the primitive driver, an RA operator (C) driving through the
 // vector driver, each requesting and releasing control at various
 // authorities, sending and streaming Set Wrench Effort, Set/Clear Emergency
-// (to the primitive or the vector driver), Standby, Resume, Set Component
-// Authority and Shutdown, losing its link and getting it back; the
-// platform's e-stop and pause; time passing (100 ms to 5 s); jausd
+// (to the primitive or the vector driver), Standby, Resume, Reset, Set
+// Component Authority (JSS: Set Authority) and Shutdown, losing its link and
+// getting it back; the platform's e-stop and pause (held, or a 20 ms
+// pulse); time passing (100 ms to 5 s); jausd
 // restarting from its holds file; the local clear (SIGUSR1). After every
 // step, and every 100 ms while time passes, the node is checked against
 // reference_model.hpp, which knows the rules and nothing of the code:
@@ -20,12 +21,13 @@
 //      beyond controller_timeout_s) or its controller's last command is
 //      older than command_timeout_s, the last motion command jausd wrote to
 //      the platform is zero: within 50 ms of a stop jausd makes, within
-//      300 ms of one the platform makes (jausd hears it at 10 Hz).
+//      300 ms of one the platform makes (jausd hears it at 10 Hz; a stop
+//      released before jausd heard of it is the known bug below).
 //   2. Only the controller moves it: a non-zero drive is the current
-//      controller's last Set Wrench Effort in effect (A's, B's or J's, each
-//      value its own), or the vector driver's while it holds the primitive
-//      driver for C's Set Local Vector; an effort from anyone else never
-//      changes it.
+//      controller's last Set Wrench Effort in effect (A's, B's or J's,
+//      values drawn at random, 5..80 % either way), or the vector driver's
+//      while it holds the primitive driver for C's Set Local Vector; an
+//      effort from anyone else never changes it.
 //   3. Nothing resumes without its controller: after any stop the drive
 //      stays zero until the controller sends a new command in Ready (the
 //      vector driver: until C sends a new Set Local Vector).
@@ -36,16 +38,19 @@
 //   5. Control follows the RA's arbitration (uncontrolled: at or above the
 //      component's own authority; taken over only by a higher authority;
 //      dropped after controller_timeout_s of silence), and an idle vector
-//      driver gives the primitive driver back.
+//      driver gives the primitive driver back (the vector driver itself
+//      asks at its own authority, 1, and is refused or takes over by the
+//      same rule).
 //   6. The primitive driver's state follows the RA's lifecycle (Emergency
 //      while held; Standby only from Ready, Resume only by the controller;
 //      an Emergency returns to what it interrupted).
 // Where a rule leaves the timing open (within 60 ms of a timeout, an
-// Emergency's end before the platform confirms it, the vector driver
-// taking or giving back control), either outcome is allowed.
+// Emergency's end before the platform confirms it, a platform stop jausd has
+// not heard of yet, the vector driver taking or giving back control), either
+// outcome is allowed and the model follows the one the node shows.
 //
-// Hooks left for rules being added (ReferenceModel's constexpr hooks, each
-// a property to turn on): RA datagrams from the JSS alias subsystem refused;
+// Hooks left for rules being added (ReferenceModel's hooks, each a property
+// to turn on, with where it goes): RA datagrams from the JSS alias subsystem refused;
 // holds persisted with the holder's host; a driver's authority capped
 // (max_authority) so operators always win; a stop counter in status; a
 // one-way platform link detected.
