@@ -33,6 +33,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -238,14 +239,20 @@ class Walkthrough : public ::testing::Test {
       }
     }
     before_ = fs::current_path();
+    if (const char* home = std::getenv("HOME")) home_ = home;
     fs::current_path(scratch_);
     const char* path = std::getenv("PATH");
     ::setenv("PATH", ((scratch_ / "bin").string() + ":" + (path ? path : "/usr/bin:/bin")).c_str(), 1);
+    // A reader of their own: what the tools keep per user (an OCU identity, ...) starts empty and goes with the scratch.
+    ::setenv("HOME", scratch_.c_str(), 1);
+    for (const char* xdg : {"XDG_CONFIG_HOME", "XDG_STATE_HOME", "XDG_CACHE_HOME", "XDG_DATA_HOME", "XDG_RUNTIME_DIR"})
+      ::unsetenv(xdg);
   }
   void TearDown() override {
     node_.reset();
     if (scratch_.empty()) return;
     fs::current_path(before_);
+    if (home_) ::setenv("HOME", home_->c_str(), 1);
     std::error_code ignored;
     fs::remove_all(scratch_, ignored);
   }
@@ -435,6 +442,7 @@ class Walkthrough : public ::testing::Test {
 
   fs::path scratch_;
   fs::path before_;
+  std::optional<std::string> home_;
   std::unique_ptr<Command> node_;
 };
 
