@@ -13,4 +13,4 @@ cd "$(dirname "$0")/.."
 cmake -S . -B build/run -G Ninja -DCMAKE_BUILD_TYPE=Release -DJAUS_BUILD_TESTS=OFF -DJAUS_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/run -j "$(nproc)" --target jausd jausctl jaus-console jaus-conform
 echo "== jausd running (jausctl is build/run/apps/jausctl/jausctl, the browser console build/run/apps/jaus_console/jaus-console, jaus-conform build/run/apps/jaus_conform/jaus-conform; Ctrl-C stops)"
-exec build/run/apps/jausd/jausd --config config/jausd.yaml "$@"
+exec build/run/apps/jausd/jausd --config config/jausd.yaml --pid-file build/run/jausd.pid "$@"

@@ -11,11 +11,16 @@
 #include <CLI/CLI.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <csignal>
+#include <cstdlib>
+#include <optional>
+
+#include <unistd.h>
 #include <iostream>
 
 #include "host_config.hpp"
 #include "jaus/base/version.hpp"
 #include "logging.hpp"
+#include "pid_file.hpp"
 
 namespace {
 
@@ -30,13 +35,15 @@ struct CommandLine {
   int node = 0;
   std::string log_level;
   bool check_config = false;
+  std::string pid_file;
 };
 
 // jausd's signals (the host installs none). Every signal that asks a process
 // to end (systemctl stop, Ctrl-C, Ctrl-\, a closed terminal) ends it the same
 // orderly way: the host stops (every component's stop path run), then the
 // loop ends. SIGUSR1 is the local clear of emergency holds: only someone on
-// the vehicle can send it.
+// the vehicle can send it (to this jausd alone: its PID file, or systemctl
+// kill for the service).
 class Signals {
  public:
   Signals(boost::asio::io_context& io, jaus::host::NodeHost& host)
@@ -98,8 +105,7 @@ int main(int argc, char** argv) {
   app.add_option("-c,--config", cl.config_path,
                  "YAML configuration (default: built-in defaults, as config/jausd.yaml; the service reads "
                  "/etc/jaus/jausd.yaml)")
-      ->type_name("FILE")
-      ->check(CLI::ExistingFile);
+      ->type_name("FILE");  // a missing file is load_config_file's one error: "FILE: cannot open FILE: why"
   app.add_option("--bind", cl.bind, "UDP address[:port] to bind (port 3794 when left out), overrides transport.bind")
       ->type_name("ADDR[:PORT]");
   app.add_option("--subsystem", cl.subsystem, "subsystem ID, overrides identification.subsystem")
@@ -111,6 +117,10 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", cl.log_level, "debug | info | warn | error, overrides logging.level")
       ->type_name("LEVEL")
       ->check(CLI::IsMember({"debug", "info", "warn", "error"}));
+  app.add_option("--pid-file", cl.pid_file,
+                 "write jausd's process ID here once it listens, for the local clear: kill -USR1 \"$(cat FILE)\" "
+                 "(default: $RUNTIME_DIRECTORY/jausd.pid under systemd, else none)")
+      ->type_name("FILE");
   app.add_flag("--check-config", cl.check_config,
                "validate the configuration and exit: 0 when good, 2 with 'file:line: what is wrong'");
   try {
@@ -167,6 +177,20 @@ int main(int argc, char** argv) {
   for (const auto& plugin : jausd::plugin_summaries(config)) logger->info("{}", plugin);
   for (const auto& warning : warnings) logger->warn("{}", warning);
   Signals signals(io, **host);
+  // Once it listens, and SIGUSR1 is the local clear (not the default, which ends a
+  // process): the file says this jausd is there, and which one to signal.
+  std::optional<jausd::PidFile> pid_file;
+  if (const auto path = jausd::pid_file_path(cl.pid_file, std::getenv("RUNTIME_DIRECTORY"))) {
+    auto written = jausd::PidFile::write(*path);
+    if (!written) {
+      logger->error("{}", written.error().message());
+      (*host)->stop("no PID file");
+      return drain_logs_at_exit.exiting_with(kExitBadInput);
+    }
+    pid_file.emplace(std::move(*written));
+    logger->info("process ID {} in {} (kill -USR1 \"$(cat {})\": the local clear of emergency holds)",
+                 static_cast<long>(::getpid()), path->string(), path->string());
+  }
   // Safety: NodeHost::run ends with every component's stop path run
   // (platform commanded to stop, the zero setpoint flushed), whether a stop
   // signal or an exception ended the loop.

@@ -78,6 +78,18 @@ Expected<ocu::OcuSession*> CaseContext::second() {
       exchange.push_back(Exchanged{false, r.header, r.payload, session.clock().now() - started, true});
   });
   second_ocu = std::move(second);
+  // One round trip first, as for a JSS client (JssCaseContext::second): a node
+  // that verifies endpoints (jausd's transport.verify_endpoints) holds what
+  // does not fit a new endpoint's byte budget until it answers a challenge,
+  // and challenges it again at most once a second. A case's first exchange
+  // may be a Reject Component Control the second OCU must hear within
+  // reply_timeout (control.higher_authority_takes_over): held behind a
+  // challenge on a loaded machine, it came too late. A reply larger than its
+  // query gets the endpoint challenged and verified now; a node that does not
+  // answer costs reply_timeout once.
+  msg::QueryIdentification query;
+  query.query_type = msg::identification::kComponent;
+  (void)second_ocu->session->request(target(), query, {msg::ReportIdentification::code}, reply_timeout);
   return second_ocu->session.get();
 }
 

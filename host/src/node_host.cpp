@@ -127,6 +127,9 @@ Expected<void> NodeHost::add_components(boost::asio::io_context* io) {
                                         [&](std::string_view interface) { return platform_->on_estop(interface); });
       if (on_estop && std::find(estop_latches.begin(), estop_latches.end(), &latch) == estop_latches.end())
         estop_latches.push_back(&latch);
+    } else {
+      // No hardware: its holds are not persisted, but the local clear reaches them.
+      (*component)->share_emergency(unpersisted_latch_for(spec));
     }
     node_->add(std::move(*component));
   }
@@ -178,6 +181,13 @@ rt::EmergencyLatch& NodeHost::latch_for(const ComponentSpec& spec) {
   return *latch;
 }
 
+rt::EmergencyLatch& NodeHost::unpersisted_latch_for(const ComponentSpec& spec) {
+  const Address address{config_.node.subsystem, config_.node.node, spec.id, spec.instance};
+  auto& latch = unpersisted_latches_[address.to_string() + " (" + (spec.name.empty() ? spec.kind : spec.name) + ")"];
+  latch = std::make_unique<rt::EmergencyLatch>();
+  return *latch;
+}
+
 bool NodeHost::latch_configured(const std::string& name) const {
   if (name == "vehicle") return config_.emergency.scope == EmergencyScope::vehicle;
   for (const auto& c : config_.components)
@@ -220,15 +230,25 @@ void NodeHost::persist_emergency_holds() {
   written_holds_ = std::move(holds);
 }
 
+// Safety: the local clear releases every Set Emergency hold (a JAUS sender's,
+// recorded or not) on every component: the latches of the components with
+// hardware (the vehicle's shared one, each sensor's own) and those of the
+// components without (node manager, communicator, drivers). A local hold (the
+// platform's own e-stop or pause, its emergency flag not yet confirmed clear)
+// is never touched: only the platform clears those.
 std::size_t NodeHost::clear_emergency_holds_locally(const std::string& why) {
   std::size_t cleared = 0;
-  for (const auto& [name, latch] : latches_) {
-    if (!latch->held_by_jaus()) continue;
-    const std::string held = latch->describe_holders();
-    const std::size_t n = latch->clear_jaus_holders();
-    cleared += n;
+  const auto clear = [&](const std::string& name, rt::EmergencyLatch& latch) {
+    if (!latch.held_by_jaus()) return;
+    const std::string held = latch.describe_holders();
+    cleared += latch.clear_jaus_holders();
     log_(rt::LogLevel::warn, "emergency holds cleared locally (" + why + "), " + name + ": " + held);
-  }
+    if (latch.active())
+      log_(rt::LogLevel::warn, "emergency still held, " + name + ": " + latch.describe_holders() +
+                                   " (the platform's own stop: only the platform clears it)");
+  };
+  for (const auto& [name, latch] : latches_) clear(name, *latch);
+  for (const auto& [name, latch] : unpersisted_latches_) clear(name, *latch);
   // What an earlier run left on the platform is ours to clear too; a hardware stop stays.
   if (platform_) platform_->reclaim_stops();
   if (cleared == 0) log_(rt::LogLevel::info, "local clear of emergency holds (" + why + "): none held");

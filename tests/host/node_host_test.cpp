@@ -610,6 +610,56 @@ TEST_F(EmergencyHolds, HoldsSurviveARestartAndTheLocalClearReleasesThem) {
   EXPECT_NE(state_of(**again, kDriverId), rt::PrimaryStatus::emergency);
 }
 
+// The local clear (SIGUSR1) reaches every component's holds, not only the
+// moving ones': the communicator's and a sensor's own latches, the node
+// manager's, and the vehicle's shared one, each logged with who held it.
+TEST_F(EmergencyHolds, TheLocalClearReleasesTheHoldsOfEveryComponentSensorsAndCommunicatorIncluded) {
+  constexpr std::uint8_t kCommunicatorId = 35, kNodeManagerId = 1;
+  const Address other_operator{9, 2, 40, 1};
+  std::vector<std::string> lines;
+  auto host = NodeHost::open(config(), io, [&](rt::LogLevel, const std::string& l) { lines.push_back(l); });
+  ASSERT_TRUE(host) << host.error().message();
+  NodeHost& h = **host;
+  deliver(*h.node().find(Address{1, 1, kCommunicatorId, 1}), kOperator, msg::SetEmergency{});
+  deliver(*h.node().find(Address{1, 1, kPoseId, 1}), kOperator, msg::SetEmergency{});
+  deliver(*h.node().find(Address{1, 1, kNodeManagerId, 1}), other_operator, msg::SetEmergency{});
+  deliver(*h.node().find(Address{1, 1, kDriverId, 1}), other_operator, msg::SetEmergency{});
+  const std::vector<std::uint8_t> held{kCommunicatorId, kPoseId, kNodeManagerId, kDriverId, kArmId};
+  for (auto id : held) ASSERT_EQ(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+  EXPECT_EQ(h.clear_emergency_holds_locally("test"), 4u);
+  for (auto id : held) EXPECT_NE(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
+  // Those without hardware are back in Ready (the others wait for theirs, not run here).
+  EXPECT_EQ(state_of(h, kCommunicatorId), rt::PrimaryStatus::ready);
+  EXPECT_EQ(state_of(h, kNodeManagerId), rt::PrimaryStatus::ready);
+  const auto logged = [&](const std::string& text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(logged("emergency holds cleared locally (test), 1.1.35.1 (communicator): 9.1.40.1"));
+  EXPECT_TRUE(logged("emergency holds cleared locally (test), 1.1.38.1: 9.1.40.1"));
+  EXPECT_TRUE(logged("emergency holds cleared locally (test), 1.1.1.1 (node_manager): 9.2.40.1"));
+  EXPECT_TRUE(logged("emergency holds cleared locally (test), vehicle: 9.2.40.1"));
+  // Nothing left: a second clear says so.
+  EXPECT_EQ(h.clear_emergency_holds_locally("again"), 0u);
+  EXPECT_TRUE(logged("local clear of emergency holds (again): none held"));
+}
+
+// Component scope: each component's own latch, every one of them cleared.
+TEST_F(EmergencyHolds, TheLocalClearReleasesEveryComponentsOwnLatchInComponentScope) {
+  auto host = NodeHost::open(config(EmergencyScope::component), io);
+  ASSERT_TRUE(host) << host.error().message();
+  NodeHost& h = **host;
+  for (const auto* component : h.node().local_components())
+    deliver(*h.node().find(component->address()), kOperator, msg::SetEmergency{});
+  std::size_t components = 0;
+  for (const auto* component : h.node().local_components()) {
+    ++components;
+    ASSERT_EQ(component->state(), rt::PrimaryStatus::emergency) << component->name();
+  }
+  EXPECT_EQ(h.clear_emergency_holds_locally("test"), components);
+  for (const auto* component : h.node().local_components())
+    EXPECT_NE(component->state(), rt::PrimaryStatus::emergency) << component->name();
+}
+
 // A disk that cannot take the holds is said once, however often a peer toggles them.
 TEST_F(EmergencyHolds, AFailingHoldsFileIsOneLineNotOneAToggle) {
   HostConfig c = config();

@@ -77,7 +77,7 @@ root=$work/root
 dpkg -x "$deb" "$root"
 unit=$root/usr/lib/systemd/system/jausd.service
 for line in 'User=jaus' 'SupplementaryGroups=dialout' 'ExecStart=/usr/bin/jausd --config /etc/jaus/jausd.yaml' \
-  'Restart=on-failure' 'KillSignal=SIGTERM' 'NoNewPrivileges=yes' 'ProtectSystem=strict'; do
+  'Restart=on-failure' 'KillSignal=SIGTERM' 'NoNewPrivileges=yes' 'ProtectSystem=strict' 'RuntimeDirectory=jausd'; do
   grep -qx "$line" "$unit" || fail "jausd.service lacks $line"
 done
 if command -v systemd-analyze > /dev/null; then

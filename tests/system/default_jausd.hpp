@@ -21,9 +21,10 @@ class DefaultJausd {
  public:
   // `name` names the directory; the node is `subsystem`.1 at `address`:3794;
   // `more_config` is appended to its configuration (e.g. a `platform:`),
-  // `more_transport` to its `transport:` map (e.g. "control_from: [...]").
+  // `more_transport` to its `transport:` map (e.g. "control_from: [...]"),
+  // `more_args` to its command line (e.g. --pid-file FILE).
   DefaultJausd(const std::string& name, int subsystem, std::string address, const std::string& more_config = "",
-               const std::string& more_transport = "")
+               const std::string& more_transport = "", const std::vector<std::string>& more_args = {})
       : dir_(std::filesystem::temp_directory_path() / ("jaus-" + name + "-" + std::to_string(::getpid()))),
         address_(std::move(address)) {
     std::filesystem::create_directories(dir_);
@@ -32,9 +33,9 @@ class DefaultJausd {
                           << "transport: {bind: " << address_ << ":3794"
                           << (more_transport.empty() ? "" : ", " + more_transport) << "}\n"
                           << more_config;
-    process_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"},
-        (dir_ / "jausd.log").string());
+    std::vector<std::string> argv{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"};
+    argv.insert(argv.end(), more_args.begin(), more_args.end());
+    process_ = std::make_unique<ChildProcess>(argv, (dir_ / "jausd.log").string());
   }
   ~DefaultJausd() {
     process_.reset();  // stopped before its directory goes

@@ -10,7 +10,9 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -58,7 +60,8 @@ class Safety : public ::testing::Test {
   void start_jausd(bool wait_ready = true, const std::string& more = "clearpath: {emergency_flags: 0x08}\n") {
     jausd = std::make_unique<DefaultJausd>("safety", kSubsystem, kNode,
                                            std::string("platform: {udp: ") + kSimAddress + ":7300}\n" + more +
-                                               "state_directory: " + (dir / "state").string() + "\n");
+                                               "state_directory: " + (dir / "state").string() + "\n",
+                                           "", std::vector<std::string>{"--pid-file", pid_file().string()});
     ASSERT_TRUE(jausd->started());
     if (wait_ready) {  // the driver at the platform's first data, the sensors at their first fresh sample
       ASSERT_TRUE(poll_status(kDriver, "ready", 30s)) << jausd->output();
@@ -131,6 +134,16 @@ class Safety : public ::testing::Test {
     for (std::size_t i = first_state; i < states.size(); ++i)
       if (!Simulator::stopped(states[i])) return false;
     return true;
+  }
+
+  std::filesystem::path pid_file() const { return dir / "jausd.pid"; }
+  // SIGUSR1 to the jausd its PID file names, as the docs tell an operator.
+  void local_clear_through_the_pid_file() {
+    std::ifstream in(pid_file());
+    long pid = 0;
+    ASSERT_TRUE(in >> pid) << pid_file() << " holds no process ID";
+    ASSERT_GT(pid, 0);
+    ASSERT_EQ(::kill(static_cast<pid_t>(pid), SIGUSR1), 0) << std::strerror(errno);
   }
 
   std::filesystem::path dir;
@@ -234,6 +247,31 @@ TEST_F(Safety, EveryEmergencyHolderIsKeptAndTheLocalClearReleasesThoseGoneForGoo
   jausd->process().signal(SIGUSR1);
   EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
   EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1)")) << jausd->output();
+}
+
+// Issue 49: the local clear (SIGUSR1, sent to the jausd its PID file names)
+// releases every Set Emergency hold on every component, the communicator's
+// and a sensor's as well as the vehicle's, logged with who held what; at an
+// orderly exit the PID file goes.
+TEST_F(Safety, TheLocalClearThroughThePidFileReleasesTheCommunicatorAndASensor) {
+  start();
+  for (const char* held : {"8.1.35.1", kPoseSensor}) {
+    auto set = jausd->jausctl(std::string("set-") + held, {"emergency", held, "set", "--timeout", "5"},
+                              "127.0.0.74:0", "254.74.40.7");
+    ASSERT_EQ(set->wait(20s), 0) << set->output();
+    ASSERT_TRUE(poll_status(held, "emergency", 10s));
+  }
+  ASSERT_TRUE(std::filesystem::exists(pid_file())) << jausd->output();
+  local_clear_through_the_pid_file();
+  EXPECT_TRUE(poll_status("8.1.35.1", "ready", 10s)) << jausd->output();
+  EXPECT_TRUE(poll_status(kPoseSensor, "ready", 10s)) << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1), 8.1.35.1 (communicator): 254.74.40.7"))
+      << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1), 8.1.38.1: 254.74.40.7"))
+      << jausd->output();
+  jausd->process().signal(SIGTERM);
+  EXPECT_EQ(jausd->process().wait(20s), 0) << jausd->output();
+  EXPECT_FALSE(std::filesystem::exists(pid_file()));
 }
 
 // Issue 27, failure 4: an OCU shut a sensor down, and the next platform

@@ -108,8 +108,10 @@ class NodeHost {
   bool stopped() const { return stopped_; }
 
   // The local clear of emergency holds (jausd's SIGUSR1): every Set
-  // Emergency holder of every latch is cleared, logged with what each held,
-  // and the platform's emergency flag left by an earlier run is reclaimed.
+  // Emergency holder of every component is cleared (the shared vehicle
+  // latch, each component's own: sensors, communicator, node manager,
+  // drivers), logged with who held what, and the platform's emergency flag
+  // left by an earlier run is reclaimed.
   // The platform's own stops stay until it reports them clear. Returns how
   // many holds were cleared.
   std::size_t clear_emergency_holds_locally(const std::string& why);
@@ -156,6 +158,8 @@ class NodeHost {
   Expected<void> add_components(boost::asio::io_context* io);  // io: an opened host's
   void restore_emergency_holds();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
+  // The latch of a component without hardware: the host's, so that the local clear reaches it.
+  rt::EmergencyLatch& unpersisted_latch_for(const ComponentSpec& spec);
   bool latch_configured(const std::string& name) const;  // a latch this configuration makes
   void schedule_persisting();
   void persist_emergency_holds();
@@ -171,6 +175,9 @@ class NodeHost {
   // nothing that outlives a component (the platform's e-stop, the holds
   // file) keeps a pointer to one. By name: "vehicle" or an address.
   std::map<std::string, std::unique_ptr<rt::EmergencyLatch>> latches_;
+  // Those of the components without hardware (their holds are not persisted),
+  // by "address (name)", for the local clear; same lifetime rule.
+  std::map<std::string, std::unique_ptr<rt::EmergencyLatch>> unpersisted_latches_;
   std::optional<std::filesystem::path> holds_file_;
   PersistedHolds restored_holds_;
   bool holds_unreadable_ = false;
