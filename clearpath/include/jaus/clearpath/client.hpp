@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "jaus/clearpath/client_core.hpp"
 
@@ -38,6 +39,8 @@ class Client {
 
   virtual ConnectionState state() const = 0;
   virtual const ClientCounters& counters() const = 0;
+  // Why the link last went down, in words (ClientCore::down_reason).
+  virtual const std::string& down_reason() const = 0;
 };
 
 }  // namespace jaus::clearpath
