@@ -32,7 +32,9 @@ class Client {
   // Safety: `stop` (a zero setpoint) written once, first, and the stream of
   // its type ends there.
   virtual void stop_setpoint(AnyMessage stop) = 0;
-  // Every data message from the platform.
+  // Every data message from the platform; after the link went down because
+  // the platform no longer heard us, none until it acknowledges something
+  // again (ClientCounters::data_withheld).
   virtual void on_data(ClientCore::DataCallback callback) = 0;
   // Every change of the connection's state.
   virtual void on_state(ClientCore::StateCallback callback) = 0;

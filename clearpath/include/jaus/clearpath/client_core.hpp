@@ -168,6 +168,8 @@ class ClientCore {
   // of that type is re-sent until set_setpoint() is called again. Supersedes
   // send() commands of its kind as set_setpoint() does.
   void stop_setpoint(AnyMessage stop, rt::TimePoint now);
+  // Every data message; withheld (counted, not delivered) after a down because
+  // the platform did not hear us, until an ACK shows it does again.
   void on_data(DataCallback callback) { on_data_ = std::move(callback); }
   // Every change of state() (down, connecting, connected, retrying).
   void on_state(StateCallback callback) { on_state_ = std::move(callback); }
