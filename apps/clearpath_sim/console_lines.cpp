@@ -31,6 +31,7 @@ Line parse_line(std::string_view text) {
   if (w.size() == 1 && w[0] == "status") return StatusNow{};
   if (w.size() == 2 && (w[0] == "estop" || w[0] == "pause") && (w[1] == "on" || w[1] == "off"))
     return Press{w[0] == "estop" ? HardwareInput::estop : HardwareInput::pause, w[1] == "on"};
+  if (w.size() == 2 && w[0] == "deaf" && (w[1] == "on" || w[1] == "off")) return Deaf{w[1] == "on"};
   // Without the line ending, which a terminal or a Windows editor may add.
   auto line = std::string(text);
   while (!line.empty() && (line.back() == '\r' || line.back() == '\n')) line.pop_back();
@@ -43,23 +44,25 @@ std::string press_answer(const Press& press, std::uint16_t safety_flags) {
   return Json{{"input", input_name(press.input)}, {"on", press.on}, {"safety_flags", safety_flags}}.dump();
 }
 
+std::string deaf_answer(const Deaf& deaf) { return Json{{"deaf", deaf.on}}.dump(); }
+
 std::string error_line(const Unknown& unknown) {
   // dump() escapes what the line holds and replaces invalid UTF-8.
-  return Json{{"error", "unknown input line '" + unknown.line + "': expected estop on|off, pause on|off"}}.dump(
+  return Json{{"error", "unknown input line '" + unknown.line + "': expected estop on|off, pause on|off, deaf on|off"}}.dump(
       -1, ' ', false, Json::error_handler_t::replace);
 }
 
-std::string status_line(const SimPlatform& platform) {
+std::string status_line(const SimPlatform& platform, bool deaf) {
   const auto& v = platform.vehicle();
   const auto& c = platform.counters();
   return fmt::format(
       "{{\"status\":{{\"left_mps\":{:.3f},\"right_mps\":{:.3f},\"speed_mps\":{:.3f},"
       "\"yaw_rate_rps\":{:.3f},\"yaw_rad\":{:.3f},\"x_m\":{:.3f},\"y_m\":{:.3f},"
       "\"watchdog_expired\":{},\"safety_flags\":{},\"hardware_inputs\":{},\"commands_applied\":{},"
-      "\"frames_rejected\":{},\"steering_percent\":{:.1f}}}}}",
+      "\"frames_rejected\":{},\"steering_percent\":{:.1f},\"deaf\":{}}}}}",
       v.left().speed, v.right().speed, v.linear_speed(), v.yaw_rate(), v.yaw(), v.x(), v.y(), v.watchdog_expired(),
       v.safety_flags(), v.hardware_inputs(), c.commands_applied, platform.parser_counters().errors(),
-      v.ackermann_output()[0]);
+      v.ackermann_output()[0], deaf);
 }
 
 std::string event_line(const PlatformEvent& event) {

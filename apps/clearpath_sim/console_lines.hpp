@@ -18,6 +18,11 @@ struct Press {
   HardwareInput input;
   bool on;
 };
+// `deaf on|off`: a one-way line, now (SimServer::set_deaf): on, every frame
+// received is ignored while data still goes; off, the platform hears again.
+struct Deaf {
+  bool on;
+};
 // `status`: print the status line at once.
 struct StatusNow {};
 // A blank line: nothing to do, nothing to answer.
@@ -26,7 +31,7 @@ struct Blank {};
 struct Unknown {
   std::string line;
 };
-using Line = std::variant<Press, StatusNow, Blank, Unknown>;
+using Line = std::variant<Press, Deaf, StatusNow, Blank, Unknown>;
 
 Line parse_line(std::string_view text);
 
@@ -34,10 +39,13 @@ const char* input_name(HardwareInput input);
 
 // {"input":"estop","on":true,"safety_flags":24}
 std::string press_answer(const Press& press, std::uint16_t safety_flags);
-// {"error":"unknown input line 'xyz': expected estop on|off, pause on|off"}
+// {"deaf":true}
+std::string deaf_answer(const Deaf& deaf);
+// {"error":"unknown input line 'xyz': expected estop on|off, pause on|off, deaf on|off"}
 std::string error_line(const Unknown& unknown);
-// {"status":{...}}: the vehicle's true state (what --status-every prints).
-std::string status_line(const SimPlatform& platform);
+// {"status":{...}}: the vehicle's true state (what --status-every prints),
+// and whether the platform is deaf (SimServer::deaf).
+std::string status_line(const SimPlatform& platform, bool deaf = false);
 // {"event":"...",...,"steady_ns":N}: N is the event's time on the steady
 // clock, in nanoseconds since its epoch (what another process's steady_clock reads).
 std::string event_line(const PlatformEvent& event);

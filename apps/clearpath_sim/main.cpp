@@ -1,7 +1,7 @@
 // clearpath-sim: a simulated Clearpath platform on UDP, a serial device or a
 // PTY it opens itself (`pty: /dev/pts/N` is then its first line of output).
-// Standard input takes the platform's physical inputs (`estop on`, `pause off`,
-// see console_lines.hpp); standard output carries JSON lines.
+// Standard input takes the platform's physical inputs (`estop on`, `pause off`)
+// and a one-way-line fault (`deaf on|off`), see console_lines.hpp; standard output carries JSON lines.
 #include <csignal>
 #include <functional>
 #include <iostream>
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   std::string udp, serial, drive = "differential", log_level = "info";
   bool pty = false, events = false;
   sim::FaultConfig faults;
-  double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5, status_every_s = 0;
+  double latency_ms = 0, disconnect_every_s = 0, disconnect_for_s = 1.5, deaf_after_s = 0, status_every_s = 0;
   auto* udp_opt = app.add_option("--udp", udp, "Serve UDP on HOST:PORT")->type_name("HOST:PORT");
   auto* serial_opt = app.add_option("--serial", serial, "Serve on a serial device (115200 8N1)")->type_name("DEVICE");
   auto* pty_opt = app.add_flag("--pty", pty, "Open a PTY and serve on it; prints `pty: PATH` first");
@@ -41,6 +41,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--disconnect-every", disconnect_every_s, "Go silent every N seconds (0 = never)")->check(CLI::NonNegativeNumber);
   app.add_option("--disconnect-for", disconnect_for_s, "Seconds each silence lasts")->check(CLI::NonNegativeNumber);
+  app.add_option("--deaf-after", deaf_after_s,
+                 "A one-way line: after N seconds ignore every frame received (no ACK, no action; the watchdog "
+                 "stops the wheels) while still sending subscribed data (0 = never; stdin `deaf off` ends it)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", faults.seed, "Seed of the fault injector (the same seed, the same faults)");
   app.add_option("--status-every", status_every_s,
                  "Print the vehicle's true state as a JSON line every N seconds (0 = never)")
@@ -59,6 +63,7 @@ int main(int argc, char** argv) {
   faults.latency = std::chrono::milliseconds(static_cast<long>(latency_ms));
   faults.disconnect_every = std::chrono::milliseconds(static_cast<long>(disconnect_every_s * 1000));
   faults.disconnect_for = std::chrono::milliseconds(static_cast<long>(disconnect_for_s * 1000));
+  faults.deaf_after = std::chrono::milliseconds(static_cast<long>(deaf_after_s * 1000));
 
   sim::ServerEndpoint endpoint;
   sim::PlatformConfig platform;
@@ -102,7 +107,7 @@ int main(int argc, char** argv) {
                endpoint.kind == sim::ServerEndpoint::Kind::udp ? udp : (pty ? server.pty_path() : serial));
   // The platform's true state, for an operator or a test watching what the
   // wheels really do (what its client is told is another matter).
-  const auto print_status_now = [&] { std::cout << console::status_line(server.platform()) << std::endl; };
+  const auto print_status_now = [&] { std::cout << console::status_line(server.platform(), server.deaf()) << std::endl; };
   std::function<void()> print_status = [&] {
     print_status_now();
     runtime.call_at(runtime.now() + std::chrono::milliseconds(static_cast<long>(status_every_s * 1000)), print_status);
@@ -114,6 +119,11 @@ int main(int argc, char** argv) {
     if (const auto* press = std::get_if<console::Press>(&line)) {
       server.press(press->input, press->on);
       std::cout << console::press_answer(*press, server.platform().vehicle().safety_flags()) << std::endl;
+    } else if (const auto* deaf = std::get_if<console::Deaf>(&line)) {
+      server.set_deaf(deaf->on);
+      spdlog::warn("clearpath-sim: {}", deaf->on ? "deaf (stdin): every frame received is ignored, data still goes"
+                                                   : "hears again (stdin)");
+      std::cout << console::deaf_answer(*deaf) << std::endl;
     } else if (std::holds_alternative<console::StatusNow>(line)) {
       print_status_now();
     } else if (const auto* unknown = std::get_if<console::Unknown>(&line)) {

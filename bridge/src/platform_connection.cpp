@@ -30,7 +30,14 @@ void PlatformConnection::data(const clearpath::Envelope& envelope) {
 
 void PlatformConnection::state(clearpath::ConnectionState s) {
   if (s == clearpath::ConnectionState::down || s == clearpath::ConnectionState::connecting) {
-    if (alive_) log_(rt::LogLevel::warn, "Clearpath platform: link " + std::string(clearpath::to_string(s)));
+    // Logged once per loss: while it stays lost (a platform that still does not
+    // hear us goes down again after every reconnect) alive_ stays false.
+    if (alive_) {
+      const auto& why = client_.down_reason();
+      log_(rt::LogLevel::warn, "Clearpath platform: " + (s == clearpath::ConnectionState::down && !why.empty()
+                                                              ? why
+                                                              : "link " + std::string(clearpath::to_string(s))));
+    }
     set_alive(false);
   }
 }

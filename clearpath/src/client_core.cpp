@@ -259,6 +259,39 @@ std::vector<std::uint8_t> ClientCore::take_frame(rt::TimePoint now) {
     ++counters_.frames_sent;
     return frame;
   }
+  // Safety: the probe goes last, only when nothing else is to be written now,
+  // so it never delays a stop, the safety word or a command (on a serial line
+  // a stop that comes while a probe is being written waits for its 16 bytes,
+  // about 1.4 ms at 115200 baud, as behind any frame). It is not a queued
+  // command: it takes no kind's turn (one in flight per kind) and replaces
+  // nothing; its ACK is matched by its own key.
+  if (probe_due(now)) return take_probe(now);
+  return frame;
+}
+
+bool ClientCore::probe_due(rt::TimePoint now) const {
+  if (config_.probe_period.count() <= 0) return false;
+  // Since the connection, the last ACK or the last probe, whichever is newest:
+  // while commands are being acknowledged, no probe goes.
+  rt::TimePoint since = connected_at_;
+  if (last_ack_ && *last_ack_ > since) since = *last_ack_;
+  if (last_probe_ && *last_probe_ > since) since = *last_probe_;
+  return now - since >= config_.probe_period;
+}
+
+std::vector<std::uint8_t> ClientCore::take_probe(rt::TimePoint now) {
+  std::vector<std::uint8_t> frame;
+  const std::uint32_t ts = next_timestamp(now);
+  // A single reply (subscription 0): it leaves every subscription alone.
+  if (!append_encoded(frame, Envelope{{config_.version, ts, 0, RequestEcho::kType}, RequestEcho{}})) return {};
+  probe_key_ = AckKey{RequestEcho::kType, ts};
+  last_probe_ = now;
+  if (!unanswered_probe_) {
+    unanswered_probe_ = now;
+    probes_sent_at_unanswered_ = counters_.probes_sent;
+  }
+  ++counters_.probes_sent;
+  ++counters_.frames_sent;
   return frame;
 }
 
@@ -341,12 +374,26 @@ void ClientCore::tick(rt::TimePoint now) {
     if (!retry_or_finish(std::move(pending), 0, now)) unheard = true;
   }
   if (unheard) {
-    mark_down(now);  // nothing got through: reconnect
+    // Nothing got through: reconnect.
+    mark_unheard(now, "a command went unanswered after " + std::to_string(config_.max_attempts) +
+                          " attempts and nothing was acknowledged since its first send");
+    return;
+  }
+  // Safety: a platform that no longer hears us (a one-way line: its data may
+  // still flow) takes the link down, so the owner stops relying on it (the
+  // bridge's driver goes to Failure) even while only setpoints, which are
+  // never acknowledged, are being written.
+  if (unanswered_probe_ && now - *unanswered_probe_ >= config_.probe_timeout) {
+    const bool data_flows = last_rx_ > *unanswered_probe_;
+    mark_unheard(now, "no ACK to anything for " + std::to_string(config_.probe_timeout.count()) + " ms (" +
+                          std::to_string(counters_.probes_sent - probes_sent_at_unanswered_) + " probes)" +
+                          (data_flows ? " while its data still arrives" : ""));
     return;
   }
   rerequest_due_subscriptions(now);
   // Data expected but none for too long: the link is dead.
-  if (!subscriptions_.empty() && now - last_rx_ > config_.data_silence) mark_down(now);
+  if (!subscriptions_.empty() && now - last_rx_ > config_.data_silence)
+    mark_down(now, "no frame from the platform for " + std::to_string(config_.data_silence.count()) + " ms; link down");
 }
 
 void ClientCore::rerequest_due_subscriptions(rt::TimePoint now) {
@@ -384,12 +431,25 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
   }
   const auto* ack = envelope->message.get_if<Ack>();
   if (ack == nullptr) {
+    if (hearing_unconfirmed_) {
+      ++counters_.data_withheld;  // talks, but may not listen: not taken for a live platform yet
+      return;
+    }
     ++counters_.data_received;
     if (on_data_) on_data_(*envelope);
     return;
   }
+  // Any ACK, even "bad checksum" or one we cannot match: the platform hears us.
   last_ack_ = now;
-  const auto it = in_flight_.find(AckKey{frame.header.type, frame.header.timestamp});
+  unanswered_probe_.reset();
+  hearing_unconfirmed_ = false;
+  const AckKey key{frame.header.type, frame.header.timestamp};
+  if (probe_key_ && *probe_key_ == key) {
+    ++counters_.probes_answered;
+    probe_key_.reset();
+    return;
+  }
+  const auto it = in_flight_.find(key);
   if (it == in_flight_.end()) {
     ++counters_.acks_unmatched;
     return;
@@ -453,6 +513,10 @@ void ClientCore::on_connected(rt::TimePoint now) {
   if (counters_.frames_received > 0 || counters_.frames_sent > 0) ++counters_.reconnects;
   parser_.reset();
   last_rx_ = now;
+  connected_at_ = now;
+  last_probe_.reset();
+  probe_key_.reset();
+  unanswered_probe_.reset();
   wants_reconnect_ = false;
   backoff_ = config_.backoff_initial;
   resubscribe();
@@ -460,7 +524,15 @@ void ClientCore::on_connected(rt::TimePoint now) {
   set_state(ConnectionState::connected);
 }
 
-void ClientCore::mark_down(rt::TimePoint now) {
+void ClientCore::mark_unheard(rt::TimePoint now, std::string why) {
+  ++counters_.unheard_downs;
+  hearing_unconfirmed_ = true;  // until an ACK shows otherwise (handle_frame)
+  mark_down(now, "the platform no longer hears us: " + why + "; link down");
+}
+
+void ClientCore::mark_down(rt::TimePoint now, std::string reason) {
+  down_reason_ = std::move(reason);
+  unanswered_probe_.reset();
   fail_all(CommandError::link_down);
   // Safety: a reconnect never re-arms an old setpoint; the application sets a
   // new one when it wants motion again.
@@ -481,7 +553,7 @@ void ClientCore::set_state(ConnectionState state) {
 
 void ClientCore::on_disconnected(rt::TimePoint now) {
   if (state_ == ConnectionState::down) return;
-  mark_down(now);
+  mark_down(now, "the connection closed or failed; link down");
 }
 
 void ClientCore::reconnect_started(rt::TimePoint) {
@@ -489,6 +561,6 @@ void ClientCore::reconnect_started(rt::TimePoint) {
   set_state(ConnectionState::connecting);
 }
 
-void ClientCore::open_failed(rt::TimePoint now) { mark_down(now); }
+void ClientCore::open_failed(rt::TimePoint now) { mark_down(now, "the link could not be opened"); }
 
 }  // namespace jaus::clearpath

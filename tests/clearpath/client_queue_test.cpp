@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "lossy_link.hpp"
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/clearpath/client_core.hpp"
 #include "jaus/clearpath/codec.hpp"
@@ -23,96 +24,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-// ClientCore wired to a SimPlatform as sim::LoopbackClient wires them, but the
-// platform's ACKs can be lost: at random by the seeded FaultInjector
-// (drop_rate), or by a test's own rule. A period of more than 1 ms with one
-// frame per period makes the link slower than the application.
-struct LossyOptions {
-  sim::FaultConfig faults;
-  cp::ClientConfig client;
-  rt::Duration period = 1ms;
-  std::size_t frames_per_period = 1000;
-};
-
-class LossyLink {
- public:
-  using Options = LossyOptions;
-
-  explicit LossyLink(Options options = {})
-      : options_(options), platform_({}, time_.now()), client(options.client), faults_(options.faults) {
-    client.reconnect_started(time_.now());
-    client.on_connected(time_.now());
-    time_.call_at(time_.now(), [this] { step(); });
-  }
-
-  void run_for(rt::Duration d) { time_.advance(d); }
-  rt::TimePoint now() const { return time_.now(); }
-  // A pulled cable: nothing crosses, reopening fails until it is plugged back.
-  void set_plugged(bool plugged) { plugged_ = plugged; }
-  const sim::SimPlatform& platform() const { return platform_; }
-
-  // Every frame written of `type`, decoded, in order.
-  template <class M>
-  std::vector<M> written_of() const {
-    std::vector<M> out;
-    for (const auto& f : written)
-      if (f.header.type == M::kType)
-        if (auto e = cp::decode(f, cp::Direction::to_platform)) out.push_back(e->message.template get<M>());
-    return out;
-  }
-
-  // A test's own rule: true drops the ACK answering this frame header.
-  std::function<bool(const cp::FrameHeader& acked)> drop_ack;
-  std::vector<cp::Frame> written;
-  std::uint64_t acks_dropped = 0;
-
- private:
-  void step() {
-    const auto now = time_.now();
-    client.tick(now);
-    if (client.wants_reconnect() && now >= client.reconnect_at()) {
-      client.reconnect_started(now);
-      if (plugged_) client.on_connected(now);
-      else client.open_failed(now);
-    }
-    for (std::size_t n = 0; n < options_.frames_per_period; ++n) {
-      const auto frame = client.take_frame(now);
-      if (frame.empty()) break;
-      if (auto decoded = cp::decode_frame(frame)) written.push_back(*decoded);
-      if (plugged_) deliver(platform_.receive(frame, now), now);
-    }
-    deliver(platform_.tick(now), now);
-    time_.call_at(now + options_.period, [this] { step(); });
-  }
-
-  void deliver(const std::vector<std::uint8_t>& bytes, rt::TimePoint now) {
-    if (!plugged_) return;
-    for (const auto frame : cp::split_frames(bytes)) {
-      const auto decoded = cp::decode_frame(frame);
-      if (decoded && is_ack(*decoded) && (faults_.drop() || (drop_ack && drop_ack(decoded->header)))) {
-        ++acks_dropped;
-        continue;
-      }
-      client.on_bytes(frame, now);
-    }
-  }
-
-  static bool is_ack(const cp::Frame& frame) {
-    const auto e = cp::decode(frame, cp::Direction::from_platform);
-    return e && e->message.get_if<cp::Ack>() != nullptr;
-  }
-
-  Options options_;
-  rt::VirtualTime time_;
-  sim::SimPlatform platform_;
-
- public:
-  cp::ClientCore client;
-
- private:
-  sim::FaultInjector faults_;
-  bool plugged_ = true;
-};
+using LossyLink = jaus::test::LossyLink;
 
 // Drops the ACK of the n-th frame of `type` written (0: the first).
 std::function<bool(const cp::FrameHeader&)> drop_nth_ack_of(std::uint16_t type, int n) {
@@ -371,7 +283,7 @@ TEST(ClearpathClientQueue, EverySubscriptionIsRenewedAfterAReconnectEvenWithAFul
     ASSERT_TRUE(e);
     std::optional<std::uint16_t> rate;
     cp::visit([&](const auto& m) { if constexpr (requires { m.subscription; }) rate = m.subscription; }, e->message);
-    if (!rate) continue;
+    if (!rate || after[k].header.type == cp::RequestEcho::kType) continue;  // not a request, or the client's probe
     if (*rate == cp::kCancelSubscription) {
       ++cancels;
       last_cancel = k;

@@ -186,7 +186,8 @@ TEST_F(ClearpathPlatformUdp, AnUnpluggedPlatformIsFailureThenReadyAndNothingMove
 // 15 % of frames each way get a flipped bit (about 1 % of bytes) for 30 s:
 // the simulator rejects every corrupted command (its wheels never go faster
 // than commanded), jausd rejects every corrupted report (its dead-reckoned
-// distance matches the simulator's), and commands still get through.
+// distance matches the simulator's), commands still get through, and the
+// lost probes never make jausd take the platform for deaf.
 TEST_F(ClearpathPlatformUdp, CorruptedFramesAreNeverActedOn) {
   start(Simulator::Line::udp, {"--corrupt-rate", "0.15", "--seed", "7"});
   const auto x0 = query(kPoseSensor, "0x2403", "0x7F");  // Report Local Pose
@@ -207,6 +208,8 @@ TEST_F(ClearpathPlatformUdp, CorruptedFramesAreNeverActedOn) {
   EXPECT_LE(fastest, 0.5 + 1e-6);  // 50 % output of a 1 m/s platform, never more
   EXPECT_TRUE(reached);            // and the commands got through
   EXPECT_GT(states.back()["frames_rejected"].get<int>(), 0);
+  // Probes and ACKs were lost too, never a second's worth: the platform was never taken for deaf.
+  EXPECT_EQ(jausd->output().find("no longer hears us"), std::string::npos) << jausd->output();
   // The platform went straight ahead from its start: its x is the distance.
   // Up to about 2.4 m (5 s at up to 0.5 m/s, accelerating first at 2 m/s^2);
   // less when a stall of this loaded machine let the watchdog stop it, so
@@ -217,6 +220,51 @@ TEST_F(ClearpathPlatformUdp, CorruptedFramesAreNeverActedOn) {
   ASSERT_TRUE(local) << jausd->output();
   EXPECT_NEAR((*local)["x_m"].get<double>(), travelled, 0.1 * travelled) << local->dump();
   (void)x0;
+}
+
+// A one-way line: the platform stops hearing jausd while its data still flows
+// (clearpath-sim's `deaf on`; --deaf-after does it at a set time). While
+// driving only setpoints go, never acknowledged: jausd's probe finds out, the
+// driver goes to Failure and the controller sees it. When the platform hears
+// again the driver is Ready, and nothing moves until a new command.
+TEST_F(ClearpathPlatformUdp, APlatformThatNoLongerHearsIsFailureAndNothingMovesWhenItHearsAgain) {
+  start(Simulator::Line::udp);
+  auto controller = drive();
+  ASSERT_TRUE(sim->wait_for(moving, 15s)) << controller->output();
+  const auto deaf_at = std::chrono::steady_clock::now();
+  ASSERT_TRUE(sim->deafen(true));
+  // The controller sees Failure: it stops sending and says so (exit 3).
+  EXPECT_EQ(controller->wait(20s), 3) << controller->output() << jausd->output();
+  // About a second of probing (the rest is the controller's status report and
+  // a loaded machine); without the probe the driver would stay Ready.
+  EXPECT_LT(std::chrono::steady_clock::now() - deaf_at, 5s);
+  EXPECT_NE(controller->output().find("Failure"), std::string::npos) << controller->output();
+  // The platform's own watchdog stopped its wheels.
+  EXPECT_TRUE(sim->wait_for([](const Json& s) { return stopped(s) && s["watchdog_expired"].get<bool>(); }, 10s))
+      << sim->state()->dump();
+  // Still deaf across jausd's reconnects (each goes down again after about a
+  // second): the driver stays in Failure, and the loss is logged once.
+  std::this_thread::sleep_for(3s);
+  EXPECT_TRUE(poll_status(kDriver, "failure", 15s)) << jausd->output();
+  const auto said = [&] {
+    const auto log = jausd->output();
+    std::size_t n = 0;
+    for (auto at = log.find("no longer hears us"); at != std::string::npos; at = log.find("no longer hears us", at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(said(), 1u) << jausd->output();
+
+  // It hears again: Ready through the reconnect path, and nothing moves.
+  const auto before = sim->states().size();
+  ASSERT_TRUE(sim->deafen(false));
+  EXPECT_TRUE(poll_status(kDriver, "ready", 20s)) << jausd->output();
+  std::this_thread::sleep_for(1s);
+  const auto states = sim->states();
+  for (std::size_t i = before; i < states.size(); ++i) EXPECT_TRUE(stopped(states[i])) << states[i].dump();
+  EXPECT_EQ(said(), 1u) << jausd->output();
+  // Until a new command.
+  auto again = drive();
+  EXPECT_TRUE(sim->wait_for(moving, 15s)) << again->output();
 }
 
 }  // namespace

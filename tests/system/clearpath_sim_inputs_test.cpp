@@ -189,7 +189,7 @@ TEST_F(ClearpathSimInputs, AnUnknownLineIsAnErrorAndChangesNothing) {
   ASSERT_TRUE(type("estop on", "input"));
   const auto error = type("xyz", "error");
   ASSERT_TRUE(error) << sim_->output();
-  EXPECT_EQ((*error)["error"], "unknown input line 'xyz': expected estop on|off, pause on|off");
+  EXPECT_EQ((*error)["error"], "unknown input line 'xyz': expected estop on|off, pause on|off, deaf on|off");
   ASSERT_TRUE(type("pause sideways", "error"));
   const auto status = status_with(0x08);
   ASSERT_TRUE(status) << sim_->output();
@@ -226,6 +226,37 @@ TEST_F(ClearpathSimInputs, StatusPrintsAtOnceAndTheEndOfInputIsNoReasonToExit) {
   std::this_thread::sleep_for(300ms);
   EXPECT_TRUE(sim_->running());
   EXPECT_EQ(client_.command(safety(0x08)), 0) << sim_->output();
+}
+
+// A one-way line: --deaf-after S, then the platform ignores every frame it
+// receives (no ACK, nothing applied) until `deaf off`; `deaf on` again at once.
+TEST_F(ClearpathSimInputs, DeafAfterIgnoresEveryFrameUntilDeafOff) {
+  start({"--status-every", "0.1", "--deaf-after", "4"});
+  // The e-stop bit, set while it hears and again until it no longer does.
+  const auto until = std::chrono::steady_clock::now() + 30s;
+  bool unheard = false;
+  while (!unheard && std::chrono::steady_clock::now() < until) {
+    unheard = !client_.command(safety(0x08)).has_value();
+    if (!unheard) std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_TRUE(unheard) << sim_->output();
+  const auto deaf = wait_for("status", [](const std::vector<Json>& all) { return all.back()["status"]["deaf"] == true; });
+  ASSERT_TRUE(deaf) << sim_->output();
+  // A release it does not hear is neither answered nor applied.
+  EXPECT_FALSE(client_.command(safety(0)).has_value()) << sim_->output();
+  std::this_thread::sleep_for(300ms);
+  EXPECT_TRUE(status_with(0x08)) << sim_->output();
+  const auto hears = type("deaf off", "deaf");
+  ASSERT_TRUE(hears) << sim_->output();
+  EXPECT_EQ((*hears)["deaf"], false);
+  EXPECT_EQ(client_.command(safety(0)), 0) << sim_->output();
+  EXPECT_TRUE(status_with(0)) << sim_->output();
+  const auto deaf_again = type("deaf on", "deaf");
+  ASSERT_TRUE(deaf_again) << sim_->output();
+  EXPECT_EQ((*deaf_again)["deaf"], true);
+  EXPECT_FALSE(client_.command(safety(0x08)).has_value()) << sim_->output();
+  std::this_thread::sleep_for(300ms);
+  EXPECT_TRUE(status_with(0)) << sim_->output();
 }
 
 }  // namespace

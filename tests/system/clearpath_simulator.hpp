@@ -57,6 +57,10 @@ class ClearpathSimulator {
   // A hardware input pressed (on) or released: "estop" or "pause".
   bool press(const std::string& input, bool on) { return process_->write_stdin(input + (on ? " on\n" : " off\n")); }
 
+  // A one-way line, now: deaf (on) it ignores every frame it receives and
+  // keeps sending its data; off it hears again.
+  bool deafen(bool on) { return process_->write_stdin(on ? "deaf on\n" : "deaf off\n"); }
+
   // Every JSON line printed so far whose top-level key is `key` ("status"), oldest first.
   std::vector<Json> lines_of(const std::string& key) const {
     std::vector<Json> out;

@@ -90,6 +90,12 @@ bool SimServer::disconnected(rt::TimePoint now) const {
   return phase >= f.disconnect_every;  // the last disconnect_for of every cycle
 }
 
+bool SimServer::deaf() const {
+  if (deaf_set_) return *deaf_set_;
+  const auto after = faults_.config().deaf_after;
+  return after.count() > 0 && clock_.now() - started_ >= after;
+}
+
 void SimServer::start_read() {
   if (!running_) return;
   auto alive = alive_;
@@ -113,7 +119,9 @@ void SimServer::start_read() {
 void SimServer::handle_input(std::span<std::uint8_t> bytes) {
   const auto now = clock_.now();
   if (disconnected(now)) return;  // a pulled cable: input is lost
+  // The peer is where the data goes, as on a serial line that still carries it.
   if (endpoint_.kind == ServerEndpoint::Kind::udp) peer_ = sender_;
+  if (deaf()) return;  // a one-way line: heard nothing, so no ACK and no action; data still goes (on_tick)
   faults_.maybe_corrupt(bytes);
   emit(platform_.receive(bytes, now));
 }

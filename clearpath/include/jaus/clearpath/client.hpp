@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "jaus/clearpath/client_core.hpp"
 
@@ -31,13 +32,17 @@ class Client {
   // Safety: `stop` (a zero setpoint) written once, first, and the stream of
   // its type ends there.
   virtual void stop_setpoint(AnyMessage stop) = 0;
-  // Every data message from the platform.
+  // Every data message from the platform; after the link went down because
+  // the platform no longer heard us, none until it acknowledges something
+  // again (ClientCounters::data_withheld).
   virtual void on_data(ClientCore::DataCallback callback) = 0;
   // Every change of the connection's state.
   virtual void on_state(ClientCore::StateCallback callback) = 0;
 
   virtual ConnectionState state() const = 0;
   virtual const ClientCounters& counters() const = 0;
+  // Why the link last went down, in words (ClientCore::down_reason).
+  virtual const std::string& down_reason() const = 0;
 };
 
 }  // namespace jaus::clearpath

@@ -65,6 +65,7 @@ class ClearpathLink final : public Client {
   void on_state(ClientCore::StateCallback callback) override { core_.on_state(std::move(callback)); }
   ConnectionState state() const override { return core_.state(); }
   const ClientCounters& counters() const override { return core_.counters(); }
+  const std::string& down_reason() const override { return core_.down_reason(); }
 
   // Called after each frame has been written, with the frame.
   void on_written(std::function<void(std::span<const std::uint8_t> frame)> callback) { on_written_ = std::move(callback); }

@@ -16,6 +16,10 @@ struct FaultConfig {
   std::chrono::milliseconds latency{0};            // added to every outgoing frame
   std::chrono::milliseconds disconnect_every{0};   // 0 = never
   std::chrono::milliseconds disconnect_for{1500};
+  // A one-way line: from this long after the start, the platform ignores every
+  // frame it receives (no ACK, no action: its watchdog stops its wheels) while
+  // it keeps sending its subscribed data. 0 = never.
+  std::chrono::milliseconds deaf_after{0};
   unsigned seed = 1;
 };
 

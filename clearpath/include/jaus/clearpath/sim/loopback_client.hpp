@@ -44,6 +44,7 @@ class LoopbackClient final : public Client {
   void on_state(ClientCore::StateCallback callback) override { core_.on_state(std::move(callback)); }
   ConnectionState state() const override { return core_.state(); }
   const ClientCounters& counters() const override { return core_.counters(); }
+  const std::string& down_reason() const override { return core_.down_reason(); }
 
   // A pulled cable: nothing crosses and reopening fails until it is plugged back.
   void set_plugged(bool plugged) { plugged_ = plugged; }

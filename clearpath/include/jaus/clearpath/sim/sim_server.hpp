@@ -49,6 +49,11 @@ class SimServer {
   void press(HardwareInput input, bool on) { platform_.press(input, on, clock_.now()); }
   // The platform's events (SimPlatform::on_event), each with the clock's time.
   void on_event(std::function<void(const PlatformEvent&)> callback) { platform_.on_event(std::move(callback)); }
+  // A one-way line, now: deaf (on) the platform ignores every frame it
+  // receives and keeps sending its data; off it hears again. Either ends
+  // FaultConfig::deaf_after's rule (it no longer applies).
+  void set_deaf(bool on) { deaf_set_ = on; }
+  bool deaf() const;
 
  private:
   void start_read();
@@ -79,6 +84,7 @@ class SimServer {
   bool writing_ = false;
   bool running_ = false;
   rt::TimePoint started_;
+  std::optional<bool> deaf_set_;  // set_deaf(), which overrides deaf_after
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };
 
