@@ -14,6 +14,8 @@
 #include "default_jausd.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/ocu/session.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/wire/message.hpp"
 #include "jss_system.hpp"
 
 namespace jaus::test {
@@ -280,18 +282,28 @@ TEST_F(JssCompetition, NobodyActsAsTheJssOperatorsAliasOverRa) {
   ASSERT_TRUE(ra_report) << jausd->output();
   const Address alias = ra_report->controller;
   ASSERT_EQ(alias.subsystem, kAliasSubsystem);
-  ocu::SessionOptions options;
-  options.self = alias;
-  options.to = {*transport::parse_endpoint(std::string(kNode) + ":3794")};
-  options.bind = *transport::parse_endpoint(kRaHost, 0);
-  auto forger = ocu::OcuSession::open(options, &io);
-  ASSERT_TRUE(forger) << forger.error().message();
+  // Raw OPC datagrams from another host (an OCU library refuses component 1 as its own).
+  namespace ip = boost::asio::ip;
+  ip::udp::socket raw(io, ip::udp::endpoint(ip::make_address_v4(kRaHost), 0));
+  const auto forge = [&](const auto& message) {
+    Header h;
+    h.source = alias;
+    h.destination = kRaDriver;
+    std::vector<std::uint8_t> packet(kHeaderSize + kMaxPayloadSize);
+    const auto size = wire::encode_message(h, message, packet);
+    ASSERT_TRUE(size) << size.error().message();
+    packet.resize(*size);
+    const auto prefix = transport::frame_prefix(transport::Framing::opc, packet.size());
+    std::vector<std::uint8_t> datagram(prefix.view().begin(), prefix.view().end());
+    datagram.insert(datagram.end(), packet.begin(), packet.end());
+    raw.send_to(boost::asio::buffer(datagram), ip::udp::endpoint(ip::make_address_v4(kNode), 3794));
+  };
   jss->send(kJssDriver, m::Resume{});
   msg::SetWrenchEffort forward{};
   forward.propulsive_linear_effort_x_percent = kForwardPercent;
-  EXPECT_FALSE(moved_while(3s, [&] { (*forger)->send(kRaDriver, forward); }))
+  EXPECT_FALSE(moved_while(3s, [&] { forge(forward); }))
       << "RA Set Wrench Effort from the alias moved the JSS operator's vehicle";
-  (*forger)->send(kRaDriver, msg::ReleaseComponentControl{});
+  forge(msg::ReleaseComponentControl{});
   jss->run_for(500ms);
   const auto after = jss_controller();
   ASSERT_TRUE(after);
@@ -304,8 +316,8 @@ TEST_F(JssCompetition, NobodyActsAsTheJssOperatorsAliasOverRa) {
   EXPECT_FALSE(moved_while(3s, [&] {
     jss_drive();
     if (++tick % 5 == 0) {
-      (*forger)->send(kRaDriver, msg::ClearEmergency{{1}});
-      (*forger)->send(kRaDriver, msg::Resume{});
+      forge(msg::ClearEmergency{{1}});
+      forge(msg::Resume{});
     }
   })) << "a forged Clear Emergency in the alias's name released the JSS operator's stop";
   const auto status = jss->query<m::ReportStatus>(kJssDriver, m::QueryStatus{}, 2s);
