@@ -301,7 +301,11 @@ TEST_F(JssCompetition, NobodyActsAsTheJssOperatorsAliasOverRa) {
   jss->send(kJssDriver, m::Resume{});
   msg::SetWrenchEffort forward{};
   forward.propulsive_linear_effort_x_percent = kForwardPercent;
-  EXPECT_FALSE(moved_while(3s, [&] { forge(forward); }))
+  int beat = 0;
+  EXPECT_FALSE(moved_while(3s, [&] {
+    forge(forward);
+    if (++beat % 10 == 0) jss->send(kJssDriver, m::RequestControl{{7}});  // JSS keeps control by asking again
+  }))
       << "RA Set Wrench Effort from the alias moved the JSS operator's vehicle";
   forge(msg::ReleaseComponentControl{});
   jss->run_for(500ms);
