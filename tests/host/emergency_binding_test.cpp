@@ -169,7 +169,7 @@ class HoldBinding : public ::testing::Test {
   }
   // A JSS message from the JSS client `from` (its datagram from `ip`:`port`) to our driver.
   template <class M>
-  void jss(NodeHost& host, std::uint32_t ip, std::uint16_t port, const jss::JssId& from, const M& message) {
+  void from_jss(NodeHost& host, std::uint32_t ip, std::uint16_t port, const jss::JssId& from, const M& message) {
     jss::JudpHeader header;
     header.source = from;
     header.destination = kJssDriver;
@@ -220,7 +220,7 @@ TEST_F(HoldBinding, AJssHolderGetsItsSlotBackAndNoOtherClientClearsIt) {
   {
     auto host = open(/*jss=*/true);
     ASSERT_TRUE(host);
-    jss(*host, kOperatorHost, 3794, kJssOperator, jss::msg::SetEmergency{{1}});
+    from_jss(*host, kOperatorHost, 3794, kJssOperator, jss::msg::SetEmergency{{1}});
     ASSERT_TRUE(in_emergency(*host));
     ASSERT_EQ(host->emergency_latch("vehicle")->holders(), std::vector<Address>{alias});
     host->stop("test");
@@ -230,16 +230,16 @@ TEST_F(HoldBinding, AJssHolderGetsItsSlotBackAndNoOtherClientClearsIt) {
   ASSERT_TRUE(host);
   EXPECT_TRUE(in_emergency(*host));
   EXPECT_EQ(host->jss_face()->client_of_alias(alias), kJssOperator);
-  jss(*host, kOtherHost, 3794, kOtherJssOperator, jss::msg::ClearEmergency{{1}});
+  from_jss(*host, kOtherHost, 3794, kOtherJssOperator, jss::msg::ClearEmergency{{1}});
   EXPECT_TRUE(in_emergency(*host));
   EXPECT_EQ(host->jss_face()->client_of_alias(Address{250, 2, 1, 1}), kOtherJssOperator);  // slot 2, not 1
-  jss(*host, kOtherHost, 3795, kJssOperator, jss::msg::ClearEmergency{{1}});  // its JSS ID, another host
+  from_jss(*host, kOtherHost, 3795, kJssOperator, jss::msg::ClearEmergency{{1}});  // its JSS ID, another host
   EXPECT_TRUE(in_emergency(*host));
   EXPECT_EQ(host->udp_link()->counters().dropped_for(transport::DropReason::route_claim), 1u);
   ra(*host, kOperatorHost, 40000, alias, msg::ClearEmergency{});  // the alias over RA, even from its host
   EXPECT_TRUE(in_emergency(*host));
   EXPECT_EQ(host->udp_link()->counters().dropped_for(transport::DropReason::alias_source), 1u);
-  jss(*host, kOperatorHost, 3900, kJssOperator, jss::msg::ClearEmergency{{1}});  // the holder, its host
+  from_jss(*host, kOperatorHost, 3900, kJssOperator, jss::msg::ClearEmergency{{1}});  // the holder, its host
   EXPECT_FALSE(in_emergency(*host));
 }
 
