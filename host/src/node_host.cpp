@@ -4,6 +4,11 @@
 
 namespace jaus::host {
 
+namespace {
+// How often a failed write of the emergency holds is tried again (besides at every change).
+constexpr rt::Duration kPersistRetry = std::chrono::seconds(2);
+}  // namespace
+
 NodeHost::NodeHost(HostConfig config, rt::LogFn log)
     : config_(std::move(config)), log_(log ? std::move(log) : rt::silent_log()) {
   config_.link.subsystem = config_.node.subsystem;
@@ -18,6 +23,10 @@ NodeHost::NodeHost(HostConfig config, rt::LogFn log)
     const auto timeout_s = std::chrono::ceil<std::chrono::seconds>(config_.settings.defaults.controller_timeout).count();
     jss.controller_timeout_s = static_cast<std::uint8_t>(std::clamp<long long>(timeout_s, 0, 255));
     config_.link.jss_self = jss_node_manager_id();
+    // Issue 42: RA datagrams from the alias subsystem are forgeries of JSS clients; the link refuses them.
+    config_.link.alias_subsystem = jss.client_alias_subsystem;
+  } else {
+    config_.link.alias_subsystem = 0;
   }
 }
 
@@ -61,7 +70,11 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     h->udp_link_->pin_jss_routes_while([face = h->jss_face_.get()](std::uint16_t subsystem, std::uint8_t node_id) {
       return face->holds_state_for(subsystem, node_id);
     });
+    // Before the link receives: a JSS holder's alias slot and JSS route are its own again.
+    h->rebind_jss_holders();
   }
+  // What was restored, now with every binding known (issue 42: the holders' hosts).
+  h->persist_emergency_holds();
   h->udp_link_->start();
   return h;
 }
@@ -73,10 +86,13 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::attach(HostConfig config, node::Li
   h->scheduler_ = &scheduler;
   h->make_node(link);
   if (auto added = h->add_components(nullptr); !added) return unexpected(added.error());
-  if (h->config_.jss.enabled)
+  if (h->config_.jss.enabled) {
     h->make_jss_face([host = h.get()](const jss::JssId& to, std::span<const std::uint8_t> datagram) {
       if (host->jss_sender_) host->jss_sender_(to, datagram);
     });
+    h->rebind_jss_holders();
+  }
+  h->persist_emergency_holds();
   return h;
 }
 
@@ -108,7 +124,7 @@ Expected<void> NodeHost::add_components(boost::asio::io_context* io) {
           return unexpected(provided.error());
   std::vector<rt::EmergencyLatch*> estop_latches;  // of the components the platform's e-stop holds
   rt::EmergencyLatch* driver_latch = nullptr;      // the platform's emergency flag mirrors it
-  restore_emergency_holds();
+  if (auto restored = restore_emergency_holds(); !restored) return unexpected(restored.error());
   for (const auto& spec : config_.components) {
     auto component = make_component(spec, config_.settings, *node_, backends_);
     if (!component) return unexpected(component.error());
@@ -133,33 +149,107 @@ Expected<void> NodeHost::add_components(boost::asio::io_context* io) {
     }
     node_->add(std::move(*component));
   }
-  persist_emergency_holds();
   platform_->follow_emergencies(std::move(estop_latches), driver_latch);
   return {};
 }
 
 // ---- emergency holds (emergency_holds.hpp) -------------------------------------
 
-void NodeHost::restore_emergency_holds() {
+Expected<void> NodeHost::restore_emergency_holds() {
   holds_file_ = emergency_holds_file(config_.emergency);
   if (!holds_file_) {
     log_(rt::LogLevel::warn, "emergency holds are not persisted (no state_directory): a restart forgets them");
-    return;
+    return {};
   }
-  auto holds = read_emergency_holds(*holds_file_);
-  if (!holds) {
+  // Fail safe (issue 42): a Set Emergency the node could not keep across a
+  // restart would be lost in silence, so a node that cannot write its state
+  // directory does not start.
+  if (auto writable = check_state_directory(holds_file_->parent_path()); !writable)
+    return unexpected(make_error(ErrorCode::io, writable.error().message() +
+                                                    ": emergency holds could not be kept across a restart; not started"));
+  auto state = read_emergency_holds(*holds_file_);
+  if (!state) {
     // Fail safe: who held what is unknown, so everything is held until the local clear.
     holds_unreadable_ = true;
-    log_(rt::LogLevel::error, "emergency holds unreadable (" + holds.error().message() +
+    log_(rt::LogLevel::error, "emergency holds unreadable (" + state.error().message() +
                                   "): every component with hardware is held in Emergency until SIGUSR1 clears it");
-    return;
+    return {};
   }
-  restored_holds_ = std::move(*holds);
-  for (const auto& [latch, hold] : restored_holds_) {
+  holds_generation_ = state->generation;
+  if (state->previous_version && !state->holds.empty())
+    log_(rt::LogLevel::warn, "emergency holds written by a previous version (no dialects, no hosts): each is held "
+                             "until the local clear (SIGUSR1), since its holder's host is unknown");
+  bind_restored_holders(std::move(state->holds));
+  return {};
+}
+
+// Issue 42: a restored holder is bound to the dialect, ID and host it held
+// from, before the link receives, so the same holder from the same host (any
+// port) clears it and nobody else can:
+// - RA: its node's route is reserved to its host (RouteTable::reserve, pinned
+//   by the hold), so the ID from another host is a refused claim;
+// - JSS: its alias slot is its JSS client node's again (rebind_jss_holders)
+//   and that node's JSS route is reserved to its host, so another JSS client
+//   is given another slot, and the client's ID from another host is refused.
+// A holder bound to nothing (a file of the previous version, a host the node
+// did not know, a JSS hold with the face now off or its alias subsystem
+// changed, two clients in one slot) cannot be told from a forger: it holds
+// as the latch's overflow, released only by the local clear (SIGUSR1).
+// An attached host (no network: its caller delivers every message) restores
+// holders of a known dialect by ID.
+void NodeHost::bind_restored_holders(PersistedHolds holds) {
+  const bool opened = udp_link_ != nullptr;
+  const std::uint8_t alias_subsystem = config_.jss.enabled ? config_.jss.client_alias_subsystem : 0;
+  std::map<std::uint8_t, jss::JssId> slots;  // the JSS holders' slots: one client node each
+  for (auto& [latch, hold] : holds) {
+    RestoredHold& restored = restored_holds_[latch];
+    restored.overflowed = hold.overflowed;
     std::string who;
-    for (const auto& a : hold.holders) who += (who.empty() ? "" : ", ") + a.to_string();
-    if (hold.overflowed) who += std::string(who.empty() ? "" : ", ") + "senders beyond the recorded ones";
+    const auto add = [&](const std::string& part) { who += (who.empty() ? "" : ", ") + part; };
+    for (const PersistedHolder& h : hold.holders) {
+      const std::string from = h.host ? " from " + ipv4_to_string(*h.host) : std::string();
+      bool bound = false;
+      if (h.dialect == HolderDialect::ra && (h.host || !opened) && h.holder.subsystem != alias_subsystem) {
+        if (opened) udp_link_->reserve_route(h.holder.subsystem, h.holder.node, *h.host);
+        bound = true;
+        add(h.holder.to_string() + " (RA" + from + ")");
+      } else if (h.dialect == HolderDialect::jss && h.jss_client && (h.host || !opened) && alias_subsystem != 0 &&
+                 h.holder.subsystem == alias_subsystem) {
+        const jss::JssId client_node{h.jss_client->subsystem, h.jss_client->node, jss::JssId::kAll};
+        const auto [slot, fresh] = slots.try_emplace(h.holder.node, client_node);
+        bool slot_ours = slot->second == client_node;
+        for (const auto& [other_slot, other] : slots)
+          if (other == client_node && other_slot != h.holder.node) slot_ours = false;
+        if (slot_ours) {
+          if (fresh) jss_bindings_.push_back(JssBinding{h.holder.node, client_node, h.host.value_or(0)});
+          bound = true;
+          add(h.holder.to_string() + " (JSS " + h.jss_client->to_string() + from + ")");
+        }
+      }
+      if (bound) {
+        restored.bound.push_back(h.holder);
+      } else {
+        restored.overflowed = true;
+        add(h.holder.to_string() + " (" + to_string(h.dialect) + from +
+            ", bound to no host: released only by the local clear)");
+      }
+    }
+    if (hold.overflowed) add("senders beyond the recorded ones");
     log_(rt::LogLevel::warn, "emergency held since before the restart (" + latch + "): " + who);
+  }
+}
+
+void NodeHost::rebind_jss_holders() {
+  if (!jss_face_) return;
+  for (const JssBinding& b : jss_bindings_) {
+    if (!jss_face_->reserve_client(b.slot, b.client_node)) {
+      // Beyond jss.max_clients: no client is ever given that slot, so only the local clear releases its hold.
+      log_(rt::LogLevel::error, "JSS client " + b.client_node.to_string() + " held an emergency under alias slot " +
+                                    std::to_string(b.slot) + ", which this configuration does not have (jss.max_clients): "
+                                    "released only by the local clear");
+      continue;
+    }
+    if (udp_link_) udp_link_->reserve_jss_route(b.client_node.subsystem, b.client_node.node, b.host);
   }
 }
 
@@ -175,7 +265,7 @@ rt::EmergencyLatch& NodeHost::latch_for(const ComponentSpec& spec) {
   // A hold of a latch this configuration no longer has (the scope changed)
   // holds every latch: nobody is forgotten.
   for (const auto& [held, hold] : restored_holds_)
-    if (held == name || !latch_configured(held)) latch->restore(hold.holders, hold.overflowed);
+    if (held == name || !latch_configured(held)) latch->restore(hold.bound, hold.overflowed);
   // Written right after the change has taken effect: the stop first, then the disk.
   latch->observe([this](const rt::EmergencyLatch&) { schedule_persisting(); });
   return *latch;
@@ -212,22 +302,67 @@ void NodeHost::schedule_persisting() {
   });
 }
 
+PersistedHold NodeHost::describe_for_persisting(const rt::EmergencyLatch& latch) const {
+  PersistedHold hold;
+  hold.overflowed = latch.overflowed();
+  for (const Address& a : latch.holders()) {
+    PersistedHolder h{a, HolderDialect::ra, std::nullopt, std::nullopt};
+    if (jss_face_ && jss_face_->owns(a)) {
+      // A JSS client's alias: the client, and the host its JSS route is pinned to.
+      h.dialect = HolderDialect::jss;
+      h.jss_client = jss_face_->client_of_alias(a);
+      if (!h.jss_client) h.dialect = HolderDialect::unknown;  // (its slot is gone: bound to nothing)
+      else if (udp_link_) h.host = udp_link_->jss_routes().address_of(h.jss_client->subsystem, h.jss_client->node);
+    } else if (udp_link_) {
+      h.host = udp_link_->routes().address_of(a.subsystem, a.node);
+    }
+    hold.holders.push_back(std::move(h));
+  }
+  return hold;
+}
+
 void NodeHost::persist_emergency_holds() {
   if (!holds_file_) return;
   PersistedHolds holds;
   for (const auto& [name, latch] : latches_)
-    if (latch->held_by_jaus()) holds[name] = PersistedHold{latch->holders(), latch->overflowed()};
-  if (holds == written_holds_) return;  // a local hold changed, or nothing did
-  if (auto written = write_emergency_holds(*holds_file_, holds); !written) {
-    // Once per failing streak: a peer toggling Set/Clear Emergency on a broken disk writes one line, not one a toggle.
-    if (!persisting_fails_)
-      log_(rt::LogLevel::error, "emergency holds not persisted: " + written.error().message() + " (retried at every change)");
-    persisting_fails_ = true;
-    return;
-  }
-  if (persisting_fails_) log_(rt::LogLevel::info, "emergency holds persisted again");
-  persisting_fails_ = false;
+    if (latch->held_by_jaus()) holds[name] = describe_for_persisting(*latch);
+  // Nothing changed (a local hold did), unless the last write failed: then
+  // the sidecar may be ahead of the holds file, and the retry rewrites both.
+  if (holds == written_holds_ && !persisting_fails_) return;
+  if (auto written = write_emergency_holds(*holds_file_, holds, ++holds_generation_); !written)
+    return persisting_failed(written.error());
   written_holds_ = std::move(holds);
+  if (persisting_fails_) persisting_recovered();
+}
+
+// Safety (issue 42): while the holds cannot be written, no Clear Emergency
+// is taken (EmergencyLatch::refuse_clears; the OCU's component stays in
+// Emergency and its status says so): a clear the file does not have would
+// undo itself at a restart, and a Set the file does not have must not be
+// cleared into a state the disk never saw. Said once per failing streak,
+// retried every few seconds and at every change; the local clear still works.
+void NodeHost::persisting_failed(const Error& error) {
+  if (!persisting_fails_)
+    log_(rt::LogLevel::error, "emergency holds not persisted: " + error.message() +
+                                  "; every Clear Emergency is refused until they are (retried every " +
+                                  std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kPersistRetry).count()) +
+                                  " s and at every change; SIGUSR1 still clears locally)");
+  persisting_fails_ = true;
+  for (const auto& [name, latch] : latches_) latch->refuse_clears(true);
+  if (persist_retry_ != rt::kNoTimer) return;
+  persist_retry_ = scheduler_->call_at(clock_->now() + kPersistRetry, [this, alive = std::weak_ptr<char>(alive_)] {
+    if (alive.expired()) return;
+    persist_retry_ = rt::kNoTimer;
+    persist_emergency_holds();
+  });
+}
+
+void NodeHost::persisting_recovered() {
+  persisting_fails_ = false;
+  for (const auto& [name, latch] : latches_) latch->refuse_clears(false);
+  if (persist_retry_ != rt::kNoTimer) scheduler_->cancel(persist_retry_);
+  persist_retry_ = rt::kNoTimer;
+  log_(rt::LogLevel::info, "emergency holds persisted again: Clear Emergency is taken again");
 }
 
 // Safety: the local clear releases every Set Emergency hold (a JAUS sender's,
@@ -310,6 +445,8 @@ void NodeHost::stop(const std::string& why) {
   // now, before a process exits without running its io_context again.
   if (platform_) platform_->stop();
   persist_emergency_holds();  // a change still waiting for the loop
+  if (persist_retry_ != rt::kNoTimer) scheduler_->cancel(persist_retry_);  // nothing keeps the loop after the stop
+  persist_retry_ = rt::kNoTimer;
   const auto& n = node_->counters();
   if (!udp_link_) {
     log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(n.delivered) + " messages delivered");

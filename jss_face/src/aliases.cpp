@@ -38,6 +38,16 @@ std::optional<AliasTable::Assigned> AliasTable::assign(const jss::JssId& client,
   return assigned;
 }
 
+bool AliasTable::reserve(std::uint8_t slot, const jss::JssId& client, rt::TimePoint now) {
+  if (slot < 1 || slot > slots_.size()) return false;
+  const jss::JssId node = client_node_of(client);
+  Slot& s = slots_[slot - 1];
+  if (s.client && *s.client != node) return false;
+  if (const auto other = find(node); other && *other != slot) return false;  // one slot a client node
+  s = Slot{node, now};
+  return true;
+}
+
 void AliasTable::heard(const jss::JssId& client, rt::TimePoint now) {
   if (auto slot = find(client)) slots_[*slot - 1].last_heard = now;
 }

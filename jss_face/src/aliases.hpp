@@ -53,6 +53,10 @@ class AliasTable {
   std::optional<Assigned> assign(const jss::JssId& client, rt::TimePoint now, const Reusable& reusable);
   // The slot of a client node, if it has one (no new slot).
   std::optional<std::uint8_t> find(const jss::JssId& client) const;
+  // Puts a client node in a given slot (a hold restored at start: the slot
+  // its alias held before). false: the slot is out of range or another
+  // client node's. Counts as hearing from it (not forgotten before its time).
+  bool reserve(std::uint8_t slot, const jss::JssId& client, rt::TimePoint now);
   // The client heard from: its slot is the last to be reused.
   void heard(const jss::JssId& client, rt::TimePoint now);
   // Ends a slot (its client node forgotten).

@@ -345,6 +345,14 @@ bool JssFace::holds_state_for(std::uint16_t subsystem, std::uint8_t node) const 
   const auto slot = impl_->aliases_.find(client_node);
   return slot && impl_->node_.holds_state_for(impl_->aliases_.alias_subsystem(), *slot);
 }
+std::optional<jss::JssId> JssFace::client_of_alias(const Address& alias) const {
+  const auto client = impl_->aliases_.client_of(alias);
+  if (!client) return std::nullopt;
+  return client->client;
+}
+bool JssFace::reserve_client(std::uint8_t slot, const jss::JssId& client_node) {
+  return impl_->aliases_.reserve(slot, client_node, impl_->env_.clock.now());
+}
 std::optional<jss::JssId> JssFace::jss_id_of(const Address& ra_component) const {
   return impl_->ids_.jss_id_of(ra_component);
 }

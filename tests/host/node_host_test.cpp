@@ -600,7 +600,9 @@ TEST_F(EmergencyHolds, HoldsSurviveARestartAndTheLocalClearReleasesThem) {
   NodeHost& h = **host;
   for (auto id : {kDriverId, kArmId, kCamerasId}) EXPECT_EQ(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
   ASSERT_NE(h.emergency_latch("vehicle"), nullptr);
-  EXPECT_EQ(h.emergency_latch("vehicle")->holders(), std::vector<Address>{kOperator});
+  // Delivered past the link, the holder has no host on record: it holds
+  // until the local clear (issue 42; bound holders: emergency_binding_test.cpp).
+  EXPECT_TRUE(h.emergency_latch("vehicle")->overflowed());
   EXPECT_EQ(h.clear_emergency_holds_locally("test"), 1u);
   for (auto id : {kDriverId, kArmId, kCamerasId}) EXPECT_NE(state_of(h, id), rt::PrimaryStatus::emergency) << int{id};
   h.stop("test");
@@ -660,25 +662,8 @@ TEST_F(EmergencyHolds, TheLocalClearReleasesEveryComponentsOwnLatchInComponentSc
     EXPECT_NE(component->state(), rt::PrimaryStatus::emergency) << component->name();
 }
 
-// A disk that cannot take the holds is said once, however often a peer toggles them.
-TEST_F(EmergencyHolds, AFailingHoldsFileIsOneLineNotOneAToggle) {
-  HostConfig c = config();
-  c.emergency.state_directory = (dir / "missing").string();
-  std::vector<std::string> lines;
-  auto host = NodeHost::open(c, io, [&](rt::LogLevel, const std::string& l) { lines.push_back(l); });
-  ASSERT_TRUE(host) << host.error().message();
-  rt::Component& driver = *(*host)->node().find(Address{1, 1, kDriverId, 1});
-  for (int i = 0; i < 20; ++i) {
-    deliver(driver, kOperator, msg::SetEmergency{});
-    io.poll();
-    deliver(driver, kOperator, msg::ClearEmergency{});
-    io.poll();
-  }
-  EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
-                          [](const std::string& l) { return l.find("emergency holds not persisted") != std::string::npos; }),
-            1);
-  EXPECT_NE(state_of(**host, kDriverId), rt::PrimaryStatus::emergency);  // the latch itself works on
-}
+// A disk that fails while running: HoldBinding.AFailingWriteRefusesClearsAndIsSaidOncePerStreak
+// (emergency_binding_test.cpp).
 
 TEST_F(EmergencyHolds, AnUnreadableHoldsFileHoldsEverythingUntilTheLocalClear) {
   std::ofstream(dir / "emergency-holds") << "vehicle not-an-address\n";

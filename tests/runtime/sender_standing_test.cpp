@@ -100,6 +100,36 @@ TEST(UnrecordedEmergency, IsObeyedAndOnlyTheLocalClearReleasesIt) {
   EXPECT_EQ(driver.state(), S::ready);
 }
 
+// Issue 42: while the host cannot persist its holds, a holder's Clear
+// Emergency is refused (its status still says Emergency); a Set is obeyed,
+// the local clear still clears, and once the holds can be written the
+// holder's clear is taken again.
+TEST(EmergencyClearsRefused, WhileHoldsCannotBePersistedTheHoldStays) {
+  rt::VirtualTime time;
+  RecordingOutbox outbox;
+  rt::EmergencyLatch latch;
+  rt::ComponentConfig config;
+  config.address = kDriver;
+  TestDriver driver(config, rt::Environment{time, time, outbox});
+  driver.share_emergency(latch);
+  driver.start();
+  deliver_to(driver, time, kOcuA, msg::SetEmergency{});
+  latch.refuse_clears(true);
+  deliver_to(driver, time, kOcuB, msg::SetEmergency{});  // a stop is always taken
+  deliver_to(driver, time, kOcuA, msg::ClearEmergency{});
+  EXPECT_EQ(driver.state(), S::emergency);
+  EXPECT_EQ(latch.holders(), (std::vector<Address>{kOcuA, kOcuB}));
+  EXPECT_EQ(driver.counters().refused_clears, 1u);
+  EXPECT_EQ(latch.clear(kOcuB), rt::EmergencyLatch::ClearResult::refused);
+  EXPECT_EQ(latch.clear(kOcuC), rt::EmergencyLatch::ClearResult::not_a_holder);  // not a holder comes first
+  latch.refuse_clears(false);
+  deliver_to(driver, time, kOcuA, msg::ClearEmergency{});
+  EXPECT_EQ(driver.state(), S::emergency);  // kOcuB holds on
+  latch.refuse_clears(true);
+  EXPECT_EQ(latch.clear_jaus_holders(), 1u);  // the local clear is never refused
+  EXPECT_EQ(driver.state(), S::ready);
+}
+
 // A recorded holder's hold cannot be cleared by an unrecorded sender naming it.
 TEST_F(ComponentTest, AnUnrecordedClearEmergencyReleasesNobodysHold) {
   deliver(kOcuA, msg::SetEmergency{});

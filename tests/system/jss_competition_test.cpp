@@ -14,6 +14,8 @@
 #include "default_jausd.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/ocu/session.hpp"
+#include "jaus/transport/framing.hpp"
+#include "jaus/wire/message.hpp"
 #include "jss_system.hpp"
 
 namespace jaus::test {
@@ -263,6 +265,77 @@ TEST_F(JssCompetition, EithersSetEmergencyStopsTheVehicleWhateverTheOtherSends) 
   ra->run_for(300ms);
   std::cout << "[ stopped  ] RA Set Emergency -> wheels at zero in " << ra_stop_ms << " ms; JSS Set Emergency in "
             << jss_stop_ms << " ms (sim status every 100 ms)\n";
+}
+
+// Issue 42, finding 1: the JSS operator's RA alias (250.<slot>.<component>.1)
+// written into RA headers from another host must not act in its name: not
+// drive while it controls (thirty and more Set Wrench Effort), not release
+// its control, not clear its emergency. jausd drops every RA datagram from
+// the alias subsystem (alias_source); the operator's own messages go on.
+TEST_F(JssCompetition, NobodyActsAsTheJssOperatorsAliasOverRa) {
+  ASSERT_EQ(jss_request(7), m::confirm_control::kControlAccepted) << jausd->output();
+  const auto report = jss_controller();
+  ASSERT_TRUE(report);
+  ASSERT_EQ(report->controller, kJssOperator);
+  // Its alias, as the RA side names it (Report Component Control).
+  const auto ra_report = ra_controller();
+  ASSERT_TRUE(ra_report) << jausd->output();
+  const Address alias = ra_report->controller;
+  ASSERT_EQ(alias.subsystem, kAliasSubsystem);
+  // Raw OPC datagrams from another host (an OCU library refuses component 1 as its own).
+  namespace ip = boost::asio::ip;
+  ip::udp::socket raw(io, ip::udp::endpoint(ip::make_address_v4(kRaHost), 0));
+  const auto forge = [&](const auto& message) {
+    Header h;
+    h.source = alias;
+    h.destination = kRaDriver;
+    std::vector<std::uint8_t> packet(kHeaderSize + kMaxPayloadSize);
+    const auto size = wire::encode_message(h, message, packet);
+    ASSERT_TRUE(size) << size.error().message();
+    packet.resize(*size);
+    const auto prefix = transport::frame_prefix(transport::Framing::opc, packet.size());
+    std::vector<std::uint8_t> datagram(prefix.view().begin(), prefix.view().end());
+    datagram.insert(datagram.end(), packet.begin(), packet.end());
+    raw.send_to(boost::asio::buffer(datagram), ip::udp::endpoint(ip::make_address_v4(kNode), 3794));
+  };
+  jss->send(kJssDriver, m::Resume{});
+  msg::SetWrenchEffort forward{};
+  forward.propulsive_linear_effort_x_percent = kForwardPercent;
+  int beat = 0;
+  EXPECT_FALSE(moved_while(3s, [&] {
+    forge(forward);
+    if (++beat % 10 == 0) jss->send(kJssDriver, m::RequestControl{{7}});  // JSS keeps control by asking again
+  }))
+      << "RA Set Wrench Effort from the alias moved the JSS operator's vehicle";
+  forge(msg::ReleaseComponentControl{});
+  jss->run_for(500ms);
+  const auto after = jss_controller();
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->controller, kJssOperator) << "a forged Release dropped the JSS operator's control";
+  EXPECT_TRUE(moves_within(5s, [&] { jss_drive(); })) << "the JSS operator no longer drives";
+  // Its emergency: a forged Clear releases nothing; its own Clear does.
+  jss->send(kJssDriver, m::SetEmergency{{1}}, jss::JudpPriority::safety_critical);
+  ASSERT_TRUE(stops_within(2s, [] {}));
+  int tick = 0;
+  EXPECT_FALSE(moved_while(3s, [&] {
+    jss_drive();
+    if (++tick % 5 == 0) {
+      forge(msg::ClearEmergency{{1}});
+      forge(msg::Resume{});
+    }
+  })) << "a forged Clear Emergency in the alias's name released the JSS operator's stop";
+  const auto status = jss->query<m::ReportStatus>(kJssDriver, m::QueryStatus{}, 2s);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status->status & 0x0F, 5) << "not in Emergency";  // as RA's primary status
+  EXPECT_TRUE(jausd->output_contains("source in the JSS clients' alias subsystem")) << jausd->output();
+  jss->send(kJssDriver, m::ClearEmergency{{1}});
+  jss->run_for(300ms);
+  const auto cleared = jss->query<m::ReportStatus>(kJssDriver, m::QueryStatus{}, 2s);
+  ASSERT_TRUE(cleared);
+  EXPECT_NE(cleared->status & 0x0F, 5);
+  jss->send(kJssDriver, m::Standby{});
+  jss->send(kJssDriver, m::ReleaseControl{});
+  jss->run_for(300ms);
 }
 
 }  // namespace

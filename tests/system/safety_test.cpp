@@ -21,6 +21,7 @@
 #include "clearpath_simulator.hpp"
 #include "default_jausd.hpp"
 #include "jaus/messages/all.hpp"
+#include "jss_system.hpp"
 
 namespace jaus::test {
 namespace {
@@ -455,6 +456,89 @@ TEST_F(Safety, EmergencyHoldsSurviveARestartOfJausd) {
   ASSERT_EQ(emergency("clear", "254.74.40.9"), 0);
   EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
   EXPECT_TRUE(sim->wait_for([](const Json& s) { return (s["safety_flags"].get<int>() & 0x08) == 0; }, 10s));
+}
+
+// Issue 42, finding 2: a JSS operator's hold survives a restart bound to its
+// JSS ID and host. Another JSS operator (another host, never held anything)
+// is given another alias slot and its Clear Emergency releases nothing; the
+// holder's JSS ID from another host is refused; the holder clears from its host.
+TEST_F(Safety, AfterARestartOnlyTheJssHolderFromItsHostClearsItsStop) {
+  const std::string with_jss = std::string("clearpath: {emergency_flags: 0x08}\n") + jss_on_config();
+  const jss::JssId driver{kSubsystem, 1, 33};
+  const jss::JssId holder_id{200, 5, 40};
+  start_sim();
+  start_jausd(true, with_jss);
+  {
+    auto holder = open_jss_operator(holder_id, "127.0.0.75", kNode, "holder");
+    ASSERT_TRUE(holder);
+    holder->send(driver, jss::msg::SetEmergency{{1}}, jss::JudpPriority::safety_critical);
+    holder->run_for(300ms);
+  }
+  ASSERT_TRUE(poll_status(kDriver, "emergency", 10s));
+  jausd->process().signal(SIGTERM);
+  ASSERT_EQ(jausd->process().wait(20s), 0) << jausd->output();
+  jausd.reset();
+  start_jausd(/*wait_ready=*/false, with_jss);
+  ASSERT_TRUE(poll_status(kDriver, "emergency", 30s)) << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("(JSS 200.5.40 from 127.0.0.75)")) << jausd->output();
+  auto other = open_jss_operator(jss::JssId{77, 3, 1}, "127.0.0.76", kNode, "other operator");
+  ASSERT_TRUE(other);
+  auto impostor = open_jss_operator(holder_id, "127.0.0.76", kNode, "impostor");
+  ASSERT_TRUE(impostor);
+  for (int i = 0; i < 3; ++i) {
+    other->send(driver, jss::msg::ClearEmergency{{1}});
+    impostor->send(driver, jss::msg::ClearEmergency{{1}});
+    other->run_for(300ms);
+  }
+  EXPECT_EQ(status_of(kDriver), "emergency") << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("spoofed, or two peers with one ID")) << jausd->output();
+  auto holder = open_jss_operator(holder_id, "127.0.0.75", kNode, "holder again");  // a new port, its host
+  ASSERT_TRUE(holder);
+  holder->send(driver, jss::msg::ClearEmergency{{1}});
+  holder->run_for(300ms);
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+}
+
+// Issue 42, finding 5: a state directory jausd cannot write refuses the
+// start (a path through a regular file: root is refused too), said clearly.
+TEST_F(Safety, JausdRefusesToStartOnAStateDirectoryItCannotWrite) {
+  std::ofstream(dir / "not-a-directory") << "a file\n";
+  DefaultJausd refused("safety-refused", kSubsystem, kNode,
+                       "state_directory: " + (dir / "not-a-directory" / "state").string() + "\n");
+  ASSERT_TRUE(refused.started());
+  EXPECT_EQ(refused.process().wait(20s), 2) << refused.output();
+  EXPECT_TRUE(refused.output_contains("cannot be created")) << refused.output();
+  EXPECT_TRUE(refused.output_contains("not started")) << refused.output();
+}
+
+// Issue 42, finding 5: a write that fails while jausd runs (the state
+// directory replaced by a file: root is not stopped by permissions) is
+// logged once, and no Clear Emergency is taken until the holds are written
+// again: the OCU's clear ends with the driver still in Emergency.
+TEST_F(Safety, WhileHoldsCannotBePersistedNoClearEmergencyIsTaken) {
+  start();
+  ASSERT_EQ(emergency("set", "254.74.40.9"), 0);
+  ASSERT_TRUE(poll_status(kDriver, "emergency", 10s));
+  std::filesystem::rename(dir / "state", dir / "state.away");
+  std::ofstream(dir / "state") << "the disk is gone\n";
+  ASSERT_EQ(emergency("set", "254.74.40.8"), 0);  // a change to write: the write fails
+  const auto said = [&](const std::string& text) {
+    const auto until = std::chrono::steady_clock::now() + 20s;
+    while (!jausd->output_contains(text) && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(100ms);
+    return jausd->output_contains(text);
+  };
+  ASSERT_TRUE(said("emergency holds not persisted")) << jausd->output();
+  EXPECT_NE(emergency("clear", "254.74.40.8"), 0);
+  EXPECT_NE(emergency("clear", "254.74.40.9"), 0);
+  EXPECT_EQ(status_of(kDriver), "emergency");
+  EXPECT_TRUE(jausd->output_contains("refused: the emergency holds cannot be persisted")) << jausd->output();
+  // The disk is back: the next retry writes the holds, and the clears are taken.
+  std::filesystem::remove(dir / "state");
+  std::filesystem::rename(dir / "state.away", dir / "state");
+  ASSERT_TRUE(said("emergency holds persisted again")) << jausd->output();
+  EXPECT_NE(emergency("clear", "254.74.40.8"), 0);  // taken, but 254.74.40.9 still holds
+  EXPECT_EQ(emergency("clear", "254.74.40.9"), 0);
+  EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
 }
 
 // Until the platform speaks, the vehicle's components are initialising, not

@@ -160,6 +160,42 @@ TEST_F(HostileNetwork, AForgedClaimOnAPinnedHoldersIdIsRefusedEvenAfterLongSilen
   EXPECT_FALSE(link->routes().route(2, 1));
 }
 
+// Issue 42: a JSS operator's RA alias is the face's alone. An RA datagram
+// naming an alias as its source (a forged Clear Emergency, Set Wrench Effort
+// or Release in a JSS operator's name) is dropped from any host, counted,
+// said in the repeat-limited drop lines, and teaches no route.
+TEST_F(HostileNetwork, AnRaDatagramFromTheJssAliasSubsystemIsDroppedFromAnyHost) {
+  UdpLinkOptions options;
+  options.alias_subsystem = 250;
+  open(options);
+  const Address alias{250, 1, 40, 1};
+  for (const std::uint32_t host : {kLoopback1, 0x7F000005u}) {
+    link->receive_datagram(Ipv4Endpoint{host, 40000}, opc(message(alias, kManager, msg::ClearEmergency::code, 2)));
+    link->receive_datagram(Ipv4Endpoint{host, 40000}, opc(message(alias, kManager, msg::ReleaseComponentControl::code)));
+  }
+  for (int i = 0; i < 30; ++i)
+    link->receive_datagram(Ipv4Endpoint{0x7F000005u, 40000},
+                           opc(message(alias, Address{1, 1, 33, 1}, msg::SetWrenchEffort::code, 2)));
+  EXPECT_TRUE(delivered.empty());
+  EXPECT_EQ(link->counters().dropped_for(DropReason::alias_source), 34u);
+  EXPECT_FALSE(link->routes().route(250, 1));
+  const auto lines = std::count_if(logs.begin(), logs.end(), [](const std::string& l) {
+    return l.find("alias subsystem 250") != std::string::npos;
+  });
+  EXPECT_GE(lines, 1);
+  EXPECT_LT(lines, 34);  // repeat-limited, not one a datagram
+  // Every other subsystem is as before.
+  link->receive_datagram(Ipv4Endpoint{kLoopback1, 40000}, query_from(kOcu));
+  EXPECT_EQ(delivered.size(), 1u);
+}
+
+// Without a JSS face the subsystem is an ordinary one.
+TEST_F(HostileNetwork, WithoutAFaceNoSubsystemIsAnAlias) {
+  link->receive_datagram(Ipv4Endpoint{kLoopback1, 40000}, query_from(Address{250, 1, 40, 1}));
+  EXPECT_EQ(delivered.size(), 1u);
+  EXPECT_EQ(link->counters().dropped_for(DropReason::alias_source), 0u);
+}
+
 // ---- endpoints per address, full tables ---------------------------------------
 
 TEST_F(HostileNetwork, TwoHundredFiftySixPortsFromOneHostDoNotStopALaterOcu) {

@@ -186,6 +186,39 @@ TEST(RouteTable, APinnedIdNeverMovesToAnotherHostNorExpires) {
   EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::opc, time.now()), Learnt::new_route);
 }
 
+// Issue 42: a holder restored at start is bound to its host before it is
+// heard: its first datagram from that host (any port) takes the route, the
+// ID from another host is refused however long it waits, and nothing is sent
+// to the reservation itself (no port known).
+TEST(RouteTable, AReservedIdIsTheReservedHostsFromTheStart) {
+  rt::VirtualTime time;
+  RouteTable table(RouteTableOptions{.route_timeout = 30s});
+  bool holds = true;
+  table.pin_while([&](std::uint8_t subsystem, std::uint8_t node) { return holds && subsystem == 2 && node == 1; });
+  table.reserve(2, 1, kPeerA.address, time.now());
+  EXPECT_FALSE(table.route(2, 1));  // nowhere to send yet
+  EXPECT_EQ(table.address_of(2, 1), kPeerA.address);
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::opc, time.now()), Learnt::claim_refused);  // at once
+  time.advance(10min);
+  table.expire(time.now());
+  EXPECT_EQ(table.learn(2, 1, kPeerB, Framing::opc, time.now()), Learnt::claim_refused);  // and ever after
+  EXPECT_EQ(table.counters().pinned_claims_refused, 1u);
+  // The holder is back, from its host on a new port.
+  const Ipv4Endpoint back{kPeerA.address, 40123};
+  EXPECT_EQ(table.learn(2, 1, back, Framing::judp, time.now()), Learnt::moved);
+  ASSERT_TRUE(table.route(2, 1));
+  EXPECT_EQ(table.route(2, 1)->endpoint, back);
+  // A reservation does not displace a route already learnt.
+  table.reserve(2, 1, kPeerB.address, time.now());
+  EXPECT_EQ(table.route(2, 1)->endpoint, back);
+  // Unheld, an unheard reservation expires like a silent route.
+  holds = false;
+  table.reserve(3, 1, kPeerB.address, time.now());
+  time.advance(31s);
+  table.expire(time.now());
+  EXPECT_FALSE(table.address_of(3, 1));
+}
+
 TEST(RouteTable, AnUnpinnedSilentIdStillMovesAfterTheSilence) {
   rt::VirtualTime time;
   RouteTable table;

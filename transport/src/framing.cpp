@@ -32,6 +32,7 @@ std::string_view to_string(DropReason reason) {
     case DropReason::relayed_copy: return "relayed copy of a direct message";
     case DropReason::jss_malformed: return "malformed AS5669A datagram";
     case DropReason::jss_off: return "AS5669A datagram with JSS off";
+    case DropReason::alias_source: return "source in the JSS clients' alias subsystem";
     case DropReason::count_: break;
   }
   return "unknown";

@@ -154,6 +154,18 @@ Learnt RouteTable::learn(std::uint16_t subsystem, std::uint8_t node, const Ipv4E
   return result;
 }
 
+void RouteTable::reserve(std::uint16_t subsystem, std::uint8_t node, std::uint32_t address, rt::TimePoint now) {
+  // Port 0 is no sender's source port: the route names the host only, and no
+  // peer endpoint exists for it (route() answers nullopt, nothing is sent).
+  routes_.try_emplace(key(subsystem, node), Route{Ipv4Endpoint{address, 0}, now});
+}
+
+std::optional<std::uint32_t> RouteTable::address_of(std::uint16_t subsystem, std::uint8_t node) const {
+  const auto route = routes_.find(key(subsystem, node));
+  if (route == routes_.end()) return std::nullopt;
+  return route->second.endpoint.address;
+}
+
 std::optional<Peer> RouteTable::route(std::uint16_t subsystem, std::uint8_t node) const {
   const auto route = routes_.find(key(subsystem, node));
   if (route == routes_.end()) return std::nullopt;

@@ -287,6 +287,15 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
   // Nothing is learnt from, nor delivered for, a source that cannot answer.
   if (!header.source.is_valid() || header.source.is_broadcast())
     return drop(DropReason::invalid_source, from, [&] { return "source " + header.source.to_string(); });
+  // Safety (issue 42): a JSS client's alias is the face's alone. An RA
+  // datagram naming one as its source is a forgery (or a peer configured
+  // into the alias subsystem): dropped from any host, before any route is
+  // learnt, so it never reaches the node as that JSS operator.
+  if (options_.alias_subsystem != 0 && header.source.subsystem == options_.alias_subsystem)
+    return drop(DropReason::alias_source, from, [&] {
+      return "source " + header.source.to_string() + " is in the JSS clients' alias subsystem " +
+             std::to_string(options_.alias_subsystem) + "; only the JSS face speaks for it";
+    });
   const Learnt learnt =
       routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
   auto node = [&] { return std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node); };

@@ -143,7 +143,9 @@ void Component::hold_hardware_emergency(std::string_view cause) {
 
 void Component::release_hardware_emergency(std::string_view cause) {
   switch (emergency_->release_local(cause)) {
-    case EmergencyLatch::ClearResult::not_a_holder: return;
+    case EmergencyLatch::ClearResult::not_a_holder:
+    case EmergencyLatch::ClearResult::refused:  // (only JAUS clears are refused)
+      return;
     case EmergencyLatch::ClearResult::still_held:
       log_repeated({"hardware emergencies cleared", kNoteworthyBurst}, LogLevel::info, [&] {
         return "hardware emergency cleared (" + std::string(cause) + "); still held by " +
@@ -489,6 +491,15 @@ void Component::on_clear_emergency(const Header& h, const msg::ClearEmergency& m
       });
       return;
     }
+    case EmergencyLatch::ClearResult::refused:
+      // Its Report Component Status still says Emergency: the OCU sees its clear not taken.
+      ++counters_.refused_clears;
+      log_repeated("Clear Emergency refused while holds cannot be persisted", LogLevel::error, [&] {
+        return "Clear Emergency from " + h.source.to_string() +
+               " refused: the emergency holds cannot be persisted (state directory); held until they can be, "
+               "or until the local clear";
+      });
+      return;
     case EmergencyLatch::ClearResult::released_last:
       return;
   }

@@ -29,7 +29,9 @@ bool EmergencyLatch::hold_unrecorded() {
 }
 
 EmergencyLatch::ClearResult EmergencyLatch::clear(const Address& holder) {
-  if (holders_.erase(holder) == 0) return ClearResult::not_a_holder;
+  if (!holders_.contains(holder)) return ClearResult::not_a_holder;
+  if (clears_refused_) return ClearResult::refused;  // the hold stays until it can be persisted
+  holders_.erase(holder);
   last_by_ = holder;
   changed();
   return active() ? ClearResult::still_held : ClearResult::released_last;

@@ -60,6 +60,37 @@ TEST(JssFaceManagement, AJssStopHoldsUntilThatClientClearsIt) {
   EXPECT_NE(node.driver().state(), rt::PrimaryStatus::emergency);
 }
 
+// Issue 42: a JSS holder restored at start gets its alias slot back before
+// anyone is heard. Another client is given another slot and its Clear
+// Emergency releases nothing; the holder's own clear does.
+TEST(JssFaceManagement, AReservedSlotIsItsClientsAndNoOtherClientsClearReleasesIt) {
+  FaceNode node;
+  const Address holder_alias{250, 1, kClientA.component, 1};
+  ASSERT_TRUE(node.face().reserve_client(1, kClientA));
+  EXPECT_FALSE(node.face().reserve_client(1, kClientB));  // the slot is another client node's
+  EXPECT_FALSE(node.face().reserve_client(200, kClientB));  // beyond max_clients
+  // The hold as restored at start: held by the alias (the host restores the latch's holders).
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  const auto size = wire::encode_payload(jaus::msg::SetEmergency{{1}}, payload);
+  ASSERT_TRUE(size.has_value());
+  Header h;
+  h.command_code = jaus::msg::SetEmergency::code;
+  h.source = holder_alias;
+  h.destination = kRaDriver;
+  h.data_size = static_cast<std::uint16_t>(*size);
+  node.host().node().receive(PacketView{h, std::span(payload).first(*size)});
+  node.run_for(50ms);
+  ASSERT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+  node.send(kClientB, kDriver, msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+  EXPECT_EQ(node.face().client_of_alias(Address{250, 2, kClientB.component, 1}), kClientB);
+  EXPECT_EQ(node.face().client_of_alias(holder_alias), kClientA);
+  node.send(kClientA, kDriver, msg::ClearEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_NE(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
 TEST(JssFaceManagement, ABroadcastSetEmergencyStopsEveryComponentAndIsNotAcknowledged) {
   FaceNode node;
   node.send(kClientA, kEveryone, msg::SetEmergency{{1}}, /*ack=*/true);

@@ -156,13 +156,22 @@ class NodeHost {
   // Our node manager's JSS ID (the face's numbering of RA component 1).
   jss::JssId jss_node_manager_id() const;
   Expected<void> add_components(boost::asio::io_context* io);  // io: an opened host's
-  void restore_emergency_holds();
+  // Reads the holds (refusing a state directory that cannot be written) and
+  // binds each restored holder to its host (bind_restored_holders).
+  Expected<void> restore_emergency_holds();
+  void bind_restored_holders(PersistedHolds holds);
+  // The JSS holders' alias slots and JSS routes, once the face exists.
+  void rebind_jss_holders();
   rt::EmergencyLatch& latch_for(const ComponentSpec& spec);
   // The latch of a component without hardware: the host's, so that the local clear reaches it.
   rt::EmergencyLatch& unpersisted_latch_for(const ComponentSpec& spec);
   bool latch_configured(const std::string& name) const;  // a latch this configuration makes
   void schedule_persisting();
   void persist_emergency_holds();
+  // Who holds a latch, as persisted: dialect, ID and host of each holder.
+  PersistedHold describe_for_persisting(const rt::EmergencyLatch& latch) const;
+  void persisting_failed(const Error& error);
+  void persisting_recovered();
 
   HostConfig config_;
   rt::LogFn log_;
@@ -179,11 +188,25 @@ class NodeHost {
   // by "address (name)", for the local clear; same lifetime rule.
   std::map<std::string, std::unique_ptr<rt::EmergencyLatch>> unpersisted_latches_;
   std::optional<std::filesystem::path> holds_file_;
-  PersistedHolds restored_holds_;
+  // Restored holds by latch, each holder bound (its address restored) or
+  // not (held as the latch's overflow: only the local clear releases it).
+  struct RestoredHold {
+    std::vector<Address> bound;
+    bool overflowed = false;
+  };
+  std::map<std::string, RestoredHold> restored_holds_;
+  struct JssBinding {
+    std::uint8_t slot = 0;
+    jss::JssId client_node;
+    std::uint32_t host = 0;
+  };
+  std::vector<JssBinding> jss_bindings_;  // applied once the face exists
   bool holds_unreadable_ = false;
   PersistedHolds written_holds_;
+  std::uint64_t holds_generation_ = 0;  // of the last write begun
   bool persist_posted_ = false;
-  bool persisting_fails_ = false;  // the last write failed (said once per streak)
+  bool persisting_fails_ = false;  // the last write failed (said once per streak; clears refused meanwhile)
+  rt::TimerId persist_retry_ = rt::kNoTimer;
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> udp_link_;  // an opened host's
   // The node's link when the face is on (around the UDP or the attached

@@ -92,6 +92,15 @@ class JssFace {
   // holds control, an emergency, a service connection, or it has events. The
   // transport pins its route meanwhile (UdpLink::pin_jss_routes_while).
   bool holds_state_for(std::uint16_t subsystem, std::uint8_t node) const;
+  // The JSS client an alias address stands for (the client's component),
+  // if the alias's slot is in use: who a hold under that alias belongs to.
+  std::optional<jss::JssId> client_of_alias(const Address& alias) const;
+  // Before anything is received (a restart, issue 42): the alias slot of a
+  // JSS client node that held state before the restart is that node's
+  // again, so no other client is given it (the caller binds the node's JSS
+  // route to its host). false: the slot is beyond max_clients, or taken by
+  // another client node.
+  bool reserve_client(std::uint8_t slot, const jss::JssId& client_node);
   // Our JSS ID of a local RA component.
   std::optional<jss::JssId> jss_id_of(const Address& ra_component) const;
   const FaceConfig& config() const;

@@ -63,8 +63,16 @@ class EmergencyLatch {
   // overflow (until the local clear), its address never recorded. Returns
   // true when this made the latch active.
   bool hold_unrecorded();
-  enum class ClearResult { released_last, still_held, not_a_holder };
+  // refused: the holder's clear is refused while clears are held back
+  // (refuse_clears): its hold stays.
+  enum class ClearResult { released_last, still_held, not_a_holder, refused };
   ClearResult clear(const Address& holder);
+  // While set, clear() of a JAUS holder is refused and the hold stays: the
+  // host cannot persist the holds, and a clear it cannot write could come
+  // back as a different hold after a restart, or a Set it could not write be
+  // lost with the clear (issue 42). The local clear still works.
+  void refuse_clears(bool refuse) { clears_refused_ = refuse; }
+  bool clears_refused() const { return clears_refused_; }
 
   // A local hold by name; returns true when it is new.
   bool hold_local(std::string_view cause);
@@ -102,6 +110,7 @@ class EmergencyLatch {
   std::set<Address> holders_;
   std::set<std::string, std::less<>> local_;
   bool overflowed_ = false;
+  bool clears_refused_ = false;
   std::uint64_t unrecorded_ = 0;
   Address last_by_{};
   std::map<MemberId, Member> members_;

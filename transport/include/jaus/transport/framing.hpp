@@ -40,6 +40,7 @@ enum class DropReason : std::uint8_t {
   relayed_copy,     // a configured peer relayed a message of a node we hear directly: a duplicate
   jss_malformed,    // first byte 0x02 (AS5669A) but not a valid AS5669A datagram
   jss_off,          // an AS5669A datagram while the node has no JSS face
+  alias_source,     // an RA source in the JSS clients' alias subsystem: only the JSS face speaks for it
   count_            // number of reasons
 };
 std::string_view to_string(DropReason reason);

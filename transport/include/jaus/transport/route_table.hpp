@@ -119,6 +119,17 @@ class RouteTable {
   // A datagram from `from`, framed in `framing`, whose JAUS source is subsystem.node.
   Learnt learn(std::uint16_t subsystem, std::uint8_t node, const Ipv4Endpoint& from, Framing framing,
                rt::TimePoint now);
+  // Binds (subsystem, node) to an IP address before it is heard: a holder
+  // of state restored at start (an emergency hold persisted with its host,
+  // issue 42). Until the ID is heard, nothing is sent to it (no port is
+  // known: route() is nullopt); the ID heard from that address (any port)
+  // takes the route as a restarted peer does, and a claim from another
+  // address is refused while the ID holds state (pin_while), exactly as for
+  // a live pinned route. Not counted against max_entries (holds are bounded
+  // by the emergency latches). An ID with a route already keeps it.
+  void reserve(std::uint16_t subsystem, std::uint8_t node, std::uint32_t address, rt::TimePoint now);
+  // The IP address an ID is bound to: its learnt route's, or a reservation's.
+  std::optional<std::uint32_t> address_of(std::uint16_t subsystem, std::uint8_t node) const;
   // Where (subsystem, node) lives, if known.
   std::optional<Peer> route(std::uint16_t subsystem, std::uint8_t node) const;
   // Every distinct peer endpoint (static and learnt), for broadcasts.

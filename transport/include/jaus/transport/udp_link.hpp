@@ -38,7 +38,10 @@
 // a JSS endpoint is challenged with an AS5669A Query Heartbeat Pulse, ACK
 // requested), else to `jss_multicast` and the static peers. Without a
 // handler AS5669A datagrams are dropped (jss_off). The link reads nothing of
-// JSS beyond the transport header.
+// JSS beyond the transport header. An RA datagram whose source is in the
+// face's alias subsystem (alias_subsystem) is dropped before anything is
+// learnt from it (alias_source): the face is the only way into the node for
+// an alias address.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -101,6 +104,12 @@ struct UdpLinkOptions {
   // Our node manager's JSS ID: the source of JSS challenges; AS5669A datagrams
   // from its (subsystem, node) are ours. Unset: (subsystem, node, 1).
   std::optional<jss::JssId> jss_self;
+  // The RA subsystem of the JSS face's client aliases (FaceConfig::
+  // client_alias_subsystem); 0: no face, no alias subsystem. An RA datagram
+  // claiming a source in it is dropped (DropReason::alias_source) from any
+  // host: only the face speaks for an alias, so nobody forges a JSS
+  // operator's control, emergency hold or release over RA (issue 42).
+  std::uint8_t alias_subsystem = 0;
 };
 
 struct JssLinkCounters {
@@ -163,6 +172,15 @@ class UdpLink final : public node::Link {
   // control, an emergency, ...): its JSS route is pinned as RA ones are.
   void pin_jss_routes_while(std::function<bool(std::uint16_t subsystem, std::uint8_t node)> holds_state) {
     jss_routes_.pin_while(std::move(holds_state));
+  }
+  // Binds an RA node ID (or a JSS node's) to the host it held state from
+  // before a restart (RouteTable::reserve): called before start(), so the
+  // first datagram naming that ID from another host is already a refused claim.
+  void reserve_route(std::uint8_t subsystem, std::uint8_t node, std::uint32_t address) {
+    routes_.reserve(subsystem, node, address, clock_.now());
+  }
+  void reserve_jss_route(std::uint16_t subsystem, std::uint8_t node, std::uint32_t address) {
+    jss_routes_.reserve(subsystem, node, address, clock_.now());
   }
   // Starts receiving.
   void start();
