@@ -233,16 +233,16 @@ TEST(DriverAuthorityCeiling, TheOptionIsAWholeNumberUpTo254ForEveryKind) {
     SCOPED_TRACE(c.kind);
     const host::ComponentKind* kind = host::find_component_kind(c.kind);
     ASSERT_TRUE(kind);
-    for (const std::string good : {"0", "1", "254"}) {
+    for (const char* good : {"0", "1", "254"}) {
       host::ComponentSpec spec{c.kind, kind->default_id, 1, 0, "", {{"max_authority", good}}, 0, {}};
       EXPECT_TRUE(host::check_component_options(spec)) << good;
     }
-    for (const std::string bad : {"255", "-1", "1.5", "one", ""}) {
+    for (const char* bad : {"255", "-1", "1.5", "one", ""}) {
       host::ComponentSpec spec{c.kind, kind->default_id, 1, 0, "", {{"max_authority", bad}}, 0, {}};
       const auto checked = host::check_component_options(spec);
       ASSERT_FALSE(checked) << bad;
       EXPECT_EQ(checked.error().what, c.kind + " option 'max_authority' must be a whole number 0..254 (an operator "
-                                               "must be able to ask for more), got '" + bad + "'");
+                                               "must be able to ask for more), got '" + std::string(bad) + "'");
     }
   }
 }
