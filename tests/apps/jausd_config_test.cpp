@@ -699,6 +699,25 @@ TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
                5, "unknown option 'brake' for primitive_driver (known: command_timeout_s, stop_brake_percent)");
 }
 
+// Issue 42: a driver's authority ceiling, max_authority, is a whole number
+// 0..254: an operator must be able to ask for more than it.
+TEST(JausdConfigErrors, ADriversMaxAuthorityIsAWholeNumberUpTo254) {
+  const auto c = expect_ok("components:\n  - kind: node_manager\n  - kind: local_waypoint_driver\n    authority: 3\n"
+                           "    options:\n      max_authority: 3\n");
+  ASSERT_EQ(c.components.size(), 2u);
+  EXPECT_EQ(c.components[1].options.at("max_authority"), "3");
+  expect_error("components:\n  - kind: node_manager\n  - kind: local_waypoint_driver\n    options:\n"
+               "      max_authority: 255\n",
+               5,
+               "local_waypoint_driver option 'max_authority' must be a whole number 0..254 (an operator must be able "
+               "to ask for more), got '255'");
+  expect_error("components:\n  - kind: node_manager\n  - kind: global_vector_driver\n    options:\n"
+               "      command_rate_hz: 10\n      max_authority: 1.5\n",
+               6,
+               "global_vector_driver option 'max_authority' must be a whole number 0..254 (an operator must be able "
+               "to ask for more), got '1.5'");
+}
+
 // The local pose sensor (issue 30): configured by its kind, at its RA ID, its
 // one option checked at the option's line; its origin is the vehicle's
 // start, not an option of its own.

@@ -295,5 +295,59 @@ TEST_F(ComponentTest, SetAuthorityNeedsControl) {
   EXPECT_EQ(driver->control().own_authority(), 77);
 }
 
+// Issue 42: a component that controls others (the drivers above the
+// primitive driver) has a ceiling its controller cannot raise its authority
+// above, so an operator above the ceiling always wins. Refused means not
+// applied (the RA has no reply): counted, logged with the reason, and Query
+// Component Authority keeps reporting the authority in effect.
+TEST_F(ComponentTest, SetAuthorityAboveTheCeilingIsRefusedAndAtOrBelowItIsApplied) {
+  make(1, std::chrono::seconds(3), false, true, /*max_authority=*/1);
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  logs.clear();
+  deliver(kOcuA, msg::SetComponentAuthority{{255}});
+  EXPECT_EQ(driver->control().own_authority(), 1);
+  EXPECT_EQ(driver->counters().refused_authority_changes, 1u);
+  EXPECT_TRUE(logged("Set Component Authority 255 from 2.1.40.1 refused: above max_authority 1"));
+  EXPECT_TRUE(logged("authority stays 1"));
+  outbox.clear();
+  deliver(kOcuB, msg::QueryComponentAuthority{});
+  const auto reported = outbox.to<msg::ReportComponentAuthority>(kOcuB);
+  ASSERT_EQ(reported.size(), 1u);
+  EXPECT_EQ(reported.back().authority, 1);
+  // Lower, and back up to the ceiling: applied.
+  deliver(kOcuA, msg::SetComponentAuthority{{0}});
+  EXPECT_EQ(driver->control().own_authority(), 0);
+  deliver(kOcuA, msg::SetComponentAuthority{{2}});
+  EXPECT_EQ(driver->control().own_authority(), 0);
+  deliver(kOcuA, msg::SetComponentAuthority{{1}});
+  EXPECT_EQ(driver->control().own_authority(), 1);
+  EXPECT_EQ(driver->counters().refused_authority_changes, 2u);
+  // Only the controller may ask at all: a non-controller's is not even counted as above the ceiling.
+  deliver(kOcuB, msg::SetComponentAuthority{{200}});
+  EXPECT_EQ(driver->counters().refused_authority_changes, 2u);
+  EXPECT_EQ(driver->counters().refused_not_controller, 1u);
+}
+
+TEST_F(ComponentTest, AFloodOfSetAuthorityAboveTheCeilingWritesABoundedLog) {
+  make(1, std::chrono::seconds(3), false, true, /*max_authority=*/1);
+  ASSERT_EQ(request_control(kOcuA, 10), 0);
+  logs.clear();
+  for (int i = 0; i < 1000; ++i) deliver(kOcuA, msg::SetComponentAuthority{{static_cast<std::uint8_t>(2 + i % 250)}});
+  EXPECT_EQ(driver->control().own_authority(), 1);
+  EXPECT_EQ(driver->counters().refused_authority_changes, 1000u);
+  EXPECT_LE(logs.size(), static_cast<std::size_t>(rt::kNoteworthyBurst));
+}
+
+// Built directly (not through a kind, which refuses it) with an authority
+// above its ceiling: it starts at the ceiling, and says so.
+TEST_F(ComponentTest, AnAuthorityAboveTheCeilingAtConstructionStartsAtTheCeiling) {
+  logs.clear();
+  make(200, std::chrono::seconds(3), false, true, /*max_authority=*/3);
+  EXPECT_EQ(driver->control().own_authority(), 3);
+  EXPECT_TRUE(logged("authority 200 above max_authority 3: 3 used"));
+  // A request at the configured 200's level is not needed: 3 is the floor now.
+  EXPECT_EQ(request_control(kOcuA, 3), 0);
+}
+
 }  // namespace
 }  // namespace jaus::test

@@ -106,7 +106,7 @@ class ComponentTest : public ::testing::Test {
   }
 
   void make(std::uint8_t authority = 5, rt::Duration timeout = std::chrono::seconds(3), bool reject = false,
-            bool init_ok = true) {
+            bool init_ok = true, std::optional<std::uint8_t> max_authority = std::nullopt) {
     driver.reset();
     rt::ComponentConfig config;
     config.name = "driver";
@@ -114,6 +114,7 @@ class ComponentTest : public ::testing::Test {
     config.authority = authority;
     config.controller_timeout = timeout;
     config.reject_refused_requests = reject;
+    config.max_authority = max_authority;
     driver = std::make_unique<TestDriver>(
         config, rt::Environment{time, time, outbox, [this](rt::LogLevel, const std::string& line) { logs.push_back(line); }},
         init_ok);

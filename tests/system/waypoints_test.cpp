@@ -177,5 +177,82 @@ TEST_F(Waypoints, JausctlLoadsFourLocalWaypointsResumesAndTheVehicleStopsAtTheLa
   EXPECT_TRUE(controller->running()) << controller->output();
 }
 
+// Issue 42, the README's route with Set Component Authority 255 sent to the
+// waypoint driver before Resume: refused (its authority stays 1, the
+// drivers' ceiling max_authority), so an operator asking the primitive
+// driver at 2 takes it from the driver at once and the route stops.
+TEST_F(Waypoints, SetComponentAuthority255IsRefusedAndAnOperatorAtAuthority2StopsTheRoute) {
+  controller = jausd->jausctl("control", {"control", kWaypointDriver, "--authority", "5", "--for", "180"},
+                              std::string(kOperatorHost) + ":3794", kOperator);
+  ASSERT_TRUE(controller->started());
+  const auto granted_until = std::chrono::steady_clock::now() + 20s;
+  while (!controller->output_contains("granted")) {
+    ASSERT_TRUE(controller->running()) << controller->output();
+    ASSERT_LT(std::chrono::steady_clock::now(), granted_until) << controller->output();
+    std::this_thread::sleep_for(100ms);
+  }
+  send_as_controller(R"({"name":"Standby"})");
+  send_as_controller(R"({"name":"Set Travel Speed","fields":{"speed_mps":1.0}})");
+  // One waypoint far enough that the route is still driving when taken over.
+  send_as_controller(R"({"name":"Set Local Waypoint","fields":{"waypoint_number":0,"x_m":60,"y_m":0}})");
+  send_as_controller(R"({"name":"Set Component Authority","fields":{"authority":255}})");
+  const auto authority = query(kWaypointDriver, "Query Component Authority");
+  ASSERT_TRUE(authority) << jausd->output();
+  EXPECT_EQ((*authority)["authority"], 1) << authority->dump();
+  EXPECT_TRUE(jausd->output_contains("Set Component Authority 255 from 254.111.40.1 refused: above max_authority 1"))
+      << jausd->output();
+  send_as_controller(R"({"name":"Resume"})");
+
+  // Driving, and the driver holds the primitive driver at its ceiling.
+  const auto driving_until = std::chrono::steady_clock::now() + 60s;
+  for (;;) {
+    const auto state = status();
+    if (state && ((*state)["secondary_status"].get<std::uint32_t>() & kDrivingBit) != 0) break;
+    ASSERT_LT(std::chrono::steady_clock::now(), driving_until) << jausd->output();
+    std::this_thread::sleep_for(200ms);
+  }
+  const auto held = query("7.1.33.1", "Query Component Control");
+  ASSERT_TRUE(held) << jausd->output();
+  EXPECT_EQ((*held)["controller"], kWaypointDriver) << held->dump();
+  EXPECT_EQ((*held)["authority"], 1) << held->dump();
+
+  // Another operator takes the primitive driver at authority 2.
+  auto other = jausd->jausctl("operator", {"control", "7.1.33.1", "--authority", "2", "--for", "60"},
+                              "127.0.0.113:0", "254.113.40.1");
+  ASSERT_TRUE(other->started());
+  const auto taken_until = std::chrono::steady_clock::now() + 20s;
+  while (!other->output_contains("granted")) {
+    ASSERT_TRUE(other->running()) << other->output() << jausd->output();
+    ASSERT_LT(std::chrono::steady_clock::now(), taken_until) << other->output();
+    std::this_thread::sleep_for(100ms);
+  }
+  // The route stops: the driving bit clears, the vehicle stands still, the operator holds the primitive driver.
+  bool stopped_driving = false;
+  const auto stop_until = std::chrono::steady_clock::now() + 20s;
+  while (!stopped_driving && std::chrono::steady_clock::now() < stop_until) {
+    const auto state = status();
+    stopped_driving = state && ((*state)["secondary_status"].get<std::uint32_t>() & kDrivingBit) == 0;
+    if (!stopped_driving) std::this_thread::sleep_for(200ms);
+  }
+  EXPECT_TRUE(stopped_driving) << jausd->output();
+  std::optional<Point> before, after;
+  const auto still_until = std::chrono::steady_clock::now() + 20s;
+  for (;;) {  // the vehicle decelerates: still once two positions 1 s apart agree
+    before = local_position();
+    std::this_thread::sleep_for(1s);
+    after = local_position();
+    if (before && after && distance(*before, *after) < 0.05) break;
+    ASSERT_LT(std::chrono::steady_clock::now(), still_until) << jausd->output();
+  }
+  EXPECT_LT(after->x, 55) << "the route was not stopped: the vehicle reached " << after->x;
+  EXPECT_TRUE(jausd->output_contains("lost control of the primitive driver")) << jausd->output();
+  const auto now_held = query("7.1.33.1", "Query Component Control");
+  ASSERT_TRUE(now_held);
+  EXPECT_EQ((*now_held)["controller"], "254.113.40.1") << now_held->dump();
+  EXPECT_TRUE(other->running()) << other->output();
+  other->signal(SIGINT);
+  other->wait(10s);
+}
+
 }  // namespace
 }  // namespace jaus::test

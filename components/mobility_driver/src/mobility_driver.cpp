@@ -1,5 +1,6 @@
 #include "jaus/components/mobility_driver.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -35,12 +36,39 @@ Expected<MobilityDriverOptions> mobility_driver_options(const KindOptions& optio
   const auto stale = seconds_option(options, "pose_stale_after_s", 0.05, 10, o.pose_stale_after);
   if (!stale) return unexpected(stale.error());
   o.pose_stale_after = *stale;
+  // Up to 254: an operator must be able to ask for more than the ceiling.
+  const std::string ceiling_range = "a whole number 0.." + std::to_string(kHighestDriverMaxAuthority) +
+                                    " (an operator must be able to ask for more)";
+  const auto ceiling = number_option(options, "max_authority", 0, kHighestDriverMaxAuthority, o.max_authority);
+  if (!ceiling || *ceiling != std::floor(*ceiling))
+    return unexpected(option_error(options, "max_authority", ceiling_range));
+  o.max_authority = static_cast<std::uint8_t>(*ceiling);
   return o;
 }
 
+Expected<void> check_driver_authority(std::string_view kind, std::uint8_t authority,
+                                      const MobilityDriverOptions& options) {
+  if (authority <= options.max_authority) return {};
+  Error error = make_error(ErrorCode::invalid_argument,
+                           std::string(kind) + ": authority " + std::to_string(authority) +
+                               " is above its max_authority " + std::to_string(options.max_authority) +
+                               " (an operator above max_authority must always be able to take the primitive "
+                               "driver from it; raise max_authority, at most " +
+                               std::to_string(kHighestDriverMaxAuthority) + ", or lower authority)");
+  error.field = "authority";
+  return unexpected(error);
+}
+
+namespace {
+ComponentConfig with_ceiling(ComponentConfig config, std::uint8_t max_authority) {
+  config.max_authority = max_authority;
+  return config;
+}
+}  // namespace
+
 MobilityDriver::MobilityDriver(ComponentConfig config, Environment env, PoseSource& pose,
                                MobilityDriverOptions options)
-    : Component(std::move(config), std::move(env)),
+    : Component(with_ceiling(std::move(config), options.max_authority), std::move(env)),
       pose_(pose),
       options_(options),
       primitive_driver_(options.primitive_driver.value_or(
@@ -121,8 +149,11 @@ void MobilityDriver::engage(std::string_view why) {
   ++counters_.engagements;
   last_step_.reset();
   log(LogLevel::info, "driving (" + std::string(why) + "): requesting control of " + primitive_driver_.to_string());
+  // Safety: at most the ceiling, whatever the own authority (Component keeps
+  // it there; this holds even if it did not), so an operator above wins.
+  const auto authority = std::min(control().own_authority(), options_.max_authority);
   control_client_.acquire(
-      primitive_driver_, control().own_authority(), [this] { on_control_held(); },
+      primitive_driver_, authority, [this] { on_control_held(); },
       [this](const std::string& lost) { on_control_lost(lost); });
 }
 

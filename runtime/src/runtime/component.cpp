@@ -38,6 +38,17 @@ Component::Component(ComponentConfig config, Environment env)
                       [this](LogLevel level, const std::string& text) { log(level, text); }) {
   register_core_handlers();
   emergency_membership_ = emergency_->join([this] { follow_emergency(); });
+  // Safety (an operator above the ceiling always wins): a component made
+  // with an authority above its own ceiling (the kinds refuse such a
+  // configuration; this is for code that builds one directly) starts at the
+  // ceiling, never above it.
+  if (config_.max_authority && config_.authority > *config_.max_authority) {
+    log(LogLevel::error, "authority " + std::to_string(config_.authority) + " above max_authority " +
+                             std::to_string(*config_.max_authority) + ": " +
+                             std::to_string(*config_.max_authority) + " used");
+    config_.authority = *config_.max_authority;
+    control_.set_own_authority(config_.authority);
+  }
 }
 
 Component::~Component() {
@@ -381,6 +392,21 @@ void Component::register_core_handlers() {
   });
 
   handle<SetComponentAuthority>(Access::controller, false, [this](const Header& h, const SetComponentAuthority& m) {
+    // Safety (an operator above the ceiling always wins): a component that
+    // controls others requests with its own authority, so its controller may
+    // not raise it above max_authority. Refused means not applied (the RA has
+    // no reply to this message); Query Component Authority keeps reporting
+    // the authority in effect. Lowering it, or any value up to the ceiling, is applied.
+    if (config_.max_authority && m.authority > *config_.max_authority) {
+      ++counters_.refused_authority_changes;
+      log_repeated({"authority changes refused", kNoteworthyBurst}, LogLevel::warn, [&] {
+        return "Set Component Authority " + std::to_string(m.authority) + " from " + h.source.to_string() +
+               " refused: above max_authority " + std::to_string(*config_.max_authority) +
+               " (an operator above it must always be able to take over what this component controls); authority stays " +
+               std::to_string(control_.own_authority());
+      });
+      return;
+    }
     log_repeated({"authority changes", kNoteworthyBurst}, LogLevel::info, [&] {
       return "authority " + std::to_string(control_.own_authority()) + " -> " + std::to_string(m.authority) +
              " (by " + h.source.to_string() + ")";

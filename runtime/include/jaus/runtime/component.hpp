@@ -66,6 +66,12 @@ struct ComponentConfig {
   std::string name = "component";
   Address address;
   std::uint8_t authority = 0;
+  // The highest authority this component may have, for a component that
+  // controls others (the drivers above the primitive driver request it with
+  // their own authority): Set Component Authority above it is refused (not
+  // applied, counted, logged), so an operator above it always wins. None:
+  // no ceiling (a component that controls nobody).
+  std::optional<std::uint8_t> max_authority;
   // Silence from the controller longer than this releases control (0 disables).
   Duration controller_timeout = std::chrono::seconds(3);
   // Refused control requests get Reject Component Control instead of Confirm 2.
@@ -82,6 +88,8 @@ struct ComponentCounters {
   std::uint64_t refused_transitions = 0;
   std::uint64_t refused_clears = 0;
   std::uint64_t control_changes = 0;
+  // Set Component Authority above max_authority, not applied.
+  std::uint64_t refused_authority_changes = 0;
   std::uint64_t stops_commanded = 0;
   // Requests refused for the sender's standing (see the header comment).
   std::uint64_t refused_observer = 0;

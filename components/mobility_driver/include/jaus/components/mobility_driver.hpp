@@ -3,7 +3,8 @@
 // vehicle the RA's way, as a JAUS client of the primitive driver.
 //
 //   engage()  -> Request Component Control of the primitive driver with this
-//                component's own authority (rt::ControlClient); once granted
+//                component's own authority, never above max_authority
+//                (rt::ControlClient); once granted
 //                and the driver reports Ready, step() runs at command_rate_hz
 //                on the pose source's latest sample and each effort goes out
 //                as Set Wrench Effort (which also keeps the primitive
@@ -23,6 +24,14 @@
 //     Vector; Standby and Resume for a route), so Clear Emergency or Resume on
 //     the primitive driver never restarts a route;
 //   - a pose that is missing or older than pose_stale_after halts too.
+// Operators always win (issue 42): the driver's authority has a ceiling,
+// max_authority (default 1, at most 254). Its controller's Set Component
+// Authority above it is refused (rt::ComponentConfig::max_authority), a
+// configured authority above it is a configuration error
+// (mobility_driver_kind), and engage() asks with at most the ceiling; so any
+// operator requesting the primitive driver above max_authority takes it from
+// the driver at once (the arbiter's "higher authority takes over"), and the
+// driver halts as for any loss of control.
 // With emergency_scope `vehicle` the drivers are members of the vehicle's
 // latch (their kinds move hardware): a Set Emergency to the primitive driver
 // puts them in Emergency in the same step.
@@ -44,18 +53,30 @@ namespace jaus::components {
 
 inline constexpr std::uint8_t kPrimitiveDriverId = 33;
 
+// The default ceiling of a driver's authority: below every operator that
+// asks with 2 or more.
+inline constexpr std::uint8_t kDefaultDriverMaxAuthority = 1;
+// The highest ceiling: an operator must be able to ask for more.
+inline constexpr std::uint8_t kHighestDriverMaxAuthority = 254;
+
 struct MobilityDriverOptions {
   // The primitive driver this one commands; none: this node's (ID 33, instance 1).
   std::optional<Address> primitive_driver;
   double command_rate_hz = 20;  // guidance steps, each a Set Wrench Effort
   rt::Duration pose_stale_after = std::chrono::seconds(1);
+  // The ceiling of this driver's authority (see above): an operator at any
+  // authority above it takes the primitive driver from this driver.
+  std::uint8_t max_authority = kDefaultDriverMaxAuthority;
   rt::ControlClient::Options control;
 };
 
 // The option keys every driver kind accepts (its own come after them).
 inline const std::vector<std::string_view> kMobilityDriverOptionKeys = {"primitive_driver", "command_rate_hz",
-                                                                         "pose_stale_after_s"};
+                                                                         "pose_stale_after_s", "max_authority"};
 Expected<MobilityDriverOptions> mobility_driver_options(const rt::KindOptions& options);
+// A configured authority above the options' max_authority is an error ("local_waypoint_driver: ...").
+Expected<void> check_driver_authority(std::string_view kind, std::uint8_t authority,
+                                      const MobilityDriverOptions& options);
 
 struct MobilityDriverCounters {
   std::uint64_t engagements = 0;    // engage() that requested control

@@ -35,6 +35,9 @@ rt::ComponentKind mobility_driver_kind(std::string_view name, std::uint8_t id,
         if (!pose) return unexpected(pose.error());
         const auto options = read_options(k.options);
         if (!options) return unexpected(options.error());
+        // Safety: never made with an authority above its ceiling (operators always win).
+        if (auto authority = check_driver_authority(k.options.kind, k.config.authority, options->mobility); !authority)
+          return unexpected(authority.error());
         if (frame == DriverFrame::local)
           if (auto has_frame = require_local_frame(**pose, k.options.kind); !has_frame)
             return unexpected(has_frame.error());
