@@ -467,6 +467,39 @@ TEST_F(SubsystemLinks, ASubsystemsBroadcastsReachOnlyItsOwnNodes) {
   EXPECT_FALSE(heard_for_subsystem(other, 2));
 }
 
+// An OCU's configured peers are the vehicles it means to reach (issue 49): a
+// stop to a subsystem (S.255.255.255) goes to them before they are heard;
+// once a peer is heard as another subsystem's node, it gets only its own.
+TEST_F(SubsystemLinks, AnOcusSubsystemBroadcastReachesAConfiguredPeerNotHeardYet) {
+  UdpLink& vehicle = open(1, 1);
+  UdpLink& other = open(2, 1);
+  UdpLinkOptions options;
+  options.subsystem = 254;
+  options.node = 7;
+  options.bind = Ipv4Endpoint{kLoopback1, 0};
+  options.relay = false;
+  options.broadcast_to_unheard_peers = true;
+  options.peers = {StaticPeer{vehicle.local_endpoint(), Framing::opc}, StaticPeer{other.local_endpoint(), Framing::opc}};
+  auto opened = UdpLink::open(io, runtime, runtime, options);
+  ASSERT_TRUE(opened) << opened.error().message();
+  UdpLink& ocu = *links.emplace_back(std::move(*opened));
+  ocu.start();
+  const Address ocu_component{254, 7, 40, 1}, subsystem_1{1, 255, 255, 255};
+  transmit(ocu, packet_of(ocu_component, subsystem_1, msg::SetEmergency{{1}}));
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(vehicle, ocu_component, subsystem_1); }));
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(other, ocu_component, subsystem_1); }));  // not heard yet: may be of 1
+
+  // Heard as subsystem 2's node: subsystem 1's broadcasts no longer go there.
+  transmit(other, packet_of(Address{2, 1, 1, 1}, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  ASSERT_TRUE(run_io_until(io, [&] { return ocu.routes().route(2, 1).has_value(); }));
+  for (auto& [link, headers] : at) headers.clear();
+  transmit(ocu, packet_of(ocu_component, subsystem_1, msg::SetEmergency{{1}}));
+  transmit(ocu, packet_of(ocu_component, Address{255, 255, 1, 1}, msg::QueryIdentification{}));  // the mark
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(other, ocu_component, Address{255, 255, 1, 1}); }));
+  EXPECT_FALSE(heard_for_subsystem(other, 1));
+  EXPECT_TRUE(heard(vehicle, ocu_component, subsystem_1));
+}
+
 // An OCU that reaches one node reaches the subsystems that node has heard:
 // the node relays to where each was heard, and the replies come back the same way.
 TEST_F(SubsystemLinks, AMessageForAnotherSubsystemIsRelayedToWhereItsNodeWasHeard) {

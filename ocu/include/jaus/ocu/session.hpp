@@ -64,6 +64,10 @@ struct SessionOptions {
   jaus::transport::Framing framing = jaus::transport::Framing::opc;
   jaus::wire::Dialect dialect = jaus::wire::Dialect::ra;
   std::uint8_t authority = 0;  // the OCU component's own authority
+  // Another process acts as `self` too (operator_identity.hpp, IdUse::shares):
+  // a message addressed to it may be that process's reply, so commands read
+  // no reply as their own, only their own ACKs.
+  bool id_shared = false;
   jaus::rt::LogFn log;
 };
 
@@ -115,6 +119,8 @@ class OcuSession {
   OcuComponent& component() { return *component_; }
   jaus::node::Node& node() { return *node_; }
   jaus::rt::Clock& clock() { return *clock_; }
+  // Timers on the session's clock (they fire while run_until() runs).
+  jaus::rt::Scheduler& scheduler() { return *scheduler_; }
   // Whether it was opened on UDP (open()) rather than attached.
   bool on_udp() const { return io_ != nullptr; }
   // Only for a session opened on UDP: its link, and what runs it (another
@@ -188,6 +194,7 @@ class OcuSession {
   std::unique_ptr<jaus::node::Node> own_node_;
   jaus::node::Node* node_ = nullptr;
   jaus::rt::Clock* clock_ = nullptr;
+  jaus::rt::Scheduler* scheduler_ = nullptr;
   OcuComponent* component_ = nullptr;
   std::atomic<bool> interrupted_ = false;
   ListenerId last_id_ = 0;
