@@ -51,8 +51,7 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
       ->capture_default_str();
   cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->type_name("opc|judp")->capture_default_str();
   cmd->add_option("--as", c.as,
-                  "this OCU's address (default: this user's 254.N.40.1, kept in $XDG_STATE_HOME/jaus/operator-id; "
-                  "jss: a new 200.N.1 each run)")
+                  "this OCU's address (default: your ID, kept in $XDG_STATE_HOME/jaus/operator-id)")
       ->type_name("S.N.C.I|S.N.C");
   cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->type_name("SECONDS")->capture_default_str();
   cmd->add_option("--dialect", c.dialect,
@@ -574,7 +573,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto action = std::make_shared<std::string>();
   auto* emergency = app.add_subcommand(
       "emergency", "Set or clear the emergency (Stop) condition of ADDR; repeated every 50 ms until ACKed");
-  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->type_name("S.N.C.I")->required();
+  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: every component it names, each confirming)")->type_name("S.N.C.I")->required();
   emergency
       ->add_option("ACTION", *action,
                    "set: Set Emergency (ADDR stops); clear: Clear Emergency (this OCU's hold; others' stay)")

@@ -119,7 +119,7 @@ TEST_F(WildcardCommandTest, JausctlSaysHowManyConfirmedAndFailsWhenNoneDid) {
   EXPECT_EQ(ocu::run_emergency(*ocu, Address{9, 255, 255, 255}, true, 1s, io()), kExitFailure);
   EXPECT_EQ(out.str(), "");
   EXPECT_EQ(err.str(),
-            "jausctl emergency: Set Emergency to 9.255.255.255 by 254.1.40.1: no component confirmed it within 3 s "
+            "jausctl emergency: Set Emergency to 9.255.255.255 by 254.1.40.1: no component confirmed it within 3.0 s "
             "(none answered; broadcast 60 times): it may NOT have stopped; stop it another way (its own stop button, "
             "the radio's)\n");
 }

@@ -106,14 +106,14 @@ int run_wildcard(OcuSession& session, std::string_view command, const std::strin
   const auto unconfirmed = result.unconfirmed();
   if (!confirmed.empty())
     io.out << sent << ": confirmed by " << confirmed.size() << (confirmed.size() == 1 ? " component" : " components")
-           << " (" << address_list(confirmed) << ") in " << seconds_text(result.elapsed) << "\n";
+           << " (" << address_list(confirmed) << ") in " << elapsed_text(result.elapsed) << "\n";
   const std::string stopped_warning =
       is_stop(header.command_code) ? ": it may NOT have stopped; stop it another way (its own stop button, the radio's)"
                                    : "";
   if (result.interrupted)
     return fail(io, command, sent + ": interrupted" + (unconfirmed.empty() ? "" : " before " + address_list(unconfirmed) + " confirmed it"));
   if (confirmed.empty())
-    return fail(io, command, sent + ": no component confirmed it within " + seconds_text(result.elapsed) +
+    return fail(io, command, sent + ": no component confirmed it within " + elapsed_text(result.elapsed) +
                                  (result.members.empty() ? " (none answered" : " (" + address_list(unconfirmed) + " did not")
                                  + (result.broadcasts ? "; broadcast " + std::to_string(result.broadcasts) + " times)" : ")") +
                                  stopped_warning);
