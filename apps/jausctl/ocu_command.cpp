@@ -155,7 +155,6 @@ int with_session(std::string_view name, Common common, ocu::IdUse use, Run run) 
   }
   if (!id->note.empty()) std::cerr << "jausctl " << name << ": " << id->note << "\n";
   common.session.self = id->address;
-  common.session.id_shared = id->shared;
   boost::asio::io_context io;  // the session's, and the signals'
   auto session = ocu::OcuSession::open(common.session, &io);
   if (!session) {
@@ -163,7 +162,7 @@ int with_session(std::string_view name, Common common, ocu::IdUse use, Run run) 
     return kExitFailure;
   }
   const StopOnSignals<ocu::OcuSession> signals(io, **session);
-  return run(**session, ocu::CommandIo{std::cout, std::cerr});
+  return run(**session, ocu::CommandIo{std::cout, std::cerr, id->shared});
 }
 
 bool is_jss(const CommonOptions& c) { return c.dialect == "jss"; }

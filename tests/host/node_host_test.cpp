@@ -316,7 +316,9 @@ TEST(NodeHost, PostureWarningsAreAVehiclesNotAnOperatorUnits) {
   };
   const auto vehicle = open_logging(false);
   EXPECT_TRUE(said(vehicle, "any host on the network may command this node"));
-  if (!std::getenv("STATE_DIRECTORY")) EXPECT_TRUE(said(vehicle, "emergency holds are not persisted"));
+  if (!std::getenv("STATE_DIRECTORY")) {
+    EXPECT_TRUE(said(vehicle, "emergency holds are not persisted"));
+  }
   const auto operator_unit = open_logging(true);
   EXPECT_FALSE(said(operator_unit, "any host on the network"));
   EXPECT_FALSE(said(operator_unit, "not persisted"));

@@ -180,7 +180,7 @@ int run_send(OcuSession& session, const jaus::Address& target, const PreparedMes
   // Commands have no reply in the RA: silence is not a failure here. With
   // the ID shared, what comes may be the other process's (a report of its
   // service connection): nothing is read as this command's reply.
-  if (session.options().id_shared) return kExitOk;
+  if (io.id_shared) return kExitOk;
   const auto waited = session.clock().now() - start;
   if (!first.reply() && waited < timeout)
     session.run_until([&] { return first.reply().has_value(); }, timeout - waited);

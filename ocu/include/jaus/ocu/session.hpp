@@ -64,10 +64,6 @@ struct SessionOptions {
   jaus::transport::Framing framing = jaus::transport::Framing::opc;
   jaus::wire::Dialect dialect = jaus::wire::Dialect::ra;
   std::uint8_t authority = 0;  // the OCU component's own authority
-  // Another process acts as `self` too (operator_identity.hpp, IdUse::shares):
-  // a message addressed to it may be that process's reply, so commands read
-  // no reply as their own, only their own ACKs.
-  bool id_shared = false;
   jaus::rt::LogFn log;
 };
 
