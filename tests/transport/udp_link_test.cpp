@@ -289,9 +289,9 @@ TEST_F(UdpNodeTest, ANodeOpenToTheNetworkWithoutAnAllowListSaysSoAtStart) {
   EXPECT_FALSE(warned(logs));  // loopback only
   std::vector<std::string> lines;
   const auto collect = [&](rt::LogLevel, const std::string& line) { lines.push_back(line); };
-  const auto open_host = [&](const UdpLinkOptions& link) {
+  const auto open_host = [&](const UdpLinkOptions& link_options) {
     host::HostConfig config;
-    config.link = link;
+    config.link = link_options;
     config.components.push_back(host::ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}});
     auto opened = host::NodeHost::open(config, io, collect);
     EXPECT_TRUE(opened) << opened.error().message();
