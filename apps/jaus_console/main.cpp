@@ -11,11 +11,11 @@
 #include <boost/asio/signal_set.hpp>
 #include <csignal>
 #include <iostream>
-#include <random>
 
 #include "jaus/base/version.hpp"
 #include "jaus/console/operator_console.hpp"
 #include "jaus/console/web_server.hpp"
+#include "jaus/ocu/operator_identity.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/ipv4.hpp"
 
@@ -52,14 +52,6 @@ jaus::rt::LogFn stderr_log(int verbosity) {
   };
 }
 
-// Its own JAUS node each run unless --as says otherwise, as jausctl does:
-// what one run held (control, an emergency) is not inherited by the next.
-std::string fresh_ocu_address() {
-  std::random_device entropy;
-  std::uniform_int_distribution<int> node(1, 254);
-  return "254." + std::to_string(node(entropy)) + ".40.1";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,7 +69,8 @@ int main(int argc, char** argv) {
       ->type_name("HOST[:PORT]");
   app.add_option("--bind", o.bind, "the OCU's own UDP address, ADDR[:PORT] (default: any, any port)")
       ->type_name("ADDR[:PORT]");
-  app.add_option("--as", o.as, "this OCU's JAUS address (default: a new 254.N.40.1 each run)")->type_name("S.N.C.I");
+  app.add_option("--as", o.as, "this OCU's JAUS address (default: this user's 254.N.40.1, kept in $XDG_STATE_HOME/jaus/operator-id, "
+                 "as jausctl's)")->type_name("S.N.C.I");
   app.add_option("--authority", o.authority, "the OCU component's own authority, 0..255")
       ->type_name("N")
       ->capture_default_str();
@@ -104,11 +97,24 @@ int main(int argc, char** argv) {
     if (!bind) return bad_usage("--bind: " + bind.error().message());
     session_options.bind = *bind;
   }
-  const auto self = jaus::Address::parse(o.as.empty() ? fresh_ocu_address() : o.as);
-  if (!self || self->is_broadcast() || self->component == 1)
-    return bad_usage("--as: '" + o.as + "' is not an OCU address S.N.C.I (1..254 each, component not 1)");
+  std::optional<jaus::Address> as;
+  if (!o.as.empty()) {
+    as = jaus::Address::parse(o.as);
+    if (!as || !as->is_valid() || as->is_broadcast() || as->component == 1)
+      return bad_usage("--as: '" + o.as + "' is not an OCU address S.N.C.I (1..254 each, component not 1)");
+  }
   if (o.authority < 0 || o.authority > 255) return bad_usage("--authority: 0..255");
-  session_options.self = *self;
+  // The user's kept ID, as jausctl's (an emergency set here is cleared by
+  // `jausctl emergency ... clear`); refused while another process acts as
+  // it (the console takes control: IdUse::holds). Locked
+  // until the console ends.
+  auto id = jaus::ocu::choose_operator_id(as, jaus::ocu::IdUse::holds);
+  if (!id) {
+    std::cerr << "jaus-console: " << id.error().message() << "\n";
+    return id.error().code == jaus::ErrorCode::invalid_argument ? kExitBadUsage : kExitFailure;
+  }
+  if (!id->note.empty()) std::cerr << "jaus-console: " << id->note << "\n";
+  session_options.self = id->address;
   session_options.authority = static_cast<std::uint8_t>(o.authority);
   const auto log = stderr_log(o.verbosity);
   session_options.log = log;

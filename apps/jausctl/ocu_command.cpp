@@ -12,13 +12,13 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
-#include <random>
 #include <string>
 
 #include "commands.hpp"
 #include "ocu/cli_values.hpp"
 #include "jaus/messages/environment_messages.hpp"
 #include "jaus/ocu/message_json.hpp"
+#include "jaus/ocu/operator_identity.hpp"
 #include "ocu/jss_commands.hpp"
 #include "ocu/ocu_commands.hpp"
 
@@ -34,7 +34,7 @@ struct CommonOptions {
   std::string multicast;
   std::string bind = "0.0.0.0:0";
   std::string framing = "opc";
-  std::string as;  // empty: a fresh ID for this run (fresh_ocu_address)
+  std::string as;  // empty: the kept operator ID (jaus/ocu/operator_identity.hpp)
   std::string timeout = "1";
   std::string dialect = "ra";
   int verbosity = 0;
@@ -51,7 +51,7 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
       ->capture_default_str();
   cmd->add_option("--framing", c.framing, "UDP framing: opc | judp")->type_name("opc|judp")->capture_default_str();
   cmd->add_option("--as", c.as,
-                  "this OCU's address (default: a new 254.N.40.1, jss: 200.N.1, each run; reuse it to clear)")
+                  "this OCU's address (default: your ID, kept in $XDG_STATE_HOME/jaus/operator-id)")
       ->type_name("S.N.C.I|S.N.C");
   cmd->add_option("--timeout", c.timeout, "seconds to wait for a reply")->type_name("SECONDS")->capture_default_str();
   cmd->add_option("--dialect", c.dialect,
@@ -62,20 +62,10 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
 }
 
 struct Common {
-  ocu::SessionOptions session;
+  ocu::SessionOptions session;  // session.self: chosen when the command runs (with_session)
+  std::optional<jaus::Address> as;  // --as
   jaus::rt::Duration timeout{};
 };
-
-// Each run its own JAUS node ID unless --as says otherwise: an emergency
-// hold or control left by one run is not something the next user of a shared
-// default ID (or a host claiming it later) inherits (issue 28). Node 254.N
-// with N random; a collision with a live OCU is 1 in 254 and shows as that
-// node refusing the claim, and --as settles it.
-std::string fresh_ocu_address() {
-  std::random_device entropy;
-  std::uniform_int_distribution<int> node(1, 254);
-  return "254." + std::to_string(node(entropy)) + ".40.1";
-}
 
 // One line on stderr, exit code 2.
 int bad_input(std::string_view command, const std::string& why) {
@@ -109,17 +99,19 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   if (!bind) return ocu::invalid("--bind: " + bind.error().message());
   auto framing = ocu::parse_framing(c.framing);
   if (!framing) return ocu::invalid("--framing: " + framing.error().message());
-  auto self = ocu::parse_address(c.as.empty() ? fresh_ocu_address() : c.as, false);
-  if (!self) return ocu::invalid("--as: " + self.error().message());
-  if (self->component == 1)
-    return ocu::invalid(std::string("--as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"));
+  if (!c.as.empty()) {
+    auto self = ocu::parse_address(c.as, false);
+    if (!self) return ocu::invalid("--as: " + self.error().message());
+    if (self->component == 1)
+      return ocu::invalid(std::string("--as: component 1 is the OCU's node manager; use another component ID (e.g. 40)"));
+    out.as = *self;
+  }
   auto timeout = ocu::parse_seconds(c.timeout);
   if (!timeout) return ocu::invalid("--timeout: " + timeout.error().message());
   if (c.dialect != "ra" && c.dialect != "openjaus")
     return ocu::invalid("--dialect: bad dialect '" + c.dialect + "': expected ra, openjaus or jss");
   out.session.bind = *bind;
   out.session.framing = *framing;
-  out.session.self = *self;
   out.session.dialect = c.dialect == "openjaus" ? jaus::wire::Dialect::openjaus : jaus::wire::Dialect::ra;
   out.session.log = stderr_log(c.verbosity);
   out.timeout = *timeout;
@@ -148,12 +140,21 @@ class StopOnSignals {
   Session& session_;
 };
 
-// Parses the common options, opens the session and runs `command` on it.
+// Chooses the ID (--as, else this user's kept one; operator_identity.hpp
+// says what happens while another process acts as it), opens the session and
+// runs `command` on it. The ID stays locked until the command returns.
 template <class Run>
-int with_session(std::string_view name, const Common& common, Run run) {
+int with_session(std::string_view name, Common common, ocu::IdUse use, Run run) {
   // A closed stdout (| head) must not kill the process before it has released
   // control or terminated its service connection: writes fail instead.
   std::signal(SIGPIPE, SIG_IGN);
+  auto id = ocu::choose_operator_id(common.as, use);
+  if (!id) {
+    std::cerr << "jausctl " << name << ": " << id.error().message() << "\n";
+    return id.error().code == jaus::ErrorCode::invalid_argument ? kExitBadInput : kExitFailure;
+  }
+  if (!id->note.empty()) std::cerr << "jausctl " << name << ": " << id->note << "\n";
+  common.session.self = id->address;
   boost::asio::io_context io;  // the session's, and the signals'
   auto session = ocu::OcuSession::open(common.session, &io);
   if (!session) {
@@ -161,7 +162,7 @@ int with_session(std::string_view name, const Common& common, Run run) {
     return kExitFailure;
   }
   const StopOnSignals<ocu::OcuSession> signals(io, **session);
-  return run(**session, ocu::CommandIo{std::cout, std::cerr});
+  return run(**session, ocu::CommandIo{std::cout, std::cerr, id->shared});
 }
 
 bool is_jss(const CommonOptions& c) { return c.dialect == "jss"; }
@@ -236,7 +237,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     auto seconds = ocu::parse_seconds(*wait);
     if (!seconds) return void(exit_code = bad_input("discover", "--wait: " + seconds.error().message()));
     const ocu::DiscoverOptions options{*seconds, *json};
-    exit_code = with_session("discover", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    exit_code = with_session("discover", *c, ocu::IdUse::looks, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_discover(s, options, io);
     });
   });
@@ -260,7 +261,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     if (!c) return;
     auto address = ocu::parse_address(*target, true);
     if (!address) return void(exit_code = bad_input("status", address.error().message()));
-    exit_code = with_session("status", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    exit_code = with_session("status", *c, ocu::IdUse::looks, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_status(s, *address, c->timeout, io);
     });
   });
@@ -323,7 +324,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
         return void(exit_code = bad_input("query", "--save-image needs Query Image (0x2807)"));
       image_file = *save_image;
     }
-    exit_code = with_session("query", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    exit_code = with_session("query", *c, ocu::IdUse::looks, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_query(s, *address, *prepared, *report, c->timeout, io, image_file);
     });
   });
@@ -363,7 +364,9 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       return void(exit_code = bad_input("send", std::string(*message == "-" ? "stdin" : "the message") + " is not valid JSON"));
     auto prepared = ocu::prepare_message(parsed, c->session.dialect);
     if (!prepared) return void(exit_code = bad_input("send", prepared.error().message()));
-    exit_code = with_session("send", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    // What happens while another process acts as the ID: operator_identity.hpp (IdUse).
+    const auto use = prepared->header.command_code <= 0x1FFF ? ocu::IdUse::shares : ocu::IdUse::looks;
+    exit_code = with_session("send", *c, use, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_send(s, *address, *prepared, c->timeout, io);
     });
   });
@@ -446,7 +449,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     options.authority = *level;
     options.timeout = c->timeout;
     c->session.authority = *level;
-    exit_code = with_session("control", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    exit_code = with_session("control", *c, ocu::IdUse::holds, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_control(s, options, io);
     });
   });
@@ -560,7 +563,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     options.report_code = *parsed_code;
     options.rate_hz = *hz;
     options.timeout = c->timeout;
-    exit_code = with_session("subscribe", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    exit_code = with_session("subscribe", *c, ocu::IdUse::looks, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_subscribe(s, options, io);
     });
   });
@@ -569,7 +572,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
   auto action = std::make_shared<std::string>();
   auto* emergency = app.add_subcommand(
       "emergency", "Set or clear the emergency (Stop) condition of ADDR; repeated every 50 ms until ACKed");
-  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: broadcast)")->type_name("S.N.C.I")->required();
+  emergency->add_option("ADDR", *target, "component address S.N.C.I (255s: every component it names, each confirming)")->type_name("S.N.C.I")->required();
   emergency
       ->add_option("ACTION", *action,
                    "set: Set Emergency (ADDR stops); clear: Clear Emergency (this OCU's hold; others' stay)")
@@ -595,7 +598,7 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
     if (!address) return void(exit_code = bad_input("emergency", address.error().message()));
     if (*action != "set" && *action != "clear")
       return void(exit_code = bad_input("emergency", "bad action '" + *action + "': expected set or clear"));
-    exit_code = with_session("emergency", *c, [&](ocu::OcuSession& s, ocu::CommandIo io) {
+    exit_code = with_session("emergency", *c, ocu::IdUse::shares, [&](ocu::OcuSession& s, ocu::CommandIo io) {
       return ocu::run_emergency(s, *address, *action == "set", c->timeout, io);
     });
   });

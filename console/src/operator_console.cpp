@@ -120,7 +120,7 @@ OperatorConsole::OperatorConsole(jaus::ocu::OcuSession& session, jaus::rt::Clock
 
 OperatorConsole::~OperatorConsole() {
   shutdown();
-  for (auto id : repeat_timers_) scheduler_.cancel(id);
+  wildcards_.clear();  // their timers and listeners go with them
   scheduler_.cancel(poll_timer_);
   scheduler_.cancel(link_timer_);
   if (listener_) session_.unlisten(listener_);
@@ -394,17 +394,30 @@ void OperatorConsole::stop_drive(const jaus::Address& target, const std::string&
 
 // ---- emergency, state
 
-void OperatorConsole::repeat_broadcast(const jaus::Address& to, std::vector<std::uint8_t> payload,
-                                       jaus::Header header, int left) {
-  session_.send_raw(header, payload);
-  if (left <= 1) return;
-  auto id = std::make_shared<jaus::rt::TimerId>(jaus::rt::kNoTimer);
-  *id = scheduler_.call_at(clock_.now() + kMustArrive.retransmit_after,
-                           [this, to, payload = std::move(payload), header, left, id]() mutable {
-                             repeat_timers_.erase(*id);
-                             repeat_broadcast(to, std::move(payload), header, left - 1);
-                           });
-  repeat_timers_.insert(*id);
+void OperatorConsole::send_to_every_member(const jaus::Address& to, jaus::Header header,
+                                           std::vector<std::uint8_t> payload, const std::string& what) {
+  // Finished ones go first (never from their own callback).
+  std::erase_if(wildcards_, [](const auto& w) { return w->finished(); });
+  // Every component `to` names, found or not yet (a stop is broadcast too,
+  // until they all confirm): ocu/wildcard_command.hpp (issue 49).
+  std::weak_ptr<int> alive = alive_;
+  auto& command = *wildcards_.emplace_back(std::make_unique<jaus::ocu::WildcardCommand>(
+      session_, to, header, std::move(payload), jaus::ocu::WildcardPolicy{},
+      [this, alive, what](const jaus::ocu::WildcardResult& result) {
+        if (alive.expired()) return;
+        const auto confirmed = result.confirmed();
+        const auto unconfirmed = result.unconfirmed();
+        std::string text = what + ": confirmed by " + std::to_string(confirmed.size()) + " component(s)";
+        for (std::size_t i = 0; i < confirmed.size(); ++i) text += (i ? ", " : " (") + confirmed[i].to_string();
+        if (!confirmed.empty()) text += ")";
+        if (!unconfirmed.empty()) {
+          text += "; NOT by";
+          for (const auto& a : unconfirmed) text += " " + a.to_string();
+        }
+        if (confirmed.empty() && unconfirmed.empty()) text += ": no component answered";
+        event(confirmed.empty() || !unconfirmed.empty() ? EventLevel::error : EventLevel::info, text);
+      }));
+  command.start();
 }
 
 template <class M>
@@ -415,14 +428,11 @@ void OperatorConsole::send_must_arrive(const jaus::Address& to, const M& message
   payload.resize(*size);
   jaus::Header header;
   header.command_code = M::code;
+  header.priority = M::code == jaus::msg::SetEmergency::code ? jaus::priority::kSafetyCritical : jaus::priority::kDefault;
   header.destination = to;
   header.source = session_.self();
   header.data_size = static_cast<std::uint16_t>(payload.size());
-  if (to.is_broadcast()) {
-    // Every receiver would ACK: repeated instead (ocu/must_arrive.hpp).
-    repeat_broadcast(to, std::move(payload), header, static_cast<int>(kMustArrive.max_transmissions));
-    return;
-  }
+  if (to.is_broadcast()) return send_to_every_member(to, header, std::move(payload), what);
   std::weak_ptr<int> alive = alive_;
   session_.node().send_acknowledged(
       header, payload, kMustArrive, [this, alive, what](const jaus::node::AckResolution& resolution) {

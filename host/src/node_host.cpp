@@ -45,6 +45,13 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   auto link = transport::UdpLink::open(io, *h->asio_runtime_, *h->asio_runtime_, h->config_.link, h->log_);
   if (!link) return unexpected(link.error());
   h->udp_link_ = std::move(*link);
+  // Reachable from the network and open to everyone on it: the operator
+  // should choose that knowingly. A vehicle's posture only: an OCU's node takes no commands.
+  const auto& l = h->config_.link;
+  if (!h->config_.operator_unit && (l.bind.address >> 24) != 127 && l.allow.empty() && l.control_from.empty())
+    h->log_(rt::LogLevel::warn, "listening on " + transport::to_string(l.bind) +
+                                    " with an empty allow-list and control_from: any host on the network may "
+                                    "command this node (list the operators' networks in transport.control_from)");
   h->make_node(*h->udp_link_);
   h->udp_link_->on_packet([host = h.get()](const PacketView& packet, transport::Framing, rt::SenderStanding standing) {
     if (host->watcher_) host->watcher_(packet);
@@ -156,6 +163,7 @@ Expected<void> NodeHost::add_components(boost::asio::io_context* io) {
 // ---- emergency holds (emergency_holds.hpp) -------------------------------------
 
 Expected<void> NodeHost::restore_emergency_holds() {
+  if (config_.operator_unit) return {};  // nothing to persist, and never a vehicle's file (HostConfig)
   holds_file_ = emergency_holds_file(config_.emergency);
   if (!holds_file_) {
     log_(rt::LogLevel::warn, "emergency holds are not persisted (no state_directory): a restart forgets them");

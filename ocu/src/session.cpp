@@ -66,6 +66,8 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.link.multicast = o.multicast;
   for (const auto& peer : o.to) config.link.peers.push_back(jaus::transport::StaticPeer{peer, o.framing});
   config.link.relay = false;  // messages end at the OCU
+  config.operator_unit = true;  // no vehicle posture warnings, no holds file (HostConfig)
+  config.link.broadcast_to_unheard_peers = true;  // a stop to S.255.255.255 reaches a vehicle not heard yet
   config.settings.identity = ocu_identity();
   config.components = {jaus::host::ComponentSpec{"node_manager", kNodeManagerComponent, 1, 0, "jausctl node manager", {}, 0, {}}};
   auto host = jaus::host::NodeHost::open(std::move(config), *s->io_, o.log);
@@ -74,6 +76,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   s->host_->watch([session = s.get()](const jaus::PacketView& packet) { session->observe(packet); });
   s->node_ = &s->host_->node();
   s->clock_ = &s->host_->clock();
+  s->scheduler_ = &s->host_->scheduler();
   s->add_ocu_component();
   return s;
 }
@@ -94,6 +97,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::attach(SessionOptions op
   s->own_node_ = std::make_unique<jaus::node::Node>(node_config, *env.clock, *env.scheduler, *env.link, o.log);
   s->node_ = s->own_node_.get();
   s->clock_ = env.clock;
+  s->scheduler_ = env.scheduler;
   jaus::rt::ComponentConfig manager;
   manager.name = "jausctl node manager";
   manager.address = jaus::Address{o.self.subsystem, o.self.node, kNodeManagerComponent, 1};

@@ -177,6 +177,27 @@ TEST_F(OperatorConsoleTest, EmergencySetAndClearAreSeenByBothPages) {
   EXPECT_TRUE(acknowledged) << "Set Emergency goes ACK-requested";
 }
 
+// `all` (issue 49): every component stops, found yet or not, and the event
+// says which confirmed it; a clear to `all` confirmed the same way.
+TEST_F(OperatorConsoleTest, EmergencyToAllStopsEveryComponentAndSaysWhichConfirmedIt) {
+  node.page_sends(1, {{"type", "emergency"}, {"target", "all"}, {"action", "set"}});
+  node.run_for(3s);
+  EXPECT_EQ(node.state_of(kPrimitiveDriver), rt::PrimaryStatus::emergency);
+  EXPECT_EQ(node.state_of(kCamera), rt::PrimaryStatus::emergency);
+  EXPECT_EQ(node.state_of(kArm), rt::PrimaryStatus::emergency);
+  const auto said = [&](const std::string& text) {
+    for (const auto& e : node.frames(1, "event"))
+      if (e["text"].get<std::string>().find(text) != std::string::npos) return e["level"].get<std::string>();
+    return std::string();
+  };
+  EXPECT_EQ(said("Set Emergency to all: confirmed by "), "info");
+  EXPECT_NE(said("1.1.33.1"), "");
+  node.page_sends(1, {{"type", "emergency"}, {"target", "all"}, {"action", "clear"}});
+  node.run_for(3s);
+  EXPECT_NE(node.state_of(kPrimitiveDriver), rt::PrimaryStatus::emergency);
+  EXPECT_EQ(said("Clear Emergency to all: confirmed by "), "info");
+}
+
 TEST_F(OperatorConsoleTest, CameraImagesFlowWhileAPageWatchesAndTheConnectionCloses) {
   auto& camera = *node.find(kCamera);
   node.page_sends(1, {{"type", "camera"}, {"target", "1.1.37.1"}, {"watch", true}});

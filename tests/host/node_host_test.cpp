@@ -302,6 +302,35 @@ TEST(NodeHost, AnOpenedHostAnswersJssOnItsUdpSocket) {
   EXPECT_EQ((*host)->udp_link()->counters().jss.datagrams_delivered, 1u);
 }
 
+// A vehicle's posture warnings (an open bind, holds not persisted) are the
+// node's; an operator's own node (jausctl, jaus-console) says none of them
+// and never touches a holds file (issue 49).
+TEST(NodeHost, PostureWarningsAreAVehiclesNotAnOperatorUnits) {
+  const auto open_logging = [](bool operator_unit) {
+    boost::asio::io_context io;
+    HostConfig config;
+    config.link.bind = transport::Ipv4Endpoint{0, 0};  // every address, any port: open
+    config.operator_unit = operator_unit;
+    config.components.push_back(ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}});
+    std::vector<std::string> lines;
+    auto host = NodeHost::open(config, io, [&](rt::LogLevel, const std::string& l) { lines.push_back(l); });
+    EXPECT_TRUE(host) << host.error().message();
+    if (host) (*host)->stop("test");
+    return lines;
+  };
+  const auto said = [](const std::vector<std::string>& lines, const std::string& text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const auto& l) { return l.find(text) != std::string::npos; });
+  };
+  const auto vehicle = open_logging(false);
+  EXPECT_TRUE(said(vehicle, "any host on the network may command this node"));
+  if (!std::getenv("STATE_DIRECTORY")) {
+    EXPECT_TRUE(said(vehicle, "emergency holds are not persisted"));
+  }
+  const auto operator_unit = open_logging(true);
+  EXPECT_FALSE(said(operator_unit, "any host on the network"));
+  EXPECT_FALSE(said(operator_unit, "not persisted"));
+}
+
 // Safety: whatever ends the event loop, every component's stop path runs
 // before run() returns (the platform is commanded to stop).
 TEST(NodeHost, AnExceptionEscapingTheLoopStillStopsEveryComponent) {

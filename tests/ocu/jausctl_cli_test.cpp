@@ -183,6 +183,78 @@ TEST_F(JausctlEndToEnd, SendReadsStdinAndQueryPrintsTheReport) {
   EXPECT_EQ(r.out, "1.1.35.1: emergency cleared by 254.3.40.1 (state Ready)\n");
 }
 
+// `send` of a command says the ID it acted as (on stderr: stdout is the reply's JSON).
+TEST_F(JausctlEndToEnd, SendOfACommandSaysTheIdItActedAs) {
+  const auto r = run({"send", "1.1.35.1", R"({"name":"Set Emergency","fields":{"emergency_code":1}})", "--as",
+                      "254.4.40.1", "--to", to(), "--timeout", "0.2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "jausctl send: Set Emergency to 1.1.35.1 by 254.4.40.1 (acknowledged)\n");
+  const auto cleared = run({"emergency", "1.1.35.1", "clear", "--as", "254.4.40.1", "--to", to(), "--timeout", "5"});
+  EXPECT_EQ(cleared.exit_code, 0) << cleared.err;
+}
+
+// Issue 49: one user's runs are one operator (the ID kept in its state
+// directory): `set` then `clear` just works, without --as.
+TEST_F(JausctlEndToEnd, SetThenClearWithoutAsIsOneOperator) {
+  char dir_template[] = "/tmp/jausctl_state_XXXXXX";
+  const std::string state = mkdtemp(dir_template);
+  Jausctl set({"emergency", "1.1.35.1", "set", "--to", to(), "--timeout", "5"}, "", state);
+  const auto s = set.finish();
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const std::string kept = read_file(state + "/jaus/operator-id");
+  ASSERT_FALSE(kept.empty());
+  const std::string id = kept.substr(0, kept.find('\n'));
+  EXPECT_EQ(s.out, "1.1.35.1: emergency set by " + id + " (state Emergency)\n");
+  Jausctl clear({"emergency", "1.1.35.1", "clear", "--to", to(), "--timeout", "5"}, "", state);
+  const auto c = clear.finish();
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(c.out, "1.1.35.1: emergency cleared by " + id + " (state Ready)\n");
+  std::system(("rm -rf " + state).c_str());
+}
+
+// Two processes acting as one ID would get each other's replies: while one
+// holds control as it, a second control is refused, naming --as; a stop is
+// never refused: it shares the ID (so a plain clear releases it), and a
+// shared command reads no reply as its own (the holder's status reports
+// reach it too).
+TEST_F(JausctlEndToEnd, WhileAnotherRunHoldsTheIdControlIsRefusedAndCommandsShareIt) {
+  char dir_template[] = "/tmp/jausctl_state_XXXXXX";
+  const std::string state = mkdtemp(dir_template);
+  Jausctl control({"control", "1.1.35.1", "--authority", "9", "--to", to()}, "", state);
+  ASSERT_TRUE(control.wait_for_output("granted"));
+  const std::string kept = read_file(state + "/jaus/operator-id");
+  const std::string id = kept.substr(0, kept.find('\n'));
+
+  Jausctl second({"control", "1.1.33.1", "--authority", "9", "--to", to()}, "", state);
+  const auto refused = second.finish();
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("jausctl control: " + id + " is in use by another process (pid "), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("give another ID with --as"), std::string::npos) << refused.err;
+
+  // The holder's Report Component Status (5 Hz) is addressed to the same ID: none is printed as a reply.
+  Jausctl resume({"send", "1.1.35.1", R"({"name":"Resume"})", "--to", to(), "--timeout", "1"}, "", state);
+  const auto shared = resume.finish();
+  EXPECT_EQ(shared.exit_code, 0) << shared.err;
+  EXPECT_EQ(shared.out, "");
+  EXPECT_NE(shared.err.find("shared with it"), std::string::npos) << shared.err;
+  EXPECT_NE(shared.err.find("jausctl send: Resume to 1.1.35.1 by " + id + " (acknowledged)\n"), std::string::npos)
+      << shared.err;
+
+  Jausctl set({"emergency", "1.1.35.1", "set", "--to", to(), "--timeout", "5"}, "", state);
+  const auto stop = set.finish();
+  ASSERT_EQ(stop.exit_code, 0) << stop.err;
+  EXPECT_EQ(stop.out, "1.1.35.1: emergency set by " + id + " (state Emergency)\n");
+  Jausctl clear({"emergency", "1.1.35.1", "clear", "--to", to(), "--timeout", "5"}, "", state);
+  const auto cleared = clear.finish();
+  EXPECT_EQ(cleared.exit_code, 0) << cleared.err;
+  EXPECT_EQ(cleared.out, "1.1.35.1: emergency cleared by " + id + " (state Ready)\n");
+
+  control.signal(SIGINT);
+  control.finish();  // whatever the Emergency did to its control: it ends
+  std::system(("rm -rf " + state).c_str());
+}
+
 TEST_F(JausctlEndToEnd, SubscribeCountsReportsAndTerminates) {
   const auto r =
       run({"subscribe", "1.1.38.1", "0x4402", "--rate", "10", "--count", "3", "--to", to(), "--timeout", "5"});

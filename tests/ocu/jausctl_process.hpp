@@ -38,7 +38,11 @@ inline std::string read_file(const std::string& path) {
 // jausctl as a child process; stdout and stderr go to files (no pipe to keep drained).
 class Jausctl {
  public:
-  explicit Jausctl(const std::vector<std::string>& args, const std::string& stdin_text = "") {
+  // `state_home`: the XDG_STATE_HOME it keeps its operator ID in; by default
+  // a directory of its own (a fresh ID, never the user's), so tests running
+  // at once never share one.
+  explicit Jausctl(const std::vector<std::string>& args, const std::string& stdin_text = "",
+                   const std::string& state_home = "") {
     char dir_template[] = "/tmp/jausctl_cli_XXXXXX";
     dir_ = mkdtemp(dir_template);
     { std::ofstream(dir_ + "/in") << stdin_text; }
@@ -52,7 +56,14 @@ class Jausctl {
     std::vector<char*> argv;
     for (auto& a : all) argv.push_back(a.data());
     argv.push_back(nullptr);
-    if (posix_spawn(&pid_, JAUSCTL_PATH, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
+    std::vector<std::string> env_entries;
+    for (char** e = environ; *e; ++e)
+      if (std::string(*e).rfind("XDG_STATE_HOME=", 0) != 0) env_entries.emplace_back(*e);
+    env_entries.push_back("XDG_STATE_HOME=" + (state_home.empty() ? dir_ + "/state" : state_home));
+    std::vector<char*> env;
+    for (auto& e : env_entries) env.push_back(e.data());
+    env.push_back(nullptr);
+    if (posix_spawn(&pid_, JAUSCTL_PATH, &actions, nullptr, argv.data(), env.data()) != 0) pid_ = -1;
     posix_spawn_file_actions_destroy(&actions);
   }
   ~Jausctl() {

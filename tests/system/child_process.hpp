@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <thread>
+#include <algorithm>
 #include <vector>
 
 extern char** environ;
@@ -27,7 +28,9 @@ class ChildProcess {
  public:
   enum class Stdin { inherit, pipe };
 
-  ChildProcess(const std::vector<std::string>& argv, std::string output_file, Stdin in = Stdin::inherit)
+  // `environment`: "NAME=value" entries that replace or add to this process's own.
+  ChildProcess(const std::vector<std::string>& argv, std::string output_file, Stdin in = Stdin::inherit,
+               const std::vector<std::string>& environment = {})
       : output_(std::move(output_file)) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -44,7 +47,19 @@ class ChildProcess {
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
-    if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = 0;
+    std::vector<std::string> env_entries;
+    for (char** e = environ; *e; ++e) {
+      const std::string entry(*e);
+      const auto name = entry.substr(0, entry.find('=') + 1);
+      const bool replaced = std::any_of(environment.begin(), environment.end(),
+                                        [&](const std::string& o) { return o.rfind(name, 0) == 0; });
+      if (!replaced) env_entries.push_back(entry);
+    }
+    env_entries.insert(env_entries.end(), environment.begin(), environment.end());
+    std::vector<char*> env;
+    for (auto& e : env_entries) env.push_back(e.data());
+    env.push_back(nullptr);
+    if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), env.data()) != 0) pid_ = 0;
     posix_spawn_file_actions_destroy(&actions);
     if (pipe_fds[0] >= 0) ::close(pipe_fds[0]);
   }

@@ -62,13 +62,18 @@ class DefaultJausd {
   }
 
   // `jausctl ARGS --to <the node> --bind BIND [--as AS]`, its output in <dir>/<log_name>.log.
+  // Where jausctl keeps its operator ID here (XDG_STATE_HOME).
+  std::filesystem::path state_home() const { return dir_ / "ocu-state"; }
+
   std::unique_ptr<ChildProcess> jausctl(const std::string& log_name, std::vector<std::string> args,
                                         const std::string& bind, const std::optional<std::string>& as = {}) const {
     args.insert(args.begin(), JAUSCTL_PATH);
     for (const std::string& option : {std::string("--to"), address_, std::string("--bind"), bind})
       args.push_back(option);
     if (as) args.insert(args.end(), {"--as", *as});
-    return std::make_unique<ChildProcess>(args, (dir_ / (log_name + ".log")).string());
+    // Its own state directory (the kept operator ID, jaus/ocu/operator_identity.hpp), never the user's.
+    return std::make_unique<ChildProcess>(args, (dir_ / (log_name + ".log")).string(), ChildProcess::Stdin::inherit,
+                                          std::vector<std::string>{"XDG_STATE_HOME=" + state_home().string()});
   }
 
  private:

@@ -279,6 +279,8 @@ TEST_F(UdpNodeTest, InvalidSourcesAndForeignClaimsOfAKnownIdAreDroppedAndCounted
   EXPECT_EQ(link->routes().counters().moved, 1u);
 }
 
+// The warning is the node host's (NodeHost::open): a tool's link is open by
+// design, and an operator's own node says nothing of it (issue 49).
 TEST_F(UdpNodeTest, ANodeOpenToTheNetworkWithoutAnAllowListSaysSoAtStart) {
   const auto warned = [](const std::vector<std::string>& lines) {
     return std::any_of(lines.begin(), lines.end(),
@@ -287,20 +289,28 @@ TEST_F(UdpNodeTest, ANodeOpenToTheNetworkWithoutAnAllowListSaysSoAtStart) {
   EXPECT_FALSE(warned(logs));  // loopback only
   std::vector<std::string> lines;
   const auto collect = [&](rt::LogLevel, const std::string& line) { lines.push_back(line); };
+  const auto open_host = [&](const UdpLinkOptions& link_options) {
+    host::HostConfig config;
+    config.link = link_options;
+    config.components.push_back(host::ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}});
+    auto opened = host::NodeHost::open(config, io, collect);
+    EXPECT_TRUE(opened) << opened.error().message();
+    if (opened) (*opened)->stop("test");
+  };
   UdpLinkOptions options;
   options.bind = Ipv4Endpoint{0, 0};  // every interface
-  auto open = UdpLink::open(io, runtime, runtime, options, collect);
-  ASSERT_TRUE(open) << open.error().message();
+  auto bare = UdpLink::open(io, runtime, runtime, options, collect);
+  ASSERT_TRUE(bare) << bare.error().message();
+  EXPECT_FALSE(warned(lines)) << "the link alone says nothing";
+  open_host(options);
   EXPECT_TRUE(warned(lines));
   lines.clear();
   options.allow = {*parse_cidr("10.0.0.0/8")};
-  auto guarded = UdpLink::open(io, runtime, runtime, options, collect);
-  ASSERT_TRUE(guarded) << guarded.error().message();
+  open_host(options);
   EXPECT_FALSE(warned(lines));
   options.allow.clear();  // open to all, but only these may command
   options.control_from = {*parse_cidr("10.0.0.0/8")};
-  auto commanded_from = UdpLink::open(io, runtime, runtime, options, collect);
-  ASSERT_TRUE(commanded_from) << commanded_from.error().message();
+  open_host(options);
   EXPECT_FALSE(warned(lines));
 }
 
@@ -465,6 +475,39 @@ TEST_F(SubsystemLinks, ASubsystemsBroadcastsReachOnlyItsOwnNodes) {
       io, [&] { return heard(other, manager, every_subsystem) && heard(sibling, manager, every_subsystem); }));
   EXPECT_TRUE(heard(sibling, manager, our_subsystem));
   EXPECT_FALSE(heard_for_subsystem(other, 2));
+}
+
+// An OCU's configured peers are the vehicles it means to reach (issue 49): a
+// stop to a subsystem (S.255.255.255) goes to them before they are heard;
+// once a peer is heard as another subsystem's node, it gets only its own.
+TEST_F(SubsystemLinks, AnOcusSubsystemBroadcastReachesAConfiguredPeerNotHeardYet) {
+  UdpLink& vehicle = open(1, 1);
+  UdpLink& other = open(2, 1);
+  UdpLinkOptions options;
+  options.subsystem = 254;
+  options.node = 7;
+  options.bind = Ipv4Endpoint{kLoopback1, 0};
+  options.relay = false;
+  options.broadcast_to_unheard_peers = true;
+  options.peers = {StaticPeer{vehicle.local_endpoint(), Framing::opc}, StaticPeer{other.local_endpoint(), Framing::opc}};
+  auto opened = UdpLink::open(io, runtime, runtime, options);
+  ASSERT_TRUE(opened) << opened.error().message();
+  UdpLink& ocu = *links.emplace_back(std::move(*opened));
+  ocu.start();
+  const Address ocu_component{254, 7, 40, 1}, subsystem_1{1, 255, 255, 255};
+  transmit(ocu, packet_of(ocu_component, subsystem_1, msg::SetEmergency{{1}}));
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(vehicle, ocu_component, subsystem_1); }));
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(other, ocu_component, subsystem_1); }));  // not heard yet: may be of 1
+
+  // Heard as subsystem 2's node: subsystem 1's broadcasts no longer go there.
+  transmit(other, packet_of(Address{2, 1, 1, 1}, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));
+  ASSERT_TRUE(run_io_until(io, [&] { return ocu.routes().route(2, 1).has_value(); }));
+  for (auto& [link, headers] : at) headers.clear();
+  transmit(ocu, packet_of(ocu_component, subsystem_1, msg::SetEmergency{{1}}));
+  transmit(ocu, packet_of(ocu_component, Address{255, 255, 1, 1}, msg::QueryIdentification{}));  // the mark
+  ASSERT_TRUE(run_io_until(io, [&] { return heard(other, ocu_component, Address{255, 255, 1, 1}); }));
+  EXPECT_FALSE(heard_for_subsystem(other, 1));
+  EXPECT_TRUE(heard(vehicle, ocu_component, subsystem_1));
 }
 
 // An OCU that reaches one node reaches the subsystems that node has heard:

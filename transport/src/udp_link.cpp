@@ -108,13 +108,8 @@ Expected<std::unique_ptr<UdpLink>> UdpLink::open(asio::io_context& io, rt::Clock
   std::unique_ptr<UdpLink> link(new UdpLink(io, clock, scheduler, std::move(options), std::move(log)));
   auto bound = link->bind_sockets();
   if (!bound) return unexpected(bound.error());
-  // Reachable from the network and open to everyone on it: the operator
-  // should choose that knowingly.
-  const bool loopback = (link->options_.bind.address >> 24) == 127;
-  if (!loopback && link->options_.allow.empty() && link->options_.control_from.empty())
-    link->log_(rt::LogLevel::warn, "listening on " + to_string(link->options_.bind) +
-                                       " with an empty allow-list and control_from: any host on the network may "
-                                       "command this node (list the operators' networks in transport.control_from)");
+  // An open posture (anyone may command) is the node host's to warn about
+  // (NodeHost::open): a tool's link is open by design.
   return link;
 }
 
@@ -472,8 +467,10 @@ void UdpLink::relay(const Ipv4Endpoint& from, const Header& header, std::span<co
   send_routed(next->endpoint, next->framing, packet);
 }
 
-bool UdpLink::broadcast_reaches(const Address& to, const Peer& peer) {
-  return to.subsystem == Address::kBroadcast || peer.hosts_subsystem(to.subsystem);
+bool UdpLink::broadcast_reaches(const Address& to, const Peer& peer) const {
+  if (to.subsystem == Address::kBroadcast || peer.hosts_subsystem(to.subsystem)) return true;
+  // A configured peer never heard from may be one of the subsystem's nodes (udp_link.hpp).
+  return options_.broadcast_to_unheard_peers && peer.is_static && peer.subsystems.none();
 }
 
 void UdpLink::send_to(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {

@@ -18,8 +18,14 @@
 namespace jausctl::ocu {
 
 struct CommandIo {
+  CommandIo(std::ostream& out_stream, std::ostream& err_stream, bool shared = false)
+      : out(out_stream), err(err_stream), id_shared(shared) {}
   std::ostream& out;
   std::ostream& err;
+  // Another process acts as this OCU's ID too (operator_identity.hpp,
+  // IdUse::shares): a message addressed to it may be that process's reply,
+  // so a command reads no reply as its own, only its own ACKs.
+  bool id_shared;
 };
 
 struct DiscoverOptions {

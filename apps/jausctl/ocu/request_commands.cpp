@@ -10,6 +10,7 @@
 #include "jaus/ocu/must_arrive.hpp"
 #include "jaus/ocu/names.hpp"
 #include "jaus/ocu/repeated_query.hpp"
+#include "jaus/ocu/wildcard_command.hpp"
 #include "command_output.hpp"
 #include "image_file.hpp"
 #include "ocu_commands.hpp"
@@ -76,8 +77,49 @@ class FirstReply {
 // peer (openjaus) may ignore ACK requests, and would get it 10 times.
 // Queries and reports go once: a lost query shows as no reply.
 constexpr std::uint16_t kLastCommandCode = 0x1FFF;
+bool is_command(const PreparedMessage& message) { return message.header.command_code <= kLastCommandCode; }
 bool must_arrive(const PreparedMessage& message, jaus::wire::Dialect dialect) {
-  return dialect == jaus::wire::Dialect::ra && message.header.command_code <= kLastCommandCode;
+  return dialect == jaus::wire::Dialect::ra && is_command(message);
+}
+
+// A wildcard looks for its members at least this long (--timeout when
+// longer): a vehicle that has just started answers within it.
+constexpr jaus::rt::Duration kWildcardLooksFor = std::chrono::seconds(3);
+
+std::string address_list(const std::vector<jaus::Address>& addresses) {
+  std::string out;
+  for (const auto& a : addresses) out += (out.empty() ? "" : ", ") + a.to_string();
+  return out;
+}
+
+// A command to a wildcard (WildcardCommand): which components confirmed it
+// on `out`; exit 1 when none did or some did not, with the line on `err`
+// saying which. Never "sent" for what nobody confirmed (issue 49).
+int run_wildcard(OcuSession& session, std::string_view command, const std::string& what,
+                 const jaus::Address& target, jaus::Header header, std::span<const std::uint8_t> payload,
+                 jaus::rt::Duration timeout, CommandIo io) {
+  WildcardPolicy policy;
+  policy.look_for = std::max(timeout, kWildcardLooksFor);
+  const auto result = send_to_every_member(session, target, header, payload, policy);
+  const std::string sent = what + " to " + target.to_string() + " by " + session.self().to_string();
+  const auto confirmed = result.confirmed();
+  const auto unconfirmed = result.unconfirmed();
+  if (!confirmed.empty())
+    io.out << sent << ": confirmed by " << confirmed.size() << (confirmed.size() == 1 ? " component" : " components")
+           << " (" << address_list(confirmed) << ") in " << elapsed_text(result.elapsed) << "\n";
+  const std::string stopped_warning =
+      is_stop(header.command_code) ? ": it may NOT have stopped; stop it another way (its own stop button, the radio's)"
+                                   : "";
+  if (result.interrupted)
+    return fail(io, command, sent + ": interrupted" + (unconfirmed.empty() ? "" : " before " + address_list(unconfirmed) + " confirmed it"));
+  if (confirmed.empty())
+    return fail(io, command, sent + ": no component confirmed it within " + elapsed_text(result.elapsed) +
+                                 (result.members.empty() ? " (none answered" : " (" + address_list(unconfirmed) + " did not")
+                                 + (result.broadcasts ? "; broadcast " + std::to_string(result.broadcasts) + " times)" : ")") +
+                                 stopped_warning);
+  if (!unconfirmed.empty())
+    return fail(io, command, "not confirmed by " + address_list(unconfirmed) + stopped_warning);
+  return kExitOk;
 }
 
 }  // namespace
@@ -115,21 +157,30 @@ int run_query(OcuSession& session, const jaus::Address& target, const PreparedMe
 
 int run_send(OcuSession& session, const jaus::Address& target, const PreparedMessage& message,
              jaus::rt::Duration timeout, CommandIo io) {
+  const auto* info = jaus::msg::find_message(message.header.command_code);
+  const std::string name = info ? std::string(info->name) : code_text(message.header.command_code);
+  // A command to a wildcard reaches every component it names, each confirming it.
+  if (target.is_broadcast() && is_command(message))
+    return run_wildcard(session, "send", name, target, message.header, message.payload, timeout, io);
   const FirstReply first(session, target);
   jaus::Header header = message.header;
   header.destination = target;
   const auto start = session.clock().now();
   if (must_arrive(message, session.options().dialect) && !target.is_broadcast()) {
     const auto arrival = send_must_arrive(session, target, header, message.payload);
-    if (arrival.outcome != Arrival::acknowledged) {
-      const auto* info = jaus::msg::find_message(header.command_code);
-      return fail(io, "send", not_arrived_text(info ? std::string(info->name) : code_text(header.command_code),
-                                               target, arrival));
-    }
+    if (arrival.outcome != Arrival::acknowledged) return fail(io, "send", not_arrived_text(name, target, arrival));
   } else {
     session.send_raw(header, message.payload);
   }
-  // Commands have no reply in the RA: silence is not a failure here.
+  // A command changes state: say who acted, the ID that holds what it left
+  // (stderr: stdout is the reply's JSON).
+  if (is_command(message))
+    io.err << "jausctl send: " << name << " to " << target.to_string() << " by " << session.self().to_string()
+           << (must_arrive(message, session.options().dialect) ? " (acknowledged)" : "") << "\n";
+  // Commands have no reply in the RA: silence is not a failure here. With
+  // the ID shared, what comes may be the other process's (a report of its
+  // service connection): nothing is read as this command's reply.
+  if (io.id_shared) return kExitOk;
   const auto waited = session.clock().now() - start;
   if (!first.reply() && waited < timeout)
     session.run_until([&] { return first.reply().has_value(); }, timeout - waited);
@@ -146,19 +197,22 @@ int run_send(OcuSession& session, const jaus::Address& target, const PreparedMes
 int run_emergency(OcuSession& session, const jaus::Address& target, bool set, jaus::rt::Duration timeout,
                   CommandIo io) {
   // Bit 0 of the emergency code is Stop, the only condition the RA defines.
+  const std::string what = set ? "Set Emergency" : "Clear Emergency";
+  if (target.is_broadcast()) {
+    // Every component it names, found or not yet, each confirming by its ACK (issue 49).
+    std::vector<std::uint8_t> payload(jaus::kMaxPayloadSize);
+    jaus::Header header;
+    header.command_code = set ? jaus::msg::SetEmergency::code : jaus::msg::ClearEmergency::code;
+    header.priority = set ? jaus::priority::kSafetyCritical : jaus::priority::kDefault;
+    const auto size = set ? jaus::wire::encode_payload(jaus::msg::SetEmergency{{1}}, payload)
+                          : jaus::wire::encode_payload(jaus::msg::ClearEmergency{{1}}, payload);
+    if (!size) return fail(io, "emergency", what + " does not encode");
+    return run_wildcard(session, "emergency", what, target, header, std::span(payload).first(*size), timeout, io);
+  }
   // Retransmitted until ACKed: the ACK comes once the component has acted on it.
   const auto arrival = set ? send_must_arrive(session, target, jaus::msg::SetEmergency{{1}},
                                               jaus::priority::kSafetyCritical)
                            : send_must_arrive(session, target, jaus::msg::ClearEmergency{{1}});
-  const std::string what = set ? "Set Emergency" : "Clear Emergency";
-  if (target.is_broadcast()) {
-    // Many components may answer and none acknowledges (must_arrive.hpp):
-    // repeated; there is no single state to show.
-    if (arrival.outcome == Arrival::interrupted) return fail(io, "emergency", what + " interrupted");
-    io.out << what << " sent to " << target.to_string() << " by " << session.self().to_string() << " ("
-           << transmissions_text(arrival) << "; a broadcast is not acknowledged)\n";
-    return kExitOk;
-  }
   // The common RA 3.3 peer (--dialect openjaus) may ignore ACK requests:
   // there, only its status can tell (the state check below).
   const bool status_must_tell =

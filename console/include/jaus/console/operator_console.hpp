@@ -30,6 +30,7 @@
 #include "jaus/messages/manipulator_messages.hpp"
 #include "jaus/ocu/discovery.hpp"
 #include "jaus/ocu/session.hpp"
+#include "jaus/ocu/wildcard_command.hpp"
 #include "jaus/runtime/control_client.hpp"
 
 namespace jaus::console {
@@ -174,11 +175,12 @@ class OperatorConsole {
   void publish_arm(const jaus::Address& source);
   void arm_timer(jaus::rt::TimerId& timer, std::chrono::milliseconds period, void (OperatorConsole::*what)());
   // A command that must arrive (Set/Clear Emergency): ACK-requested and
-  // retransmitted by the node; a broadcast is repeated instead.
+  // retransmitted by the node; to a wildcard (`all`), to every component it
+  // names, each confirming it (send_to_every_member).
   template <class M>
   void send_must_arrive(const jaus::Address& to, const M& message, const std::string& what);
-  void repeat_broadcast(const jaus::Address& to, std::vector<std::uint8_t> packet_payload, jaus::Header header,
-                        int left);
+  void send_to_every_member(const jaus::Address& to, jaus::Header header, std::vector<std::uint8_t> payload,
+                            const std::string& what);
 
   jaus::ocu::OcuSession& session_;
   jaus::rt::Clock& clock_;
@@ -194,7 +196,7 @@ class OperatorConsole {
   bool shut_down_ = false;
   // Callbacks the node may call after this console is gone check this first.
   std::shared_ptr<int> alive_ = std::make_shared<int>(0);
-  std::set<jaus::rt::TimerId> repeat_timers_;
+  std::vector<std::unique_ptr<jaus::ocu::WildcardCommand>> wildcards_;
 
   std::set<PageId> pages_;
   std::map<jaus::Address, Control> controls_;

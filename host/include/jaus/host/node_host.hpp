@@ -47,6 +47,11 @@ struct HostConfig {
   PlatformSettings platform;
   // How far Set Emergency reaches, and where its holds persist (emergency_holds.hpp).
   EmergencySettings emergency;
+  // An operator's own node (jausctl, jaus-console): it takes no commands and
+  // holds no stop, so it persists no emergency holds (it must never write a
+  // vehicle's holds file) and says nothing of a vehicle's posture (an open
+  // bind, holds not persisted): those warnings are jausd's (issue 49).
+  bool operator_unit = false;
   // The JSS face (SAE JAUS on the same port, docs/jss.md): off unless
   // enabled. Its identification and controller timeout are the node's
   // (`settings`), copied when the host is made.

@@ -115,6 +115,8 @@ class OcuSession {
   OcuComponent& component() { return *component_; }
   jaus::node::Node& node() { return *node_; }
   jaus::rt::Clock& clock() { return *clock_; }
+  // Timers on the session's clock (they fire while run_until() runs).
+  jaus::rt::Scheduler& scheduler() { return *scheduler_; }
   // Whether it was opened on UDP (open()) rather than attached.
   bool on_udp() const { return io_ != nullptr; }
   // Only for a session opened on UDP: its link, and what runs it (another
@@ -188,6 +190,7 @@ class OcuSession {
   std::unique_ptr<jaus::node::Node> own_node_;
   jaus::node::Node* node_ = nullptr;
   jaus::rt::Clock* clock_ = nullptr;
+  jaus::rt::Scheduler* scheduler_ = nullptr;
   OcuComponent* component_ = nullptr;
   std::atomic<bool> interrupted_ = false;
   ListenerId last_id_ = 0;

@@ -77,6 +77,13 @@ struct UdpLinkOptions {
   std::optional<Ipv4Endpoint> multicast;    // broadcasts go here (e.g. 224.1.0.1:3794)
   std::uint8_t multicast_ttl = 1;
   bool broadcast_to_peers = true;           // broadcasts also go to every known peer
+  // A subsystem's broadcast (S.255...) goes to the peers heard as its nodes;
+  // with this, also to the static peers not heard from yet (they may be its
+  // nodes). For an OCU (issue 49): its configured peers are the vehicles it
+  // means to reach, and a stop to 1.255.255.255 right after a vehicle starts
+  // must reach it before its first heartbeat. Off for a node (jausd): its own
+  // subsystem's heartbeats are not for peers of other subsystems.
+  bool broadcast_to_unheard_peers = false;
   // Relay messages for other subsystems to where their node was heard: for
   // a node that bridges subsystems (an OCU reaches every subsystem through
   // it). Off by default: a relay's copy of a message the sender also sent
@@ -245,8 +252,9 @@ class UdpLink final : public node::Link {
   // node heard directly at `from`: sent on, in the framing that node speaks.
   void relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet);
   // Whether a broadcast to `to` goes to `peer`: a subsystem's broadcasts only
-  // to nodes of that subsystem (a peer not heard yet may be of any: none).
-  static bool broadcast_reaches(const Address& to, const Peer& peer);
+  // to nodes of that subsystem (a peer not heard yet may be of any: none,
+  // unless options_.broadcast_to_unheard_peers).
+  bool broadcast_reaches(const Address& to, const Peer& peer) const;
   void schedule_expiry();
 
   boost::asio::io_context& io_;
