@@ -1,6 +1,7 @@
 #include "jaus/ocu/session.hpp"
 
 #include <algorithm>
+#include <random>
 #include <stdexcept>
 
 #include "jaus/components/node_manager.hpp"
@@ -61,6 +62,11 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.node.subsystem = self.subsystem;
   config.node.node = self.node;
   config.node.dialect = o.dialect;
+  // Each run numbers its messages from a random start: runs that follow one
+  // another under one kept operator ID would otherwise send a repeated
+  // command with the number the last run gave it, and a vehicle would take it
+  // for that run's retransmitted copy (ACKed, not acted on).
+  config.node.sequences.first = static_cast<std::uint16_t>(std::random_device{}());
   config.link.bind = o.bind;
   config.link.framing = o.framing;
   config.link.multicast = o.multicast;

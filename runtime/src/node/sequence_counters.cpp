@@ -16,7 +16,7 @@ std::uint16_t SequenceCounters::take(const SequenceStream& stream, std::uint16_t
       recency_.pop_front();
       ++evicted_;
     }
-    it = streams_.emplace(stream, State{0, recency_.insert(recency_.end(), stream)}).first;
+    it = streams_.emplace(stream, State{options_.first, recency_.insert(recency_.end(), stream)}).first;
   } else {
     recency_.splice(recency_.end(), recency_, it->second.in_recency);  // now the most recent
   }
@@ -27,7 +27,7 @@ std::uint16_t SequenceCounters::take(const SequenceStream& stream, std::uint16_t
 
 std::uint16_t SequenceCounters::peek(const SequenceStream& stream) const {
   const auto it = streams_.find(stream);
-  return it == streams_.end() ? 0 : it->second.next;
+  return it == streams_.end() ? options_.first : it->second.next;
 }
 
 }  // namespace jaus::node

@@ -49,5 +49,17 @@ TEST(SequenceCounters, ForgetsTheLeastRecentlyUsedStreamWhenFull) {
   EXPECT_EQ(counters.peek({kDriver, kOtherOcu}), 0);
 }
 
+// An operator tool under a kept ID starts each run elsewhere, so a repeated
+// command of a new run is not numbered like the last run's (a receiver would
+// take it for a copy); every stream, new or forgotten, starts there.
+TEST(SequenceCounters, NewStreamsStartAtTheConfiguredFirstNumber) {
+  SequenceCounters counters(SequenceCounters::Options{.max_streams = 1, .first = 40000});
+  EXPECT_EQ(counters.peek({kDriver, kOcu}), 40000);
+  EXPECT_EQ(counters.take({kDriver, kOcu}), 40000);
+  EXPECT_EQ(counters.take({kDriver, kOcu}), 40001);
+  counters.take({kDriver, kOtherOcu});  // evicts kDriver -> kOcu
+  EXPECT_EQ(counters.take({kDriver, kOcu}), 40000);
+}
+
 }  // namespace
 }  // namespace jaus::node

@@ -23,8 +23,13 @@ class SequenceCounters {
  public:
   struct Options {
     // Streams remembered at once; past it the least recently used stream is
-    // forgotten (and restarts at 0 when used again).
+    // forgotten (and restarts at `first` when used again).
     std::size_t max_streams = 1024;
+    // Where every new stream starts. An operator tool that runs again and
+    // again under one kept ID starts at a random number: a receiver's
+    // duplicate filter would take a new run's first command, numbered like
+    // the last run's, for a copy of it (OcuSession::open).
+    std::uint16_t first = 0;
   };
 
   SequenceCounters() : SequenceCounters(Options{}) {}
