@@ -31,6 +31,12 @@ Line parse_line(std::string_view text) {
   if (w.size() == 1 && w[0] == "status") return StatusNow{};
   if (w.size() == 2 && (w[0] == "estop" || w[0] == "pause") && (w[1] == "on" || w[1] == "off"))
     return Press{w[0] == "estop" ? HardwareInput::estop : HardwareInput::pause, w[1] == "on"};
+  if (w.size() == 3 && (w[0] == "estop" || w[0] == "pause") && w[1] == "for" && !w[2].empty() && w[2].size() <= 5 &&
+      w[2].find_first_not_of("0123456789") == std::string::npos) {
+    const int ms = std::stoi(w[2]);
+    if (ms >= 1 && ms <= 10000)
+      return PressFor{w[0] == "estop" ? HardwareInput::estop : HardwareInput::pause, std::chrono::milliseconds(ms)};
+  }
   // Without the line ending, which a terminal or a Windows editor may add.
   auto line = std::string(text);
   while (!line.empty() && (line.back() == '\r' || line.back() == '\n')) line.pop_back();

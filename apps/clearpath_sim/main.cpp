@@ -1,7 +1,7 @@
 // clearpath-sim: a simulated Clearpath platform on UDP, a serial device or a
 // PTY it opens itself (`pty: /dev/pts/N` is then its first line of output).
 // Standard input takes the platform's physical inputs (`estop on`, `pause off`,
-// see console_lines.hpp); standard output carries JSON lines.
+// `pause for 50`, see console_lines.hpp); standard output carries JSON lines.
 #include <csignal>
 #include <functional>
 #include <iostream>
@@ -114,6 +114,15 @@ int main(int argc, char** argv) {
     if (const auto* press = std::get_if<console::Press>(&line)) {
       server.press(press->input, press->on);
       std::cout << console::press_answer(*press, server.platform().vehicle().safety_flags()) << std::endl;
+    } else if (const auto* timed = std::get_if<console::PressFor>(&line)) {
+      server.press(timed->input, true);
+      std::cout << console::press_answer({timed->input, true}, server.platform().vehicle().safety_flags()) << std::endl;
+      // On the runtime's timer, as the subscriptions are: a report due before
+      // the release goes out first, however late this process runs.
+      runtime.call_at(runtime.now() + timed->duration, [&server, input = timed->input] {
+        server.press(input, false);
+        std::cout << console::press_answer({input, false}, server.platform().vehicle().safety_flags()) << std::endl;
+      });
     } else if (std::holds_alternative<console::StatusNow>(line)) {
       print_status_now();
     } else if (const auto* unknown = std::get_if<console::Unknown>(&line)) {

@@ -56,6 +56,10 @@ class ClearpathSimulator {
 
   // A hardware input pressed (on) or released: "estop" or "pause".
   bool press(const std::string& input, bool on) { return process_->write_stdin(input + (on ? " on\n" : " off\n")); }
+  // Pressed now, released `ms` later by the simulator's own timer (`pause for 50`).
+  bool press_for(const std::string& input, int ms) {
+    return process_->write_stdin(input + " for " + std::to_string(ms) + "\n");
+  }
 
   // Every JSON line printed so far whose top-level key is `key` ("status"), oldest first.
   std::vector<Json> lines_of(const std::string& key) const {
