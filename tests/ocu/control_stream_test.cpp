@@ -126,11 +126,10 @@ TEST_F(ControlStreamTest, AStopSeenOnlyByItsCounterStopsTheStreamForGood) {
   auto other = open_ocu(kOcuB);
   ASSERT_TRUE(ocu && other);
   std::uint64_t dropped = 0;
-  // The tap runs before the link looks at its cable: unplugged for one packet.
-  target->link.on_transmit([&](const jaus::Header& h, std::span<const std::uint8_t>) {
-    const bool drop = h.command_code == jaus::msg::ReportComponentStatus::code && !h.service_connection;
-    dropped += drop;
-    target->link.set_connected(!drop);
+  target->lose_outgoing([&](const jaus::Header& h) {
+    const bool lost = h.command_code == jaus::msg::ReportComponentStatus::code && !h.service_connection;
+    dropped += lost;
+    return lost;
   });
   const auto stops_before = target->driver().counters().stops_entered;
   once([&] { return applied() >= 3; },
