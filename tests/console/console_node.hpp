@@ -69,7 +69,7 @@ class ConsoleNode {
     auto op = test_support::attach_ocu(time_, console_link_, session);
     if (!op) throw std::runtime_error(op.error().message());
     session_ = std::move(*op);
-    ocu::SessionOptions rival;
+    ocu::SessionOptions rival = session;  // a copy: gcc 12 -O1 misreads a second default one (maybe-uninitialized)
     rival.self = kRival;
     auto r = test_support::attach_ocu(time_, network_, rival);
     if (!r) throw std::runtime_error(r.error().message());
