@@ -32,6 +32,12 @@ Line parse_line(std::string_view text) {
   if (w.size() == 2 && (w[0] == "estop" || w[0] == "pause") && (w[1] == "on" || w[1] == "off"))
     return Press{w[0] == "estop" ? HardwareInput::estop : HardwareInput::pause, w[1] == "on"};
   if (w.size() == 2 && w[0] == "deaf" && (w[1] == "on" || w[1] == "off")) return Deaf{w[1] == "on"};
+  if (w.size() == 3 && (w[0] == "estop" || w[0] == "pause") && w[1] == "for" && !w[2].empty() && w[2].size() <= 5 &&
+      w[2].find_first_not_of("0123456789") == std::string::npos) {
+    const int ms = std::stoi(w[2]);
+    if (ms >= 1 && ms <= 10000)
+      return PressFor{w[0] == "estop" ? HardwareInput::estop : HardwareInput::pause, std::chrono::milliseconds(ms)};
+  }
   // Without the line ending, which a terminal or a Windows editor may add.
   auto line = std::string(text);
   while (!line.empty() && (line.back() == '\r' || line.back() == '\n')) line.pop_back();
@@ -48,7 +54,7 @@ std::string deaf_answer(const Deaf& deaf) { return Json{{"deaf", deaf.on}}.dump(
 
 std::string error_line(const Unknown& unknown) {
   // dump() escapes what the line holds and replaces invalid UTF-8.
-  return Json{{"error", "unknown input line '" + unknown.line + "': expected estop on|off, pause on|off, deaf on|off"}}.dump(
+  return Json{{"error", "unknown input line '" + unknown.line + "': expected estop on|off, pause on|off, estop|pause for MS, deaf on|off"}}.dump(
       -1, ' ', false, Json::error_handler_t::replace);
 }
 

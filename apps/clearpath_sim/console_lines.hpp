@@ -3,6 +3,7 @@
 // functions: main.cpp does the reading and the printing.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,6 +24,14 @@ struct Press {
 struct Deaf {
   bool on;
 };
+// `estop for MS`, `pause for MS` (1-10000): set now, released MS
+// milliseconds later by the simulator's own timer, not by a later line: a
+// stop of a known length however late standard input is read (a loaded
+// machine may hand over two lines at once). Both edges answer as Press does.
+struct PressFor {
+  HardwareInput input;
+  std::chrono::milliseconds duration;
+};
 // `status`: print the status line at once.
 struct StatusNow {};
 // A blank line: nothing to do, nothing to answer.
@@ -31,7 +40,7 @@ struct Blank {};
 struct Unknown {
   std::string line;
 };
-using Line = std::variant<Press, Deaf, StatusNow, Blank, Unknown>;
+using Line = std::variant<Press, PressFor, Deaf, StatusNow, Blank, Unknown>;
 
 Line parse_line(std::string_view text);
 

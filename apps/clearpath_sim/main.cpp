@@ -1,7 +1,8 @@
 // clearpath-sim: a simulated Clearpath platform on UDP, a serial device or a
 // PTY it opens itself (`pty: /dev/pts/N` is then its first line of output).
-// Standard input takes the platform's physical inputs (`estop on`, `pause off`)
-// and a one-way-line fault (`deaf on|off`), see console_lines.hpp; standard output carries JSON lines.
+// Standard input takes the platform's physical inputs (`estop on`, `pause off`,
+// `pause for 50`) and a one-way-line fault (`deaf on|off`), see console_lines.hpp;
+// standard output carries JSON lines.
 #include <csignal>
 #include <functional>
 #include <iostream>
@@ -124,6 +125,15 @@ int main(int argc, char** argv) {
       spdlog::warn("clearpath-sim: {}", deaf->on ? "deaf (stdin): every frame received is ignored, data still goes"
                                                    : "hears again (stdin)");
       std::cout << console::deaf_answer(*deaf) << std::endl;
+    } else if (const auto* timed = std::get_if<console::PressFor>(&line)) {
+      server.press(timed->input, true);
+      std::cout << console::press_answer({timed->input, true}, server.platform().vehicle().safety_flags()) << std::endl;
+      // On the runtime's timer, as the subscriptions are: a report due before
+      // the release goes out first, however late this process runs.
+      runtime.call_at(runtime.now() + timed->duration, [&server, input = timed->input] {
+        server.press(input, false);
+        std::cout << console::press_answer({input, false}, server.platform().vehicle().safety_flags()) << std::endl;
+      });
     } else if (std::holds_alternative<console::StatusNow>(line)) {
       print_status_now();
     } else if (const auto* unknown = std::get_if<console::Unknown>(&line)) {

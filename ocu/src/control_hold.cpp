@@ -4,6 +4,7 @@
 
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/ocu/names.hpp"
+#include "jaus/runtime/stop_counter.hpp"
 
 namespace jaus::ocu {
 
@@ -62,13 +63,15 @@ ControlHold::RequestResult ControlHold::request(jaus::rt::Duration timeout) {
     if (m.header.source != target_) return;
     if (m.header.command_code == jaus::msg::RejectComponentControl::code) rejected_ = true;
     if (m.header.command_code == jaus::msg::QueryComponentStatus::code) ++liveness_checks_;
-    // The answer to a keepalive: the first state sooner when the service
-    // connection's creation was lost. Once its reports come, they alone
-    // tell the state (an answer overtaken by a newer report is not stale news).
-    if (m.header.command_code == jaus::msg::ReportComponentStatus::code && !status_reported_) {
+    // The answer to a keepalive (the first state sooner when the service
+    // connection's creation was lost), or the component's own report of a
+    // change of state (sent to its controller at once). Once the service
+    // connection's reports come, such a report may only tell of a stop: a
+    // Ready in it may be an answer overtaken by a newer report.
+    if (m.header.command_code == jaus::msg::ReportComponentStatus::code && !m.header.service_connection) {
       jaus::msg::ReportComponentStatus report{};
       if (jaus::wire::decode_payload_into(m.payload, report, session_.options().dialect, jaus::kHeaderSize))
-        heard_status(report.primary_status);
+        heard_status(report.primary_status, report.secondary_status, /*may_resume=*/!status_reported_);
     }
     // The answer to a control check (or to who_has_control).
     if (m.header.command_code == jaus::msg::ReportComponentControl::code && !control_elsewhere_) {
@@ -97,13 +100,26 @@ void ControlHold::watch_status() {
       target_, status_rate_hz(), 0,
       [this](const jaus::Header&, const jaus::msg::ReportComponentStatus& report) {
         status_reported_ = true;
-        heard_status(report.primary_status);
+        heard_status(report.primary_status, report.secondary_status, /*may_resume=*/true);
       });
 }
 
-void ControlHold::heard_status(std::uint8_t primary_status) {
+void ControlHold::heard_status(std::uint8_t primary_status, std::uint32_t secondary_status, bool may_resume) {
   status_heard_ = session_.clock().now();
   const std::uint8_t state = primary_status & 0x0F;
+  const std::uint16_t stops = jaus::rt::stop_counter::of(secondary_status);
+  // Safety: once commands went, any stop the component reports ends the
+  // hold for good (WhenNotReady::end_hold), also one that came and went
+  // between two reports: its stop counter moved (stop_counter.hpp). Kept
+  // even when a later report says Ready again.
+  if (been_ready_ && !stop_seen_) {
+    if (state != kReady)
+      stop_seen_ = StopSeen{state, false, last_stops_.value_or(stops), stops};
+    else if (last_stops_ && stops != *last_stops_)
+      stop_seen_ = StopSeen{state, true, *last_stops_, stops};
+  }
+  last_stops_ = stops;
+  if (state == kReady && !may_resume) return;
   if (state_ == state) return;
   const std::string text =
       state_ ? primary_status_text(*state_) + " -> " + primary_status_text(state) : primary_status_text(state);
@@ -145,7 +161,11 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
     // re-creates it after a silence, so it cannot tell.)
     if (state_ && now - status_heard_ > status_silence_) return End::silent;
     // A new state wakes the loop at once: it decides before the next command goes.
-    session_.run_until([this, seen = state_] { return control_gone() || state_ != seen; }, slice);
+    session_.run_until(
+        [this, seen = state_, stopped = stop_seen_.has_value()] {
+          return control_gone() || state_ != seen || stop_seen_.has_value() != stopped;
+        },
+        slice);
   }
 }
 
@@ -153,6 +173,7 @@ ControlHold::End ControlHold::hold(std::optional<jaus::rt::Duration> limit,
 // just started, its hardware not heard yet) is waited for; every other state
 // is a stop someone or something asked for.
 bool ControlHold::left_ready() const {
+  if (stop_seen_) return true;
   if (!state_ || *state_ == kReady) return false;
   return been_ready_ || *state_ != kInitialize;
 }

@@ -133,6 +133,47 @@ TEST_F(PlatformSafety, APlatformPauseIsHeldUntilThePlatformReleasesIt) {
   EXPECT_TRUE(wheels_still());           // and nothing moves until a new command
 }
 
+// Issue 42: a platform pause of 50 ms, pressed at every phase of the safety
+// status subscription (3 ms steps over 100 ms), is always seen: the driver
+// enters Emergency (and counts the stop, which every Report Component
+// Status then carries), stays there until the platform reports the pause
+// released, and only then is Ready. Returns how many pauses were seen.
+class PlatformPauses : public PlatformSafety {
+ protected:
+  static constexpr int kPhases = 34;
+  int pauses_seen(std::uint16_t rate_hz) {
+    auto config = husky();
+    config.safety_status_rate_hz = rate_hz;
+    start(config);
+    int seen = 0;
+    for (int phase_ms = 0; phase_ms < 3 * kPhases; phase_ms += 3) {
+      time.advance(std::chrono::milliseconds(phase_ms));
+      const auto stops = driver->counters().stops_entered;
+      const auto before = states.size();
+      press(sim::HardwareInput::pause, true);
+      time.advance(50ms);
+      press(sim::HardwareInput::pause, false);
+      if (driver->counters().stops_entered == stops + 1) {
+        ++seen;
+        // Held until the platform says it is released: never Ready during the pause.
+        EXPECT_FALSE(was_ready_since(before)) << "Ready during the pause at phase " << phase_ms << " ms";
+      }
+      time.advance(250ms);
+      EXPECT_EQ(driver->state(), S::ready);
+      EXPECT_LE(driver->counters().stops_entered, stops + 1);
+    }
+    return seen;
+  }
+};
+
+TEST_F(PlatformPauses, AFiftyMillisecondPauseIsSeenWheneverItFalls) {
+  EXPECT_EQ(pauses_seen(bridge::ClearpathVehicleConfig{}.safety_status_rate_hz), kPhases);
+}
+
+// The former 10 Hz subscription misses some of them entirely: the check that
+// the test above can fail.
+TEST_F(PlatformPauses, AtTenHertzAFiftyMillisecondPauseCanBeMissed) { EXPECT_LT(pauses_seen(10), kPhases); }
+
 // A JAUS Emergency set during the pause waits to be written until the pause
 // is released (a write could only erase or latch it), then holds the platform.
 TEST_F(PlatformSafety, SetEmergencyDuringAPauseIsWrittenOnceThePauseIsReleased) {

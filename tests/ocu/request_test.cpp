@@ -25,7 +25,24 @@ TEST_F(VirtualOcuTest, StatusPrintsTheComponentStatusAsJson) {
   EXPECT_EQ(j["component"], "1.1.35.1");
   EXPECT_EQ(j["primary_status"], "ready");
   EXPECT_EQ(j["primary_status_code"], 1);
+  EXPECT_EQ(j["stops"], 0);
   EXPECT_EQ(j["emergency"], false);
+}
+
+// The stop counter moves on every stop, and stays moved once it is over.
+TEST_F(VirtualOcuTest, StatusCountsTheStopsOfTheComponent) {
+  auto ocu = open_ocu();
+  ASSERT_TRUE(ocu);
+  for (int stop = 1; stop <= 2; ++stop) {
+    ocu->send(kCommunicator, jaus::msg::SetEmergency{{1}});
+    ocu->send(kCommunicator, jaus::msg::ClearEmergency{{1}});
+    out.str("");
+    ASSERT_EQ(ocu::run_status(*ocu, kCommunicator, 1s, io()), kExitOk) << err.str();
+    const auto j = nlohmann::json::parse(out.str());
+    EXPECT_EQ(j["primary_status"], "ready");
+    EXPECT_EQ(j["stops"], stop);
+    EXPECT_EQ(j["secondary_status"].get<std::uint32_t>() >> 20, static_cast<std::uint32_t>(stop));
+  }
 }
 
 TEST_F(VirtualOcuTest, NoReplyIsOneLineNamingTheComponentAndTheTimeout) {

@@ -184,12 +184,40 @@ TEST_F(ClearpathSimInputs, APauseTypedOnStdinSurvivesSetSafetySystem) {
   EXPECT_EQ((*status)["hardware_inputs"], 0);
 }
 
+// `pause for MS`: pressed at once, released by the simulator's own timer MS
+// later (never sooner, whenever standard input is read): two answers, and the
+// input events MS or more apart on its clock.
+TEST_F(ClearpathSimInputs, APauseForATimeIsReleasedByTheSimulatorItself) {
+  start();
+  const auto before = lines_with("input").size();
+  ASSERT_TRUE(sim_->write_stdin("pause for 50\n"));
+  const auto answers = wait_for("input", [&](const std::vector<Json>& all) { return all.size() >= before + 2; }, before);
+  ASSERT_TRUE(answers) << sim_->output();
+  const auto inputs = lines_with("input");
+  EXPECT_EQ(inputs[before]["on"], true);
+  EXPECT_TRUE(inputs[before]["safety_flags"].get<int>() & 0x10) << inputs[before].dump();
+  EXPECT_EQ(inputs[before + 1]["on"], false);
+  EXPECT_EQ(inputs[before + 1]["safety_flags"].get<int>() & 0x10, 0) << inputs[before + 1].dump();
+  std::vector<std::int64_t> edges;
+  for (const auto& e : lines_with("event"))
+    if (e["event"] == "input" && e["input"] == "pause") edges.push_back(e["steady_ns"].get<std::int64_t>());
+  ASSERT_EQ(edges.size(), 2u) << sim_->output();
+  EXPECT_GE(edges[1] - edges[0], 50'000'000);
+  // Out of range or not a number: an error, nothing pressed.
+  ASSERT_TRUE(type("pause for 0", "error"));
+  ASSERT_TRUE(type("pause for 10001", "error"));
+  ASSERT_TRUE(type("estop for x", "error"));
+  const auto status = status_with(0);
+  ASSERT_TRUE(status) << sim_->output();
+  EXPECT_EQ((*status)["hardware_inputs"], 0);
+}
+
 TEST_F(ClearpathSimInputs, AnUnknownLineIsAnErrorAndChangesNothing) {
   start();
   ASSERT_TRUE(type("estop on", "input"));
   const auto error = type("xyz", "error");
   ASSERT_TRUE(error) << sim_->output();
-  EXPECT_EQ((*error)["error"], "unknown input line 'xyz': expected estop on|off, pause on|off, deaf on|off");
+  EXPECT_EQ((*error)["error"], "unknown input line 'xyz': expected estop on|off, pause on|off, estop|pause for MS, deaf on|off");
   ASSERT_TRUE(type("pause sideways", "error"));
   const auto status = status_with(0x08);
   ASSERT_TRUE(status) << sim_->output();

@@ -56,6 +56,10 @@ class ClearpathSimulator {
 
   // A hardware input pressed (on) or released: "estop" or "pause".
   bool press(const std::string& input, bool on) { return process_->write_stdin(input + (on ? " on\n" : " off\n")); }
+  // Pressed now, released `ms` later by the simulator's own timer (`pause for 50`).
+  bool press_for(const std::string& input, int ms) {
+    return process_->write_stdin(input + " for " + std::to_string(ms) + "\n");
+  }
 
   // A one-way line, now: deaf (on) it ignores every frame it receives and
   // keeps sending its data; off it hears again.

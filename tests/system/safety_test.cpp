@@ -126,6 +126,25 @@ class Safety : public ::testing::Test {
     }
     return seen;
   }
+  // A controller streaming 60 % forward at 10 Hz that stops for good at the
+  // first stop it sees (exit 3): what `jausctl control --send` does by default.
+  std::unique_ptr<ChildProcess> stopping_controller() {
+    return jausctl("controller",
+                   {"control", kDriver, "--authority", "10", "--rate", "10", "--for", "60", "--send", kForward},
+                   "127.0.0.72:0");
+  }
+  // The stop counter of `address` (jausctl status's "stops"), none without an answer.
+  std::optional<std::uint32_t> stops_of(const std::string& address) {
+    auto child = jausctl("stops", {"status", address, "--timeout", "1"}, "127.0.0.73:0");
+    if (child->wait(20s) != 0) return std::nullopt;
+    std::istringstream lines(child->output());
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line.front() == '{') {
+        const Json j = Json::parse(line, nullptr, false);
+        if (!j.is_discarded() && j.contains("stops")) return j["stops"].get<std::uint32_t>();
+      }
+    return std::nullopt;
+  }
   int emergency(const std::string& what, const std::string& as) {
     auto child = jausd->jausctl("emergency-" + what, {"emergency", kDriver, what, "--timeout", "5"}, "127.0.0.74:0", as);
     return child->wait(20s).value_or(-1);
@@ -202,6 +221,55 @@ TEST_F(Safety, APlatformPauseHoldsTheVehicleUntilThePlatformReleasesIt) {
   EXPECT_EQ(now["safety_flags"].get<int>() & 0x10, 0x10) << now.dump();  // the pause is still there
   ASSERT_TRUE(sim->press("pause", false));
   EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
+}
+
+// Issue 42: a stop shorter than a status period. Another OCU sets and clears
+// the emergency back to back (2 ms apart) while `jausctl control --send`
+// drives: the driver stops, and the controller, which samples the status at
+// 10 Hz, sees it (reported at once, and counted in every later report): it
+// stops for good (exit 3), and the wheels stay at rest. Every time.
+TEST_F(Safety, AnEmergencySetAndClearedBackToBackStopsTheControllerForGood) {
+  start();
+  Operators operators;
+  for (int round = 1; round <= 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    auto controller = stopping_controller();
+    ASSERT_TRUE(sim->wait_for(Simulator::moving, 15s)) << controller->output();
+    const auto stops = stops_of(kDriver);
+    ASSERT_TRUE(stops);
+    operators.send(20, msg::SetEmergency{{1}});
+    operators.send(20, msg::ClearEmergency{{1}});
+    EXPECT_EQ(controller->wait(20s), 3) << controller->output();
+    EXPECT_TRUE(controller->output_contains("stopped sending Set Wrench Effort")) << controller->output();
+    ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
+    const auto first = sim->states().size();
+    EXPECT_EQ(stops_of(kDriver), *stops + 1);  // the stop happened, once, and is over
+    EXPECT_TRUE(poll_status(kDriver, "ready", 10s));
+    EXPECT_TRUE(all_stopped_since(first)) << "the wheels turned again after the controller stopped";
+  }
+}
+
+// Issue 42: a platform pause of 50 ms, between two of the 10 Hz safety
+// status samples jausd used to take, went unseen (wheels 0.60 -> 0.41 ->
+// 0.60 m/s). At 50 Hz every pause of 20 ms or more falls on a sample: the
+// driver enters Emergency, and the controller stops for good. Every time.
+TEST_F(Safety, AFiftyMillisecondPlatformPauseIsSeenEveryTime) {
+  start();
+  for (int round = 1; round <= 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    auto controller = stopping_controller();
+    ASSERT_TRUE(sim->wait_for(Simulator::moving, 15s)) << controller->output();
+    const auto stops = stops_of(kDriver);
+    ASSERT_TRUE(stops);
+    ASSERT_TRUE(sim->press_for("pause", 50));
+    EXPECT_EQ(controller->wait(20s), 3) << controller->output();
+    EXPECT_TRUE(controller->output_contains("stopped sending Set Wrench Effort")) << controller->output();
+    ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
+    const auto first = sim->states().size();
+    EXPECT_TRUE(poll_status(kDriver, "ready", 10s));  // released by the platform, seen released
+    EXPECT_EQ(stops_of(kDriver), *stops + 1);
+    EXPECT_TRUE(all_stopped_since(first)) << "the wheels turned again after the controller stopped";
+  }
 }
 
 // Issue 27, failure 2: a controller killed mid-stream was stopped only by the

@@ -104,8 +104,15 @@ int run_control(OcuSession& session, const ControlOptions& options, CommandIo io
   }
   if (end == ControlHold::End::not_ready) {
     control.release();
-    const std::string state = control.state() ? primary_status_text(*control.state()) : "?";
-    if (started)
+    const auto& stop = control.stop_seen();
+    const std::string state = stop                ? primary_status_text(stop->state)
+                              : control.state() ? primary_status_text(*control.state())
+                                                : "?";
+    if (started && stop && stop->between_reports)
+      io.err << "jausctl control: " << target << " stopped and went back to Ready between two status reports (stop counter "
+             << stop->stops_before << " -> " << stop->stops_after << "): stopped sending " << sent
+             << "; not resuming (see --resume-when-ready)\n";
+    else if (started)
       io.err << "jausctl control: " << target << " entered " << state << ": stopped sending " << sent
              << "; not resuming (see --resume-when-ready)\n";
     else

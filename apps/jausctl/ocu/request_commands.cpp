@@ -11,6 +11,7 @@
 #include "jaus/ocu/names.hpp"
 #include "jaus/ocu/repeated_query.hpp"
 #include "jaus/ocu/wildcard_command.hpp"
+#include "jaus/runtime/stop_counter.hpp"
 #include "command_output.hpp"
 #include "image_file.hpp"
 #include "ocu_commands.hpp"
@@ -134,6 +135,8 @@ int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Durat
                  {"primary_status", name.empty() ? Json(code) : Json(std::string(name))},
                  {"primary_status_code", code},
                  {"secondary_status", report->secondary_status},
+                 // The stop counter of bits 20-31 (jaus/runtime/stop_counter.hpp).
+                 {"stops", jaus::rt::stop_counter::of(report->secondary_status)},
                  {"emergency", is_emergency(*report)}};
   io.out << json_line(out) << "\n";
   return kExitOk;

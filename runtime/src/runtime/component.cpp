@@ -5,6 +5,7 @@
 
 #include "jaus/messages/communications_messages.hpp"
 #include "jaus/messages/discovery_messages.hpp"
+#include "jaus/runtime/stop_counter.hpp"
 
 namespace jaus::rt {
 
@@ -133,8 +134,14 @@ void Component::transition(LifecycleEvent event, const Address& by, std::string_
            std::string(to_string(event)) + (cause.empty() ? " from " + by.to_string() : ": " + std::string(cause)) +
            ")";
   });
-  // Safety: leaving Ready, or re-entering a non-Ready state, always stops the platform.
-  if (after != PrimaryStatus::ready) enforce_stop(std::string("entered ") + std::string(to_string(after)));
+  // Safety: leaving Ready, or re-entering a non-Ready state, always stops the
+  // platform, and counts: the stop counter every Report Component Status
+  // carries (stop_counter.hpp) shows a stop to a controller that sampled
+  // neither side of it.
+  if (after != PrimaryStatus::ready) {
+    ++counters_.stops_entered;
+    enforce_stop(std::string("entered ") + std::string(to_string(after)));
+  }
   if (after == PrimaryStatus::initialize || after == PrimaryStatus::shutdown) failure_declared_ = false;
   if (after == PrimaryStatus::shutdown) {
     take_control_away("component shut down");
@@ -143,6 +150,15 @@ void Component::transition(LifecycleEvent event, const Address& by, std::string_
   }
   state_changed(before, after);
   if (state_listener_) state_listener_(before, after);
+  report_state_to_controller();
+}
+
+// A state change goes to the controller at once, not at its next sample: it
+// stops commanding before a Clear Emergency from someone else could make its
+// commands count again. Lost on the way, the stop counter of the next sample
+// still shows it (stop_counter.hpp).
+void Component::report_state_to_controller() {
+  if (const auto& controller = control_.controller()) send(controller->address, status_report());
 }
 
 void Component::hold_hardware_emergency(std::string_view cause) {
@@ -327,8 +343,11 @@ bool Component::keeps_state_for(const Address& node) const {
 msg::ReportComponentStatus Component::status_report() const {
   msg::ReportComponentStatus report;
   report.primary_status = static_cast<std::uint8_t>(lifecycle_.state());
-  // Bit 0 of the emergency secondary status: the Stop condition is set.
-  report.secondary_status = (emergency_->active() ? 1u : 0u) | (component_status_bits() & 0xFFFF0000u);
+  // Bit 0 of the emergency secondary status: the Stop condition is set;
+  // bits 16-19 the component's own; 20-31 the stop counter.
+  report.secondary_status = (emergency_->active() ? 1u : 0u) |
+                            (component_status_bits() & stop_counter::kComponentBits) |
+                            stop_counter::bits(counters_.stops_entered);
   return report;
 }
 

@@ -1,6 +1,7 @@
 #include "jaus/runtime/control_client.hpp"
 
 #include "jaus/runtime/lifecycle.hpp"
+#include "jaus/runtime/stop_counter.hpp"
 #include "jaus/wire/message.hpp"
 
 namespace jaus::rt {
@@ -77,7 +78,7 @@ bool ControlClient::on_message(const Header& header, std::span<const std::uint8_
     case msg::ReportComponentStatus::code: {
       msg::ReportComponentStatus status{};
       if (!wire::decode_payload_into(payload, status, wire::Dialect::ra, kHeaderSize)) return false;
-      on_status(status.primary_status);
+      on_status(status.primary_status, status.secondary_status);
       return true;
     }
     default: return false;
@@ -99,14 +100,25 @@ void ControlClient::on_confirm(std::uint8_t response_code) {
   io_.query_status(target_, msg::QueryComponentStatus{});
 }
 
-void ControlClient::on_status(std::uint8_t primary_status) {
+void ControlClient::on_status(std::uint8_t primary_status, std::uint32_t secondary_status) {
   last_status_ = env_.clock.now();
   if (state_ == State::requesting) return;  // its state says nothing about our request yet
   if (static_cast<PrimaryStatus>(primary_status & 0x0F) != PrimaryStatus::ready) {
     lose(target_.to_string() + " is in " + state_name(primary_status), /*send_release=*/true);
     return;
   }
+  const std::uint16_t stops = stop_counter::of(secondary_status);
+  // Safety: Ready again, but a stop came and went since the last report (Set
+  // then Clear Emergency between two samples): lost as if it had been seen,
+  // so nothing the target stopped is started again by us.
+  if (state_ == State::held && stops != held_stops_) {
+    lose(target_.to_string() + " stopped and went back to Ready between two status reports (stop counter " +
+             std::to_string(held_stops_) + " -> " + std::to_string(stops) + ")",
+         /*send_release=*/true);
+    return;
+  }
   if (state_ == State::granted_waiting_ready) {
+    held_stops_ = stops;  // stops before we held it are not ours to see
     state_ = State::held;
     ++counters_.granted;
     if (granted_) granted_();

@@ -10,6 +10,7 @@
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/runtime/lifecycle.hpp"
 #include "jaus/runtime/control_client.hpp"
+#include "jaus/runtime/stop_counter.hpp"
 #include "jaus/wire/message.hpp"
 
 namespace jaus::test {
@@ -55,9 +56,10 @@ class ControlClientTest : public ::testing::Test {
     h.data_size = static_cast<std::uint16_t>(payload.size());
     return client_.on_message(h, payload);
   }
-  msg::ReportComponentStatus status(msg::PrimaryStatus s) {
+  msg::ReportComponentStatus status(msg::PrimaryStatus s, std::uint64_t stops = 0) {
     msg::ReportComponentStatus r;
     r.primary_status = static_cast<std::uint8_t>(s);
+    r.secondary_status = rt::stop_counter::bits(stops);
     return r;
   }
 
@@ -140,6 +142,38 @@ TEST_F(ControlClientTest, TheTargetLeavingReadyIsALossAndControlIsGivenBack) {
   // Ready again later changes nothing: the client is released.
   EXPECT_FALSE(deliver(status(msg::PrimaryStatus::ready)));
   EXPECT_EQ(granted_, 1);
+}
+
+// Issue 42: Set then Clear Emergency between two queries. The target is
+// Ready at both, but its stop counter moved: the stop happened, and the
+// owner loses control as if it had seen it (and gives it back).
+TEST_F(ControlClientTest, AStopBetweenTwoReportsIsALossThoughBothSayReady) {
+  acquire();
+  deliver(msg::ConfirmComponentControl{{msg::control_response::kAccepted}});
+  deliver(status(msg::PrimaryStatus::ready, 4));  // stops before the hold are not ours
+  ASSERT_TRUE(client_.held());
+  time_.advance(100ms);
+  deliver(status(msg::PrimaryStatus::ready, 4));
+  ASSERT_TRUE(client_.held());
+  time_.advance(100ms);
+  deliver(status(msg::PrimaryStatus::ready, 5));
+  EXPECT_FALSE(client_.held());
+  ASSERT_EQ(lost_.size(), 1u);
+  EXPECT_EQ(lost_[0], "1.1.33.1 stopped and went back to Ready between two status reports (stop counter 4 -> 5)");
+  EXPECT_EQ(sent_.back(), "release 1.1.33.1");
+  EXPECT_EQ(client_.counters().lost, 1u);
+}
+
+// The counter wraps at 4096 (12 bits): a wrap is a move like any other.
+TEST_F(ControlClientTest, AStopCounterThatWrapsIsAMoveToo) {
+  acquire();
+  deliver(msg::ConfirmComponentControl{{msg::control_response::kAccepted}});
+  deliver(status(msg::PrimaryStatus::ready, 4095));
+  ASSERT_TRUE(client_.held());
+  deliver(status(msg::PrimaryStatus::ready, 4096));
+  EXPECT_FALSE(client_.held());
+  ASSERT_EQ(lost_.size(), 1u);
+  EXPECT_NE(lost_[0].find("4095 -> 0"), std::string::npos) << lost_[0];
 }
 
 TEST_F(ControlClientTest, GrantedOnATargetThatIsNotReadyIsALoss) {

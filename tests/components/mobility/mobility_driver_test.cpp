@@ -123,6 +123,26 @@ TEST_P(MobilityDriverTest, SetEmergencyOnThePrimitiveDriverStopsItAndClearEmerge
   EXPECT_FALSE(node_.primitive_driver().control().controller());
 }
 
+// Issue 42: Set then Clear Emergency back to back, between two of the
+// driver's status queries: the primitive driver is Ready again before the
+// driver's next query, yet the driver has seen the stop (reported to it at
+// once, and counted in every later report) and stops for good.
+TEST_P(MobilityDriverTest, AnEmergencySetAndClearedBetweenTwoStatusQueriesStopsTheDriverForGood) {
+  driver_->distance_m = 100;
+  driver_->go();
+  ASSERT_TRUE(node_.run_until([&] { return moving(); }, 3s));
+  const auto stops_before = node_.primitive_driver().counters().stops_entered;
+  node_.send(kPrimitiveDriver, msg::SetEmergency{{1}});
+  node_.send(kPrimitiveDriver, msg::ClearEmergency{{1}});
+  ASSERT_TRUE(node_.run_until([&] { return !driver_->driving(); }, 1s));
+  EXPECT_EQ(node_.primitive_driver().counters().stops_entered, stops_before + 1);
+  EXPECT_EQ(node_.state_of(kPrimitiveDriver), rt::PrimaryStatus::ready);
+  node_.run_for(3s);
+  EXPECT_FALSE(driver_->driving());
+  EXPECT_TRUE(stopped());
+  EXPECT_FALSE(node_.primitive_driver().control().controller());
+}
+
 TEST_P(MobilityDriverTest, EveryStopPathOfTheDriverItselfCommandsZeroBelow) {
   driver_->distance_m = 100;
   driver_->go();

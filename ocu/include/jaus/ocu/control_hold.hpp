@@ -23,7 +23,10 @@
 // Like other OCUs (jaus-wire-notes.md), the hold watches the component's
 // Report Component Status on a 5 Hz service connection (at the send rate
 // when faster, see send_while_held): it shows state changes, and silence
-// means the component (or its node) is gone. Control also ends with Reject
+// means the component (or its node) is gone. A stop shorter than a report
+// period still shows: the component sends its controller its status at once
+// on every change, and every report carries a stop counter
+// (jaus/runtime/stop_counter.hpp) that moves on every stop. Control also ends with Reject
 // Component Control (taken over, or dropped).
 #pragma once
 
@@ -93,6 +96,7 @@ class ControlHold {
   // any other state (Emergency, Standby, Failure, ...): the hold ends then, or
   // with WhenNotReady::pause waits for Ready again. (Only Initialize before
   // the first Ready, a component still starting, is waited for either way.)
+  // A stop that came and went between two reports ends it too (stop_seen()).
   // A component that refuses
   // the status service connection gets nothing (End::unwatched). The status
   // comes at least as often as the commands go, so a state is acted on within
@@ -104,6 +108,16 @@ class ControlHold {
   std::uint64_t sent_while_held() const { return sent_while_held_; }
   // The primary status last reported (bits 0-3), none before the first report.
   std::optional<std::uint8_t> state() const { return state_; }
+  // The first stop the component reported once commands went (send_while_held):
+  // a state other than Ready, or a Ready whose stop counter moved (a stop
+  // that came and went between two reports, jaus/runtime/stop_counter.hpp).
+  struct StopSeen {
+    std::uint8_t state;           // the primary status it was reported with
+    bool between_reports;         // only the stop counter showed it
+    std::uint16_t stops_before;   // the stop counter before ...
+    std::uint16_t stops_after;    // ... and in the report that showed the stop
+  };
+  const std::optional<StopSeen>& stop_seen() const { return stop_seen_; }
 
   // Release Component Control and end the status service connection. The RA
   // has no reply to it, so it goes with an ACK request, retransmitted until
@@ -129,7 +143,9 @@ class ControlHold {
   void watch_status();
   // A Report Component Status from the component: on its service connection,
   // or answering a keepalive.
-  void heard_status(std::uint8_t primary_status);
+  // `may_resume`: the report may say Ready again (on the service connection,
+  // or before its first report); otherwise it may only tell of a stop.
+  void heard_status(std::uint8_t primary_status, std::uint32_t secondary_status, bool may_resume);
   void stop_watching_status();
   bool status_refused() const;
   bool left_ready() const;
@@ -153,6 +169,8 @@ class ControlHold {
   std::uint64_t liveness_checks_ = 0;
   std::optional<jaus::rt::SubscriptionId> status_sc_;
   std::optional<std::uint8_t> state_;  // last primary status reported
+  std::optional<std::uint16_t> last_stops_;  // the stop counter of the last report
+  std::optional<StopSeen> stop_seen_;
   bool status_reported_ = false;       // by the service connection (not only by keepalive answers)
   jaus::rt::TimePoint status_heard_{};
   std::function<void(const std::string&)> on_state_;

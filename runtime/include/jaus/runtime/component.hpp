@@ -91,6 +91,9 @@ struct ComponentCounters {
   // Set Component Authority above max_authority, not applied.
   std::uint64_t refused_authority_changes = 0;
   std::uint64_t stops_commanded = 0;
+  // Entries into a state other than Ready (Emergency, Standby, Failure,
+  // Shutdown, Initialize): the stop counter of Report Component Status.
+  std::uint64_t stops_entered = 0;
   // Requests refused for the sender's standing (see the header comment).
   std::uint64_t refused_observer = 0;
   std::uint64_t refused_unrecorded = 0;
@@ -313,7 +316,8 @@ class Component {
   // platform already stopped when `after` is not Ready): a component that
   // must look at its hardware on entering a state does it here.
   virtual void state_changed(PrimaryStatus /*before*/, PrimaryStatus /*after*/) {}
-  // Component-specific secondary status bits (16-31 of Report Component Status).
+  // Component-specific secondary status bits (16-19 of Report Component
+  // Status; 20-31 carry the stop counter, stop_counter.hpp).
   virtual std::uint32_t component_status_bits() const { return 0; }
   // A peer is gone (peer_lost, after its service connections ended and its
   // control was taken away): what else this component keeps for it ends here.
@@ -354,6 +358,7 @@ class Component {
   // `by` names who asked in the log line; `cause`, when given, says why instead (a local hold).
   void transition(LifecycleEvent event, const Address& by, std::string_view cause = {});
   void enforce_stop(std::string_view why);
+  void report_state_to_controller();
   void refuse_not_controller(const Header& header, std::string_view what);
 
   // Control.

@@ -12,8 +12,11 @@
 //     requested or held, so the owner learns at once when the target leaves
 //     Ready (an operator's Set Emergency, Standby) and when it falls silent.
 //   lost: Reject Component Control (an operator of higher authority took
-//     over, or the target dropped us), a status other than Ready, or no
-//     status for status_silence. The owner hears `lost(why)` once, and
+//     over, or the target dropped us), a status other than Ready, a Ready
+//     whose stop counter moved since the hold began (a stop that came and
+//     went between two reports: stop_counter.hpp), or no status for
+//     status_silence. The target also sends its status at once on every
+//     change of state, so a stop is mostly seen before the next query. The owner hears `lost(why)` once, and
 //     control is released (Release Component Control), except after a Reject,
 //     when it is not ours any more.
 //
@@ -88,7 +91,7 @@ class ControlClient {
  private:
   void send_request();
   void on_confirm(std::uint8_t response_code);
-  void on_status(std::uint8_t primary_status);
+  void on_status(std::uint8_t primary_status, std::uint32_t secondary_status);
   void tick();
   void arm_tick();
   void cancel_tick();
@@ -106,6 +109,7 @@ class ControlClient {
   int requests_left_ = 0;
   TimePoint request_sent_{};
   TimePoint last_status_{};
+  std::uint16_t held_stops_ = 0;  // the target's stop counter when it was first Ready to us
   TimerId timer_ = kNoTimer;
   Counters counters_;
 };
