@@ -117,7 +117,7 @@ class Runner {
         const bool estop = a.kind == Kind::estop;
         node_.press(estop, a.value != 0);
         model_.platform_input(estop, a.value != 0, now);
-        if (a.value == 2) {  // a pulse: shorter than the platform's 10 Hz safety status
+        if (a.value == 2) {  // a pulse: one period of the platform's 50 Hz safety status
           node_.run_for(kPulse);
           node_.press(estop, false);
           model_.advance_to(node_.now());

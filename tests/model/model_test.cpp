@@ -21,8 +21,8 @@
 //      beyond controller_timeout_s) or its controller's last command is
 //      older than command_timeout_s, the last motion command jausd wrote to
 //      the platform is zero: within 50 ms of a stop jausd makes, within
-//      300 ms of one the platform makes (jausd hears it at 10 Hz; a stop
-//      released before jausd heard of it is the known bug below).
+//      300 ms of one the platform makes (jausd hears it at 50 Hz, so a
+//      pulse of one period, 20 ms, is heard too: the regression below).
 //   2. Only the controller moves it: a non-zero drive is the current
 //      controller's last Set Wrench Effort in effect (A's, B's or J's,
 //      values drawn at random, 5..80 % either way), or the vector driver's
@@ -240,22 +240,14 @@ TEST(ModelRegression, StandbySurvivesAnEmergencyAndOnlyTheControllerResumes) {
   EXPECT_GT(stats.moving, 10u);
 }
 
-// BUG (found by this model; not fixed here): a pause (or e-stop) pulse
-// shorter than the platform's 10 Hz safety status goes unheard by jausd. The
-// platform drops its setpoint for the pulse, but the bridge's periodic
-// setpoint (ClientCore, every setpoint period until setpoint_max_age) sends
-// the last Set Wrench Effort again and the platform drives on at 60 % after
-// the pulse, with no new command from the controller: jausd undoes a stop it
-// did not make (docs/safety.md, "jausd never undoes a stop it did not
-// make"). The strict rule (every platform stop ends the command in effect) is
-// ModelTiming::every_platform_stop_ends_the_command; the model used by the
-// random sequences allows an unheard pulse until this is fixed.
-// jaus_add_gtests runs disabled tests too (--gtest_also_run_disabled_tests):
-// it is skipped unless JAUS_MODEL_KNOWN_BUGS is set, so CI stays green.
-TEST(ModelRegression, DISABLED_APausePulseShorterThanTheStatusPeriodEndsTheCommand) {
-  if (!std::getenv("JAUS_MODEL_KNOWN_BUGS"))
-    GTEST_SKIP() << "known bug: a platform stop pulse shorter than its safety status period goes unheard and the "
-                    "periodic setpoint drives on (run with JAUS_MODEL_KNOWN_BUGS=1)";
+// Found by this model: a pause (or e-stop) pulse shorter than the platform's
+// safety status period went unheard by jausd while it sampled at 10 Hz. The
+// platform dropped its setpoint for the pulse, but the bridge's periodic
+// setpoint sent the last Set Wrench Effort again and the platform drove on
+// at 60 % after the pulse, with no new command from the controller: jausd
+// undid a stop it did not make. jausd now samples the safety status at 50 Hz,
+// so a pulse of one period (20 ms) is always seen and ends the command.
+TEST(ModelRegression, APausePulseOfOneStatusPeriodEndsTheCommand) {
   ModelTiming strict;
   strict.every_platform_stop_ends_the_command = true;
   strict.platform_deadline = 150;  // the status period and a margin

@@ -292,10 +292,12 @@ void ReferenceModel::reset(Party p, Ms now) {
 
 // Rule: the platform's own stop holds every component on it until the
 // platform releases it; jausd commands zero once it hears of it (its safety
-// status, 10 Hz: surely within platform_deadline). A stop released before
-// that may go unheard: what was commanded before it may then still be in
-// effect (the platform dropped it; jausd's periodic setpoint brings it back
-// until command_timeout_s: see the report of issue 42, item 7).
+// status, 50 Hz: surely within platform_deadline). With
+// every_platform_stop_ends_the_command (the default) a stop of one status
+// period or longer, released before jausd reports it, still ends the command
+// in effect; without it the model lets what was commanded before it go on
+// (what jausd did at 10 Hz: the platform dropped the setpoint, the bridge's
+// periodic setpoint brought it back until command_timeout_s).
 void ReferenceModel::platform_input(bool estop, bool on, Ms now) {
   bool& flag = estop ? estop_ : pause_;
   bool& heard_of = estop ? estop_heard_ : pause_heard_;

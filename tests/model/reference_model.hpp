@@ -44,13 +44,15 @@ struct ModelTiming {
   Ms controller_timeout = 3000;  // control.controller_timeout_s
   Ms margin = 60;                // either side of a timeout: either outcome
   Ms stop_deadline = 50;         // a stop jausd makes: zero commanded within this
-  Ms platform_deadline = 300;    // a stop the platform makes: jausd's zero within this (10 Hz status)
+  Ms platform_deadline = 300;    // a stop the platform makes: jausd's zero within this
   Ms settle = 500;               // an Emergency's end: Ready once the platform confirms, within this
   Ms driver_settle = 600;        // the vector driver takes or gives back the primitive driver within this
-  // Not promised today (see ModelRegression.DISABLED_APausePulseShorterThanTheStatusPeriodEndsTheCommand):
-  // every platform stop, even one released before jausd's next safety
-  // status, ends the command in effect.
-  bool every_platform_stop_ends_the_command = false;
+  // Every platform stop, even one released before jausd's next safety
+  // status would have come at 10 Hz, ends the command in effect: jausd
+  // samples it at 50 Hz, so a stop of one period (20 ms, the pulse) is seen
+  // (ModelRegression.APausePulseOfOneStatusPeriodEndsTheCommand). A shorter one
+  // is not promised (docs/safety.md, Limits).
+  bool every_platform_stop_ends_the_command = true;
 };
 
 class ReferenceModel {
