@@ -98,39 +98,13 @@ TEST_F(ControlStreamTest, EmergencyStopsTheStreamAndAClearDoesNotRestartIt) {
 }
 
 // Issue 42: another OCU sets and clears the emergency back to back, between
-// two status reports. The driver reports the change to its controller at
-// once: the stream stops for good, and the Clear restarts nothing.
+// two status reports, both of which say Ready: the stop shows only as the
+// stop counter of the next report. The stream stops for good, and the Clear
+// restarts nothing.
 TEST_F(ControlStreamTest, AnEmergencySetAndClearedBackToBackStopsTheStreamForGood) {
   auto ocu = open_ocu();
   auto other = open_ocu(kOcuB);
   ASSERT_TRUE(ocu && other);
-  once([&] { return applied() >= 3; },
-       [&] {
-         other->send(kDriver, jaus::msg::SetEmergency{{1}});
-         other->send(kDriver, jaus::msg::ClearEmergency{{1}});
-       });
-  EXPECT_EQ(ocu::run_control(*ocu, streaming(), io()), kExitLeftReady) << err.str();
-  EXPECT_EQ(err.str(), kEmergencyStop);
-  ASSERT_TRUE(run_until([&] { return !controlled(); }));
-  EXPECT_EQ(driver_state(), jaus::msg::PrimaryStatus::ready);
-  const auto arrived = target->efforts_arrived();
-  run_for(500ms);
-  EXPECT_EQ(target->efforts_arrived(), arrived);
-}
-
-// The same with the driver's own reports of the change lost on the way (every
-// Report Component Status outside the service connection): the stop shows
-// only as the stop counter of the next report, Ready like the one before.
-TEST_F(ControlStreamTest, AStopSeenOnlyByItsCounterStopsTheStreamForGood) {
-  auto ocu = open_ocu();
-  auto other = open_ocu(kOcuB);
-  ASSERT_TRUE(ocu && other);
-  std::uint64_t dropped = 0;
-  target->lose_outgoing([&](const jaus::Header& h) {
-    const bool lost = h.command_code == jaus::msg::ReportComponentStatus::code && !h.service_connection;
-    dropped += lost;
-    return lost;
-  });
   const auto stops_before = target->driver().counters().stops_entered;
   once([&] { return applied() >= 3; },
        [&] {
@@ -138,12 +112,12 @@ TEST_F(ControlStreamTest, AStopSeenOnlyByItsCounterStopsTheStreamForGood) {
          other->send(kDriver, jaus::msg::ClearEmergency{{1}});
        });
   EXPECT_EQ(ocu::run_control(*ocu, streaming(), io()), kExitLeftReady) << err.str();
-  EXPECT_GE(dropped, 2u);  // the reports of Emergency and of Ready again
   EXPECT_EQ(target->driver().counters().stops_entered, stops_before + 1);
   EXPECT_EQ(err.str(), "jausctl control: 1.1.33.1 stopped and went back to Ready between two status reports (stop "
                        "counter " + std::to_string(stops_before) + " -> " + std::to_string(stops_before + 1) +
                        "): stopped sending Set Wrench Effort; not resuming (see --resume-when-ready)\n");
   ASSERT_TRUE(run_until([&] { return !controlled(); }));
+  EXPECT_EQ(driver_state(), jaus::msg::PrimaryStatus::ready);
   const auto arrived = target->efforts_arrived();
   run_for(500ms);
   EXPECT_EQ(target->efforts_arrived(), arrived);

@@ -89,9 +89,22 @@ constexpr unsigned kReady = static_cast<unsigned>(msg::PrimaryStatus::ready);
 
 // The "done when" of issue 49, from a fresh start each time: jausd started
 // and, at once, the broadcast stop; every component confirms it and reports
-// Emergency. Several fresh starts in one test (each a few seconds).
+// Emergency. 20 fresh starts in the Release tree, as the issue asks (about a
+// second each); 4 in the sanitizer tree, where each takes several.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define JAUS_BROADCAST_STOP_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define JAUS_BROADCAST_STOP_ASAN 1
+#endif
+#ifdef JAUS_BROADCAST_STOP_ASAN
+constexpr int kFreshStarts = 4;
+#else
+constexpr int kFreshStarts = 20;
+#endif
 TEST(BroadcastStop, FromAFreshStartEveryComponentOfTheSubsystemStopsAndConfirmsIt) {
-  constexpr int kFreshStarts = 4;
   for (int run = 0; run < kFreshStarts; ++run) {
     SCOPED_TRACE("fresh start " + std::to_string(run));
     DefaultJausd jausd("broadcast-stop-" + std::to_string(run), 1, kNode);

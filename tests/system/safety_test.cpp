@@ -133,18 +133,20 @@ class Safety : public ::testing::Test {
                    {"control", kDriver, "--authority", "10", "--rate", "10", "--for", "60", "--send", kForward},
                    "127.0.0.72:0");
   }
-  // The stop counter of `address` (jausctl status's "stops"), none without an answer.
-  std::optional<std::uint32_t> stops_of(const std::string& address) {
-    auto child = jausctl("stops", {"status", address, "--timeout", "1"}, "127.0.0.73:0");
+  // A field of `address`'s Report Component Status as `jausctl status` prints
+  // it ("stops": the stop counter, "secondary_status"), none without an answer.
+  std::optional<std::uint32_t> status_field(const std::string& address, const std::string& field) {
+    auto child = jausctl("status-" + field, {"status", address, "--timeout", "1"}, "127.0.0.73:0");
     if (child->wait(20s) != 0) return std::nullopt;
     std::istringstream lines(child->output());
     for (std::string line; std::getline(lines, line);)
       if (!line.empty() && line.front() == '{') {
         const Json j = Json::parse(line, nullptr, false);
-        if (!j.is_discarded() && j.contains("stops")) return j["stops"].get<std::uint32_t>();
+        if (!j.is_discarded() && j.contains(field)) return j[field].get<std::uint32_t>();
       }
     return std::nullopt;
   }
+  std::optional<std::uint32_t> stops_of(const std::string& address) { return status_field(address, "stops"); }
   int emergency(const std::string& what, const std::string& as) {
     auto child = jausd->jausctl("emergency-" + what, {"emergency", kDriver, what, "--timeout", "5"}, "127.0.0.74:0", as);
     return child->wait(20s).value_or(-1);
@@ -436,17 +438,7 @@ TEST_F(Safety, AWaypointRouteStopsForAnOperatorAndForSetEmergencyAndNothingResta
                                 std::string(kRouteHost) + ":0", kRouteOwner);
     ASSERT_EQ(child->wait(20s), 0) << json << "\n" << child->output();
   };
-  const auto driving_bits = [&]() -> std::optional<std::uint32_t> {
-    auto child = jausctl("route-status", {"status", kWaypointDriver, "--timeout", "1"}, "127.0.0.73:0");
-    if (child->wait(20s) != 0) return std::nullopt;
-    std::istringstream lines(child->output());
-    for (std::string line; std::getline(lines, line);)
-      if (!line.empty() && line.front() == '{') {
-        const Json j = Json::parse(line, nullptr, false);
-        if (!j.is_discarded() && j.contains("secondary_status")) return j["secondary_status"].get<std::uint32_t>();
-      }
-    return std::nullopt;
-  };
+  const auto driving_bits = [&] { return status_field(kWaypointDriver, "secondary_status"); };
   constexpr std::uint32_t kDriving = 1u << 16, kLostControl = 1u << 18;
   // A long straight route (40 m north), loaded in Standby, started by Resume.
   const auto start_route = [&] {

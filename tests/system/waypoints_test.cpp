@@ -94,6 +94,18 @@ class Waypoints : public ::testing::Test {
     return (*report)["fields"];
   }
 
+  // Control of the waypoint driver, held by `controller` (authority 5, above the drivers' 1).
+  void take_the_waypoint_driver() {
+    controller = jausd->jausctl("control", {"control", kWaypointDriver, "--authority", "5", "--for", "180"},
+                                std::string(kOperatorHost) + ":3794", kOperator);
+    ASSERT_TRUE(controller->started());
+    const auto granted_until = std::chrono::steady_clock::now() + 20s;
+    while (!controller->output_contains("granted")) {
+      ASSERT_TRUE(controller->running()) << controller->output();
+      ASSERT_LT(std::chrono::steady_clock::now(), granted_until) << controller->output();
+      std::this_thread::sleep_for(100ms);
+    }
+  }
   // `jausctl send` as the controller (its ID, its host).
   void send_as_controller(const std::string& message) {
     auto child = jausd->jausctl("send", {"send", kWaypointDriver, message, "--timeout", "0.2"},
@@ -114,16 +126,7 @@ class Waypoints : public ::testing::Test {
 double distance(const Point& a, const Point& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 TEST_F(Waypoints, JausctlLoadsFourLocalWaypointsResumesAndTheVehicleStopsAtTheLast) {
-  // Control of the waypoint driver, held (authority 5, above the drivers' 1).
-  controller = jausd->jausctl("control", {"control", kWaypointDriver, "--authority", "5", "--for", "180"},
-                              std::string(kOperatorHost) + ":3794", kOperator);
-  ASSERT_TRUE(controller->started());
-  const auto granted_until = std::chrono::steady_clock::now() + 20s;
-  while (!controller->output_contains("granted")) {
-    ASSERT_TRUE(controller->running()) << controller->output();
-    ASSERT_LT(std::chrono::steady_clock::now(), granted_until) << controller->output();
-    std::this_thread::sleep_for(100ms);
-  }
+  ASSERT_NO_FATAL_FAILURE(take_the_waypoint_driver());
 
   // Standby, the travel speed and the list (loading never moves the vehicle), Resume.
   send_as_controller(R"({"name":"Standby"})");
@@ -182,15 +185,7 @@ TEST_F(Waypoints, JausctlLoadsFourLocalWaypointsResumesAndTheVehicleStopsAtTheLa
 // drivers' ceiling max_authority), so an operator asking the primitive
 // driver at 2 takes it from the driver at once and the route stops.
 TEST_F(Waypoints, SetComponentAuthority255IsRefusedAndAnOperatorAtAuthority2StopsTheRoute) {
-  controller = jausd->jausctl("control", {"control", kWaypointDriver, "--authority", "5", "--for", "180"},
-                              std::string(kOperatorHost) + ":3794", kOperator);
-  ASSERT_TRUE(controller->started());
-  const auto granted_until = std::chrono::steady_clock::now() + 20s;
-  while (!controller->output_contains("granted")) {
-    ASSERT_TRUE(controller->running()) << controller->output();
-    ASSERT_LT(std::chrono::steady_clock::now(), granted_until) << controller->output();
-    std::this_thread::sleep_for(100ms);
-  }
+  ASSERT_NO_FATAL_FAILURE(take_the_waypoint_driver());
   send_as_controller(R"({"name":"Standby"})");
   send_as_controller(R"({"name":"Set Travel Speed","fields":{"speed_mps":1.0}})");
   // One waypoint far enough that the route is still driving when taken over.

@@ -150,15 +150,10 @@ void Component::transition(LifecycleEvent event, const Address& by, std::string_
   }
   state_changed(before, after);
   if (state_listener_) state_listener_(before, after);
-  report_state_to_controller();
-}
-
-// A state change goes to the controller at once, not at its next sample: it
-// stops commanding before a Clear Emergency from someone else could make its
-// commands count again. Lost on the way, the stop counter of the next sample
-// still shows it (stop_counter.hpp).
-void Component::report_state_to_controller() {
-  if (const auto& controller = control_.controller()) send(controller->address, status_report());
+  // No unsolicited Report Component Status goes to the controller: the RA
+  // sends it only as an answer or on a service connection, and a peer that
+  // pairs answers with its queries (jaus-conform did) reads it as the answer
+  // to its next query. The stop counter shows the stop at the next sample.
 }
 
 void Component::hold_hardware_emergency(std::string_view cause) {

@@ -358,7 +358,6 @@ class Component {
   // `by` names who asked in the log line; `cause`, when given, says why instead (a local hold).
   void transition(LifecycleEvent event, const Address& by, std::string_view cause = {});
   void enforce_stop(std::string_view why);
-  void report_state_to_controller();
   void refuse_not_controller(const Header& header, std::string_view what);
 
   // Control.

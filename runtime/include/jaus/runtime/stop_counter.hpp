@@ -9,9 +9,9 @@
 // Ready with counter N and then Ready with another counter knows a stop
 // happened meanwhile, however brief, and stops for good (the component
 // stopped the platform then; a controller that went on commanding would undo
-// that stop). A component also pushes its status to its controller at once
-// on every state change (Component::transition), so most stops are seen
-// before the next sample; the counter covers a pushed report that was lost.
+// that stop). Nothing is pushed between samples: an unsolicited Report
+// Component Status would be read by a peer that pairs answers with its
+// queries as the answer to its next one.
 //
 // Peers: the RA leaves bits 16-31 to the vendor; a peer that leaves them 0
 // (OpenJAUS does) never shows a change, so nothing is lost by reading it. A
