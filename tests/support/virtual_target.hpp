@@ -38,14 +38,6 @@ class VirtualTarget : private AttachedTargetHost, public TargetComponents {
 
   // The network goes quiet (cable pulled, process frozen): nothing in or out.
   void go_silent() { link.set_connected(false); }
-  // What the target sends is lost whenever `lost` says so (a link that
-  // drops chosen messages). The tap runs before the link looks at its
-  // cable: unplugged for that one packet.
-  void lose_outgoing(std::function<bool(const jaus::Header&)> lost) {
-    link.on_transmit([this, lost = std::move(lost)](const jaus::Header& h, std::span<const std::uint8_t>) {
-      link.set_connected(!lost(h));
-    });
-  }
   jaus::node::Node& node() { return host->node(); }
 
  private:
