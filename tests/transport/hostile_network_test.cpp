@@ -387,6 +387,39 @@ TEST(AmplificationGuardBounds, HeldRepliesAreBoundedAndGoWithTheEndpoint) {
   EXPECT_EQ(guard.offer(Ipv4Endpoint{0x7F000004, 1}, Framing::opc, big, now), AmplificationGuard::Verdict::send);  // untracked
 }
 
+// An ACK answers one datagram and is never larger: it goes at once even when
+// the endpoint's budget is spent and reports wait behind a challenge (held,
+// the OCU would retransmit a Standby this node already obeyed and give up).
+TEST(AmplificationGuardBounds, AnAckIsNeverHeldEvenWithTheBudgetSpentAndRepliesHeld) {
+  AmplificationGuard guard(AmplificationGuardOptions{}, {5, 6});
+  const Ipv4Endpoint ocu{0x7F000002, 1};
+  guard.track(ocu);
+  const rt::TimePoint now{};
+  const std::vector<std::uint8_t> report(64);
+  EXPECT_EQ(guard.offer(ocu, Framing::opc, report, now), AmplificationGuard::Verdict::held);  // nothing received yet
+  Header standby;
+  standby.command_code = jaus::msg::Standby::code;
+  standby.ack_nak = AckNak::ack_requested;
+  standby.source = {254, 10, 40, 1};
+  standby.destination = {1, 1, 33, 1};
+  for (const auto delivery : {node::Delivery::delivered, node::Delivery::undeliverable}) {
+    const Header reply = *node::ack_reply_for(standby, standby.destination, delivery);
+    std::array<std::uint8_t, kHeaderSize> bytes{};
+    encode_header_unchecked(reply, bytes);
+    EXPECT_EQ(guard.offer(ocu, Framing::opc, bytes, now), AmplificationGuard::Verdict::send);
+  }
+  EXPECT_EQ(guard.counters().replies_held, 1u);  // the report still waits for the challenge's answer
+  // A JSS ACK (AS5669A flag 3, header only) likewise.
+  jss::JudpHeader jss_ack;
+  jss_ack.ack_nak = jss::JudpAckNak::ack;
+  jss_ack.source = {1, 1, 1};
+  jss_ack.destination = {200, 5, 40};
+  const Ipv4Endpoint jss_client{0x7F000003, 1};
+  guard.track(jss_client);
+  EXPECT_EQ(guard.offer(jss_client, Framing::as5669a, jss::make_judp_datagram(jss_ack, {}), now),
+            AmplificationGuard::Verdict::send);
+}
+
 // End to end on real sockets: a node with verify_endpoints and an OCU-side
 // node (its own Node, which answers ACK requests as every node does): the
 // OCU's query is answered after the challenge, without anyone's help.

@@ -30,6 +30,20 @@ std::uint64_t siphash(const std::array<std::uint64_t, 2>& key, std::uint64_t mes
   return v0 ^ v1 ^ v2 ^ v3;
 }
 
+// A header-only ACK or NAK, in either dialect.
+bool is_acknowledgement(Framing framing, std::span<const std::uint8_t> packet) {
+  if (framing == Framing::as5669a) {
+    const auto packets = jss::decode_judp_datagram(packet);
+    if (!packets || packets->size() != 1) return false;
+    const jss::JudpPacket& only = packets->front();
+    return (only.header.ack_nak == jss::JudpAckNak::ack || only.header.ack_nak == jss::JudpAckNak::nak) &&
+           only.contents.empty();
+  }
+  const auto header = decode_header(packet);
+  return header && (header->ack_nak == AckNak::ack || header->ack_nak == AckNak::nak) &&
+         packet.size() == kHeaderSize;
+}
+
 }  // namespace
 
 std::size_t AmplificationGuard::framed_size(Framing framing, std::size_t packet_size) {
@@ -110,6 +124,16 @@ AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Fr
   if (it == endpoints_.end() || it->second.verified) return Verdict::send;
   State& state = it->second;
   const std::size_t size = framed_size(framing, packet.size());
+  // An ACK or NAK answers one datagram received from this endpoint and is
+  // never larger than it: it amplifies nothing, so it is never held or
+  // dropped (nor queued behind held reports). Held, the sender of a command
+  // this node delivered would retransmit it blind and give up although it
+  // acted (a Standby through a lossy line, tests/network).
+  if (is_acknowledgement(framing, packet)) {
+    state.sent += size;
+    counters_.bytes_sent_unverified += size;
+    return Verdict::send;
+  }
   // Behind what is already held, never before it: a large data set stays in order.
   if (state.held.empty() && state.sent + size <= state.received) {
     state.sent += size;
