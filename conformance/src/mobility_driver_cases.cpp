@@ -5,11 +5,14 @@
 // only the controller's Set is executed, and a vector is reported as set.
 //
 // Safety first, as in the primitive driver cases:
-//   - a list is loaded in Standby and never resumed (loading never moves a
-//     vehicle; a driver that would start a route on loading in Ready cannot
-//     here), and every list case that loaded something ends with Reset
-//     under control (ResetOnExit), so nothing it loaded is driven by a
-//     later Resume;
+//   - a list (and a travel speed) is loaded in Standby and never resumed.
+//     Both start rules a route driver may have are accepted and neither
+//     can move a vehicle here: one that drives only after Standby -> load
+//     -> Resume, and one that drives a list loaded in Ready once its
+//     controller's travel speed is above zero (the RA implementations',
+//     OpenJAUS's; jausd's drivers have both). Every list case that loaded
+//     something ends with Reset under control (ResetOnExit), so nothing it
+//     loaded is driven by a later Resume;
 //   - a vector case commands at most a crawl (0.1 m/s; the global vector
 //     speed 0, its smallest step on the wire being 0.15 m/s) and ends, however
 //     it ends, commanding speed 0 and Standby (StopVectorOnExit) before it

@@ -13,6 +13,7 @@
 
 #include "broken_mobility_components.hpp"
 #include "case_results.hpp"
+#include "ready_start_waypoint_driver.hpp"
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
@@ -210,6 +211,47 @@ INSTANTIATE_TEST_SUITE_P(
         Broken{"VectorForgetsSpeed", test::kVectorForgetsSpeed, "mobility.local_vector.echo",
                "Set Local Vector 0.100 m/s heading 0.500 rad reported as 0.000 m/s heading 0.500 rad"}),
     [](const ::testing::TestParamInfo<Broken>& p) { return std::string(p.param.name); });
+
+// Both start rules of a route driver are accepted (issue 43): our drivers
+// (Standby -> load -> Resume, and load and go in Ready) pass above; a driver
+// with only the RA implementations' rule (a list loaded in Ready drives once
+// a travel speed above zero is set, OpenJAUS's) passes every waypoint and
+// travel speed case too, and the cases never make it start: they load in
+// Standby and never Resume.
+TEST(MobilityCases, ADriverThatStartsALoadedListInReadyPassesAndIsNeverStartedByThem) {
+  VirtualNetwork net;
+  test::ReadyStartNode ra(net.time, net.network);
+  auto session = net.open_session();
+  ASSERT_TRUE(session) << session.error().message();
+  RunOptions options;
+  options.only = "mobility.";
+  const auto results = net.run_on(**session, test::kReadyStartWaypointDriver, options);
+  std::size_t passed = 0;
+  for (const auto& r : results) {
+    const std::string_view id = r.test_case->id;
+    if (id.starts_with("mobility.local_waypoint.") || id.starts_with("mobility.travel_speed.")) {
+      EXPECT_EQ(r.outcome.verdict, Verdict::pass) << id << ": " << r.outcome.detail;
+      ++passed;
+    } else {
+      EXPECT_EQ(r.outcome.verdict, Verdict::skip) << id << ": " << r.outcome.detail;
+    }
+  }
+  EXPECT_EQ(passed, 4u) << describe(results);
+  EXPECT_EQ(ra.driver().routes_started(), 0);
+  EXPECT_TRUE((*session)->run_until([&] { return !ra.driver().control().controller().has_value(); }, 3s));
+
+  // And it is such a driver: its controller's list and speed in Ready start it.
+  auto granted = (*session)->request(test::kReadyStartWaypointDriver, msg::RequestComponentControl{{5}},
+                                     {msg::ConfirmComponentControl::code}, 1s);
+  ASSERT_TRUE(granted) << granted.error().message();
+  ASSERT_EQ(ra.driver().state(), msg::PrimaryStatus::ready);
+  msg::SetLocalWaypoint waypoint;
+  waypoint.waypoint_number = 0;
+  waypoint.x_m = 3;
+  (*session)->send(test::kReadyStartWaypointDriver, waypoint);
+  (*session)->send(test::kReadyStartWaypointDriver, msg::SetTravelSpeed{{0.5}});
+  EXPECT_TRUE((*session)->run_until([&] { return ra.driver().routes_started() == 1; }, 1s));
+}
 
 // Each mobility case says why it does not apply to a component of another
 // kind (the primitive driver), and each driver kind runs only its own.

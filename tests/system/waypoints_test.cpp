@@ -119,11 +119,39 @@ class Waypoints : public ::testing::Test {
     return Point{(*pose)["x_m"].get<double>(), (*pose)["y_m"].get<double>()};
   }
 
+  bool driving() {
+    const auto state = status();
+    return state && ((*state)["secondary_status"].get<std::uint32_t>() & kDrivingBit) != 0;
+  }
+
+  // The route watched until it is finished (the driving bit seen set, then
+  // clear again) or 120 s: and how close the vehicle came to `passing`.
+  struct Drive {
+    bool seen_driving = false, finished = false;
+    double closest_m = 1e9;
+  };
+  Drive watch_the_route(const Point& passing);
+
   std::unique_ptr<DefaultJausd> jausd;
   std::unique_ptr<ChildProcess> controller;
 };
 
 double distance(const Point& a, const Point& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+Waypoints::Drive Waypoints::watch_the_route(const Point& passing) {
+  Drive drive;
+  const auto until = std::chrono::steady_clock::now() + 120s;
+  while (!drive.finished && std::chrono::steady_clock::now() < until) {
+    if (const auto state = status()) {
+      const bool now_driving = ((*state)["secondary_status"].get<std::uint32_t>() & kDrivingBit) != 0;
+      drive.seen_driving = drive.seen_driving || now_driving;
+      drive.finished = drive.seen_driving && !now_driving;
+    }
+    if (const auto at = local_position()) drive.closest_m = std::min(drive.closest_m, distance(*at, passing));
+    std::this_thread::sleep_for(200ms);
+  }
+  return drive;
+}
 
 TEST_F(Waypoints, JausctlLoadsFourLocalWaypointsResumesAndTheVehicleStopsAtTheLast) {
   ASSERT_NO_FATAL_FAILURE(take_the_waypoint_driver());
@@ -145,22 +173,10 @@ TEST_F(Waypoints, JausctlLoadsFourLocalWaypointsResumesAndTheVehicleStopsAtTheLa
 
   // Driving, then finished: the driving bit set, then clear again; on the
   // way the vehicle passes the far corner.
-  bool seen_driving = false, finished = false;
-  double closest_to_far_corner = 1e9;
-  const auto until = std::chrono::steady_clock::now() + 120s;
-  while (!finished && std::chrono::steady_clock::now() < until) {
-    const auto state = status();
-    if (state) {
-      const bool driving = ((*state)["secondary_status"].get<std::uint32_t>() & kDrivingBit) != 0;
-      seen_driving = seen_driving || driving;
-      finished = seen_driving && !driving;
-    }
-    if (const auto at = local_position()) closest_to_far_corner = std::min(closest_to_far_corner, distance(*at, kSquare[1]));
-    std::this_thread::sleep_for(200ms);
-  }
-  ASSERT_TRUE(seen_driving) << controller->output() << jausd->output();
-  ASSERT_TRUE(finished) << controller->output() << jausd->output();
-  EXPECT_LT(closest_to_far_corner, 1.0);  // pure pursuit cuts the corner a little
+  const Drive drive = watch_the_route(kSquare[1]);
+  ASSERT_TRUE(drive.seen_driving) << controller->output() << jausd->output();
+  ASSERT_TRUE(drive.finished) << controller->output() << jausd->output();
+  EXPECT_LT(drive.closest_m, 1.0);  // pure pursuit cuts the corner a little
 
   // At the last waypoint, within the arrival tolerance; still there a moment later (stopped).
   const auto last = local_position();
@@ -178,6 +194,29 @@ TEST_F(Waypoints, JausctlLoadsFourLocalWaypointsResumesAndTheVehicleStopsAtTheLa
   ASSERT_TRUE(primitive);
   EXPECT_EQ((*primitive)["controller"], "0.0.0.0") << primitive->dump();
   EXPECT_TRUE(controller->running()) << controller->output();
+}
+
+// Issue 43, the RA implementations' start rule: a list loaded into the Ready
+// driver waits until its controller sets a travel speed above zero, then
+// drives (no Standby, no Resume), to the last waypoint.
+TEST_F(Waypoints, AListLoadedInReadyDrivesOnceTheControllerSetsATravelSpeed) {
+  ASSERT_NO_FATAL_FAILURE(take_the_waypoint_driver());
+  const Point route[] = {{2, 0}, {2, 2}};
+  for (std::size_t n = 0; n < std::size(route); ++n)
+    send_as_controller(Json{{"name", "Set Local Waypoint"},
+                            {"fields", {{"waypoint_number", n}, {"x_m", route[n].x}, {"y_m", route[n].y}}}}
+                           .dump());
+  const auto count = query(kWaypointDriver, "Query Waypoint Count");
+  ASSERT_TRUE(count) << jausd->output();
+  EXPECT_EQ((*count)["waypoint_count"], std::size(route));
+  EXPECT_FALSE(driving());  // Ready, no travel speed set: it waits
+  send_as_controller(R"({"name":"Set Travel Speed","fields":{"speed_mps":1.0}})");
+  const Drive drive = watch_the_route(route[0]);
+  ASSERT_TRUE(drive.seen_driving) << controller->output() << jausd->output();
+  ASSERT_TRUE(drive.finished) << controller->output() << jausd->output();
+  const auto last = local_position();
+  ASSERT_TRUE(last) << jausd->output();
+  EXPECT_LE(distance(*last, route[1]), kArrivalToleranceM) << last->x << ", " << last->y;
 }
 
 // Issue 42, the README's route with Set Component Authority 255 sent to the

@@ -47,10 +47,14 @@ PathSegmentDriver::PathSegmentDriver(ComponentConfig config, Environment env, Po
     : MobilityDriver(std::move(config), std::move(env), pose, options.mobility),
       options_(options),
       travel_speed_mps_(options.travel_speed_mps) {
-  // Loading never moves anything: allowed in any state, to the controller only.
+  // Loading is allowed in any state, to the controller only; it moves
+  // something only by start rule 2 (ready_start.hpp), in Ready.
   handle<msg::SetTravelSpeed>(Access::controller, false, [this](const Header&, const msg::SetTravelSpeed& m) {
     travel_speed_mps_ = m.speed_mps;
     if (pursuit_) pursuit_->set_travel_speed(travel_speed_mps_);
+    // Above zero in Ready arms start rule 2; 0 (or any speed outside Ready) disarms it.
+    ready_start_.travel_speed_set(state(), travel_speed_mps_);
+    start_in_ready("Set Travel Speed");
   });
   handle<msg::QueryTravelSpeed>(Access::anyone, false, [this](const Header& h, const msg::QueryTravelSpeed&) {
     send(h.source, msg::ReportTravelSpeed{{travel_speed_mps_}});
@@ -75,15 +79,49 @@ void PathSegmentDriver::segment_set(const Header& header, std::uint16_t number, 
   ++path_counters_.segments_stored;
   switch (*result) {
     case ListChange::new_list:
-      halt("new list");  // a route driving the old list stops (a no-op otherwise)
+      // A route driving the old list stops (a no-op otherwise); the
+      // controller's own replacement: start rule 2 stays armed.
+      replacing_list_ = true;
+      halt("new list");
+      replacing_list_ = false;
       drop_route();
-      return;
+      break;
     case ListChange::appended:
+      // Start rule 2: a segment appended to a finished route drives on along it.
+      if (finished_ && ready_start_.armed() && state() == PrimaryStatus::ready) finished_ = false;
+      [[fallthrough]];
     case ListChange::replaced:
       // A started route follows the changed list from the same P0.
       if (pursuit_) path_stale_ = true;
-      return;
+      break;
   }
+  start_in_ready("loaded");
+}
+
+// Start rule 2 (ready_start.hpp): armed, Ready, a route to drive, not
+// driving. Only the controller's Set ... reaches this (controller-only handlers).
+void PathSegmentDriver::start_in_ready(std::string_view what) {
+  if (!ready_start_.armed() || state() != PrimaryStatus::ready || segment_count() == 0 || finished_ || driving())
+    return;
+  ++path_counters_.ready_starts;
+  engage(std::string(what) + " in Ready: " + (pursuit_ ? "continuing the path" : "starting the path") + " at " +
+         option_number_text(travel_speed_mps_) + " m/s");
+}
+
+// Safety: every end of a motion but arriving and the controller's own new
+// list disarms start rule 2 (the primitive driver lost, a stale pose, a
+// list that makes no path): nothing restarts the route but a new command
+// of the controller.
+void PathSegmentDriver::motion_halted(std::string_view) {
+  if (!finished_ && !replacing_list_) ready_start_.disarm();
+}
+
+// Safety: every stop path of the component (leaving Ready, its control
+// released, taken over or its controller silent) disarms start rule 2
+// before the motion ends below.
+void PathSegmentDriver::command_stop(std::string_view why) {
+  ready_start_.disarm();
+  MobilityDriver::command_stop(why);
 }
 
 void PathSegmentDriver::segment_query_unanswered(const Header& header, std::uint16_t number) {
@@ -101,7 +139,9 @@ void PathSegmentDriver::drop_route() {
   last_cross_track_m_ = 0;
 }
 
-// Only Resume (Standby -> Ready) starts or continues a route; Reset empties it.
+// Start rule 1: Resume (Standby -> Ready) starts or continues a route (never
+// the first Ready, a cleared Emergency or Failure: rule 2 was disarmed by
+// the stop that left Ready, command_stop); Reset empties it.
 void PathSegmentDriver::state_changed(PrimaryStatus before, PrimaryStatus after) {
   if (after == PrimaryStatus::initialize) {
     clear_segments();

@@ -377,19 +377,21 @@ TEST_P(PathSegmentDriverTest, OnlyTheControllerLoadsSegmentsAndTheTravelSpeed) {
   EXPECT_EQ(count(), 0);
   EXPECT_EQ(driver().travel_speed_mps(), 0.8);  // the option's, unchanged
   EXPECT_EQ(driver().counters().refused_not_controller, 2u);
-  // With control, in Ready (loading never moves anything).
+  // With control, in Ready: a list without a travel speed set in Ready moves nothing.
   ASSERT_TRUE(session_.control());
   session_.send_segment(0, {{1, 0}, {2, 0}, 0}, {});
-  node_.send(driver_address(), msg::SetTravelSpeed{{0.3}});
-  node_.run_for(20ms);
   EXPECT_EQ(count(), 1);
-  const auto speed = node_.ask<msg::ReportTravelSpeed>(driver_address(), msg::QueryTravelSpeed{});
-  ASSERT_TRUE(speed);
-  EXPECT_NEAR(speed->speed_mps, 0.3, kTravelSpeedResolution_mps);
-  // Loaded in Ready: nothing drives until Standby and Resume.
   node_.run_for(1s);
   EXPECT_FALSE(driver().driving());
   EXPECT_TRUE(stopped(node_));
+  // Its Set Travel Speed is taken and, above zero in Ready, drives the list
+  // (start rule 2, route_start_test.cpp).
+  node_.send(driver_address(), msg::SetTravelSpeed{{0.3}});
+  node_.run_for(20ms);
+  const auto speed = node_.ask<msg::ReportTravelSpeed>(driver_address(), msg::QueryTravelSpeed{});
+  ASSERT_TRUE(speed);
+  EXPECT_NEAR(speed->speed_mps, 0.3, kTravelSpeedResolution_mps);
+  EXPECT_TRUE(driver().driving());
 }
 
 TEST_P(PathSegmentDriverTest, ResumeStartsStandbyPausesAndResumeContinuesFromTheProgress) {

@@ -139,7 +139,9 @@ TEST_F(WaypointDriverTest, OnlyTheControllerLoadsWaypointsAndTravelSpeed) {
   EXPECT_DOUBLE_EQ(*travel_speed(), driver().travel_speed_mps());
 }
 
-TEST_F(WaypointDriverTest, LoadingInReadyNeverDrivesOnlyResumeStartsTheRoute) {
+// Without a travel speed set in Ready (start rule 2, route_start_test.cpp),
+// only Resume starts a list loaded in Ready.
+TEST_F(WaypointDriverTest, LoadingInReadyWithoutATravelSpeedWaitsForResume) {
   ASSERT_TRUE(node_.take_control(kLocalWaypointDriver));
   op_.send_local({{3, 0}});
   node_.run_for(2s);

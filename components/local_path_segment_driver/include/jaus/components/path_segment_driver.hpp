@@ -8,16 +8,23 @@
 //
 // The route (docs/components.md, "Path segment drivers"):
 //   - loading (Set ... Path Segment, Set Travel Speed) needs control of this
-//     driver, in any state: loading never moves anything;
-//   - it starts driving when the driver enters Ready by Resume (Standby ->
-//     Ready) with segments loaded and the route not finished; no other way
-//     into Ready starts it. P0 of segment 0 is the vehicle's position then;
+//     driver, in any state;
+//   - it starts by either start rule of ready_start.hpp: (1) the driver
+//     enters Ready by Resume (Standby -> Ready) with segments loaded and the
+//     route not finished; (2) in Ready, once its controller has set a travel
+//     speed above zero there, as soon as segments are loaded (the RA
+//     implementations' rule). No other way into Ready starts it, and loading
+//     in any other state never moves anything. P0 of segment 0 is the
+//     vehicle's position when it first starts;
 //   - Standby pauses it, Emergency and a loss of the primitive driver halt
 //     it: the path (its P0) and the progress along it are kept, and Standby +
-//     Resume continues;
-//   - a new list (segment 0) drops the route (halting it if it drives);
-//     appending or replacing a segment of a started route rebuilds its path
-//     from the same P0, followed on from the vehicle's nearest point;
+//     Resume continues; nothing but a new command of the controller restarts
+//     it (ready_start.hpp);
+//   - a new list (segment 0) drops the route (halting it if it drives; under
+//     rule 2 the new list drives at once); appending or replacing a segment
+//     of a started route rebuilds its path from the same P0, followed on
+//     from the vehicle's nearest point (under rule 2 a segment appended to a
+//     finished route drives on along it);
 //   - reaching the end within arrival_tolerance_m finishes it: zero below,
 //     control released, the list kept for queries; it does not drive again
 //     until a new list is loaded. Reset clears the list and the travel speed.
@@ -32,6 +39,7 @@
 #include "jaus/components/guidance/path_segment.hpp"
 #include "jaus/components/mobility_driver.hpp"
 #include "jaus/components/path_segment_list.hpp"
+#include "jaus/components/ready_start.hpp"
 
 namespace jaus::components {
 
@@ -53,6 +61,7 @@ struct PathSegmentCounters {
   std::uint64_t queries_unanswered = 0;  // Query ... Path Segment for a number not loaded
   std::uint64_t routes_started = 0;      // paths built from a list (P0 fixed)
   std::uint64_t routes_finished = 0;     // ends reached
+  std::uint64_t ready_starts = 0;        // started in Ready by its controller's list and speed (start rule 2)
 };
 
 class PathSegmentDriver : public MobilityDriver {
@@ -62,6 +71,8 @@ class PathSegmentDriver : public MobilityDriver {
 
   virtual std::size_t segment_count() const = 0;
   double travel_speed_mps() const { return travel_speed_mps_; }
+  // Start rule 2 (ready_start.hpp): segments loaded now in Ready would drive.
+  bool armed_in_ready() const { return ready_start_.armed(); }
   // The route's path once started (kept while paused), none before.
   const guidance::PathPursuit* pursuit() const { return pursuit_ ? &*pursuit_ : nullptr; }
   bool route_finished() const { return finished_; }
@@ -89,10 +100,13 @@ class PathSegmentDriver : public MobilityDriver {
 
   Step step(const PoseSample& pose, double dt_s) override;
   void state_changed(rt::PrimaryStatus before, rt::PrimaryStatus after) override;
+  void motion_halted(std::string_view why) override;
+  void command_stop(std::string_view why) override;
 
  private:
   Expected<void> build_pursuit(const PoseSample& pose);
   void drop_route();
+  void start_in_ready(std::string_view what);
 
   PathSegmentDriverOptions options_;
   double travel_speed_mps_;
@@ -100,6 +114,8 @@ class PathSegmentDriver : public MobilityDriver {
   guidance::Point2 route_start_;
   bool path_stale_ = false;  // a segment changed under a started route: rebuild from route_start_
   bool finished_ = false;
+  ReadyStart ready_start_;
+  bool replacing_list_ = false;  // halting for the controller's new list (rule 2 stays armed)
   double last_cross_track_m_ = 0;
   PathSegmentCounters path_counters_;
 };

@@ -21,8 +21,9 @@
 //     or falling silent: the client loses control -> halt(), the loss counted
 //     and logged. Nothing restarts the motion on its own after any of these:
 //     the derived driver needs a new command of its controller (a new Set
-//     Vector; Standby and Resume for a route), so Clear Emergency or Resume on
-//     the primitive driver never restarts a route;
+//     Vector; for a route Standby and Resume, or Set Travel Speed above zero
+//     in Ready: ready_start.hpp), so Clear Emergency or Resume on the
+//     primitive driver never restarts a route;
 //   - a pose that is missing or older than pose_stale_after halts too.
 // Operators always win (issue 42): the driver's authority has a ceiling,
 // max_authority (default 1, at most 254). Its controller's Set Component
