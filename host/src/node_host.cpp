@@ -73,6 +73,12 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
                                                               rt::SenderStanding standing) {
       face->receive(datagram, standing);
     });
+    // Log lines about a JSS client name its host: where its node's route is.
+    h->jss_face_->locate_clients_with([udp](const jss::JssId& client) -> std::optional<std::string> {
+      const auto route = udp->jss_routes().route(client.subsystem, client.node);
+      if (!route) return std::nullopt;
+      return transport::to_string(route->endpoint);
+    });
     // No hijack of a JSS client's ID either while its alias holds state here.
     h->udp_link_->pin_jss_routes_while([face = h->jss_face_.get()](std::uint16_t subsystem, std::uint8_t node_id) {
       return face->holds_state_for(subsystem, node_id);
@@ -471,7 +477,8 @@ void NodeHost::stop(const std::string& why) {
   if (jss_face_) {
     const auto& f = jss_face_->counters();
     jss = ", JSS: " + std::to_string(l.jss.datagrams_received) + " AS5669A datagrams in, " +
-          std::to_string(f.messages_to_ra) + " messages to RA, " + std::to_string(f.messages_to_jss) + " to JSS";
+          std::to_string(f.messages_to_ra) + " messages to RA, " + std::to_string(f.messages_to_jss) + " to JSS, " +
+          std::to_string(f.duplicates) + " copies not acted on, " + std::to_string(f.refused) + " requests refused";
   }
   log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +
                                std::to_string(l.dropped_total()) + " dropped" + reasons + ", " +
