@@ -68,7 +68,8 @@ JssCopyVerdict JssDuplicateFilter::check(const jss::JudpHeader& h, std::span<con
     // every copy of what came before it a late one.
     if (stream == streams_.end()) return JssCopyVerdict::not_filtered;
     if (restarted && !stop) {
-      forget_stream(stream_key);
+      forget_session(stream_key);
+      if (const auto kept = streams_.find(stream_key); kept != streams_.end()) kept->second.last_sequence = h.sequence;
       return JssCopyVerdict::new_session;
     }
     stream->second.last_sequence = h.sequence;
@@ -80,20 +81,27 @@ JssCopyVerdict JssDuplicateFilter::check(const jss::JudpHeader& h, std::span<con
   if (const auto it = entries_.find(key); it != entries_.end()) {
     // (An entry's stream exists while the entry does.)
     const std::uint64_t last_stop = stream != streams_.end() ? stream->second.last_stop : 0;
+    const bool superseded = last_stop > it->second.arrival;  // a stop came after it
     const bool same = it->second.fingerprint == entry.fingerprint && it->second.size == entry.size;
-    if (same && last_stop > it->second.arrival) return JssCopyVerdict::late_copy;
+    if (same && superseded) return JssCopyVerdict::late_copy;
     if (same && !restarted) {
       if (stream != streams_.end()) stream->second.last_sequence = h.sequence;
       return JssCopyVerdict::copy;
     }
+    if (!same && superseded && !restarted) {
+      // Another message under a number used before a stop: new (what a
+      // stop followed is never acted on again anyway).
+      remember(key, entry);
+      return JssCopyVerdict::first;
+    }
     // Its number reused for another message, or numbering again from the
     // start: a new session of the sender.
-    forget_stream(stream_key);
+    forget_session(stream_key);
     remember(key, entry);
     return JssCopyVerdict::new_session;
   }
   if (restarted) {
-    forget_stream(stream_key);
+    forget_session(stream_key);
     remember(key, entry);
     return JssCopyVerdict::new_session;
   }
@@ -124,11 +132,22 @@ void JssDuplicateFilter::erase_entry(std::map<Key, Entry>::iterator it) {
     streams_.erase(stream);
 }
 
-void JssDuplicateFilter::forget_stream(const StreamKey& stream) {
-  const auto first = entries_.lower_bound(Key{stream.first, stream.second, 0});
-  const auto last = entries_.upper_bound(Key{stream.first, stream.second, 0xFFFF});
-  entries_.erase(first, last);  // their items in order_ are stale now
-  streams_.erase(stream);
+void JssDuplicateFilter::forget_session(const StreamKey& stream_key) {
+  const auto stream = streams_.find(stream_key);
+  if (stream == streams_.end()) return;
+  // What a stop followed stays: its copies never act, restart or not.
+  const std::uint64_t last_stop = stream->second.last_stop;
+  auto it = entries_.lower_bound(Key{stream_key.first, stream_key.second, 0});
+  const auto end = entries_.upper_bound(Key{stream_key.first, stream_key.second, 0xFFFF});
+  while (it != end) {
+    if (it->second.arrival > last_stop) {
+      it = entries_.erase(it);  // its item in order_ is stale now
+      --stream->second.entries;
+    } else {
+      ++it;
+    }
+  }
+  if (stream->second.entries == 0) streams_.erase(stream);
 }
 
 void JssDuplicateFilter::expire(rt::TimePoint now) {

@@ -51,7 +51,8 @@ class SequenceNumbers {
 //    `window` (3 s) of the first;
 //  - a restarted sender is a new session, never a copy: its numbers going
 //    back to where senders start (0 or 1), or a number it used within the
-//    window carrying another message, forget what it sent before;
+//    window carrying another message, forget what it sent before (except
+//    what a stop followed);
 //  - except that a copy of a message its sender has since followed with a
 //    stop to the same component is never acted on (a late copy, whatever
 //    its number: safety before the restart rule).
@@ -105,7 +106,9 @@ class JssDuplicateFilter {
   };
   void remember(const Key& key, const Entry& entry);
   void erase_entry(std::map<Key, Entry>::iterator it);
-  void forget_stream(const StreamKey& stream);
+  // A new session of the stream's sender: what it sent before is forgotten,
+  // except what a stop followed.
+  void forget_session(const StreamKey& stream);
   void expire(rt::TimePoint now);
 
   Options options_;

@@ -148,6 +148,24 @@ TEST(JssFaceTransport, ALateCopyOfAResumeDoesNotActAfterALaterStandby) {
   }
 }
 
+// A new session forgets what its client sent before, except what a stop
+// followed: a copy of that still never acts.
+TEST(JssFaceTransport, ARestartDoesNotLetALateCopyAct) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  node.send(kClientA, kDriver, msg::Standby{}, true, 20);
+  node.send(kClientA, kDriver, msg::Resume{}, true, 21);
+  ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::ready; }));
+  node.send(kClientA, kDriver, msg::Standby{}, true, 22);
+  ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::standby; }));
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, false, 0);  // numbering from 0 again: a new session
+  node.send(kClientA, kDriver, msg::Resume{}, true, 21);                // the first run's Resume, late
+  node.run_for(200ms);
+  EXPECT_EQ(node.counters().new_sessions, 1u);
+  EXPECT_EQ(node.counters().duplicates, 1u);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::standby);
+}
+
 TEST(JssFaceTransport, LargeMessagesBothWays) {
   jss_face::FaceConfig config;
   config.max_packet_contents = 64;  // Report Services is several packets
