@@ -115,7 +115,17 @@ void NodeHost::make_node(node::Link& link) {
     face_link_ = std::make_unique<jss_face::FaceLink>(link);
     node_link = face_link_.get();
   }
-  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, *node_link, log_);
+  rt::LogFn node_log = log_;
+  if (config_.jss.enabled) {
+    // The components know a JSS client only by its alias: their lines
+    // (control refused, a command from a non-controller, ...) name the
+    // client's own JSS ID and host after it. The face goes first on
+    // destruction (~NodeHost): the node's last lines pass unchanged.
+    node_log = [this](rt::LogLevel level, const std::string& text) {
+      log_(level, jss_face_ ? jss_face_->name_clients_in(text) : text);
+    };
+  }
+  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, *node_link, std::move(node_log));
 }
 
 void NodeHost::make_jss_face(jss_face::JssFace::DatagramSender send) {

@@ -7,6 +7,7 @@
 #include "jaus/jss_face/face.hpp"
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "aliases.hpp"
@@ -152,10 +153,16 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
     ++counters_.acks_sent;
   }
 
-  std::string describe_client(const jss::JssId& client) const override {
+  // "JSS client 42.1.1 at 10.0.0.5:3794" (the host when known).
+  std::string client_and_host(const jss::JssId& client) const {
     std::string text = "JSS client " + client.to_string();
     if (locate_)
       if (const auto host = locate_(client)) text += " at " + *host;
+    return text;
+  }
+
+  std::string describe_client(const jss::JssId& client) const override {
+    std::string text = client_and_host(client);
     if (const auto slot = aliases_.find(client))
       text += " (alias " + aliases_.alias(*slot, ReplyTo{client, std::nullopt}).to_string() + ")";
     return text;
@@ -369,6 +376,51 @@ JssFace::~JssFace() = default;
 void JssFace::receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing) {
   impl_->receive(datagram, standing);
 }
+namespace {
+// Reads "a.b.c" (three numbers 0-255, each after a dot) at `at`; the end, or npos.
+std::size_t read_three_numbers(const std::string& text, std::size_t at, std::array<std::uint8_t, 3>& numbers) {
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (i > 0) {
+      if (at >= text.size() || text[at] != '.') return std::string::npos;
+      ++at;
+    }
+    unsigned value = 0;
+    std::size_t digits = 0;
+    while (at < text.size() && text[at] >= '0' && text[at] <= '9' && digits < 4) {
+      value = value * 10 + static_cast<unsigned>(text[at] - '0');
+      ++at;
+      ++digits;
+    }
+    if (digits == 0 || value > 255) return std::string::npos;
+    numbers[i] = static_cast<std::uint8_t>(value);
+  }
+  return at;
+}
+bool continues_a_number(char c) { return (c >= '0' && c <= '9') || c == '.' || c == ':'; }
+}  // namespace
+
+std::string JssFace::name_clients_in(const std::string& line) const {
+  const std::string prefix = std::to_string(impl_->aliases_.alias_subsystem()) + ".";
+  std::string out;
+  std::size_t from = 0;
+  for (std::size_t at = line.find(prefix); at != std::string::npos; at = line.find(prefix, at + 1)) {
+    if (at < from || (at > 0 && continues_a_number(line[at - 1]))) continue;
+    std::array<std::uint8_t, 3> numbers{};
+    const std::size_t end = read_three_numbers(line, at + prefix.size(), numbers);
+    // An address alone (not an IP address's "a.b.c.d:port", not part of a longer number).
+    if (end == std::string::npos || (end < line.size() && continues_a_number(line[end]))) continue;
+    const auto client = impl_->aliases_.client_of(
+        Address{impl_->aliases_.alias_subsystem(), numbers[0], numbers[1], numbers[2]});
+    if (!client) continue;
+    out.append(line, from, end - from);
+    out += " (" + impl_->client_and_host(client->client) + ")";
+    from = end;
+  }
+  if (from == 0) return line;
+  out.append(line, from, std::string::npos);
+  return out;
+}
+
 void JssFace::locate_clients_with(ClientLocator locator) { impl_->locate_ = std::move(locator); }
 bool JssFace::owns(const Address& ra_destination) const { return impl_->aliases_.is_alias(ra_destination); }
 void JssFace::from_node(const Header& header, std::span<const std::uint8_t> payload) {

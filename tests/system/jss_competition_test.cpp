@@ -377,6 +377,13 @@ TEST_F(JssCompetition, ARestartedJssOperatorIsObeyedAtOnce) {
   // The node says so, naming the operator by its JSS ID and host.
   EXPECT_TRUE(jausd->output_contains("JSS client 300.4.1 at 127.0.0.167:")) << jausd->output();
   EXPECT_TRUE(jausd->output_contains("restarted (sequence number 1")) << jausd->output();
+  // The driver's own lines name the operator by its JSS ID and host, not only its alias.
+  const std::string output = jausd->output();
+  bool named = false;
+  for (std::size_t at = output.find("controlled by 250."); at != std::string::npos && !named;
+       at = output.find("controlled by 250.", at + 1))
+    named = output.substr(at, output.find('\n', at) - at).find("(JSS client 300.4.1 at 127.0.0.167:") != std::string::npos;
+  EXPECT_TRUE(named) << output;
 }
 
 }  // namespace

@@ -145,6 +145,16 @@ TEST(JssFaceAccessControl, OutsideControlFromGetsNotAvailableAndTheLogNamesJssId
   EXPECT_TRUE(std::any_of(node.log().begin(), node.log().end(), [](const std::string& l) {
     return l.find("JSS client 42.1.1 at 192.0.2.7:3794 (alias 250.1.1.1): new client") != std::string::npos;
   })) << "no line ties the alias to the client";
+  // jausd passes the components' lines through the face: each alias in
+  // them is followed by the client it stands for (IP addresses, other
+  // subsystems and empty slots are left as they are).
+  EXPECT_EQ(node.face().name_clients_in("Set Wrench Effort from 250.1.1.1 not executed: controlled by 5.1.40.1"),
+            "Set Wrench Effort from 250.1.1.1 (JSS client 42.1.1 at 192.0.2.7:3794) not executed: controlled by 5.1.40.1");
+  EXPECT_EQ(node.face().name_clients_in("controlled by 250.1.1.1 (authority 5)"),
+            "controlled by 250.1.1.1 (JSS client 42.1.1 at 192.0.2.7:3794) (authority 5)");
+  for (const std::string untouched : {"node at 250.1.1.1:3794", "250.7.1.1 refused", "2250.1.1.1", "250.1.1.1.5",
+                                      "no address here", "250.1.1"})
+    EXPECT_EQ(node.face().name_clients_in(untouched), untouched);
 }
 
 }  // namespace

@@ -88,6 +88,12 @@ class JssFace {
   using ClientLocator = std::function<std::optional<std::string>(const jss::JssId& client)>;
   void locate_clients_with(ClientLocator locator);
 
+  // A log line with each JSS client's alias address in it followed by the
+  // client it stands for: "controlled by 250.1.1.1 (JSS client 42.1.1 at
+  // 10.0.0.5:3794) (authority 5)". The RA components know a JSS client only
+  // by its alias; jausd passes the node's log lines through this.
+  std::string name_clients_in(const std::string& line) const;
+
   // One AS5669A datagram (first byte 0x02) from the network, with what the
   // transport knows of its sender.
   void receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing);
