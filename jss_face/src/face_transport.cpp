@@ -112,9 +112,7 @@ JssCopyVerdict JssDuplicateFilter::check(const jss::JudpHeader& h, std::span<con
 void JssDuplicateFilter::remember(const Key& key, const Entry& entry) {
   auto& stream = streams_[{std::get<0>(key), std::get<1>(key)}];
   stream.last_sequence = std::get<2>(key);
-  const auto [it, added] = entries_.insert_or_assign(key, entry);
-  (void)it;
-  if (added) ++stream.entries;
+  if (entries_.insert_or_assign(key, entry).second) ++stream.entries;
   order_.push_back(Arrival{entry.at, entry.arrival, key});
   // Bounded: the oldest make room (stale items of the order first: they cost nothing).
   while (entries_.size() > options_.max_entries || order_.size() > 2 * options_.max_entries) {

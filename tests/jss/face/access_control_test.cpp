@@ -152,9 +152,9 @@ TEST(JssFaceAccessControl, OutsideControlFromGetsNotAvailableAndTheLogNamesJssId
             "Set Wrench Effort from 250.1.1.1 (JSS client 42.1.1 at 192.0.2.7:3794) not executed: controlled by 5.1.40.1");
   EXPECT_EQ(node.face().name_clients_in("controlled by 250.1.1.1 (authority 5)"),
             "controlled by 250.1.1.1 (JSS client 42.1.1 at 192.0.2.7:3794) (authority 5)");
-  for (const std::string untouched : {"node at 250.1.1.1:3794", "250.7.1.1 refused", "2250.1.1.1", "250.1.1.1.5",
-                                      "no address here", "250.1.1"})
-    EXPECT_EQ(node.face().name_clients_in(untouched), untouched);
+  for (const char* untouched : {"node at 250.1.1.1:3794", "250.7.1.1 refused", "2250.1.1.1", "250.1.1.1.5",
+                                "no address here", "250.1.1"})
+    EXPECT_EQ(node.face().name_clients_in(untouched), std::string(untouched));
 }
 
 }  // namespace
