@@ -38,12 +38,15 @@ bool WaypointDrivers::ready(FacePort& port, const Address& ra_driver) {
 void WaypointDrivers::load(FacePort& port, const JssInbound& m, std::span<const jss::msg::SetLocalWaypoint> waypoints,
                            double speed_mps, bool start, mobility::TranslatorLog& log) {
   auto& s = state(m.ra_component);
+  // Standby first: a list and a speed above zero given to a Ready RA driver
+  // start it on their own (its RA start rule 2), and a route of the old list
+  // would run until the Standby. Loaded in Standby, only the Resume starts.
+  if (start) mobility::send_ra(port, m, msg::Standby{}, log);
   for (std::size_t i = 0; i < waypoints.size(); ++i)
     mobility::send_ra(port, m, local_waypoint_to_ra(waypoints[i], static_cast<std::uint16_t>(i)), log);
   mobility::send_ra(port, m, msg::SetTravelSpeed{{scaling::travel_speed_to_ra(speed_mps)}}, log);
   if (start) {
     if (const auto* d = driver(port, m.ra_component)) s.expected_route_starts = d->waypoint_counters().routes_started + 1;
-    mobility::send_ra(port, m, msg::Standby{}, log);
     mobility::send_ra(port, m, msg::Resume{}, log);
   }
   s.speed_mps = start ? scaling::travel_speed_to_jss(speed_mps) : 0.0;

@@ -6,9 +6,9 @@
 //   - the element list, the single waypoint as set (tolerances included) and
 //     the JSS travel speed are kept here; the RA driver holds what executes;
 //   - a route is loaded the RA way, all as the client's alias (the RA rules
-//     decide): Set Local Waypoint 0..n-1 (0 starts a new RA list), Set Travel
-//     Speed, and, to start it, Standby + Resume (the RA driver starts a route
-//     only on Standby -> Ready);
+//     decide): to start it, Standby, then Set Local Waypoint 0..n-1 (0 starts
+//     a new RA list), Set Travel Speed, then Resume (in Standby nothing starts
+//     before the Resume: a Ready RA driver would start a list on its speed);
 //   - the active element is the RA driver's active waypoint (read in
 //     process), mapped back to its element UID; 0 when nothing executes;
 //   - JSS resets the travel speed to 0 whenever the component leaves Ready:

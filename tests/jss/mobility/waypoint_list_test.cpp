@@ -141,6 +141,9 @@ TEST_F(JssWaypointList, TheJudgesFourWaypointsAreReachedInOrder) {
       },
       90s);
   ASSERT_TRUE(finished) << "active elements so far: " << order.size();
+  // Loaded in Standby and started by the Resume alone: the list and the speed
+  // never started the Ready RA driver on their own before the face's Standby.
+  EXPECT_EQ(v_.waypoint_driver().waypoint_counters().ready_starts, 0u);
   EXPECT_EQ(order, (std::vector<std::uint16_t>{1, 2, 3, 4}));
   for (std::size_t i = 0; i < kSquare.size(); ++i) EXPECT_LT(closest[i], 1.0) << "waypoint " << i + 1;
   EXPECT_TRUE(v_.waypoint_driver().route_finished());
