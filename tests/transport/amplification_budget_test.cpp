@@ -127,6 +127,10 @@ TEST_F(AmplificationBudget, ARequestControlWhoseConfirmCannotBeSentIsNotGranted)
   // Another endpoint spends the global budget.
   small.received(flooder, opc(17), Address{3, 1, 40, 1}, header_of(0x2B00, Address{3, 1, 40, 1}));
   EXPECT_EQ(small.offer(flooder, Framing::opc, reply(2030), now), Verdict::send);  // 10 bytes left
+  // A stop acts whatever the budget (the link delivers it): its ACK's bytes are not there, nothing is refused.
+  small.received(ocu, opc(16 + 2), kOcu, header_of(0x0006));  // Set Emergency
+  EXPECT_FALSE(small.reserve_reply(ocu, now));
+  EXPECT_EQ(small.counters().commands_refused, 0u);
   small.received(ocu, opc(16 + 2), kOcu, header_of(0x000D));  // Request Component Control
   EXPECT_FALSE(small.admit_command(ocu, Framing::opc, now));
   EXPECT_EQ(small.counters().commands_refused, 1u);

@@ -175,16 +175,19 @@ AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Fr
 }
 
 bool AmplificationGuard::admit_command(const Ipv4Endpoint& from, Framing framing, rt::TimePoint now) {
+  (void)framing;  // the reserve fits every framing's prefix
+  if (reserve_reply(from, now)) return true;
+  ++counters_.commands_refused;
+  return false;
+}
+
+bool AmplificationGuard::reserve_reply(const Ipv4Endpoint& from, rt::TimePoint now) {
   const auto it = endpoints_.find(from);
   if (it == endpoints_.end() || it->second.verified) return true;
   State& state = it->second;
-  (void)framing;  // the reserve fits every framing's prefix
   if (state.reserved >= kCommandReplyReserve) return true;  // set aside by an earlier command, still unspent
   const std::size_t missing = kCommandReplyReserve - state.reserved;
-  if (!spend(state, missing, now)) {
-    ++counters_.commands_refused;
-    return false;
-  }
+  if (!spend(state, missing, now)) return false;
   counters_.bytes_sent_unverified -= missing;  // set aside, not sent: offer() counts it when it goes
   state.reserved += missing;
   return true;

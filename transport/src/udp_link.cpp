@@ -351,12 +351,15 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
       // from an unverified endpoint is delivered only once its reply's bytes
       // are set aside (admit_command); a Request Control whose Confirm could
       // not be sent is not granted, since it never reaches the component.
-      // Stops always act (is_stop).
+      // Stops always act (is_stop), their ACK's bytes set aside if there are any.
       const bool answer = header.ack_nak == AckNak::ack || header.ack_nak == AckNak::nak;
-      if (!answer && is_command(header.command_code) && !is_stop(header.command_code) &&
-          !guard_.admit_command(from, unframed->framing, clock_.now())) {
-        sync_amplification_counters();
-        return refuse_command(from, header.command_code, guard_);
+      if (!answer && is_command(header.command_code)) {
+        if (is_stop(header.command_code)) {
+          guard_.reserve_reply(from, clock_.now());
+        } else if (!guard_.admit_command(from, unframed->framing, clock_.now())) {
+          sync_amplification_counters();
+          return refuse_command(from, header.command_code, guard_);
+        }
       }
       sync_amplification_counters();
     }
@@ -454,7 +457,9 @@ void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> dat
         (is_stop(*id) ? stop : commands) = true;
         if (!is_stop(*id)) code = *id;
       }
-      if (commands && !stop && !jss_guard_.admit_command(from, Framing::as5669a, clock_.now())) {
+      if (stop) {
+        jss_guard_.reserve_reply(from, clock_.now());
+      } else if (commands && !jss_guard_.admit_command(from, Framing::as5669a, clock_.now())) {
         sync_amplification_counters();
         return refuse_command(from, code, jss_guard_);
       }

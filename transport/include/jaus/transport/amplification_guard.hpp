@@ -157,6 +157,9 @@ class AmplificationGuard {
   // budgets (offer() spends them first), or the command is refused (false,
   // counted): never a command acted on whose ACK or Confirm is withheld.
   bool admit_command(const Ipv4Endpoint& from, Framing framing, rt::TimePoint now);
+  // The same for a stop, which acts whatever the answer: its ACK's bytes
+  // are set aside if the budgets have them, nothing is counted if not.
+  bool reserve_reply(const Ipv4Endpoint& from, rt::TimePoint now);
 
   struct Held {
     Framing framing;
