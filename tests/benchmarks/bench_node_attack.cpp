@@ -48,6 +48,12 @@
 //   9.8/s), no stream re-created; bystander p99 0.7-2.3 ms, none lost;
 //   VmRSS 13.8 -> 14.9 MiB; log +26 lines (the forged claims: 20,944
 //   datagrams dropped as "node ID claimed from a second endpoint").
+//   jausd with issue 43's budgets (an allowance per endpoint, 16 KiB/s for
+//   all unverified endpoints together, defaults), one run, attack 13.3 s:
+//   Set Emergency 100/100, ACK p99 1.8 ms; 5,057,752 bytes from the attackers
+//   (380 kB/s), 205,533 back (15.4 kB/s; the global ceiling for 13.3 s is
+//   251,052), ratio 0.041; frames 641/s calm, 631/s under attack; bystander
+//   p99 4.6 ms, none lost; VmRSS 15.0 -> 16.3 MiB; log +36 lines.
 //   jausd built before issue 28 (refuses verify_endpoints; a PNG encoded per
 //   report): 50 of 64 streams confirmed, 129 frames/s before the attack,
 //   the bystander unanswered even then; Set Emergency 0/100 (6 sent within
