@@ -134,11 +134,15 @@ TEST_F(AmplificationBudget, ARequestControlWhoseConfirmCannotBeSentIsNotGranted)
   small.received(ocu, opc(16 + 2), kOcu, header_of(0x000D));  // Request Component Control
   EXPECT_FALSE(small.admit_command(ocu, Framing::opc, now));
   EXPECT_EQ(small.counters().commands_refused, 1u);
-  // Half a second later the global bucket has room again (522 bytes): admitted, and the reply's bytes set aside.
+  // Refused: a challenge is due (an OCU that answers it gets its next command through), when the budget has room.
+  EXPECT_FALSE(small.challenge(ocu, Framing::opc, 1, 1, now));  // none now: the global bucket is empty
+  // Half a second later the global bucket has room again (522 bytes): the challenge goes, the next Request
+  // Control is admitted and its reply's bytes set aside.
   now += 500ms;
+  ASSERT_TRUE(small.challenge(ocu, Framing::opc, 1, 1, now));  // 24 bytes of the 522
   small.received(ocu, opc(16 + 2), kOcu, header_of(0x000D));
-  ASSERT_TRUE(small.admit_command(ocu, Framing::opc, now));
-  EXPECT_EQ(small.offer(flooder, Framing::opc, reply(450), now), Verdict::send);  // spends the rest...
+  ASSERT_TRUE(small.admit_command(ocu, Framing::opc, now));  // 64 more
+  EXPECT_EQ(small.offer(flooder, Framing::opc, reply(426), now), Verdict::send);  // spends the rest...
   EXPECT_EQ(small.offer(flooder, Framing::opc, reply(100), now), Verdict::held);  // ...of the global bucket
   // ...yet the Confirm Control (header and response code) and its ACK go: they were set aside.
   EXPECT_EQ(small.offer(ocu, Framing::opc, reply(16 + 1), now), Verdict::send);

@@ -176,9 +176,10 @@ AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Fr
 
 bool AmplificationGuard::admit_command(const Ipv4Endpoint& from, Framing framing, rt::TimePoint now) {
   (void)framing;  // the reserve fits every framing's prefix
-  if (reserve_reply(from, now)) return true;
-  ++counters_.commands_refused;
-  return false;
+  const bool admitted = reserve_reply(from, now);
+  if (const auto it = endpoints_.find(from); it != endpoints_.end()) it->second.refused = !admitted;
+  if (!admitted) ++counters_.commands_refused;
+  return admitted;
 }
 
 bool AmplificationGuard::reserve_reply(const Ipv4Endpoint& from, rt::TimePoint now) {
@@ -207,8 +208,10 @@ std::vector<AmplificationGuard::Held> AmplificationGuard::release(const Ipv4Endp
 std::optional<std::uint16_t> AmplificationGuard::due_challenge(State& state, std::size_t size, rt::TimePoint now,
                                                               bool at_first_contact) {
   if (state.verified) return std::nullopt;
-  // Due while a reply is held or was just dropped (answering lifts the limits).
-  const bool wanted = !state.held.empty() || state.dropping || (at_first_contact && !state.challenged_at);
+  // Due while a reply is held or was just dropped, or a command was refused
+  // (answering lifts the limits: an OCU that ACKs gets its commands through).
+  const bool wanted =
+      !state.held.empty() || state.dropping || state.refused || (at_first_contact && !state.challenged_at);
   if (!wanted) return std::nullopt;
   if (state.challenged_at && now - *state.challenged_at < options_.challenge_interval) return std::nullopt;
   if (!spend(state, size, now)) return std::nullopt;  // wait for the budgets to grow

@@ -357,6 +357,7 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
         if (is_stop(header.command_code)) {
           guard_.reserve_reply(from, clock_.now());
         } else if (!guard_.admit_command(from, unframed->framing, clock_.now())) {
+          send_challenge(from, unframed->framing);  // answering it lets its next command through
           sync_amplification_counters();
           return refuse_command(from, header.command_code, guard_);
         }
@@ -460,6 +461,7 @@ void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> dat
       if (stop) {
         jss_guard_.reserve_reply(from, clock_.now());
       } else if (commands && !jss_guard_.admit_command(from, Framing::as5669a, clock_.now())) {
+        send_challenge(from, Framing::as5669a);  // answering it lets its next command through
         sync_amplification_counters();
         return refuse_command(from, code, jss_guard_);
       }

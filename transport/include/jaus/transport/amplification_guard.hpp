@@ -202,6 +202,7 @@ class AmplificationGuard {
     std::size_t reserved = 0;  // set aside for a command's reply (admit_command)
     bool dropping = false;     // the last reply offered was dropped
     bool unanswered = false;   // a held reply expired: no more holding until verified
+    bool refused = false;      // a command of its was refused: a challenge is due (answering lifts the limits)
     Address source;  // the JAUS address last heard from it: where challenges go
     jss::JssId jss_source;  // the same for an AS5669A endpoint
     std::deque<Held> held;
