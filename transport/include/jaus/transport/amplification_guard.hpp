@@ -33,7 +33,8 @@
 // sender that really receives at that address can answer, so the answer
 // verifies the endpoint, lifts its limits and the held replies go out. One
 // challenge outstanding per endpoint, sent again at most once per
-// `challenge_interval` while a reply is held or dropped, its bytes counted
+// `challenge_interval` while a reply is held or dropped (or a command was
+// refused), its bytes counted
 // against both budgets. Endpoints not tracked (static peers, the multicast
 // group, tools' direct sends) are not limited; verification is forgotten with
 // the endpoint.
@@ -41,8 +42,10 @@
 // Commands (issue 43): a command from an unverified endpoint acts only if its
 // reply (an ACK, a Confirm Control) can be sent: admit_command() sets that
 // reply's bytes aside from both budgets before the link delivers the command,
-// or refuses it (counted), and offer() spends what was set aside first. The
-// link decides which messages are commands (stops always act).
+// or refuses it (counted; a challenge is then due, so an OCU that ACKs gets
+// its next command through), and offer() spends what was set aside first.
+// The link decides which messages are commands (stops always act, their ACK
+// set aside when the budgets allow: reserve_reply).
 //
 // SAE JAUS (AS5669A) endpoints are verified the same way: the challenge is an
 // AS5669A Query Heartbeat Pulse (contents 02 22) with ACK requested, from our
