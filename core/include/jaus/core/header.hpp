@@ -123,7 +123,7 @@ Error packet_size_error(const Header& header, std::size_t payload_size);
 // The checks of decode_header, then the data size; the header is read straight
 // into the result rather than through decode_header's own Expected (a copy and
 // a variant on every received packet).
-inline Expected<PacketView, Error> decode_packet(std::span<const std::uint8_t> bytes) {
+[[gnu::always_inline]] inline Expected<PacketView, Error> decode_packet(std::span<const std::uint8_t> bytes) {
   if (bytes.size() < kHeaderSize) [[unlikely]]
     return unexpected(detail::header_error(bytes, Header{}, 0));
   const PacketView packet{detail::read_header(bytes.data()), bytes.subspan(kHeaderSize)};

@@ -324,6 +324,17 @@ constexpr bool presence_vector_first() {
   }(std::make_index_sequence<std::tuple_size_v<Fields>>{});
 }
 
+// The RA dialect as a compile-time value. A fixed-layout body's unchecked walk
+// (below) is compiled once more for it: every dialect branch of its fields
+// (the quirks, the openjaus-only fields) folds away, and the dialect is not
+// reloaded after each byte written (a store through uint8_t* may alias the
+// context). Only that walk is doubled; the checked walks, which report errors,
+// keep the run-time dialect (issue 50).
+struct RaCodecContext {
+  static constexpr Dialect dialect = Dialect::ra;
+};
+inline constexpr RaCodecContext kRaContext{};
+
 // Writes every field after the presence vector. W is a ByteWriter, or an
 // UncheckedWriter with room for fixed_layout_size() bytes.
 template <class Body, class W>
@@ -404,7 +415,10 @@ void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
     // Room for every field (the usual case) spares working out the exact size.
     if (room >= kMaxFixedLayoutSize<Body> || room >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
       UncheckedWriter fast(w.cursor());
-      write_fields(body, fast, ctx);
+      if (ctx.dialect == Dialect::ra) [[likely]]
+        write_fields(body, fast, kRaContext);
+      else
+        write_fields(body, fast, ctx);
       if (!fast.failed()) [[likely]] {
         assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
         w.commit(fast.size());
@@ -439,7 +453,10 @@ void decode_fields(ByteReader& r, Body& body, auto& ctx) {
     const std::size_t left = r.remaining();
     if (left >= kMaxFixedLayoutSize<Body> || left >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
       UncheckedReader fast(r.cursor());
-      read_fields(fast, body, pv, ctx);
+      if (ctx.dialect == Dialect::ra) [[likely]]
+        read_fields(fast, body, pv, kRaContext);
+      else
+        read_fields(fast, body, pv, ctx);
       assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
       r.skip(fast.size());
       return;
