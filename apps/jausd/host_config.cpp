@@ -98,6 +98,10 @@ host::HostConfig host_config(const JausdConfig& config) {
   if (config.transport.control_from_local)
     for (const auto& network : transport::local_networks()) h.link.control_from.push_back(network);
   h.link.verify_endpoints = config.transport.verify_endpoints;
+  h.link.amplification.unverified_burst_bytes = config.transport.unverified_burst_bytes;
+  h.link.amplification.unverified_bytes_per_second = config.transport.unverified_bytes_per_second;
+  h.link.amplification.unverified_total_burst_bytes = config.transport.unverified_total_burst_bytes;
+  h.link.amplification.unverified_total_bytes_per_second = config.transport.unverified_total_bytes_per_second;
   h.link.routes.max_entries = config.transport.max_peers;
 
   rt::ComponentConfig& c = h.settings.defaults;

@@ -67,6 +67,10 @@ constexpr std::size_t kMaxIdentification = 80;           // Report Identificatio
 constexpr double kMaxSeconds = 86400;                     // keeps every duration representable
 constexpr std::size_t kMaxConnectionsLimit = 255;
 constexpr std::size_t kMaxPeersLimit = 65535;
+// The unverified endpoints' budgets (bytes, bytes a second): up to 1 MiB per
+// endpoint, 16 MiB all together; 0 allows nothing beyond what they sent.
+constexpr long long kMaxUnverifiedBytes = 1 << 20;
+constexpr long long kMaxUnverifiedTotalBytes = 16 << 20;
 // 254 subsystems x 254 nodes x a few components is the most JAUS IDs name;
 // the floor leaves room for this node's own peers and one OCU.
 constexpr std::size_t kMinLivenessEntries = 16;
@@ -734,7 +738,21 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                   }
                 }},
                {"verify_endpoints", [&](const Entry& e) { t.verify_endpoints = boolean(e); }},
-{"max_peers",
+               {"unverified_burst_bytes",
+                [&](const Entry& e) { t.unverified_burst_bytes = integer<std::size_t>(e, 0, kMaxUnverifiedBytes); }},
+               {"unverified_bytes_per_second",
+                [&](const Entry& e) {
+                  t.unverified_bytes_per_second = integer<std::size_t>(e, 0, kMaxUnverifiedBytes);
+                }},
+               {"unverified_total_burst_bytes",
+                [&](const Entry& e) {
+                  t.unverified_total_burst_bytes = integer<std::size_t>(e, 0, kMaxUnverifiedTotalBytes);
+                }},
+               {"unverified_total_bytes_per_second",
+                [&](const Entry& e) {
+                  t.unverified_total_bytes_per_second = integer<std::size_t>(e, 0, kMaxUnverifiedTotalBytes);
+                }},
+               {"max_peers",
                 [&](const Entry& e) { t.max_peers = integer<std::size_t>(e, 1, kMaxPeersLimit); }}});
           for (const auto& p : peers) {
             t.peers.push_back(StaticPeer{p.endpoint, p.framing.value_or(t.framing)});

@@ -54,6 +54,13 @@ struct TransportConfig {
   // Replies larger than what a peer sent go only to endpoints that answered a
   // challenge (no amplification toward a forged source address).
   bool verify_endpoints = true;
+  // What an endpoint that has not answered a challenge may be sent beyond
+  // what it sent (issue 43; jaus/transport/amplification_guard.hpp): per
+  // endpoint a token bucket, all such endpoints together a second one.
+  std::size_t unverified_burst_bytes = 4096;
+  std::size_t unverified_bytes_per_second = 1024;
+  std::size_t unverified_total_burst_bytes = 32768;
+  std::size_t unverified_total_bytes_per_second = 16384;
   std::size_t max_peers = 256;  // peers learnt from traffic remembered at once (static ones come on top)
 };
 

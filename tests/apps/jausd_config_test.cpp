@@ -150,6 +150,10 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_TRUE(c.transport.control_from.empty());
   EXPECT_TRUE(c.transport.control_from_local);  // [local]: safe by default
   EXPECT_TRUE(c.transport.verify_endpoints);
+  EXPECT_EQ(c.transport.unverified_burst_bytes, 4096u);
+  EXPECT_EQ(c.transport.unverified_bytes_per_second, 1024u);
+  EXPECT_EQ(c.transport.unverified_total_burst_bytes, 32768u);
+  EXPECT_EQ(c.transport.unverified_total_bytes_per_second, 16384u);
   EXPECT_EQ(c.transport.max_peers, 256u);
   EXPECT_TRUE(c.jss.enabled);
   EXPECT_FALSE(c.jss.subsystem);
@@ -252,7 +256,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 172);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 177);  // declared in the file
   EXPECT_TRUE(validate(*result));
 }
 
@@ -521,7 +525,8 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "subsystem_timeout_s, max_entries)");
   expect_error("transport:\n  port: 3794\n", 2,
                "unknown key 'port' in transport (known: bind, framing, multicast, multicast_framing, "
-               "broadcast_to_peers, relay, peers, allow, control_from, verify_endpoints, max_peers)");
+               "broadcast_to_peers, relay, peers, allow, control_from, verify_endpoints, unverified_burst_bytes, "
+               "unverified_bytes_per_second, unverified_total_burst_bytes, unverified_total_bytes_per_second, max_peers)");
   expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framming: judp\n", 4,
                "unknown key 'framming' in transport.peers (known: address, framing)");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    ID: 35\n", 4,
@@ -611,6 +616,10 @@ TEST(JausdConfigErrors, OutOfRange) {
   expect_error("liveness:\n  subsystem_timeout_s: 1e9\n", 2,
                "'subsystem_timeout_s' must be a number of seconds > 0 and <= 86400, got '1e9'");
   expect_error("transport:\n  max_peers: 0\n", 2, "'max_peers' must be an integer 1..65535, got '0'");
+  expect_error("transport:\n  unverified_burst_bytes: -1\n", 2,
+               "'unverified_burst_bytes' must be an integer 0..1048576, got '-1'");
+  expect_error("transport:\n  unverified_total_bytes_per_second: 1e9\n", 2,
+               "'unverified_total_bytes_per_second' must be an integer 0..16777216, got '1e9'");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    id: 0\n", 4,
                "'id' must be an integer 1..254, got '0'");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    id: 255\n", 4,
@@ -905,6 +914,13 @@ TEST(JausdConfig, ControlFromIsLocalByDefaultAndAnOpenPostureIsWarnedAbout) {
   EXPECT_FALSE(std::any_of(host.link.control_from.begin(), host.link.control_from.end(),
                            [](const Cidr& cidr) { return cidr.prefix_length == 0; }));
   EXPECT_TRUE(host.link.verify_endpoints);
+  const auto budgets = jausd::host_config(expect_ok(
+      "transport: {unverified_burst_bytes: 0, unverified_bytes_per_second: 10, unverified_total_burst_bytes: 20, "
+      "unverified_total_bytes_per_second: 30}\n"));
+  EXPECT_EQ(budgets.link.amplification.unverified_burst_bytes, 0u);
+  EXPECT_EQ(budgets.link.amplification.unverified_bytes_per_second, 10u);
+  EXPECT_EQ(budgets.link.amplification.unverified_total_burst_bytes, 20u);
+  EXPECT_EQ(budgets.link.amplification.unverified_total_bytes_per_second, 30u);
 
   const auto named = jausd::host_config(expect_ok("transport: {control_from: [10.20.0.0/24]}\n"));
   ASSERT_EQ(named.link.control_from.size(), 1u);  // the list replaces [local]

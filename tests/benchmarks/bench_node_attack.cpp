@@ -48,6 +48,12 @@
 //   9.8/s), no stream re-created; bystander p99 0.7-2.3 ms, none lost;
 //   VmRSS 13.8 -> 14.9 MiB; log +26 lines (the forged claims: 20,944
 //   datagrams dropped as "node ID claimed from a second endpoint").
+//   jausd with issue 43's budgets (an allowance per endpoint, 16 KiB/s for
+//   all unverified endpoints together, defaults), one run, attack 13.3 s:
+//   Set Emergency 100/100, ACK p99 1.8 ms; 5,057,752 bytes from the attackers
+//   (380 kB/s), 205,533 back (15.4 kB/s; the global ceiling for 13.3 s is
+//   251,052), ratio 0.041; frames 641/s calm, 631/s under attack; bystander
+//   p99 4.6 ms, none lost; VmRSS 15.0 -> 16.3 MiB; log +36 lines.
 //   jausd built before issue 28 (refuses verify_endpoints; a PNG encoded per
 //   report): 50 of 64 streams confirmed, 129 frames/s before the attack,
 //   the bystander unanswered even then; Set Emergency 0/100 (6 sent within
@@ -118,6 +124,10 @@ constexpr int kClaimEvery = 10;  // one attack datagram in 10 is a forged claim
 constexpr double kImageRateHz = 10;  // the front camera's frame rate (its default configuration)
 constexpr std::uint8_t kReady = 1, kEmergency = 5;
 constexpr double kTargetP99Ms = 10;
+// jausd's default budget of all unverified endpoints together (transport.
+// unverified_total_burst_bytes, unverified_total_bytes_per_second; issue 43):
+// the attackers are such endpoints, so together they get at most this.
+constexpr double kUnverifiedTotalBurstBytes = 32768, kUnverifiedTotalBytesPerSecond = 16384;
 
 std::string ip(std::uint32_t host) { return transport::ipv4_to_string(kNet + host); }
 
@@ -758,6 +768,11 @@ int main(int argc, char** argv) {
               clear.max);
   std::printf("%-62s %.3f  (%llu / %llu bytes)\n", "bytes to unverified endpoints / bytes from them",
               ratio, static_cast<unsigned long long>(received_bytes), static_cast<unsigned long long>(sent_bytes));
+  const double global_ceiling = kUnverifiedTotalBurstBytes + kUnverifiedTotalBytesPerSecond * attack_s;
+  std::printf("%-62s %.0f B/s in, %.0f B/s back (global budget %.0f B/s after a %.0f B burst: at most %.0f B)\n",
+              "attack bytes a second to jausd / back to the attackers", static_cast<double>(sent_bytes) / attack_s,
+              static_cast<double>(received_bytes) / attack_s, kUnverifiedTotalBytesPerSecond,
+              kUnverifiedTotalBurstBytes, global_ceiling);
   std::printf("%-62s calm %.0f/s, attack %.0f/s, after %.0f/s (expected %.0f/s)\n",
               "Report Image frames received, 64 requesters", calm_fps, attack_fps, after_fps,
               kImageRateHz * kRequesters);
@@ -794,6 +809,10 @@ int main(int argc, char** argv) {
               latency.p99, kTargetP99Ms);
   std::printf("  %s  bytes to unverified endpoints / bytes from them %.3f (target <= 1)\n", verdict(ratio <= 1.0),
               ratio);
+  // Read at the attackers' sockets, so a second more for what left jausd as the attack ended.
+  std::printf("  %s  bytes back to the attackers %llu (issue 43, target <= the global budget %.0f)\n",
+              verdict(static_cast<double>(received_bytes) <= global_ceiling + kUnverifiedTotalBytesPerSecond),
+              static_cast<unsigned long long>(received_bytes), global_ceiling);
   // The directory goes after a clean stop; kept (and named) otherwise.
   if (jausd_exit == 0) {
     std::filesystem::remove_all(dir);

@@ -25,6 +25,7 @@ constexpr const char* kHolderHost = "127.0.0.51";
 constexpr const char* kOtherHost = "127.0.0.52";
 constexpr const char* kStatusHost = "127.0.0.53";
 constexpr const char* kPortsHost = "127.0.0.57";
+constexpr const char* kRawOcuHost = "127.0.0.54";
 
 class HostileNetwork : public ::testing::Test {
  protected:
@@ -132,6 +133,131 @@ TEST_F(HostileNetwork, OneHostWithManyPortsDoesNotLockOutAnotherOcu) {
     if (i % 20 == 19) std::this_thread::sleep_for(5ms);  // no burst the kernel would drop
   }
   EXPECT_TRUE(poll_status("ready", 10s)) << jausd->output();
+}
+
+
+// Issue 43: an OCU written from the spec (OpenJAUS's, raw sockets here) that
+// never ACKs anything, so never answers the node's challenge, against the
+// DEFAULT configuration (verify_endpoints on): each of its queries is
+// answered, its Request Component Control confirmed, its Set Wrench Effort
+// drives the simulated platform, and its Set Emergency stops it.
+class NeverAckingOcu {
+ public:
+  NeverAckingOcu(const std::string& host, const std::string& node)
+      : socket_(io_, boost::asio::ip::udp::endpoint(boost::asio::ip::make_address(host), 0)),
+        node_(boost::asio::ip::make_address(node), 3794) {
+    socket_.non_blocking(true);
+  }
+  template <class M>
+  void send(const Address& to, const M& message) {
+    socket_.send_to(boost::asio::buffer(bench::datagram(kSelf, to, message)), node_);
+  }
+  // Sends `query` to `to` (again every second) until a `Report` from `to` arrives or the deadline.
+  template <class Report, class Query>
+  std::optional<Report> ask(const Address& to, const Query& query, std::chrono::seconds deadline = 10s) {
+    return ask_until<Report>(to, query, [](const Report&) { return true; }, deadline);
+  }
+  template <class Report, class Query>
+  std::optional<Report> ask_until(const Address& to, const Query& query, const std::function<bool(const Report&)>& good,
+                                  std::chrono::seconds deadline, const std::function<void()>& meanwhile = {}) {
+    const auto until = std::chrono::steady_clock::now() + deadline;
+    std::optional<Report> last;
+    auto sent = std::chrono::steady_clock::time_point{}, ticked = sent;
+    while (std::chrono::steady_clock::now() < until) {
+      if (meanwhile && std::chrono::steady_clock::now() - ticked > 100ms) {
+        meanwhile();
+        ticked = std::chrono::steady_clock::now();
+      }
+      if (std::chrono::steady_clock::now() - sent > 250ms) {
+        send(to, query);
+        sent = std::chrono::steady_clock::now();
+      }
+      if (auto report = receive<Report>(to, 10ms)) {
+        last = report;
+        if (good(*report)) return report;
+      }
+    }
+    return last;
+  }
+  // The next `M` from `from` within `wait`; challenges (ACK requested) are counted and ignored.
+  template <class M>
+  std::optional<M> receive(const Address& from, std::chrono::milliseconds wait) {
+    const auto until = std::chrono::steady_clock::now() + wait;
+    std::array<std::uint8_t, 9000> buffer{};
+    while (std::chrono::steady_clock::now() < until) {
+      boost::system::error_code ec;
+      boost::asio::ip::udp::endpoint sender;
+      const std::size_t size = socket_.receive_from(boost::asio::buffer(buffer), sender, 0, ec);
+      if (ec) {
+        std::this_thread::sleep_for(2ms);
+        continue;
+      }
+      const auto unframed = transport::unframe(std::span(buffer).first(size));
+      if (!unframed) continue;
+      const Header& h = unframed->packet.header;
+      if (h.ack_nak == AckNak::ack_requested) ++ack_requests_ignored;
+      if (h.command_code != M::code || h.source != from) continue;
+      if (auto m = wire::decode_payload<M>(unframed->packet.payload)) return *m;
+    }
+    return std::nullopt;
+  }
+  static constexpr Address kSelf{254, 54, 40, 1};
+  int ack_requests_ignored = 0;
+
+ private:
+  boost::asio::io_context io_;
+  boost::asio::ip::udp::socket socket_;
+  boost::asio::ip::udp::endpoint node_;
+};
+
+TEST_F(HostileNetwork, AnOcuThatNeverAcksIsAnsweredControlsDrivesAndStops) {
+  jausd = std::make_unique<DefaultJausd>("never-acks", kSubsystem, kNode);  // the default configuration
+  ASSERT_TRUE(jausd->started());
+  const Address manager{kSubsystem, 1, 1, 1}, driver{kSubsystem, 1, 33, 1}, pose{kSubsystem, 1, 38, 1},
+      velocity{kSubsystem, 1, 42, 1};
+  NeverAckingOcu ocu(kRawOcuHost, kNode);
+  // The queries an OCU opens with; the daemon may still be starting (generous deadline).
+  ASSERT_TRUE(ocu.ask<msg::ReportComponentStatus>(driver, msg::QueryComponentStatus{}, 30s)) << jausd->output();
+  EXPECT_TRUE(ocu.ask<msg::ReportIdentification>(manager, msg::QueryIdentification{{msg::identification::kSubsystem}}));
+  EXPECT_TRUE(ocu.ask<msg::ReportConfiguration>(manager, msg::QueryConfiguration{{msg::identification::kSubsystem}}));
+  EXPECT_TRUE(ocu.ask<msg::ReportServices>(manager, msg::QueryServices{}));
+  const auto start = ocu.ask_until<msg::ReportGlobalPose>(
+      pose, msg::QueryGlobalPose{{0x0003}}, [](const auto& p) { return p.latitude_deg.has_value(); }, 10s);
+  ASSERT_TRUE(start && start->latitude_deg) << jausd->output();
+
+  ocu.send(driver, msg::RequestComponentControl{{10}});
+  const auto confirm = ocu.receive<msg::ConfirmComponentControl>(driver, 5s);
+  ASSERT_TRUE(confirm) << jausd->output();
+  EXPECT_EQ(confirm->response_code, 0) << jausd->output();  // control accepted
+
+  // Full ahead at 10 Hz (the driver's command timeout is 0.5 s) while it polls the pose: the platform moves.
+  msg::SetWrenchEffort ahead;
+  ahead.propulsive_linear_effort_x_percent = 100;
+  const auto drive = [&] { ocu.send(driver, ahead); };
+  constexpr double kMetresPerDegreeOfLatitude = 111'132;
+  const auto moved = ocu.ask_until<msg::ReportGlobalPose>(
+      pose, msg::QueryGlobalPose{{0x0003}},
+      [&](const auto& p) {
+        return p.latitude_deg && (*p.latitude_deg - *start->latitude_deg) * kMetresPerDegreeOfLatitude > 1.0;
+      },
+      20s, drive);
+  ASSERT_TRUE(moved && moved->latitude_deg) << jausd->output();
+  EXPECT_GT((*moved->latitude_deg - *start->latitude_deg) * kMetresPerDegreeOfLatitude, 1.0) << jausd->output();
+
+  // Set Emergency from the same OCU, which goes on sending efforts: the drive stops.
+  ocu.send(driver, msg::SetEmergency{});
+  const auto emergency = ocu.ask_until<msg::ReportComponentStatus>(
+      driver, msg::QueryComponentStatus{}, [](const auto& s) { return (s.primary_status & 0x0F) == 5; }, 10s, drive);
+  ASSERT_TRUE(emergency) << jausd->output();
+  EXPECT_EQ(emergency->primary_status & 0x0F, 5) << jausd->output();
+  const auto stopped = ocu.ask_until<msg::ReportVelocityState>(
+      velocity, msg::QueryVelocityState{{0x0001}},
+      [](const auto& v) { return v.velocity_x_mps && *v.velocity_x_mps == 0.0; }, 10s, drive);
+  ASSERT_TRUE(stopped && stopped->velocity_x_mps) << jausd->output();
+  EXPECT_EQ(*stopped->velocity_x_mps, 0.0);
+  EXPECT_TRUE(jausd->output_contains("drive stopped: entered Emergency")) << jausd->output();
+  // It never answered a challenge, and nothing it asked for went unanswered for it.
+  EXPECT_FALSE(jausd->output_contains("not executed: its reply could not be sent")) << jausd->output();
 }
 
 }  // namespace

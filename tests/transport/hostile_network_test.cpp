@@ -260,9 +260,14 @@ TEST(LocalNetworks, IncludeLoopbackOnce) {
 
 // ---- amplification ------------------------------------------------------------
 
-TEST_F(HostileNetwork, AnUnverifiedEndpointGetsNoMoreBytesThanItSentAndTheBigReplyIsDropped) {
+// A reply beyond what the endpoint sent and its allowance (none here: the
+// allowance's part is AmplificationBudget's) is held while the challenge is
+// out; unanswered, it is dropped after the hold time (logged), and later
+// ones beyond the budget at once, one line for the streak.
+TEST_F(HostileNetwork, AnUnverifiedEndpointGetsNoReplyBeyondItsAllowanceAndTheHeldOneExpires) {
   UdpLinkOptions options;
   options.verify_endpoints = true;
+  options.amplification.unverified_burst_bytes = 0;
   open(options);
   answer_with(4000);
   auto& victim = peer_socket();  // the address a forger names
@@ -282,19 +287,31 @@ TEST_F(HostileNetwork, AnUnverifiedEndpointGetsNoMoreBytesThanItSentAndTheBigRep
   EXPECT_EQ(c.challenges_sent, 1u);
   EXPECT_EQ(c.bytes_received_unverified, query.size());
   EXPECT_LE(c.bytes_sent_unverified, c.bytes_received_unverified);
-  // Nobody answers: the reply is dropped after the hold time, nothing more is sent.
+  // Nobody answers: the reply is dropped after the hold time, with a line; nothing more is sent.
   time.advance(3s);
   EXPECT_EQ(link->counters().amplification.replies_dropped_unverified, 1u);
+  EXPECT_EQ(link->counters().amplification.held_replies_expired, 1u);
+  EXPECT_EQ(std::count_if(logs.begin(), logs.end(),
+                          [](const std::string& l) { return l.find("did not answer the challenge") != l.npos; }),
+            1);
   EXPECT_TRUE(take(victim).empty());
-  // A second query: the budget allows another challenge (a second is past), still no more than was sent.
+  // Two more queries: their replies are dropped at once (one line for the
+  // streak), another challenge goes (a second is past): nothing but it.
   link->receive_datagram(endpoint_of(victim), query);
-  EXPECT_LE(bytes_of(take(victim)), query.size());
-  EXPECT_LE(link->counters().amplification.bytes_sent_unverified, 2 * query.size());
+  link->receive_datagram(endpoint_of(victim), query);
+  const auto more = take(victim);
+  ASSERT_EQ(more.size(), 1u);
+  EXPECT_EQ(unframe(more[0])->packet.header.command_code, kChallengeCode);
+  EXPECT_EQ(link->counters().amplification.replies_dropped_unverified, 3u);
+  EXPECT_EQ(std::count_if(logs.begin(), logs.end(),
+                          [](const std::string& l) { return l.find("replies to 127.0.0.1:") != l.npos; }),
+            1);
 }
 
 TEST_F(HostileNetwork, AnEndpointThatAnswersTheChallengeGetsTheHeldReply) {
   UdpLinkOptions options;
   options.verify_endpoints = true;
+  options.amplification.unverified_burst_bytes = 0;  // no allowance: the 4000-byte reply is beyond the budget
   open(options);
   answer_with(4000);
   auto& ocu_socket = peer_socket();
@@ -325,6 +342,7 @@ TEST_F(HostileNetwork, AnEndpointThatAnswersTheChallengeGetsTheHeldReply) {
 TEST_F(HostileNetwork, TooManyWrongAnswersRetireTheChallenge) {
   UdpLinkOptions options;
   options.verify_endpoints = true;
+  options.amplification.unverified_burst_bytes = 0;
   open(options);
   answer_with(4000);
   auto& ocu_socket = peer_socket();
@@ -360,10 +378,40 @@ TEST_F(HostileNetwork, StaticPeersAreVerifiedFromTheStart) {
   EXPECT_EQ(link->counters().amplification.challenges_sent, 0u);
 }
 
+// Issue 43, where the guarantee is kept (UdpLink::on_datagram): a command
+// from an unverified endpoint whose reply could not be sent (here the global
+// budget is 0) is not delivered - a Request Control is never granted with
+// its Confirm withheld - while a stop always is, and a query is delivered.
+TEST_F(HostileNetwork, ACommandWhoseReplyCannotGoIsNotDeliveredButAStopIs) {
+  UdpLinkOptions options;
+  options.verify_endpoints = true;
+  options.amplification.unverified_total_burst_bytes = 0;
+  options.amplification.unverified_total_bytes_per_second = 0;
+  open(options);
+  auto& ocu_socket = peer_socket();
+  const Ipv4Endpoint ocu = endpoint_of(ocu_socket);
+  const Address driver{1, 1, 33, 1};
+  link->receive_datagram(ocu, opc(message(kOcu, driver, msg::RequestComponentControl::code, 1)));
+  link->receive_datagram(ocu, opc(message(kOcu, driver, msg::SetWrenchEffort::code, 3)));
+  EXPECT_TRUE(delivered.empty());
+  EXPECT_EQ(link->counters().amplification.commands_refused, 2u);
+  EXPECT_EQ(std::count_if(logs.begin(), logs.end(),
+                          [](const std::string& l) { return l.find("command 0x000D from 127.0.0.1:") != l.npos; }),
+            1);
+  for (const std::uint16_t stop : {msg::SetEmergency::code, msg::Standby::code, msg::Shutdown::code})
+    link->receive_datagram(ocu, opc(message(kOcu, driver, stop, stop == msg::SetEmergency::code ? 2 : 0)));
+  link->receive_datagram(ocu, query_from(kOcu));
+  ASSERT_EQ(delivered.size(), 4u);
+  EXPECT_EQ(delivered[0].header.command_code, msg::SetEmergency::code);
+  EXPECT_EQ(delivered[3].header.command_code, msg::QueryIdentification::code);
+  EXPECT_EQ(link->counters().amplification.commands_refused, 2u);
+}
+
 // The held replies are bounded per endpoint (datagrams, bytes) and in
 // total; forgetting an endpoint drops what it held.
 TEST(AmplificationGuardBounds, HeldRepliesAreBoundedAndGoWithTheEndpoint) {
   AmplificationGuardOptions options;
+  options.unverified_burst_bytes = 0;  // no allowance: every reply here is beyond the budget
   options.max_held_per_endpoint = 3;
   options.max_held_bytes_per_endpoint = 10000;
   options.max_held_bytes_total = 12000;
@@ -398,6 +446,7 @@ TEST(HostileNetworkNodes, ARealNodeAnswersTheChallengeAndGetsItsReply) {
     config.node.node = 1;
     config.link.bind = Ipv4Endpoint{kLoopback1, 0};
     config.link.verify_endpoints = verify;
+    config.link.amplification.unverified_burst_bytes = 0;  // the reply is beyond the budget: a challenge
     config.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "node manager", {}, 0, {}}};
     auto opened = host::NodeHost::open(config, io);
     EXPECT_TRUE(opened) << opened.error().message();

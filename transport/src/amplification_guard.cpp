@@ -1,5 +1,8 @@
 #include "jaus/transport/amplification_guard.hpp"
 
+#include <algorithm>
+#include <chrono>
+
 namespace jaus::transport {
 
 namespace {
@@ -64,9 +67,42 @@ void AmplificationGuard::drop_held(State& state) {
 AmplificationGuard::State* AmplificationGuard::count_received(const Ipv4Endpoint& from, std::size_t size) {
   const auto it = endpoints_.find(from);
   if (it == endpoints_.end() || it->second.verified) return nullptr;
-  it->second.received += size;
+  State& state = it->second;
+  state.credit = std::min<std::uint64_t>(state.credit + size, options_.max_received_credit);
   counters_.bytes_received_unverified += size;
-  return &it->second;
+  return &state;
+}
+
+void AmplificationGuard::refill(State& state, rt::TimePoint now) {
+  const auto refill_bucket = [now](double& tokens, std::optional<rt::TimePoint>& at, std::size_t burst,
+                                   std::size_t per_second) {
+    if (!at) {
+      tokens = static_cast<double>(burst);  // full at first contact
+    } else if (now > *at) {
+      const double seconds = std::chrono::duration<double>(now - *at).count();
+      tokens = std::min(static_cast<double>(burst), tokens + seconds * static_cast<double>(per_second));
+    }
+    if (!at || now > *at) at = now;
+  };
+  refill_bucket(state.tokens, state.refilled_at, options_.unverified_burst_bytes, options_.unverified_bytes_per_second);
+  refill_bucket(global_tokens_, global_refilled_at_, options_.unverified_total_burst_bytes,
+                options_.unverified_total_bytes_per_second);
+}
+
+bool AmplificationGuard::spend(State& state, std::size_t size, rt::TimePoint now) {
+  refill(state, now);
+  // What admit_command set aside was taken from both budgets already.
+  const std::size_t from_reserve = std::min(state.reserved, size);
+  const std::size_t rest = size - from_reserve;
+  const std::size_t from_credit = static_cast<std::size_t>(std::min<std::uint64_t>(state.credit, rest));
+  const double from_tokens = static_cast<double>(rest - from_credit);
+  if (from_tokens > state.tokens || static_cast<double>(rest) > global_tokens_) return false;
+  state.reserved -= from_reserve;
+  state.credit -= from_credit;
+  state.tokens -= from_tokens;
+  global_tokens_ -= static_cast<double>(rest);
+  counters_.bytes_sent_unverified += size;
+  return true;
 }
 
 bool AmplificationGuard::answers(State& state, std::uint16_t sequence) {
@@ -80,7 +116,7 @@ bool AmplificationGuard::answers(State& state, std::uint16_t sequence) {
     }
     return false;
   }
-  state.verified = true;
+  state.verified = true;  // its limits are lifted
   state.challenge.reset();
   ++counters_.endpoints_verified;
   return true;
@@ -110,23 +146,52 @@ AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Fr
   if (it == endpoints_.end() || it->second.verified) return Verdict::send;
   State& state = it->second;
   const std::size_t size = framed_size(framing, packet.size());
-  // Behind what is already held, never before it: a large data set stays in order.
-  if (state.held.empty() && state.sent + size <= state.received) {
-    state.sent += size;
-    counters_.bytes_sent_unverified += size;
+  // A later part of a large data set goes behind the held ones, never before
+  // them (the parts stay in order); anything else within the budgets goes at
+  // once: an ACK is never withheld behind a held Report Image.
+  const bool continues_held = !state.held.empty() && framing != Framing::as5669a && packet.size() >= kHeaderSize &&
+                              static_cast<unsigned>(packet[13] >> 4) != static_cast<unsigned>(DataFlag::single);
+  if (!continues_held && spend(state, size, now)) {
+    state.dropping = false;
     return Verdict::send;
   }
-  if (state.held.size() >= options_.max_held_per_endpoint ||
-      state.held_bytes + packet.size() > options_.max_held_bytes_per_endpoint ||
-      held_bytes_ + packet.size() > options_.max_held_bytes_total) {
-    ++counters_.replies_dropped_unverified;
-    return Verdict::dropped;
+  // Beyond the budgets. Held while the endpoint may yet answer a challenge
+  // (the link sends one): our own tools do, and get a large reply at once.
+  const bool may_hold = !state.unanswered && state.held.size() < options_.max_held_per_endpoint &&
+                        state.held_bytes + packet.size() <= options_.max_held_bytes_per_endpoint &&
+                        held_bytes_ + packet.size() <= options_.max_held_bytes_total;
+  if (may_hold) {
+    state.held.push_back(Held{framing, std::vector<std::uint8_t>(packet.begin(), packet.end()), now});
+    state.held_bytes += packet.size();
+    held_bytes_ += packet.size();
+    ++counters_.replies_held;
+    return Verdict::held;
   }
-  state.held.push_back(Held{framing, std::vector<std::uint8_t>(packet.begin(), packet.end()), now});
-  state.held_bytes += packet.size();
-  held_bytes_ += packet.size();
-  ++counters_.replies_held;
-  return Verdict::held;
+  ++counters_.replies_dropped_unverified;
+  last_drop_began_streak_ = !state.dropping;
+  if (last_drop_began_streak_) ++counters_.drop_streaks;
+  state.dropping = true;
+  return Verdict::dropped;
+}
+
+bool AmplificationGuard::admit_command(const Ipv4Endpoint& from, Framing framing, rt::TimePoint now) {
+  (void)framing;  // the reserve fits every framing's prefix
+  const bool admitted = reserve_reply(from, now);
+  if (const auto it = endpoints_.find(from); it != endpoints_.end()) it->second.refused = !admitted;
+  if (!admitted) ++counters_.commands_refused;
+  return admitted;
+}
+
+bool AmplificationGuard::reserve_reply(const Ipv4Endpoint& from, rt::TimePoint now) {
+  const auto it = endpoints_.find(from);
+  if (it == endpoints_.end() || it->second.verified) return true;
+  State& state = it->second;
+  if (state.reserved >= kCommandReplyReserve) return true;  // set aside by an earlier command, still unspent
+  const std::size_t missing = kCommandReplyReserve - state.reserved;
+  if (!spend(state, missing, now)) return false;
+  counters_.bytes_sent_unverified -= missing;  // set aside, not sent: offer() counts it when it goes
+  state.reserved += missing;
+  return true;
 }
 
 std::vector<AmplificationGuard::Held> AmplificationGuard::release(const Ipv4Endpoint& endpoint) {
@@ -143,16 +208,18 @@ std::vector<AmplificationGuard::Held> AmplificationGuard::release(const Ipv4Endp
 std::optional<std::uint16_t> AmplificationGuard::due_challenge(State& state, std::size_t size, rt::TimePoint now,
                                                               bool at_first_contact) {
   if (state.verified) return std::nullopt;
-  if (state.held.empty() && !(at_first_contact && !state.challenged_at)) return std::nullopt;
+  // Due while a reply is held or was just dropped, or a command was refused
+  // (answering lifts the limits: an OCU that ACKs gets its commands through).
+  const bool wanted =
+      !state.held.empty() || state.dropping || state.refused || (at_first_contact && !state.challenged_at);
+  if (!wanted) return std::nullopt;
   if (state.challenged_at && now - *state.challenged_at < options_.challenge_interval) return std::nullopt;
-  if (state.sent + size > state.received) return std::nullopt;  // wait for the sender's next datagram
+  if (!spend(state, size, now)) return std::nullopt;  // wait for the budgets to grow
   if (!state.challenge) {
     state.challenge = next_sequence();
     state.wrong_answers = 0;
   }
   state.challenged_at = now;
-  state.sent += size;
-  counters_.bytes_sent_unverified += size;
   ++counters_.challenges_sent;
   return state.challenge;
 }
@@ -193,15 +260,25 @@ std::optional<std::vector<std::uint8_t>> AmplificationGuard::challenge_jss(const
   return jss::make_judp_datagram(h, kQueryHeartbeatPulse);
 }
 
-void AmplificationGuard::expire(rt::TimePoint now) {
+std::vector<AmplificationGuard::Expired> AmplificationGuard::expire(rt::TimePoint now) {
+  std::vector<Expired> expired;
   for (auto& [endpoint, state] : endpoints_) {
+    std::size_t replies = 0;
     while (!state.held.empty() && now - state.held.front().since >= options_.hold_time) {
       state.held_bytes -= state.held.front().packet.size();
       held_bytes_ -= state.held.front().packet.size();
       state.held.pop_front();
-      ++counters_.replies_dropped_unverified;
+      ++replies;
     }
+    if (replies == 0) continue;
+    counters_.replies_dropped_unverified += replies;
+    counters_.held_replies_expired += replies;
+    // It did not answer within hold_time: a peer that ignores ACK requests.
+    // Its replies beyond the budget are dropped at once from now on.
+    state.unanswered = true;
+    expired.push_back(Expired{endpoint, replies});
   }
+  return expired;
 }
 
 }  // namespace jaus::transport

@@ -1,6 +1,7 @@
 #include "jaus/transport/udp_link.hpp"
 
 #include <boost/asio/ip/multicast.hpp>
+#include <cstdio>
 #include <numeric>
 #include <random>
 
@@ -37,6 +38,24 @@ std::array<std::uint64_t, 2> challenge_key(const UdpLinkOptions& options) {
   std::array<std::uint64_t, 2> key{};
   for (auto& word : key) word = (std::uint64_t{random()} << 32) ^ random();
   return key;
+}
+
+// Stops (Shutdown, Standby, Set Emergency): they act from an endpoint whose
+// replies are withheld too. Stopping is safe: the platform is commanded to
+// stop, and a stop's ACK that cannot be sent costs nothing.
+bool is_stop(std::uint16_t code) { return code == 0x0002 || code == 0x0003 || code == 0x0006; }
+
+// A message that acts on the node and may be answered (ACK, Confirm Control):
+// the command class (0x0000-0x1FFF, in RA and AS5669A alike). An ACK or NAK
+// answers one of ours and acts on nothing.
+bool is_command(std::uint16_t code) { return code < 0x2000; }
+
+// The message ID of an AS5669A transport message (the first two bytes of its contents; an ACK has none).
+std::optional<std::uint16_t> jss_message_id(const jss::JudpPacket& packet) {
+  if (packet.header.ack_nak == jss::JudpAckNak::ack || packet.header.ack_nak == jss::JudpAckNak::nak ||
+      packet.contents.size() < 2)
+    return std::nullopt;
+  return static_cast<std::uint16_t>(packet.contents[0] | (packet.contents[1] << 8));
 }
 
 // The JSS guard's key: another key, so its challenge numbers are not the RA guard's.
@@ -213,9 +232,9 @@ void UdpLink::schedule_expiry() {
   expiry_timer_ = scheduler_.call_at(clock_.now() + kExpiryPeriod, [this] {
     expiry_timer_ = rt::kNoTimer;
     routes_.expire(clock_.now());
-    guard_.expire(clock_.now());
     jss_routes_.expire(clock_.now());
-    jss_guard_.expire(clock_.now());
+    report_expired(guard_.expire(clock_.now()), guard_);
+    report_expired(jss_guard_.expire(clock_.now()), jss_guard_);
     sync_amplification_counters();
     schedule_expiry();
   });
@@ -327,6 +346,22 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
         return;
       }
       send_challenge(from, unframed->framing);  // its budget grew: a challenge may fit now
+      // Safety (issue 43): never a command acted on for an endpoint whose
+      // replies are withheld. The guarantee is kept here, at entry: a command
+      // from an unverified endpoint is delivered only once its reply's bytes
+      // are set aside (admit_command); a Request Control whose Confirm could
+      // not be sent is not granted, since it never reaches the component.
+      // Stops always act (is_stop), their ACK's bytes set aside if there are any.
+      const bool answer = header.ack_nak == AckNak::ack || header.ack_nak == AckNak::nak;
+      if (!answer && is_command(header.command_code)) {
+        if (is_stop(header.command_code)) {
+          guard_.reserve_reply(from, clock_.now());
+        } else if (!guard_.admit_command(from, unframed->framing, clock_.now())) {
+          send_challenge(from, unframed->framing);  // answering it lets its next command through
+          sync_amplification_counters();
+          return refuse_command(from, header.command_code, guard_);
+        }
+      }
       sync_amplification_counters();
     }
   }
@@ -412,6 +447,24 @@ void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> dat
       // something is held and its budget grew.
       if (const auto challenge = jss_guard_.challenge_jss(from, jss_self(), clock_.now(), /*at_first_contact=*/true))
         send_to(from, Framing::as5669a, *challenge);
+      // Safety (issue 43), as for RA above: a datagram carrying a command is
+      // delivered only if its reply can be sent, or if it carries a stop
+      // (stopping is safe; nobody packs a stop with other commands).
+      bool commands = false, stop = false;
+      std::uint16_t code = 0;
+      for (const auto& packet : *packets) {
+        const auto id = jss_message_id(packet);
+        if (!id || !is_command(*id)) continue;
+        (is_stop(*id) ? stop : commands) = true;
+        if (!is_stop(*id)) code = *id;
+      }
+      if (stop) {
+        jss_guard_.reserve_reply(from, clock_.now());
+      } else if (commands && !jss_guard_.admit_command(from, Framing::as5669a, clock_.now())) {
+        send_challenge(from, Framing::as5669a);  // answering it lets its next command through
+        sync_amplification_counters();
+        return refuse_command(from, code, jss_guard_);
+      }
       sync_amplification_counters();
     }
   }
@@ -440,17 +493,50 @@ void UdpLink::send_routed(const Ipv4Endpoint& to, Framing framing, std::span<con
   const auto verdict = guard.offer(to, framing, packet, clock_.now());
   if (verdict == AmplificationGuard::Verdict::send) {
     send_to(to, framing, packet);
-  } else {
+  } else if (verdict == AmplificationGuard::Verdict::held) {
     repeated_lines_.write("replies held for unverified endpoints", rt::LogLevel::info, [&] {
       const auto& c = guard.counters();
-      return "reply to " + to_string(to) + (verdict == AmplificationGuard::Verdict::held ? " held" : " dropped") +
-             ": more than it sent until it answers a challenge (ACK requested; a peer that ignores ACK requests "
-             "goes in transport.peers) [" + std::to_string(c.replies_held) + " held, " +
-             std::to_string(c.replies_dropped_unverified) + " dropped so far]";
+      return "reply to " + to_string(to) +
+             " held: beyond the budget of an unverified endpoint until it answers a challenge (ACK requested) [" +
+             std::to_string(c.replies_held) + " held so far]";
     });
+    send_challenge(to, framing);
+  } else {
+    // One line per streak (a reply sent ends it), limited across endpoints: a flood is a few lines and a count.
+    if (guard.last_drop_began_streak())
+      repeated_lines_.write({"reply drop streaks", kNewRouteLinesPerWindow}, rt::LogLevel::warn, [&] {
+        const auto& c = guard.counters();
+        return "replies to " + to_string(to) +
+               " dropped: beyond the budget of an endpoint that has not answered a challenge (transport."
+               "unverified_*; a peer that ignores ACK requests may go in transport.peers) [" +
+               std::to_string(c.replies_dropped_unverified) + " dropped so far]";
+      });
     send_challenge(to, framing);
   }
   sync_amplification_counters();
+}
+
+void UdpLink::refuse_command(const Ipv4Endpoint& from, std::uint16_t code, const AmplificationGuard& guard) {
+  repeated_lines_.write({"commands refused for want of reply budget", kNewRouteLinesPerWindow}, rt::LogLevel::warn,
+                        [&] {
+                          char hex[16];
+                          std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(code));
+                          return "command " + std::string(hex) + " from " + to_string(from) +
+                                 " not executed: its reply could not be sent (the endpoint's budget is spent and "
+                                 "it has not answered a challenge) [" +
+                                 std::to_string(guard.counters().commands_refused) + " so far]";
+                        });
+}
+
+void UdpLink::report_expired(const std::vector<AmplificationGuard::Expired>& expired, const AmplificationGuard& guard) {
+  for (const auto& e : expired)
+    repeated_lines_.write({"held replies expired", kNewRouteLinesPerWindow}, rt::LogLevel::warn, [&] {
+      return std::to_string(e.replies) + " held repl" + (e.replies == 1 ? "y" : "ies") + " to " +
+             to_string(e.endpoint) +
+             " dropped: it did not answer the challenge (ACK requested) in time; its replies beyond the budget "
+             "are dropped from now on [" +
+             std::to_string(guard.counters().held_replies_expired) + " expired so far]";
+    });
 }
 
 void UdpLink::relay(const Ipv4Endpoint& from, const Header& header, std::span<const std::uint8_t> packet) {

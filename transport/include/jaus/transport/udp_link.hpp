@@ -26,8 +26,10 @@
 // - trusted: recorded, and `control_from` is empty or contains its address.
 // Routes of IDs that hold state at this node (pin_routes_while) never move to
 // another IP address and never expire while they do (route_table.hpp).
-// With `verify_endpoints`, no learnt endpoint is sent more bytes than it sent
-// until it answers a challenge (amplification_guard.hpp).
+// With `verify_endpoints`, a learnt endpoint is sent no more than it sent plus
+// an allowance, and all such endpoints together no more than a global rate,
+// until it answers a challenge; a command from one is delivered only if its
+// reply can be sent (amplification_guard.hpp, on_datagram).
 //
 // SAE JAUS (jss-notes.md 1): datagrams whose first byte is 0x02 are AS5669A.
 // With a JSS handler set (on_jss_datagram: the node's JSS face), each is
@@ -108,9 +110,9 @@ struct UdpLinkOptions {
   // delivered as an observer (queries, reports, its own emergency hold).
   // Empty: every allowed host may command (trusted).
   std::vector<Cidr> control_from;
-  // No more bytes to a learnt endpoint than it sent until it answers a
-  // challenge (amplification_guard.hpp): on for a node (jausd), off for
-  // clients that start the conversation themselves (OCU tools).
+  // No more bytes to a learnt endpoint than it sent plus an allowance until
+  // it answers a challenge (amplification_guard.hpp): on for a node (jausd),
+  // off for clients that start the conversation themselves (OCU tools).
   bool verify_endpoints = false;
   AmplificationGuardOptions amplification;
   // The key of the challenges' sequence numbers; unset: random per link.
@@ -257,6 +259,10 @@ class UdpLink final : public node::Link {
   // what goes to learnt endpoints the routes chose.
   void send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
   void send_challenge(const Ipv4Endpoint& to, Framing framing);
+  // A command from an unverified endpoint not delivered (its reply could not be sent): a line, limited.
+  void refuse_command(const Ipv4Endpoint& from, std::uint16_t code, const AmplificationGuard& guard);
+  // A line for each endpoint whose held replies expired, limited.
+  void report_expired(const std::vector<AmplificationGuard::Expired>& expired, const AmplificationGuard& guard);
   // The guard of an endpoint speaking `framing` (one per dialect).
   AmplificationGuard& guard_for(Framing framing) { return framing == Framing::as5669a ? jss_guard_ : guard_; }
   void sync_amplification_counters();
