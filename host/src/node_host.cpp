@@ -73,6 +73,12 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
                                                               rt::SenderStanding standing) {
       face->receive(datagram, standing);
     });
+    // Log lines about a JSS client name its host: where its node's route is.
+    h->jss_face_->locate_clients_with([udp](const jss::JssId& client) -> std::optional<std::string> {
+      const auto route = udp->jss_routes().route(client.subsystem, client.node);
+      if (!route) return std::nullopt;
+      return transport::to_string(route->endpoint);
+    });
     // No hijack of a JSS client's ID either while its alias holds state here.
     h->udp_link_->pin_jss_routes_while([face = h->jss_face_.get()](std::uint16_t subsystem, std::uint8_t node_id) {
       return face->holds_state_for(subsystem, node_id);
@@ -109,7 +115,17 @@ void NodeHost::make_node(node::Link& link) {
     face_link_ = std::make_unique<jss_face::FaceLink>(link);
     node_link = face_link_.get();
   }
-  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, *node_link, log_);
+  rt::LogFn node_log = log_;
+  if (config_.jss.enabled) {
+    // The components know a JSS client only by its alias: their lines
+    // (control refused, a command from a non-controller, ...) name the
+    // client's own JSS ID and host after it. The face goes first on
+    // destruction (~NodeHost): the node's last lines pass unchanged.
+    node_log = [this](rt::LogLevel level, const std::string& text) {
+      log_(level, jss_face_ ? jss_face_->name_clients_in(text) : text);
+    };
+  }
+  node_ = std::make_unique<node::Node>(config_.node, *clock_, *scheduler_, *node_link, std::move(node_log));
 }
 
 void NodeHost::make_jss_face(jss_face::JssFace::DatagramSender send) {
@@ -471,7 +487,8 @@ void NodeHost::stop(const std::string& why) {
   if (jss_face_) {
     const auto& f = jss_face_->counters();
     jss = ", JSS: " + std::to_string(l.jss.datagrams_received) + " AS5669A datagrams in, " +
-          std::to_string(f.messages_to_ra) + " messages to RA, " + std::to_string(f.messages_to_jss) + " to JSS";
+          std::to_string(f.messages_to_ra) + " messages to RA, " + std::to_string(f.messages_to_jss) + " to JSS, " +
+          std::to_string(f.duplicates) + " copies not acted on, " + std::to_string(f.refused) + " requests refused";
   }
   log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +
                                std::to_string(l.dropped_total()) + " dropped" + reasons + ", " +

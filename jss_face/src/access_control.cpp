@@ -3,7 +3,10 @@
 // alias: one controller for both dialects, the RA authority rule, the RA
 // controller timeout (a JSS client keeps control by sending within it, as
 // AS5710 says: re-sending Request Control does), Reject on loss.
-//   Request Control  -> RA Request Component Control (Confirm codes are the same)
+//   Request Control  -> RA Request Component Control (Confirm codes are the same);
+//                       from a client outside transport.control_from (or one
+//                       the node cannot record): Confirm Control 1 (NOT_AVAILABLE)
+//                       from the face, logged with the client's JSS ID and host
 //   Release Control  -> RA Release Component Control; Reject Control 0 to the
 //                       client (RA answers a release with nothing)
 //   RA Reject Component Control (empty) -> Reject Control 0 (CONTROL_RELEASED)
@@ -55,8 +58,20 @@ class AccessControlTranslator final : public ServiceTranslator {
     if (!handles(m.message_id, m.ra_component.component)) return false;
     switch (m.message_id) {
       case jss_msg::RequestControl::code:
-        if (decode_jss<jss_msg::RequestControl>(m, port))  // same byte: the authority
-          port.send_ra(m.origin, m.ra_component, ra::RequestComponentControl::code, m.body, m.standing);
+        if (!decode_jss<jss_msg::RequestControl>(m, port)) return true;
+        if (m.standing != rt::SenderStanding::trusted) {
+          // Not allowed to command from where it is: Confirm Control 1
+          // (NOT_AVAILABLE), not the RA refusal's 2, which JSS reads as
+          // "insufficient authority" (a higher authority would not help).
+          // The component is not asked: the refusal is the face's, and the
+          // client takes no alias slot for it.
+          port.refused(m.origin.client, "Request Control of " + m.our_component.to_string(),
+                       "sender " + std::string(rt::to_string(m.standing)) + "; Confirm Control 1 (not available)");
+          reply_jss(port, m.origin, m.our_component, jss_msg::ConfirmControl{{jss_msg::confirm_control::kNotAvailable}});
+          return true;
+        }
+        // Same byte: the authority.
+        port.send_ra(m.origin, m.ra_component, ra::RequestComponentControl::code, m.body, m.standing);
         return true;
       case jss_msg::ReleaseControl::code: {
         if (!decode_jss<jss_msg::ReleaseControl>(m, port)) return true;

@@ -197,7 +197,7 @@ class DiscoveryTranslator final : public ServiceTranslator {
       const ServiceUri service{s.uri, s.major_version, s.minor_version};
       if (std::find(kept.begin(), kept.end(), service) != kept.end()) continue;
       if (registered_count_ >= max_registered_) {
-        port.log(rt::LogLevel::warn, "Register Services from " + m.origin.client.to_string() + ": table full (" +
+        port.log(rt::LogLevel::warn, "Register Services from " + port.describe_client(m.origin.client) + ": table full (" +
                                          std::to_string(max_registered_) +
                                          " services, jss.max_registered_services); the rest not kept");
         break;

@@ -7,6 +7,7 @@
 #include "jaus/jss_face/face.hpp"
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "aliases.hpp"
@@ -79,20 +80,33 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
     if (single && packet.contents.size() < 2)
       return malformed("AS5669A message from " + h.source.to_string(),
                        std::to_string(packet.contents.size()) + " bytes of contents: no message ID");
-    const bool copy = duplicates_.seen_before(h.source, h.sequence, now);
-    if (copy) ++counters_.duplicates;
-    // A copy is answered (ACK) but not acted on, except a stop.
-    const bool stop = single && jss::message_id_of(packet.contents) == kSetEmergency;
-    if (!copy || stop) {
-      if (single) {
-        deliver(h, packet.contents, standing, reached);
-      } else if (auto whole = reassembler_.add(packet, now); !whole) {
-        malformed("large message packet from " + h.source.to_string(), whole.error().message());
-      } else if (whole->has_value()) {
-        ++counters_.large_messages_received;
-        const jss::WholeMessage message = std::move(**whole);
-        deliver(message.header, message.contents, standing, reached);
-      }
+    // A copy is answered (ACK) but not acted on again; a stop always acts
+    // (the filter never takes one for a copy: face_transport.hpp).
+    const JssCopyVerdict verdict = duplicates_.check(h, packet.contents, now);
+    if (verdict == JssCopyVerdict::new_session) {
+      ++counters_.new_sessions;
+      lines_.write({"JSS clients restarted", rt::kNoteworthyBurst}, rt::LogLevel::info, [&] {
+        return describe_client(h.source) + " restarted (sequence number " + std::to_string(h.sequence) +
+               " to " + h.destination.to_string() + " begins a new session): its earlier messages forgotten";
+      });
+    }
+    if (is_dropped(verdict)) {
+      ++counters_.duplicates;
+      lines_.write("JSS copies not acted on", rt::LogLevel::debug, [&] {
+        return "JSS message " + hex16(single ? jss::message_id_of(packet.contents) : 0) + " from " +
+               describe_client(h.source) + " to " + h.destination.to_string() + ", sequence number " +
+               std::to_string(h.sequence) + ": a copy of one delivered" +
+               (verdict == JssCopyVerdict::late_copy ? ", since followed by a stop" : "") +
+               "; acknowledged, not acted on";
+      });
+    } else if (single) {
+      deliver(h, packet.contents, standing, reached);
+    } else if (auto whole = reassembler_.add(packet, now); !whole) {
+      malformed("large message packet from " + h.source.to_string(), whole.error().message());
+    } else if (whole->has_value()) {
+      ++counters_.large_messages_received;
+      const jss::WholeMessage message = std::move(**whole);
+      deliver(message.header, message.contents, standing, reached);
     }
     if (h.ack_nak == jss::JudpAckNak::ack_requested && !h.destination.is_broadcast()) send_ack(h);
   }
@@ -139,6 +153,27 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
     ++counters_.acks_sent;
   }
 
+  // "JSS client 42.1.1 at 10.0.0.5:3794" (the host when known).
+  std::string client_and_host(const jss::JssId& client) const {
+    std::string text = "JSS client " + client.to_string();
+    if (locate_)
+      if (const auto host = locate_(client)) text += " at " + *host;
+    return text;
+  }
+
+  std::string describe_client(const jss::JssId& client) const override {
+    std::string text = client_and_host(client);
+    if (const auto slot = aliases_.find(client))
+      text += " (alias " + aliases_.alias(*slot, ReplyTo{client, std::nullopt}).to_string() + ")";
+    return text;
+  }
+
+  void refused(const jss::JssId& client, const std::string& what, const std::string& why) override {
+    ++counters_.refused;
+    lines_.write("JSS requests refused", rt::LogLevel::info,
+                 [&] { return what + " from " + describe_client(client) + " refused: " + why; });
+  }
+
   void malformed(const std::string& what, const std::string& why) override {
     ++counters_.malformed;
     lines_.write("malformed JSS input ignored", rt::LogLevel::warn,
@@ -148,10 +183,16 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   // ---- to the node -------------------------------------------------------------
 
   std::optional<std::uint8_t> slot_for(const jss::JssId& client) {
+    const bool known = aliases_.find(client).has_value();
     const auto assigned = aliases_.assign(client, env_.clock.now(), [this](std::uint8_t slot, const jss::JssId& node) {
       return !node_.holds_state_for(aliases_.alias_subsystem(), slot) && !events_.has_events_of(node);
     });
     if (!assigned) return std::nullopt;
+    if (!known) {
+      // Components log the alias, the only address they know: this line ties it to the client.
+      lines_.write({"JSS clients given an alias", rt::kNoteworthyBurst}, rt::LogLevel::info,
+                   [&] { return describe_client(client) + ": new client"; });
+    }
     if (assigned->forgotten) forget_client(*assigned->forgotten, "its alias slot went to " + client.to_string());
     return assigned->slot;
   }
@@ -187,7 +228,7 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
     } else {
       ++counters_.clients_refused;
       lines_.write("JSS clients refused", rt::LogLevel::warn, [&] {
-        return "JSS client " + origin.client.to_string() + " refused: all " + std::to_string(aliases_.capacity()) +
+        return describe_client(origin.client) + " refused: all " + std::to_string(aliases_.capacity()) +
                " client slots are held by clients with state (jss.max_clients)";
       });
       return;
@@ -325,6 +366,7 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   rt::RepeatedLines lines_;
   std::uint8_t inbound_priority_ = priority::kDefault;  // RA priority of the JSS message being handled
   rt::TimerId housekeeping_ = rt::kNoTimer;
+  JssFace::ClientLocator locate_;
 };
 
 JssFace::JssFace(FaceConfig config, node::Node& node, DatagramSender send, rt::LogFn log)
@@ -334,6 +376,52 @@ JssFace::~JssFace() = default;
 void JssFace::receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing) {
   impl_->receive(datagram, standing);
 }
+namespace {
+// Reads "a.b.c" (three numbers 0-255, each after a dot) at `at`; the end, or npos.
+std::size_t read_three_numbers(const std::string& text, std::size_t at, std::array<std::uint8_t, 3>& numbers) {
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (i > 0) {
+      if (at >= text.size() || text[at] != '.') return std::string::npos;
+      ++at;
+    }
+    unsigned value = 0;
+    std::size_t digits = 0;
+    while (at < text.size() && text[at] >= '0' && text[at] <= '9' && digits < 4) {
+      value = value * 10 + static_cast<unsigned>(text[at] - '0');
+      ++at;
+      ++digits;
+    }
+    if (digits == 0 || value > 255) return std::string::npos;
+    numbers[i] = static_cast<std::uint8_t>(value);
+  }
+  return at;
+}
+bool continues_a_number(char c) { return (c >= '0' && c <= '9') || c == '.' || c == ':'; }
+}  // namespace
+
+std::string JssFace::name_clients_in(const std::string& line) const {
+  const std::string prefix = std::to_string(impl_->aliases_.alias_subsystem()) + ".";
+  std::string out;
+  std::size_t from = 0;
+  for (std::size_t at = line.find(prefix); at != std::string::npos; at = line.find(prefix, at + 1)) {
+    if (at < from || (at > 0 && continues_a_number(line[at - 1]))) continue;
+    std::array<std::uint8_t, 3> numbers{};
+    const std::size_t end = read_three_numbers(line, at + prefix.size(), numbers);
+    // An address alone (not an IP address's "a.b.c.d:port", not part of a longer number).
+    if (end == std::string::npos || (end < line.size() && continues_a_number(line[end]))) continue;
+    const auto client = impl_->aliases_.client_of(
+        Address{impl_->aliases_.alias_subsystem(), numbers[0], numbers[1], numbers[2]});
+    if (!client) continue;
+    out.append(line, from, end - from);
+    out += " (" + impl_->client_and_host(client->client) + ")";
+    from = end;
+  }
+  if (from == 0) return line;
+  out.append(line, from, std::string::npos);
+  return out;
+}
+
+void JssFace::locate_clients_with(ClientLocator locator) { impl_->locate_ = std::move(locator); }
 bool JssFace::owns(const Address& ra_destination) const { return impl_->aliases_.is_alias(ra_destination); }
 void JssFace::from_node(const Header& header, std::span<const std::uint8_t> payload) {
   impl_->from_node(header, payload);

@@ -194,7 +194,7 @@ void EventEngine::query_events(const JssInbound& m) {
 
 void EventEngine::reject(const JssInbound& m, std::uint8_t request_id, std::uint8_t code, const char* why) {
   lines_.write("JSS event requests rejected", rt::LogLevel::info, [&] {
-    return "jss: event request " + std::to_string(request_id) + " from " + m.origin.client.to_string() + " to " +
+    return "jss: event request " + std::to_string(request_id) + " from " + host_.describe_client(m.origin.client) + " to " +
            m.our_component.to_string() + " rejected (code " + std::to_string(code) + "): " + why;
   });
   jss_msg::RejectEventRequest reply;

@@ -44,6 +44,8 @@ class EventEngine {
     virtual void send_contents(const jss::JssId& to, const jss::JssId& from, std::span<const std::uint8_t> contents) = 0;
     // Counts and logs a message that does not decode.
     virtual void malformed(const std::string& what, const std::string& why) = 0;
+    // A client as log lines name it (FacePort::describe_client).
+    virtual std::string describe_client(const jss::JssId& client) const = 0;
   };
 
   EventEngine(const FaceConfig& config, rt::Clock& clock, rt::Scheduler& scheduler, Host& host, rt::LogFn log);

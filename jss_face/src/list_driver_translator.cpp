@@ -181,7 +181,7 @@ class ListDriverTranslator final : public ServiceTranslator {
 
   void ignored(const JssInbound& m, FacePort& port, std::string_view what, std::string_view why) {
     log_.repeated(port, "list commands not executed", rt::LogLevel::info, [&] {
-      return std::string(what) + " from " + mobility::who(m) + " not executed: " + std::string(why);
+      return std::string(what) + " from " + mobility::who(m, port) + " not executed: " + std::string(why);
     });
   }
 

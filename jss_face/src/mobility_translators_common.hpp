@@ -78,6 +78,11 @@ inline std::string who(const JssInbound& m) {
   return m.origin.client.to_string() + " -> " + m.our_component.to_string();
 }
 
+// The same in a refusal line: the client by its JSS ID, host and alias.
+inline std::string who(const JssInbound& m, const FacePort& port) {
+  return port.describe_client(m.origin.client) + " -> " + m.our_component.to_string();
+}
+
 // The rate-limited log of one translator: made on first use on the face's
 // clock and scheduler (the port is the face's, for the face's life).
 class TranslatorLog {

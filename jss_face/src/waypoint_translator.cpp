@@ -102,7 +102,7 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
 
   void refused(const JssInbound& m, FacePort& port, std::string_view what, std::string_view why) {
     log_.repeated(port, "waypoint commands not executed", rt::LogLevel::info, [&] {
-      return std::string(what) + " from " + mobility::who(m) + " not executed: " + std::string(why);
+      return std::string(what) + " from " + mobility::who(m, port) + " not executed: " + std::string(why);
     });
   }
 

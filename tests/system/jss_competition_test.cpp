@@ -338,5 +338,53 @@ TEST_F(JssCompetition, NobodyActsAsTheJssOperatorsAliasOverRa) {
   jss->run_for(300ms);
 }
 
+
+// Issue 43: a JSS operator that restarts numbers its messages from 1 again
+// (Jr does), within the node's duplicate window. The restarted run's Request
+// Control, the same message under the same number as the first run's, is
+// obeyed at once, not ACKed and dropped as a copy.
+TEST_F(JssCompetition, ARestartedJssOperatorIsObeyedAtOnce) {
+  constexpr jss::JssId kRestarting{300, 4, 1};
+  const auto run = [&](const char* name) -> std::optional<std::uint8_t> {
+    ocu::JssSessionOptions options;
+    options.self = kRestarting;
+    options.name = name;
+    options.first_sequence = 1;
+    options.to = {*transport::parse_endpoint(std::string(kNode) + ":3794")};
+    options.bind = *transport::parse_endpoint(kJssHost, 0);
+    auto opened = ocu::JssSession::open(options, &io);
+    EXPECT_TRUE(opened) << (opened ? "" : opened.error().message());
+    if (!opened) return std::nullopt;
+    auto& session = **opened;
+    std::optional<std::uint8_t> confirmed;
+    session.listen([&](const ocu::JssReceived& r) {
+      if (r.source() != kJssDriver || r.message_id() != m::ConfirmControl::code) return;
+      if (auto confirm = jss::decode_contents<m::ConfirmControl>(r.contents)) confirmed = confirm->response_code;
+    });
+    // Sequence number 1, ACK requested, as Jr sends it.
+    const auto arrival = session.send_must_arrive(kJssDriver, m::RequestControl{{5}});
+    EXPECT_EQ(arrival.outcome, ocu::Arrival::acknowledged) << name;
+    session.run_until([&] { return confirmed.has_value(); }, 2s);
+    // And a query, as any operator goes on (sequence number 2).
+    EXPECT_TRUE(session.query<m::ReportStatus>(kJssDriver, m::QueryStatus{}, 2s)) << name;
+    return confirmed;
+  };
+  ASSERT_EQ(run("first run"), m::confirm_control::kControlAccepted) << jausd->output();
+  const auto again = run("restarted run");  // at once: well within the window
+  ASSERT_TRUE(again.has_value()) << "the restarted operator's Request Control was dropped as a copy\n"
+                                 << jausd->output();
+  EXPECT_EQ(*again, m::confirm_control::kControlAccepted);
+  // The node says so, naming the operator by its JSS ID and host.
+  EXPECT_TRUE(jausd->output_contains("JSS client 300.4.1 at 127.0.0.167:")) << jausd->output();
+  EXPECT_TRUE(jausd->output_contains("restarted (sequence number 1")) << jausd->output();
+  // The driver's own lines name the operator by its JSS ID and host, not only its alias.
+  const std::string output = jausd->output();
+  bool named = false;
+  for (std::size_t at = output.find("controlled by 250."); at != std::string::npos && !named;
+       at = output.find("controlled by 250.", at + 1))
+    named = output.substr(at, output.find('\n', at) - at).find("(JSS client 300.4.1 at 127.0.0.167:") != std::string::npos;
+  EXPECT_TRUE(named) << output;
+}
+
 }  // namespace
 }  // namespace jaus::test

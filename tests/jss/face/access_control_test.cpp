@@ -1,5 +1,7 @@
 // Access control through the face: one arbitration for both dialects (the RA
 // component's), with JSS replies.
+#include <algorithm>
+
 #include "face_node.hpp"
 
 namespace jaus::test {
@@ -112,15 +114,47 @@ TEST(JssFaceAccessControl, SetAuthorityFromTheControllerChangesItsAuthorityWitho
   EXPECT_EQ(node.driver().control().controller()->authority, 7);
 }
 
-TEST(JssFaceAccessControl, AnObserverIsRefusedControl) {
+TEST(JssFaceAccessControl, OutsideControlFromGetsNotAvailableAndTheLogNamesJssIdAndHost) {
   FaceNode node;
+  node.face().locate_clients_with([](const jss::JssId& client) -> std::optional<std::string> {
+    if (client == kClientA) return "192.0.2.7:3794";
+    return std::nullopt;
+  });
   jss::JudpHeader h;
   h.source = kClientA;
   h.destination = kDriver;
   node.receive(jss::make_judp_datagram(h, jss::encode_contents(msg::RequestControl{{5}})), rt::SenderStanding::observer);
   ASSERT_TRUE(node.run_until([&] { return node.count(kClientA, msg::ConfirmControl::code) > 0; }));
-  EXPECT_EQ(node.take<msg::ConfirmControl>(kClientA, kDriver)->response_code, kInsufficientAuthority);
+  // "Not allowed" is NOT_AVAILABLE (1), not INSUFFICIENT_AUTHORITY (2): a
+  // higher authority would not help a client that may not command from where it is.
+  EXPECT_EQ(node.take<msg::ConfirmControl>(kClientA, kDriver)->response_code, msg::confirm_control::kNotAvailable);
   EXPECT_FALSE(node.driver().control().controller().has_value());
+  EXPECT_EQ(node.counters().refused, 1u);
+  EXPECT_EQ(node.counters().messages_to_ra, 0u);  // the face's refusal: no alias slot taken for it
+  const auto line = std::find_if(node.log().begin(), node.log().end(), [](const std::string& l) {
+    return l.find("Request Control of 1.1.33") != std::string::npos;
+  });
+  ASSERT_NE(line, node.log().end());
+  EXPECT_NE(line->find("JSS client 42.1.1 at 192.0.2.7:3794"), std::string::npos) << *line;
+  EXPECT_NE(line->find("outside transport.control_from"), std::string::npos) << *line;
+  EXPECT_NE(line->find("Confirm Control 1"), std::string::npos) << *line;
+
+  // From inside control_from the same client gets control; the components
+  // name it by its alias, and the face's line ties the alias to its JSS ID and host.
+  EXPECT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  EXPECT_TRUE(std::any_of(node.log().begin(), node.log().end(), [](const std::string& l) {
+    return l.find("JSS client 42.1.1 at 192.0.2.7:3794 (alias 250.1.1.1): new client") != std::string::npos;
+  })) << "no line ties the alias to the client";
+  // jausd passes the components' lines through the face: each alias in
+  // them is followed by the client it stands for (IP addresses, other
+  // subsystems and empty slots are left as they are).
+  EXPECT_EQ(node.face().name_clients_in("Set Wrench Effort from 250.1.1.1 not executed: controlled by 5.1.40.1"),
+            "Set Wrench Effort from 250.1.1.1 (JSS client 42.1.1 at 192.0.2.7:3794) not executed: controlled by 5.1.40.1");
+  EXPECT_EQ(node.face().name_clients_in("controlled by 250.1.1.1 (authority 5)"),
+            "controlled by 250.1.1.1 (JSS client 42.1.1 at 192.0.2.7:3794) (authority 5)");
+  for (const char* untouched : {"node at 250.1.1.1:3794", "250.7.1.1 refused", "2250.1.1.1", "250.1.1.1.5",
+                                "no address here", "250.1.1"})
+    EXPECT_EQ(node.face().name_clients_in(untouched), std::string(untouched));
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // The face's transport part: ACK, duplicates, large messages both ways,
 // malformed input, the bounded alias slots.
+#include <algorithm>
+
 #include "face_node.hpp"
 
 namespace jaus::test {
@@ -46,6 +48,122 @@ TEST(JssFaceTransport, ACopyIsAcknowledgedButNotActedOnExceptAStop) {
   node.run_for(20ms);
   EXPECT_EQ(node.counters().messages_to_ra, to_ra + 2);
   EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);
+}
+
+// Issue 43: Jr numbers from 1 on every start. A client restarted within
+// the window is a new session: its messages act at once, never ACKed and dropped.
+TEST(JssFaceTransport, AClientRestartedWithSequenceOneWithinTheWindowHasItsRequestControlObeyed) {
+  FaceNode node;
+  const auto confirmed = [&] { return node.take<msg::ConfirmControl>(kClientA, kDriver); };
+  // The first run: control, a query, control released.
+  node.send(kClientA, kDriver, msg::RequestControl{{5}}, /*ack=*/true, 1);
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 2);
+  node.send(kClientA, kDriver, msg::ReleaseControl{}, true, 3);
+  node.run_for(50ms);
+  ASSERT_TRUE(confirmed().has_value());
+  ASSERT_FALSE(node.driver().control().controller().has_value());
+  node.clear();
+  // Restarted half a second later: the same messages under the same numbers.
+  node.run_for(500ms);
+  node.send(kClientA, kDriver, msg::RequestControl{{5}}, true, 1);
+  node.run_for(50ms);
+  const auto confirm = confirmed();
+  ASSERT_TRUE(confirm.has_value()) << "the restarted client's Request Control was dropped as a copy";
+  EXPECT_EQ(confirm->response_code, msg::confirm_control::kControlAccepted);
+  EXPECT_TRUE(node.driver().control().controller().has_value());
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 2);
+  node.run_for(50ms);
+  EXPECT_EQ(node.take_all<msg::ReportHeartbeatPulse>(kClientA).size(), 1u);
+  EXPECT_EQ(node.counters().duplicates, 0u);
+  EXPECT_EQ(node.counters().new_sessions, 1u);
+  EXPECT_EQ(node.acks().size(), 5u);  // every one ACKed
+}
+
+// A number reused for another message within the window is a new session too.
+TEST(JssFaceTransport, AMessageDifferingFromTheOneRememberedUnderItsNumberIsActedOn) {
+  FaceNode node;
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 7);
+  node.send(kClientA, kDriver, msg::RequestControl{{5}}, true, 7);
+  node.run_for(50ms);
+  EXPECT_EQ(node.take_all<msg::ReportHeartbeatPulse>(kClientA).size(), 1u);
+  EXPECT_TRUE(node.take<msg::ConfirmControl>(kClientA, kDriver).has_value());
+  EXPECT_EQ(node.counters().duplicates, 0u);
+  EXPECT_EQ(node.counters().new_sessions, 1u);
+}
+
+TEST(JssFaceTransport, ATrueRetransmissionWithin3sIsAcknowledgedAndNotDeliveredAgain) {
+  FaceNode node;
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 40);
+  node.run_for(1s);
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 40);
+  // A copy still comes after newer messages of the same sender (the ACK of
+  // 40 lost, 41 sent meanwhile): not delivered again either.
+  node.send(kClientA, kDriver, msg::QueryStatus{}, true, 41);
+  node.run_for(1s);
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 40);
+  node.run_for(50ms);
+  EXPECT_EQ(node.take_all<msg::ReportHeartbeatPulse>(kClientA).size(), 1u);
+  EXPECT_EQ(node.counters().duplicates, 2u);
+  EXPECT_EQ(node.acks().size(), 4u);
+  const bool logged = std::any_of(node.log().begin(), node.log().end(), [](const std::string& line) {
+    return line.find("JSS client 42.1.1") != std::string::npos &&
+           line.find("sequence number 40: a copy of one delivered; acknowledged, not acted on") != std::string::npos;
+  });
+  EXPECT_TRUE(logged) << "the drop is not logged";
+  // The window is 3 s (Jr's own): after it the same number and contents are a new message.
+  node.run_for(3s);
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, true, 40);
+  node.run_for(50ms);
+  EXPECT_EQ(node.take_all<msg::ReportHeartbeatPulse>(kClientA).size(), 1u);
+  EXPECT_EQ(node.counters().duplicates, 2u);
+}
+
+// Safety before the restart rule: a copy that a stop followed never acts,
+// even under a number a restarted client would use.
+TEST(JssFaceTransport, ALateCopyOfAResumeDoesNotActAfterALaterStandby) {
+  for (const std::uint16_t first : {std::uint16_t{1}, std::uint16_t{300}}) {
+    SCOPED_TRACE("Resume's sequence number " + std::to_string(first));
+    FaceNode node;
+    ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+    node.send(kClientA, kDriver, msg::Standby{}, true, static_cast<std::uint16_t>(first + 100));
+    ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::standby; }));
+    node.send(kClientA, kDriver, msg::Resume{}, true, first);
+    ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::ready; }));
+    node.send(kClientA, kDriver, msg::Standby{}, true, static_cast<std::uint16_t>(first + 1));
+    ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::standby; }));
+    // The Resume's ACK was lost: its copy arrives after the Standby.
+    const auto acks = node.acks().size();
+    node.send(kClientA, kDriver, msg::Resume{}, true, first);
+    node.run_for(200ms);
+    EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::standby);
+    EXPECT_EQ(node.acks().size(), acks + 1);  // still acknowledged: the sender stops retransmitting
+    EXPECT_EQ(node.counters().duplicates, 1u);
+    // A copy of the Standby is acted on (a stop is never taken for a copy).
+    node.send(kClientA, kDriver, msg::Standby{}, true, static_cast<std::uint16_t>(first + 1));
+    node.run_for(50ms);
+    EXPECT_EQ(node.counters().duplicates, 1u);
+    // A Resume the client sends now (a new number) acts.
+    node.send(kClientA, kDriver, msg::Resume{}, true, static_cast<std::uint16_t>(first + 2));
+    EXPECT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::ready; }));
+  }
+}
+
+// A new session forgets what its client sent before, except what a stop
+// followed: a copy of that still never acts.
+TEST(JssFaceTransport, ARestartDoesNotLetALateCopyAct) {
+  FaceNode node;
+  ASSERT_EQ(node.request_control(kClientA, kDriver, 5), msg::confirm_control::kControlAccepted);
+  node.send(kClientA, kDriver, msg::Standby{}, true, 20);
+  node.send(kClientA, kDriver, msg::Resume{}, true, 21);
+  ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::ready; }));
+  node.send(kClientA, kDriver, msg::Standby{}, true, 22);
+  ASSERT_TRUE(node.run_until([&] { return node.driver().state() == rt::PrimaryStatus::standby; }));
+  node.send(kClientA, kDriver, msg::QueryHeartbeatPulse{}, false, 0);  // numbering from 0 again: a new session
+  node.send(kClientA, kDriver, msg::Resume{}, true, 21);                // the first run's Resume, late
+  node.run_for(200ms);
+  EXPECT_EQ(node.counters().new_sessions, 1u);
+  EXPECT_EQ(node.counters().duplicates, 1u);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::standby);
 }
 
 TEST(JssFaceTransport, LargeMessagesBothWays) {

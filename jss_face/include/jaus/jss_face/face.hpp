@@ -57,7 +57,9 @@ struct FaceCounters {
   std::uint64_t datagrams_received = 0;
   std::uint64_t malformed = 0;            // bad AS5669A header, length, contents
   std::uint64_t not_for_us = 0;           // destination matches none of our JSS components
-  std::uint64_t duplicates = 0;           // same source and sequence number again (answered, not acted on)
+  std::uint64_t duplicates = 0;           // copies of a message delivered (ACKed, not acted on again)
+  std::uint64_t new_sessions = 0;         // a client numbering again from its start: restarted
+  std::uint64_t refused = 0;              // requests the face refused itself (Request Control from outside control_from)
   std::uint64_t unsupported = 0;          // a message ID no translator handles on that component
   std::uint64_t clients_refused = 0;      // no alias slot free (every slot's client holds state)
   std::uint64_t messages_to_ra = 0;
@@ -79,6 +81,18 @@ class JssFace {
   ~JssFace();
   JssFace(const JssFace&) = delete;
   JssFace& operator=(const JssFace&) = delete;
+
+  // Where a JSS client's datagrams come from ("a.b.c.d:port"; nullopt: not
+  // known), so that log lines about a client name its host (jausd: the
+  // transport's JSS route of the client's node).
+  using ClientLocator = std::function<std::optional<std::string>(const jss::JssId& client)>;
+  void locate_clients_with(ClientLocator locator);
+
+  // A log line with each JSS client's alias address in it followed by the
+  // client it stands for: "controlled by 250.1.1.1 (JSS client 42.1.1 at
+  // 10.0.0.5:3794) (authority 5)". The RA components know a JSS client only
+  // by its alias; jausd passes the node's log lines through this.
+  std::string name_clients_in(const std::string& line) const;
 
   // One AS5669A datagram (first byte 0x02) from the network, with what the
   // transport knows of its sender.

@@ -104,6 +104,16 @@ class FacePort {
     (void)ra_component_id;
     return {};
   }
+  // A client as log lines name it: its own JSS ID, its host when the
+  // transport knows it, and its RA alias when it has one ("JSS client
+  // 42.1.1 at 10.0.0.5:3794 (alias 250.1.1.1)").
+  virtual std::string describe_client(const jss::JssId& client) const { return "JSS client " + client.to_string(); }
+  // A request of `client` the face refuses itself (`what` it asked, `why`
+  // not): counted (FaceCounters::refused) and logged (repeat-limited) with
+  // the client described as above.
+  virtual void refused(const jss::JssId& client, const std::string& what, const std::string& why) {
+    log(rt::LogLevel::info, what + " from " + describe_client(client) + " refused: " + why);
+  }
   // A JSS message whose body does not decode: counted (FaceCounters::
   // malformed) and logged (repeat-limited) with what and why; never acted on.
   virtual void malformed(const std::string& what, const std::string& why) {
