@@ -88,6 +88,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.link.bind = config.transport.bind;
   h.link.framing = config.transport.framing;
   h.link.multicast = config.transport.multicast;
+  h.link.multicast_framing = config.transport.multicast_framing;
   h.link.broadcast_to_peers = config.transport.broadcast_to_peers;
   h.link.relay = config.transport.relay;
   h.link.peers = config.transport.peers;

@@ -703,6 +703,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                     fail(e.value_line(), "'multicast' must be a group 224.0.0.0..239.255.255.255, got " +
                                              jaus::quoted(jaus::transport::ipv4_to_string(t.multicast->address)));
                 }},
+               {"multicast_framing", [&](const Entry& e) { t.multicast_framing = framing(e); }},
                {"broadcast_to_peers", [&](const Entry& e) { t.broadcast_to_peers = boolean(e); }},
                {"relay", [&](const Entry& e) { t.relay = boolean(e); }},
                {"peers",

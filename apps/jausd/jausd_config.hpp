@@ -34,7 +34,13 @@ namespace jausd {
 struct TransportConfig {
   jaus::transport::Ipv4Endpoint bind{0, jaus::transport::kJausPort};  // 0.0.0.0:3794
   jaus::transport::Framing framing = jaus::transport::Framing::opc;   // for peers not heard from yet
-  std::optional<jaus::transport::Ipv4Endpoint> multicast;  // e.g. 224.1.0.1:3794; absent = no multicast
+  // Where broadcasts go and whose datagrams are heard: the group RA 3.x
+  // implementations share on the LAN (OpenJAUS's 224.1.0.1:3794), so the
+  // node finds them and is found with no configuration; absent = none.
+  std::optional<jaus::transport::Ipv4Endpoint> multicast =
+      jaus::transport::Ipv4Endpoint{0xE0010001, jaus::transport::kJausPort};  // 224.1.0.1:3794
+  // The group's framing: JUDP, what the RA implementations on 224.1.0.1 read.
+  jaus::transport::Framing multicast_framing = jaus::transport::Framing::judp;
   bool broadcast_to_peers = true;                  // broadcasts also go to every known peer
   bool relay = false;  // messages for other subsystems sent on to where their node was heard
   std::vector<jaus::transport::StaticPeer> peers;  // known from the start (no discovery needed)

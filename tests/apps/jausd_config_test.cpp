@@ -140,7 +140,9 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.dialect, "ra");
   EXPECT_EQ(c.transport.bind, endpoint("0.0.0.0:3794"));
   EXPECT_EQ(c.transport.framing, Framing::opc);
-  EXPECT_FALSE(c.transport.multicast);
+  // The group the RA implementations on the LAN share (issue 43), in the framing they read.
+  EXPECT_EQ(c.transport.multicast, endpoint("224.1.0.1:3794"));
+  EXPECT_EQ(c.transport.multicast_framing, Framing::judp);
   EXPECT_TRUE(c.transport.broadcast_to_peers);
   EXPECT_FALSE(c.transport.relay);
   EXPECT_TRUE(c.transport.peers.empty());
@@ -254,7 +256,7 @@ TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
   expect_defaults(*result);
-  EXPECT_EQ(result->components[0].line, 176);  // declared in the file
+  EXPECT_EQ(result->components[0].line, 177);  // declared in the file
   EXPECT_TRUE(validate(*result));
 }
 
@@ -310,6 +312,7 @@ transport:
   bind: 127.0.0.2
   framing: judp
   multicast: 224.1.0.1:3795
+  multicast_framing: opc
   broadcast_to_peers: false
   relay: true
   peers:
@@ -359,6 +362,7 @@ logging:
   EXPECT_EQ(c.transport.bind, endpoint("127.0.0.2:3794"));
   EXPECT_EQ(c.transport.framing, Framing::judp);
   EXPECT_EQ(c.transport.multicast, endpoint("224.1.0.1:3795"));
+  EXPECT_EQ(c.transport.multicast_framing, Framing::opc);
   EXPECT_FALSE(c.transport.broadcast_to_peers);
   EXPECT_TRUE(c.transport.relay);
   ASSERT_EQ(c.transport.peers.size(), 3u);
@@ -377,16 +381,16 @@ logging:
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 43);
+  EXPECT_EQ(c.components[0].line, 44);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 46);
+  EXPECT_EQ(c.components[1].line, 47);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 52);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 53);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -399,8 +403,18 @@ TEST(JausdConfig, PeerFramingDefaultsToTransportFramingWhereverItIsWritten) {
 TEST(JausdConfig, EmptySectionsAndListsAreTheirDefaults) {
   const auto c = expect_ok(
       "identification:\ncontrol:\nservice_connections:\nliveness:\ntransport:\n  peers:\n  allow:\n"
-      "  multicast: ~\ncomponents:\nlogging:\n");
+      "components:\nlogging:\n");
   expect_defaults(c);
+}
+
+TEST(JausdConfig, MulticastNullMeansNoGroup) {
+  const auto c = expect_ok("transport:\n  multicast: ~\n");
+  EXPECT_FALSE(c.transport.multicast);
+  EXPECT_FALSE(host_config(c).link.multicast);
+  // The default reaches the link with its framing.
+  const auto h = host_config(expect_ok(""));
+  EXPECT_EQ(h.link.multicast, endpoint("224.1.0.1:3794"));
+  EXPECT_EQ(h.link.multicast_framing, Framing::judp);
 }
 
 TEST(JausdConfig, ScalarSpellings) {
@@ -510,9 +524,9 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "unknown key 'peer_timeout_s' in liveness (known: component_timeout_s, node_timeout_s, "
                "subsystem_timeout_s, max_entries)");
   expect_error("transport:\n  port: 3794\n", 2,
-               "unknown key 'port' in transport (known: bind, framing, multicast, broadcast_to_peers, relay, "
-               "peers, allow, control_from, verify_endpoints, unverified_burst_bytes, unverified_bytes_per_second, "
-               "unverified_total_burst_bytes, unverified_total_bytes_per_second, max_peers)");
+               "unknown key 'port' in transport (known: bind, framing, multicast, multicast_framing, "
+               "broadcast_to_peers, relay, peers, allow, control_from, verify_endpoints, unverified_burst_bytes, "
+               "unverified_bytes_per_second, unverified_total_burst_bytes, unverified_total_bytes_per_second, max_peers)");
   expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framming: judp\n", 4,
                "unknown key 'framming' in transport.peers (known: address, framing)");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    ID: 35\n", 4,

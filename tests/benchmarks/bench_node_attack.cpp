@@ -137,7 +137,8 @@ std::string config_text(bool verify_endpoints) {
     << "identification: {subsystem: " << int{kSubsystem} << ", node: 1}\n"
     << "emergency_scope: component   # Set Emergency to the driver leaves the image streams running\n"
     << "transport:\n"
-    << "  bind: " << ip(kNodeHost) << ":3794\n";
+    << "  bind: " << ip(kNodeHost) << ":3794\n"
+    << "  multicast: null\n";
   if (verify_endpoints) c << "  verify_endpoints: true\n";
   c << "platform: sim\n"
     << "components:\n"

@@ -68,7 +68,7 @@ constexpr std::uint8_t kReady = 1, kEmergency = 5;
 
 const char* kConfig = R"(# bench_safety: the primitive driver on a clearpath-sim over UDP.
 identification: {subsystem: 9, node: 1}
-transport: {bind: 127.0.0.94:3794}
+transport: {bind: 127.0.0.94:3794, multicast: null}
 platform: {udp: 127.0.0.95:7300}
 clearpath: {emergency_flags: 0x08}   # the driver's Emergency also sets the platform's e-stop bit
 components:

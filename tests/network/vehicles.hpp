@@ -19,7 +19,9 @@ inline constexpr const char* kSimulatorAddress = "127.0.0.1";  // veh1's own loo
 // The `transport:` keys of a vehicle on `self`'s host.
 inline std::string transport_for(Finding finding, const LabHost& self, const std::string& more = "") {
   std::string keys;
-  if (finding == Finding::multicast_and_peers || finding == Finding::multicast_only) keys = std::string("multicast: ") + kMulticastGroup;
+  // jausd joins 224.1.0.1:3794 by default: without multicast is said (each lab is its own network).
+  keys = std::string("multicast: ") +
+         ((finding == Finding::multicast_and_peers || finding == Finding::multicast_only) ? kMulticastGroup : "null");
   if (finding == Finding::multicast_and_peers || finding == Finding::peers_only) {
     std::string peers;
     for (const auto& host : {kVeh1, kVeh2a, kVeh2b})

@@ -29,8 +29,12 @@ class DefaultJausd {
         address_(std::move(address)) {
     std::filesystem::create_directories(dir_);
     const auto config = dir_ / "jausd.yaml";
+    // No RA multicast group (the default joins 224.1.0.1:3794): system tests
+    // run side by side on one loopback, and must not hear each other's
+    // heartbeats and broadcasts; a test that wants a group names its own.
+    const bool group_given = more_transport.find("multicast:") != std::string::npos;
     std::ofstream(config) << "identification: {subsystem: " << subsystem << ", node: 1}\n"
-                          << "transport: {bind: " << address_ << ":3794"
+                          << "transport: {bind: " << address_ << ":3794" << (group_given ? "" : ", multicast: null")
                           << (more_transport.empty() ? "" : ", " + more_transport) << "}\n"
                           << more_config;
     std::vector<std::string> argv{JAUSD_PATH, "--config", config.string(), "--log-level", "debug"};

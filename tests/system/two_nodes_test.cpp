@@ -63,6 +63,7 @@ std::string node_config(int subsystem, const std::string& bind, const std::strin
          "liveness: {component_timeout_s: 3, node_timeout_s: 1.5, subsystem_timeout_s: 1.5}\n"
          "transport:\n"
          "  bind: " + bind + "\n"
+         "  multicast: null\n"  // static peers only: tests side by side on one loopback must not meet
          "  peers: [" + peer + "]\n";
 }
 

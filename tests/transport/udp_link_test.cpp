@@ -581,5 +581,58 @@ TEST(UdpLinks, BroadcastsGoToTheMulticastGroupAndOwnOnesAreNotTakenBack) {
   EXPECT_EQ((*b)->routes().route(1, 1)->endpoint, (*a)->local_endpoint());
 }
 
+// Issue 43: the group is shared with other subsystems (224.1.0.1 is every RA
+// node's on the LAN), whose node managers reject what is addressed to another
+// subsystem. So what A sends its own subsystem (heartbeats to 1.255.1.1, a
+// node of 1 not heard yet) stays off the group, in the group's own framing
+// what goes there; and a sender heard through the group is what its address
+// makes it: outside control_from, an observer, as by unicast.
+TEST(UdpLinks, OwnSubsystemMessagesStayOffTheGroupAndTheGroupGrantsNoControl) {
+  asio::io_context io;
+  AsioRuntime runtime(io);
+  const auto port = static_cast<std::uint16_t>(30000 + (::getpid() + 7) % 20000);
+  const Ipv4Endpoint group{*parse_ipv4("224.1.0.1"), port};
+  std::vector<std::string> logs;
+  auto open_member = [&](std::uint8_t subsystem, const char* address, std::vector<Cidr> control_from) {
+    UdpLinkOptions options;
+    options.subsystem = subsystem;
+    options.node = 1;
+    options.bind = Ipv4Endpoint{*parse_ipv4(address), 0};
+    options.multicast = group;
+    options.multicast_framing = Framing::judp;
+    options.broadcast_to_peers = false;
+    options.control_from = std::move(control_from);
+    return UdpLink::open(io, runtime, runtime, options,
+                         [&](rt::LogLevel, const std::string& line) { logs.push_back(line); });
+  };
+  auto a = open_member(1, "127.0.0.1", {});
+  auto b = open_member(2, "127.0.0.2", {*parse_cidr("10.0.0.0/8")});  // loopback may not command B
+  ASSERT_TRUE(a && b);
+  for (const auto& line : logs)
+    if (line.find("broadcasts go to known peers only") != std::string::npos)
+      GTEST_SKIP() << "no multicast on this host's loopback: " << line;
+  struct Seen {
+    Header header;
+    Framing framing;
+    rt::SenderStanding standing;
+  };
+  std::vector<Seen> at_b;
+  (*b)->on_packet([&](const PacketView& p, Framing f, rt::SenderStanding s) { at_b.push_back({p.header, f, s}); });
+  (*a)->start();
+  (*b)->start();
+  transmit(**a, packet_of(kManager, Address{1, 255, 1, 1}, msg::ReportHeartbeatPulse{}));   // own subsystem's broadcast
+  transmit(**a, packet_of(kManager, Address{1, 7, 1, 1}, msg::QueryIdentification{}));     // own node not heard yet
+  transmit(**a, packet_of(kManager, Address{255, 255, 1, 1}, msg::ReportHeartbeatPulse{}));  // every subsystem: the mark
+  ASSERT_TRUE(run_io_until(io, [&] { return !at_b.empty(); }));
+  io.run_for(50ms);  // anything sent before the mark has arrived by now (one socket, in order)
+  ASSERT_EQ(at_b.size(), 1u) << "own-subsystem messages reached the group";
+  EXPECT_EQ(at_b[0].header.destination, (Address{255, 255, 1, 1}));
+  EXPECT_EQ(at_b[0].framing, Framing::judp);
+  EXPECT_EQ(at_b[0].standing, rt::SenderStanding::observer);
+  EXPECT_EQ((*b)->counters().delivered_observer, 1u);
+  // The query to a node of its own subsystem not heard yet had nowhere else to go: dropped, counted.
+  EXPECT_EQ((*a)->counters().no_route, 1u);
+}
+
 }  // namespace
 }  // namespace jaus::transport

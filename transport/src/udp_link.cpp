@@ -586,9 +586,15 @@ void UdpLink::transmit(const Header& header, std::span<const std::uint8_t> packe
   }
   // Broadcast, or a node not heard from yet: the multicast group and the
   // static peers (and, for broadcasts, every known peer) may reach it.
+  // What is addressed to our own subsystem (S.255.1.1 heartbeats, a node of
+  // S not heard yet) never goes to the group: other subsystems share it, and
+  // a node manager rejects (and logs, every time) a message for another
+  // subsystem on its subsystem interface (udp_link.hpp). Our subsystem's
+  // other nodes announce themselves with (255, 255, 1, 1) heartbeats, which
+  // do go to the group; from then on they are known peers and get these.
   bool sent = false;
-  if (options_.multicast) {
-    send_to(*options_.multicast, options_.framing, packet);
+  if (options_.multicast && to.subsystem != options_.subsystem) {
+    send_to(*options_.multicast, options_.multicast_framing.value_or(options_.framing), packet);
     sent = true;
   }
   if (broadcast && options_.broadcast_to_peers) {

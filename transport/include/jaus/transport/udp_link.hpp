@@ -5,8 +5,9 @@
 // One socket sends and receives, bound to the configured address and port
 // (3794 by default), so replies leave from the port peers expect: two nodes on
 // one host bind 127.0.0.1:3794 and 127.0.0.2:3794. A subsystem's broadcasts
-// (S.255.x.x) go only to peers known to be nodes of S (and the multicast
-// group): other subsystems' node managers drop them (jaus-wire-notes.md).
+// (S.255.x.x) go only to peers known to be nodes of S, and to the multicast
+// group unless S is our own: other subsystems' node managers drop them
+// (jaus-wire-notes.md), and every other subsystem shares the group.
 // The link relays a message for another subsystem that arrives from a node
 // heard directly to where that subsystem's node was heard, so an OCU that
 // talks to one node reaches the subsystems that node knows. Sending is synchronous and
@@ -76,7 +77,18 @@ struct UdpLinkOptions {
   std::uint8_t node = 0;
   Ipv4Endpoint bind{0, kJausPort};
   Framing framing = Framing::opc;           // for peers not heard from yet
-  std::optional<Ipv4Endpoint> multicast;    // broadcasts go here (e.g. 224.1.0.1:3794)
+  // Broadcasts (and messages for nodes not heard yet) go here, e.g.
+  // 224.1.0.1:3794, the group RA 3.x implementations on the LAN share with
+  // other subsystems; so never what is addressed to our own subsystem
+  // (`subsystem` above): other subsystems' node managers reject that.
+  // Received datagrams are the same whichever socket took them: a sender
+  // heard through the group gets the standing its address gives it
+  // (`control_from`), as it would by unicast, and its route is learnt from
+  // its source endpoint.
+  std::optional<Ipv4Endpoint> multicast;
+  // The framing of what goes to the group; unset: `framing` (jausd: judp,
+  // what the common RA implementation reads on 224.1.0.1).
+  std::optional<Framing> multicast_framing;
   std::uint8_t multicast_ttl = 1;
   bool broadcast_to_peers = true;           // broadcasts also go to every known peer
   // A subsystem's broadcast (S.255...) goes to the peers heard as its nodes;
