@@ -11,6 +11,8 @@
 //   component, takes control, drives, sets and clears an emergency and
 //   releases; jausd keeps it while it talks only to the group, and nothing
 //   addressed to jausd's own subsystem reaches the group.
+// - A spec-written OCU behind a router (unicast, never ACKs): answered with
+//   the defaults, in control once control_from names its network.
 // - JrClient: a SAE JAUS (AS5669A) client as Jr Middleware based ones: its
 //   sequence numbers start at 1 on every start; restarted within seconds, its
 //   Request Control, queries and efforts are obeyed at once.
@@ -34,12 +36,14 @@ constexpr double kForwardPercent = 60;
 
 class Interoperability : public NetworkTest {
  protected:
-  // clearpath-sim on veh1's loopback and jausd beside it with the default configuration.
-  void start_default_node() {
-    start_simulator();
+  // clearpath-sim on veh1's loopback and jausd beside it with the default
+  // configuration (and `more`, a user's own lines, if any).
+  void start_default_node(const std::string& more = "") {
+    if (!simulator) start_simulator();
     const auto config = dir / "veh1-default.yaml";
     std::ofstream(config) << "# the default configuration; only the platform is this lab's\n"
-                          << "platform: {udp: " << kSimulatorAddress << ":7300}\n";
+                          << "platform: {udp: " << kSimulatorAddress << ":7300}\n"
+                          << more;
     std::vector<std::string> argv = lab->exec_in(kVeh1);
     argv.insert(argv.end(), {JAUSD_PATH, "--config", config.string(), "--log-level", "debug"});
     jausd = std::make_unique<ChildProcess>(argv, (dir / "veh1-jausd.log").string());
@@ -169,6 +173,54 @@ TEST_F(Interoperability, OpenJausNodeFindsQueriesControlsAndDrivesTheDefaultNode
   EXPECT_TRUE(ra->for_another_subsystem.empty()) << "for another subsystem:" << strays;
   EXPECT_EQ(ra->malformed, 0u);
   EXPECT_FALSE(jausd->output_contains("5.1.0.0 silent")) << node_log();
+}
+
+// An OCU written from the spec (unicast, never ACKs) on another network,
+// behind a router: the ocu host also has 10.78.0.10/24, and veh1 reaches
+// 10.78.0.0/24 through it, so the OCU's source is not one of veh1's networks.
+// With the defaults it is answered but may not take control; with its
+// network added to control_from as the README says, it drives and stops.
+constexpr const char* kBehindRouterAddress = "10.78.0.10";
+const Address kRoutedOcu{6, 1, 40, 1};
+
+TEST_F(Interoperability, ASpecWrittenOcuBehindARouterIsAnsweredAndDrivesOnceControlFromNamesItsNetwork) {
+  auto ip = [&](const LabHost& host, std::vector<std::string> args) {
+    args.insert(args.begin(), {kIp, "-n", lab->namespace_of(host)});
+    return run_command(args);
+  };
+  ASSERT_TRUE(ip(kOcu, {"addr", "add", std::string(kBehindRouterAddress) + "/24", "dev", "eth0"}));
+  ASSERT_TRUE(ip(kVeh1, {"route", "add", "10.78.0.0/24", "via", kOcu.address}));
+  ASSERT_NO_FATAL_FAILURE(start_default_node());
+  ASSERT_NO_FATAL_FAILURE(enter_ocu_host());
+  ra = ScriptedRaPeer::unicast(kRoutedOcu, kBehindRouterAddress, kVeh1.address);
+  ASSERT_TRUE(ra->opened()) << "cannot bind " << kBehindRouterAddress << ":3794 in the ocu namespace";
+
+  // Defaults: every query answered (it never ACKs); control refused (outside control_from: [local]).
+  const auto status = ra_status(kDriver);
+  ASSERT_TRUE(status) << "no Report Component Status for an OCU behind a router\n" << node_log();
+  const auto id = ra->request<msg::ReportIdentification>(kNodeManager,
+                                                         msg::QueryIdentification{{msg::identification::kSubsystem}});
+  ASSERT_TRUE(id) << node_log();
+  const auto pose = ra->request<msg::ReportGlobalPose>(kPoseSensor, msg::QueryGlobalPose{{0x0003}});
+  ASSERT_TRUE(pose && pose->latitude_deg) << node_log();
+  const auto refused = ra->request<msg::ConfirmComponentControl>(kDriver, msg::RequestComponentControl{{10}});
+  ASSERT_TRUE(refused) << "a refused request gets its Confirm too\n" << node_log();
+  EXPECT_NE(refused->response_code, msg::control_response::kAccepted);
+  EXPECT_FALSE(ra_drive_until([&] { return moving(); }, 2s)) << "an OCU outside control_from drove\n" << node_log();
+
+  // The README's fix: its network in control_from. Confirm arrives, it drives, Set Emergency stops it.
+  jausd.reset();
+  ASSERT_NO_FATAL_FAILURE(start_default_node("transport: {control_from: [local, 10.78.0.0/24]}\n"));
+  const auto confirm = ra->request<msg::ConfirmComponentControl>(kDriver, msg::RequestComponentControl{{10}}, 30s);
+  ASSERT_TRUE(confirm) << node_log();
+  ASSERT_EQ(confirm->response_code, msg::control_response::kAccepted) << node_log();
+  EXPECT_TRUE(ra_drive_until([&] { return moving(); }, 20s)) << "the simulator never moved\n" << node_log();
+  ra->send(kDriver, msg::SetEmergency{{1}});
+  EXPECT_TRUE(ra_drive_until([&] { return stopped(); }, 10s)) << "Set Emergency did not stop the vehicle\n" << node_log();
+  EXPECT_EQ(ra_status(kDriver), msg::PrimaryStatus::emergency);
+  ra->send(kDriver, msg::ClearEmergency{{1}});
+  ra->send(kDriver, msg::ReleaseComponentControl{});
+  ra->pump(300ms);
 }
 
 // --- the Jr-like SAE JAUS client ---

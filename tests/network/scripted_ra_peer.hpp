@@ -9,6 +9,9 @@
 // another subsystem (neither its own nor 255): the real one logs "Message
 // received on my Subsystem Interface for another subsystem ID!" for each.
 //
+// `unicast()` makes the same peer send to one node's address instead (an OCU
+// written from the spec, behind a router the group does not cross).
+//
 // It runs in the calling thread's network namespace (the test's `ocu` host),
 // pumped by the test (pump, request): nothing happens between calls but what
 // the kernel buffers.
@@ -23,6 +26,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,8 +52,7 @@ class ScriptedRaPeer {
 
   // `self` is its node manager (component 1); `ocu` the OCU component on it.
   // `interface_address`: the host's address on the LAN (the group's interface).
-  ScriptedRaPeer(Address ocu, const std::string& interface_address) : ocu_(ocu) {
-    manager_ = Address{ocu.subsystem, ocu.node, 1, 1};
+  ScriptedRaPeer(Address ocu, const std::string& interface_address) : ScriptedRaPeer(ocu) {
     fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     if (fd_ < 0) return;
     const int on = 1, off = 0;
@@ -71,9 +74,30 @@ class ScriptedRaPeer {
     }
     ::setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_IF, &join.imr_interface, sizeof join.imr_interface);
     ::setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_LOOP, &off, sizeof off);
-    group_.sin_family = AF_INET;
-    group_.sin_port = htons(kPort);
-    group_.sin_addr = join.imr_multiaddr;
+    send_to_.sin_family = AF_INET;
+    send_to_.sin_port = htons(kPort);
+    send_to_.sin_addr = join.imr_multiaddr;
+  }
+  // The same peer as an OCU written from the spec that never ACKs, where the
+  // group does not reach (behind a router): bound to `bind_address`:3794, it
+  // sends every datagram to `node_address`:3794 and joins no group.
+  static std::unique_ptr<ScriptedRaPeer> unicast(Address ocu, const std::string& bind_address,
+                                                 const std::string& node_address) {
+    std::unique_ptr<ScriptedRaPeer> peer(new ScriptedRaPeer(ocu));
+    peer->fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    if (peer->fd_ < 0) return peer;
+    sockaddr_in here{};
+    here.sin_family = AF_INET;
+    here.sin_port = htons(kPort);
+    ::inet_pton(AF_INET, bind_address.c_str(), &here.sin_addr);
+    if (::bind(peer->fd_, reinterpret_cast<const sockaddr*>(&here), sizeof here) != 0) {
+      peer->close_socket();
+      return peer;
+    }
+    peer->send_to_.sin_family = AF_INET;
+    peer->send_to_.sin_port = htons(kPort);
+    ::inet_pton(AF_INET, node_address.c_str(), &peer->send_to_.sin_addr);
+    return peer;
   }
   ~ScriptedRaPeer() { close_socket(); }
   ScriptedRaPeer(const ScriptedRaPeer&) = delete;
@@ -82,7 +106,7 @@ class ScriptedRaPeer {
   bool opened() const { return fd_ >= 0; }
   const Address& ocu() const { return ocu_; }
 
-  // One message from `from` (default: the OCU component) to `to`, JUDP-framed, to the group.
+  // One message from `from` (default: the OCU component) to `to`, JUDP-framed, to the group (a unicast peer: to the node).
   template <class M>
   void send(const Address& to, const M& message, std::optional<Address> from = std::nullopt) {
     std::vector<std::uint8_t> packet(kHeaderSize + kMaxPayloadSize);
@@ -99,7 +123,7 @@ class ScriptedRaPeer {
     const auto prefix = transport::frame_prefix(transport::Framing::judp, packet.size());
     std::vector<std::uint8_t> datagram(prefix.view().begin(), prefix.view().end());
     datagram.insert(datagram.end(), packet.begin(), packet.end());
-    ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<const sockaddr*>(&group_), sizeof group_);
+    ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<const sockaddr*>(&send_to_), sizeof send_to_);
     ++sent_;
   }
 
@@ -158,6 +182,7 @@ class ScriptedRaPeer {
   std::uint64_t sent() const { return sent_; }
 
  private:
+  explicit ScriptedRaPeer(Address ocu) : ocu_(ocu), manager_{ocu.subsystem, ocu.node, 1, 1} {}
   void close_socket() {
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
@@ -189,7 +214,7 @@ class ScriptedRaPeer {
   Address ocu_;
   Address manager_;
   int fd_ = -1;
-  sockaddr_in group_{};
+  sockaddr_in send_to_{};  // the group, or the node for a unicast peer
   std::uint16_t sequence_ = 0;
   std::uint64_t sent_ = 0;
   Clock::time_point next_heartbeat_{};
