@@ -128,7 +128,7 @@ struct PresenceQueryBody {
 
 struct ComponentStatusBody {
   std::uint8_t primary_status = 0;    // bits 0-3 PrimaryStatus, bits 4-7 available
-  std::uint32_t secondary_status = 0; // bits 0-15 per primary code, 16-31 available
+  std::uint32_t secondary_status = 0; // ours: bit 0 emergency held, 16-19 the component's, 20-31 stop counter (docs/components.md)
   bool operator==(const ComponentStatusBody&) const = default;
   static constexpr auto describe() {
     using B = ComponentStatusBody;
