@@ -42,7 +42,9 @@ class Observer {
  public:
   Observer() {
     ocu::SessionOptions options;
-    options.self = Address{254, 132, 40, 1};
+    // Not in subsystem 254, where jausctl's own operator ID is drawn at random:
+    // one draw in 253 was 254.132, and the node refused our claim on it.
+    options.self = Address{253, 132, 40, 1};
     options.to = {transport::Ipv4Endpoint{*transport::parse_ipv4(kNode), transport::kJausPort}};
     options.bind = transport::Ipv4Endpoint{*transport::parse_ipv4("127.0.0.132"), 0};
     auto opened = ocu::OcuSession::open(options);
