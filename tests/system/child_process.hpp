@@ -116,6 +116,17 @@ class ChildProcess {
     return s.str();
   }
   bool output_contains(const std::string& text) const { return output().find(text) != std::string::npos; }
+  // Whether text appears in the output within `within`. A running jausd
+  // writes its log through a queue to a logging thread (apps/jausd/logging.cpp):
+  // a line about what just happened may reach the file a moment later.
+  bool output_shows(const std::string& text, std::chrono::milliseconds within = std::chrono::seconds(3)) const {
+    const auto until = std::chrono::steady_clock::now() + within;
+    while (!output_contains(text)) {
+      if (std::chrono::steady_clock::now() > until) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return true;
+  }
 
  private:
   std::string output_;

@@ -67,9 +67,9 @@ TEST_P(JausConform, EveryApplicableCasePassesAgainstJausd) {
                       (node.dir() / "jaus-conform-silent.log").string());
   ASSERT_TRUE(silent.started());
   EXPECT_EQ(silent.wait(30s), std::optional<int>(0)) << silent.output();
-  EXPECT_TRUE(silent.output_contains("pass  1.1.33.1 control.silent_requester: control dropped after"))
+  EXPECT_TRUE(silent.output_shows("pass  1.1.33.1 control.silent_requester: control dropped after"))
       << silent.output();
-  EXPECT_TRUE(silent.output_contains("reports stopped after")) << silent.output();
+  EXPECT_TRUE(silent.output_shows("reports stopped after")) << silent.output();
 }
 
 INSTANTIATE_TEST_SUITE_P(Platforms, JausConform,
@@ -85,10 +85,10 @@ TEST(JausConformUsage, AComponentThatDoesNotAnswerFailsAndTheOthersAreStillTeste
                         "--only", "core.status", "--wait", "1"},
                        (node.dir() / "jaus-conform.log").string());
   EXPECT_EQ(conform.wait(60s), std::optional<int>(1)) << conform.output();
-  EXPECT_TRUE(conform.output_contains("fail  1.1.99.1 runner.answers: no reply from 1.1.99.1 within 1 s"))
+  EXPECT_TRUE(conform.output_shows("fail  1.1.99.1 runner.answers: no reply from 1.1.99.1 within 1 s"))
       << conform.output();
-  EXPECT_TRUE(conform.output_contains("pass  1.1.35.1 core.status: primary status")) << conform.output();
-  EXPECT_TRUE(conform.output_contains("2 cases: 1 passed, 1 failed, 0 skipped")) << conform.output();
+  EXPECT_TRUE(conform.output_shows("pass  1.1.35.1 core.status: primary status")) << conform.output();
+  EXPECT_TRUE(conform.output_shows("2 cases: 1 passed, 1 failed, 0 skipped")) << conform.output();
 }
 
 // A node that is not there: exit 2 and one line saying so.
@@ -97,7 +97,7 @@ TEST(JausConformUsage, NoNodeIsExit2AndOneLine) {
       std::filesystem::temp_directory_path() / ("jaus-conform-none-" + std::to_string(::getpid()) + ".log");
   ChildProcess conform({JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--wait", "0.5"}, log.string());
   EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
-  EXPECT_TRUE(conform.output_contains("jaus-conform: no JAUS node heard at 127.0.0.42:3794 within 0.5 s"))
+  EXPECT_TRUE(conform.output_shows("jaus-conform: no JAUS node heard at 127.0.0.42:3794 within 0.5 s"))
       << conform.output();
   if (!HasFailure()) std::filesystem::remove(log);  // kept when it failed, to look at
 }
@@ -106,7 +106,7 @@ TEST(JausConformUsage, BadArgumentsAreExit2AndOneLine) {
   const auto log = std::filesystem::temp_directory_path() / ("jaus-conform-bad-" + std::to_string(::getpid()) + ".log");
   ChildProcess conform({JAUS_CONFORM_PATH, "--to", "127.0.0.42", "--profile", "nasa"}, log.string());
   EXPECT_EQ(conform.wait(20s), std::optional<int>(2));
-  EXPECT_TRUE(conform.output_contains("jaus-conform: --profile nasa: expected ra, openjaus or jss")) << conform.output();
+  EXPECT_TRUE(conform.output_shows("jaus-conform: --profile nasa: expected ra, openjaus or jss")) << conform.output();
   if (!HasFailure()) std::filesystem::remove(log);  // kept when it failed, to look at
 }
 

@@ -53,6 +53,9 @@ class DefaultJausd {
   ChildProcess& process() { return *process_; }
   std::string output() const { return process_->output(); }
   bool output_contains(const std::string& text) const { return process_->output_contains(text); }
+  bool output_shows(const std::string& text, std::chrono::milliseconds within = std::chrono::seconds(3)) const {
+    return process_->output_shows(text, within);
+  }
   const std::filesystem::path& dir() const { return dir_; }
   const std::string& address() const { return address_; }
 

@@ -160,7 +160,7 @@ TEST_F(DriveAVehicle, JausctlDrivesThePoseMovesAndSetEmergencyStopsIt) {
   // ...and stays stopped; the operator tool stopped too, released control and said why (exit 3).
   run_until([] { return false; }, 1500ms);
   EXPECT_EQ(speed(), 0.0) << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("drive stopped: entered Emergency")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("drive stopped: entered Emergency")) << jausd->output();
   EXPECT_EQ(controller->wait(10s), 3) << controller->output();
   EXPECT_NE(controller->output().find("entered Emergency: stopped sending Set Wrench Effort"), std::string::npos)
       << controller->output();

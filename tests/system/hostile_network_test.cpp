@@ -85,7 +85,7 @@ TEST_F(HostileNetwork, AHoldersIdCannotBeTakenFromAnotherHostToClearItsEmergency
   auto [forged, forged_output] = run("forged", {"emergency", kDriver, "clear", "--timeout", "1"}, kOtherHost, holder);
   EXPECT_NE(forged, 0) << forged_output;  // its datagrams are dropped: not even the status query is answered
   EXPECT_EQ(status(), "emergency");
-  EXPECT_TRUE(jausd->output_contains("spoofed, or two peers with one ID")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("spoofed, or two peers with one ID")) << jausd->output();
 
   auto [cleared, cleared_output] = run("clear", {"emergency", kDriver, "clear", "--timeout", "5"}, kHolderHost, holder);
   EXPECT_EQ(cleared, 0) << cleared_output;
@@ -255,7 +255,7 @@ TEST_F(HostileNetwork, AnOcuThatNeverAcksIsAnsweredControlsDrivesAndStops) {
       [](const auto& v) { return v.velocity_x_mps && *v.velocity_x_mps == 0.0; }, 10s, drive);
   ASSERT_TRUE(stopped && stopped->velocity_x_mps) << jausd->output();
   EXPECT_EQ(*stopped->velocity_x_mps, 0.0);
-  EXPECT_TRUE(jausd->output_contains("drive stopped: entered Emergency")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("drive stopped: entered Emergency")) << jausd->output();
   // It never answered a challenge, and nothing it asked for went unanswered for it.
   EXPECT_FALSE(jausd->output_contains("not executed: its reply could not be sent")) << jausd->output();
 }

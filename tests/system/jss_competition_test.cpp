@@ -327,7 +327,7 @@ TEST_F(JssCompetition, NobodyActsAsTheJssOperatorsAliasOverRa) {
   const auto status = jss->query<m::ReportStatus>(kJssDriver, m::QueryStatus{}, 2s);
   ASSERT_TRUE(status);
   EXPECT_EQ(status->status & 0x0F, 5) << "not in Emergency";  // as RA's primary status
-  EXPECT_TRUE(jausd->output_contains("source in the JSS clients' alias subsystem")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("source in the JSS clients' alias subsystem")) << jausd->output();
   jss->send(kJssDriver, m::ClearEmergency{{1}});
   jss->run_for(300ms);
   const auto cleared = jss->query<m::ReportStatus>(kJssDriver, m::QueryStatus{}, 2s);
@@ -375,8 +375,8 @@ TEST_F(JssCompetition, ARestartedJssOperatorIsObeyedAtOnce) {
                                  << jausd->output();
   EXPECT_EQ(*again, m::confirm_control::kControlAccepted);
   // The node says so, naming the operator by its JSS ID and host.
-  EXPECT_TRUE(jausd->output_contains("JSS client 300.4.1 at 127.0.0.167:")) << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("restarted (sequence number 1")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("JSS client 300.4.1 at 127.0.0.167:")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("restarted (sequence number 1")) << jausd->output();
   // The driver's own lines name the operator by its JSS ID and host, not only its alias.
   const std::string output = jausd->output();
   bool named = false;

@@ -59,7 +59,7 @@ TEST(JssConform, EveryApplicableJssCasePassesAgainstJausd) {
                        (node.dir() / "jaus-conform-timeout.log").string());
   ASSERT_TRUE(timeout.started());
   EXPECT_EQ(timeout.wait(60s), std::optional<int>(0)) << timeout.output();
-  EXPECT_TRUE(timeout.output_contains("pass  14.1.33 jss.control.timeout: Report Timeout 3 s")) << timeout.output();
+  EXPECT_TRUE(timeout.output_shows("pass  14.1.33 jss.control.timeout: Report Timeout 3 s")) << timeout.output();
 }
 
 }  // namespace

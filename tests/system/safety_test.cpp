@@ -242,7 +242,7 @@ TEST_F(Safety, AnEmergencySetAndClearedBackToBackStopsTheControllerForGood) {
     operators.send(20, msg::SetEmergency{{1}});
     operators.send(20, msg::ClearEmergency{{1}});
     EXPECT_EQ(controller->wait(20s), 3) << controller->output();
-    EXPECT_TRUE(controller->output_contains("stopped sending Set Wrench Effort")) << controller->output();
+    EXPECT_TRUE(controller->output_shows("stopped sending Set Wrench Effort")) << controller->output();
     ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
     const auto first = sim->states().size();
     EXPECT_EQ(stops_of(kDriver), *stops + 1);  // the stop happened, once, and is over
@@ -265,7 +265,7 @@ TEST_F(Safety, AFiftyMillisecondPlatformPauseIsSeenEveryTime) {
     ASSERT_TRUE(stops);
     ASSERT_TRUE(sim->press_for("pause", 50));
     EXPECT_EQ(controller->wait(20s), 3) << controller->output();
-    EXPECT_TRUE(controller->output_contains("stopped sending Set Wrench Effort")) << controller->output();
+    EXPECT_TRUE(controller->output_shows("stopped sending Set Wrench Effort")) << controller->output();
     ASSERT_TRUE(sim->wait_for(Simulator::stopped, 10s));
     const auto first = sim->states().size();
     EXPECT_TRUE(poll_status(kDriver, "ready", 10s));  // released by the platform, seen released
@@ -295,7 +295,7 @@ TEST_F(Safety, AKilledControllerIsStoppedByJausdBeforeThePlatformsWatchdog) {
   if (watchdog) {
     EXPECT_LT(*zero, *watchdog);
   }
-  EXPECT_TRUE(jausd->output_contains("no Set Wrench Effort for 0.500 s")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("no Set Wrench Effort for 0.500 s")) << jausd->output();
 }
 
 // Issue 27, failure 3: twenty operators set Emergency, nineteen cleared, and
@@ -317,7 +317,7 @@ TEST_F(Safety, EveryEmergencyHolderIsKeptAndTheLocalClearReleasesThoseGoneForGoo
   EXPECT_EQ(status_of(kDriver), "emergency");
   jausd->process().signal(SIGUSR1);
   EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1)")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("emergency holds cleared locally (SIGUSR1)")) << jausd->output();
 }
 
 // Issue 49: the local clear (SIGUSR1, sent to the jausd its PID file names)
@@ -336,9 +336,9 @@ TEST_F(Safety, TheLocalClearThroughThePidFileReleasesTheCommunicatorAndASensor) 
   local_clear_through_the_pid_file();
   EXPECT_TRUE(poll_status("8.1.35.1", "ready", 10s)) << jausd->output();
   EXPECT_TRUE(poll_status(kPoseSensor, "ready", 10s)) << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1), 8.1.35.1 (communicator): 254.74.40.7"))
+  EXPECT_TRUE(jausd->output_shows("emergency holds cleared locally (SIGUSR1), 8.1.35.1 (communicator): 254.74.40.7"))
       << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("emergency holds cleared locally (SIGUSR1), 8.1.38.1: 254.74.40.7"))
+  EXPECT_TRUE(jausd->output_shows("emergency holds cleared locally (SIGUSR1), 8.1.38.1: 254.74.40.7"))
       << jausd->output();
   jausd->process().signal(SIGTERM);
   EXPECT_EQ(jausd->process().wait(20s), 0) << jausd->output();
@@ -354,7 +354,7 @@ TEST_F(Safety, AShutDownSensorAndThenAPlatformEstopLeaveJausdRunning) {
                           "127.0.0.76:0");
   // Shut down, the sensor drops control (Reject Component Control: the tool exits 1) and leaves the node.
   EXPECT_TRUE(shutdown->wait(30s)) << shutdown->output();
-  ASSERT_TRUE(jausd->output_contains("global_pose_sensor 8.1.38.1: Ready -> Shutdown")) << jausd->output();
+  ASSERT_TRUE(jausd->output_shows("global_pose_sensor 8.1.38.1: Ready -> Shutdown")) << jausd->output();
   std::this_thread::sleep_for(500ms);
   ASSERT_TRUE(sim->press("estop", true));
   EXPECT_TRUE(poll_status(kDriver, "emergency", 10s)) << jausd->output();
@@ -462,7 +462,7 @@ TEST_F(Safety, AWaypointRouteStopsForAnOperatorAndForSetEmergencyAndNothingResta
   const auto after_release = sim->states().size();
   std::this_thread::sleep_for(3s);
   EXPECT_TRUE(all_stopped_since(after_release)) << "the route restarted after the operator let go";
-  EXPECT_TRUE(jausd->output_contains("lost control of the primitive driver")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("lost control of the primitive driver")) << jausd->output();
 
   // 2. Set Emergency on the primitive driver mid-route; Clear Emergency restarts nothing.
   start_route();
@@ -512,7 +512,7 @@ TEST_F(Safety, EmergencyHoldsSurviveARestartOfJausd) {
   // The flag stays on the platform while jausd is away; the restarted one comes up held.
   start_jausd(/*wait_ready=*/false);
   EXPECT_TRUE(poll_status(kDriver, "emergency", 30s)) << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("emergency held since before the restart (vehicle): 254.74.40.9"));
+  EXPECT_TRUE(jausd->output_shows("emergency held since before the restart (vehicle): 254.74.40.9"));
   ASSERT_EQ(emergency("clear", "254.74.40.9"), 0);
   EXPECT_TRUE(poll_status(kDriver, "ready", 10s)) << jausd->output();
   EXPECT_TRUE(sim->wait_for([](const Json& s) { return (s["safety_flags"].get<int>() & 0x08) == 0; }, 10s));
@@ -540,7 +540,7 @@ TEST_F(Safety, AfterARestartOnlyTheJssHolderFromItsHostClearsItsStop) {
   jausd.reset();
   start_jausd(/*wait_ready=*/false, with_jss);
   ASSERT_TRUE(poll_status(kDriver, "emergency", 30s)) << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("(JSS 200.5.40 from 127.0.0.75)")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("(JSS 200.5.40 from 127.0.0.75)")) << jausd->output();
   auto other = open_jss_operator(jss::JssId{77, 3, 1}, "127.0.0.76", kNode, "other operator");
   ASSERT_TRUE(other);
   auto impostor = open_jss_operator(holder_id, "127.0.0.76", kNode, "impostor");
@@ -551,7 +551,7 @@ TEST_F(Safety, AfterARestartOnlyTheJssHolderFromItsHostClearsItsStop) {
     other->run_for(300ms);
   }
   EXPECT_EQ(status_of(kDriver), "emergency") << jausd->output();
-  EXPECT_TRUE(jausd->output_contains("spoofed, or two peers with one ID")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("spoofed, or two peers with one ID")) << jausd->output();
   auto holder = open_jss_operator(holder_id, "127.0.0.75", kNode, "holder again");  // a new port, its host
   ASSERT_TRUE(holder);
   holder->send(driver, jss::msg::ClearEmergency{{1}});
@@ -567,8 +567,8 @@ TEST_F(Safety, JausdRefusesToStartOnAStateDirectoryItCannotWrite) {
                        "state_directory: " + (dir / "not-a-directory" / "state").string() + "\n");
   ASSERT_TRUE(refused.started());
   EXPECT_EQ(refused.process().wait(20s), 2) << refused.output();
-  EXPECT_TRUE(refused.output_contains("cannot be created")) << refused.output();
-  EXPECT_TRUE(refused.output_contains("not started")) << refused.output();
+  EXPECT_TRUE(refused.output_shows("cannot be created")) << refused.output();
+  EXPECT_TRUE(refused.output_shows("not started")) << refused.output();
 }
 
 // Issue 42, finding 5: a write that fails while jausd runs (the state
@@ -582,16 +582,12 @@ TEST_F(Safety, WhileHoldsCannotBePersistedNoClearEmergencyIsTaken) {
   std::filesystem::rename(dir / "state", dir / "state.away");
   std::ofstream(dir / "state") << "the disk is gone\n";
   ASSERT_EQ(emergency("set", "254.74.40.8"), 0);  // a change to write: the write fails
-  const auto said = [&](const std::string& text) {
-    const auto until = std::chrono::steady_clock::now() + 20s;
-    while (!jausd->output_contains(text) && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(100ms);
-    return jausd->output_contains(text);
-  };
+  const auto said = [&](const std::string& text) { return jausd->output_shows(text, 20s); };
   ASSERT_TRUE(said("emergency holds not persisted")) << jausd->output();
   EXPECT_NE(emergency("clear", "254.74.40.8"), 0);
   EXPECT_NE(emergency("clear", "254.74.40.9"), 0);
   EXPECT_EQ(status_of(kDriver), "emergency");
-  EXPECT_TRUE(jausd->output_contains("refused: the emergency holds cannot be persisted")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("refused: the emergency holds cannot be persisted")) << jausd->output();
   // The disk is back: the next retry writes the holds, and the clears are taken.
   std::filesystem::remove(dir / "state");
   std::filesystem::rename(dir / "state.away", dir / "state");

@@ -202,7 +202,7 @@ TEST_F(TwoNodes, OneNoticesTheOthersLoss) {
   ASSERT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();
   b->signal(SIGKILL);  // no goodbye: a crash or a cut cable
   EXPECT_TRUE(subsystem_list_shows(kManagerA, 2, false)) << a->output();
-  EXPECT_TRUE(a->output_contains("node 2.1.0.0 silent: lost")) << a->output();
+  EXPECT_TRUE(a->output_shows("node 2.1.0.0 silent: lost")) << a->output();
 }
 
 // Each signal that asks a process to end (systemctl stop, Ctrl-C, Ctrl-\, a
@@ -217,8 +217,8 @@ TEST_P(TwoNodesStopSignal, IsAnOrderlyShutdown) {
   // The controller hears that control is gone (the platform was stopped).
   EXPECT_TRUE(run_until([&] { return !ocu->received_from<msg::RejectComponentControl>(kCommunicatorA).empty(); }));
   EXPECT_EQ(a->wait(20s), 0);
-  EXPECT_TRUE(a->output_contains("Ready -> Shutdown")) << a->output();
-  EXPECT_TRUE(a->output_contains("stopped (SIG" + std::string(sigabbrev_np(signal)) + ")")) << a->output();
+  EXPECT_TRUE(a->output_shows("Ready -> Shutdown")) << a->output();
+  EXPECT_TRUE(a->output_shows("stopped (SIG" + std::string(sigabbrev_np(signal)) + ")")) << a->output();
 }
 
 INSTANTIATE_TEST_SUITE_P(EverySignal, TwoNodesStopSignal, ::testing::Values(SIGTERM, SIGINT, SIGHUP, SIGQUIT),
@@ -312,10 +312,10 @@ TEST_F(TwoNodes, ABusyAddressAndABadFileExitWith2AndOneLine) {
   ASSERT_TRUE(subsystem_list_shows(kManagerA, 2, true));
   auto second = start("second", node_config(3, "127.0.0.21:3794", "127.0.0.22:3794"));
   EXPECT_EQ(second->wait(20s), 2);
-  EXPECT_TRUE(second->output_contains("127.0.0.21:3794 is already in use")) << second->output();
+  EXPECT_TRUE(second->output_shows("127.0.0.21:3794 is already in use")) << second->output();
   auto bad = start("bad", "heartbeat_hz: 1\nhearbeat_hz: 2\n");
   EXPECT_EQ(bad->wait(20s), 2);
-  EXPECT_TRUE(bad->output_contains("bad.yaml:2: unknown key 'hearbeat_hz'")) << bad->output();
+  EXPECT_TRUE(bad->output_shows("bad.yaml:2: unknown key 'hearbeat_hz'")) << bad->output();
 }
 
 }  // namespace

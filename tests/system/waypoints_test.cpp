@@ -233,7 +233,7 @@ TEST_F(Waypoints, SetComponentAuthority255IsRefusedAndAnOperatorAtAuthority2Stop
   const auto authority = query(kWaypointDriver, "Query Component Authority");
   ASSERT_TRUE(authority) << jausd->output();
   EXPECT_EQ((*authority)["authority"], 1) << authority->dump();
-  EXPECT_TRUE(jausd->output_contains("Set Component Authority 255 from 254.111.40.1 refused: above max_authority 1"))
+  EXPECT_TRUE(jausd->output_shows("Set Component Authority 255 from 254.111.40.1 refused: above max_authority 1"))
       << jausd->output();
   send_as_controller(R"({"name":"Resume"})");
 
@@ -279,7 +279,7 @@ TEST_F(Waypoints, SetComponentAuthority255IsRefusedAndAnOperatorAtAuthority2Stop
     ASSERT_LT(std::chrono::steady_clock::now(), still_until) << jausd->output();
   }
   EXPECT_LT(after->x, 55) << "the route was not stopped: the vehicle reached " << after->x;
-  EXPECT_TRUE(jausd->output_contains("lost control of the primitive driver")) << jausd->output();
+  EXPECT_TRUE(jausd->output_shows("lost control of the primitive driver")) << jausd->output();
   const auto now_held = query("7.1.33.1", "Query Component Control");
   ASSERT_TRUE(now_held);
   EXPECT_EQ((*now_held)["controller"], "254.113.40.1") << now_held->dump();
