@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../system/clearpath_simulator.hpp"
+#include "../system/kept_operator_id.hpp"
 #include "in_namespace.hpp"
 #include "jaus/ocu/control_hold.hpp"
 #include "jaus/ocu/session.hpp"
@@ -124,7 +125,11 @@ class NetworkTest : public ::testing::Test {
     std::vector<std::string> argv = lab->exec_in(host);
     argv.push_back(JAUSCTL_PATH);
     argv.insert(argv.end(), args.begin(), args.end());
-    auto child = std::make_unique<ChildProcess>(argv, (dir / (log_name + ".log")).string());
+    // Its own state directory (the kept operator ID), never the user's.
+    const auto state_home = dir / "ocu-state";
+    if (!std::filesystem::exists(state_home)) keep_operator_id_outside_named_ones(state_home, 0);
+    auto child = std::make_unique<ChildProcess>(argv, (dir / (log_name + ".log")).string(), ChildProcess::Stdin::inherit,
+                                                std::vector<std::string>{"XDG_STATE_HOME=" + state_home.string()});
     EXPECT_TRUE(child->started());
     return child;
   }

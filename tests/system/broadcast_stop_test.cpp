@@ -42,8 +42,8 @@ class Observer {
  public:
   Observer() {
     ocu::SessionOptions options;
-    // Not in subsystem 254, where jausctl's own operator ID is drawn at random:
-    // one draw in 253 was 254.132, and the node refused our claim on it.
+    // Not in subsystem 254, where jausctl keeps its operator ID
+    // (kept_operator_id.hpp): a drawn 254.132 once made the node refuse ours.
     options.self = Address{253, 132, 40, 1};
     options.to = {transport::Ipv4Endpoint{*transport::parse_ipv4(kNode), transport::kJausPort}};
     options.bind = transport::Ipv4Endpoint{*transport::parse_ipv4("127.0.0.132"), 0};

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "kept_operator_id.hpp"
 
 namespace jaus::test {
 
@@ -28,7 +29,7 @@ class DefaultJausd {
       : dir_(std::filesystem::temp_directory_path() / ("jaus-" + name + "-" + std::to_string(::getpid()))),
         address_(std::move(address)) {
     std::filesystem::create_directories(dir_);
-    keep_operator_id_outside_named_ones();
+    keep_operator_id_outside_named_ones(state_home(), std::stoi(address_.substr(address_.rfind('.') + 1)));
     const auto config = dir_ / "jausd.yaml";
     // No RA multicast group (the default joins 224.1.0.1:3794): system tests
     // run side by side on one loopback, and must not hear each other's
@@ -85,18 +86,6 @@ class DefaultJausd {
   }
 
  private:
-  // The operator ID jausctl keeps here (used without --as) is what jausctl
-  // would draw, 254.N.40.1, with N fixed in 200..253 (from the node's
-  // address): tests name IDs with --as, and jausctl_own_id names 254.<bind
-  // octet>, all below 200. A drawn N is one of those in about 1 test in 254;
-  // the node then takes the two processes for one ID on two hosts and drops
-  // one (DriveAVehicle failed so in a clean CI run: drawn 254.2, --as 254.2.40.1).
-  void keep_operator_id_outside_named_ones() const {
-    const int octet = std::stoi(address_.substr(address_.rfind('.') + 1));
-    std::filesystem::create_directories(state_home() / "jaus");
-    std::ofstream(state_home() / "jaus" / "operator-id") << "254." << 200 + octet % 54 << ".40.1\n";
-  }
-
   std::filesystem::path dir_;
   std::string address_;
   std::unique_ptr<ChildProcess> process_;

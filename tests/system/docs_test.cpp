@@ -40,6 +40,7 @@
 #include <thread>
 
 #include "doc_blocks.hpp"
+#include "kept_operator_id.hpp"
 #include "jaus/host/component_kinds.hpp"
 
 extern char** environ;
@@ -243,17 +244,13 @@ class Walkthrough : public ::testing::Test {
     fs::current_path(scratch_);
     const char* path = std::getenv("PATH");
     ::setenv("PATH", ((scratch_ / "bin").string() + ":" + (path ? path : "/usr/bin:/bin")).c_str(), 1);
-    // A reader of their own: what the tools keep per user (an OCU identity, ...) starts empty and goes with the scratch.
+    // A reader of their own: what the tools keep per user (an OCU identity, ...) goes with the scratch.
     ::setenv("HOME", scratch_.c_str(), 1);
     for (const char* xdg : {"XDG_CONFIG_HOME", "XDG_STATE_HOME", "XDG_CACHE_HOME", "XDG_DATA_HOME", "XDG_RUNTIME_DIR"})
       ::unsetenv(xdg);
-    // The operator ID jausctl keeps is what it would draw (254.N.40.1) but
-    // with N outside the IDs the docs and this test name (254.1, 254.2,
-    // 254.5, 254.7, 254.9, 254.37, 254.99): drawn, it is one of them in
-    // about 1 run in 36, and the node then drops one of the two processes as
-    // the same ID from a second endpoint.
-    fs::create_directories(scratch_ / ".local" / "state" / "jaus");
-    std::ofstream(scratch_ / ".local" / "state" / "jaus" / "operator-id") << "254.201.40.1\n";
+    // jausctl's kept ID outside those the docs and this test name with --as
+    // (254.1, 254.2, 254.5, 254.7, 254.9, 254.37, 254.99): 254.201.40.1.
+    keep_operator_id_outside_named_ones(scratch_ / ".local" / "state", 1);
   }
   void TearDown() override {
     node_.reset();
