@@ -1,5 +1,10 @@
 // One emergency latch shared by several components (emergency_scope:
 // vehicle), the local clear, and components that come and go while it holds.
+#include <algorithm>
+#include <iterator>
+#include <random>
+#include <vector>
+
 #include "harness.hpp"
 
 namespace jaus::test {
@@ -107,6 +112,31 @@ TEST_F(SharedEmergencyTest, AnObserversHoldIsInPlaceBeforeTheMembersFollow) {
   EXPECT_EQ(seen, std::vector<S>{S::emergency});  // no Ready in between
   latch.release_local("flag not yet seen clear");
   EXPECT_EQ(driver->state(), S::ready);
+}
+
+// The node asks the latch, for every route a flood touches, whether it holds
+// state for a node (a lookup, not a walk): the same answer as Address::covers
+// over every holder, for IDs with 0 at any level.
+TEST(EmergencyLatchHolders, HeldByAnyUnderAnswersAsCoversOverEveryHolder) {
+  rt::EmergencyLatch latch;
+  EXPECT_FALSE(latch.held_by_any_under(Address{3, 0, 0, 0}));
+  const std::vector<Address> holders = {{3, 2, 40, 1}, {3, 4, 1, 1}, {5, 1, 40, 1}, {250, 1, 40, 1}};
+  for (const auto& holder : holders) latch.set(holder);
+  EXPECT_TRUE(latch.held_by_any_under(Address{3, 2, 0, 0}));
+  EXPECT_TRUE(latch.held_by_any_under(Address{3, 0, 0, 0}));
+  EXPECT_TRUE(latch.held_by_any_under(Address{3, 2, 40, 1}));
+  EXPECT_FALSE(latch.held_by_any_under(Address{3, 2, 40, 2}));
+  EXPECT_FALSE(latch.held_by_any_under(Address{3, 3, 0, 0}));
+  EXPECT_FALSE(latch.held_by_any_under(Address{4, 0, 0, 0}));
+  EXPECT_TRUE(latch.held_by_any_under(Address{5, 0, 9, 9}));  // 0 at the node: the whole subsystem
+  std::mt19937 random(7);
+  const std::uint8_t octets[] = {0, 1, 2, 3, 4, 5, 40, 250};
+  auto octet = [&] { return octets[random() % std::size(octets)]; };
+  for (int i = 0; i < 2000; ++i) {
+    const Address where{octet(), octet(), octet(), octet()};
+    const bool covered = std::any_of(holders.begin(), holders.end(), [&](const Address& h) { return where.covers(h); });
+    EXPECT_EQ(latch.held_by_any_under(where), covered) << where.to_string();
+  }
 }
 
 }  // namespace

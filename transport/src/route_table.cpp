@@ -30,8 +30,16 @@ void RouteTable::recount_subsystems(Peer& peer) const {
 
 bool RouteTable::holds_pinned_route(const Ipv4Endpoint& endpoint) const {
   if (!holds_state_) return false;
-  for (const auto& [k, route] : routes_)
-    if (route.endpoint == endpoint && pinned(k)) return true;
+  // An endpoint holds a few routes at most; the scan stops once it saw them
+  // all, and asks the node (which looks through its components' holders and
+  // connections) only about those.
+  const auto peer = peers_.find(endpoint);
+  std::size_t unseen = peer == peers_.end() ? 0 : peer->second.routes;
+  for (auto it = routes_.begin(); unseen > 0 && it != routes_.end(); ++it) {
+    if (it->second.endpoint != endpoint) continue;
+    if (pinned(it->first)) return true;
+    --unseen;
+  }
   return false;
 }
 

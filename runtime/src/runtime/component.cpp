@@ -328,9 +328,7 @@ void Component::refuse_for_standing(const Header& header, std::string_view what)
 
 bool Component::keeps_state_for(const Address& node) const {
   if (const auto& c = control_.controller(); c && node.covers(c->address)) return true;
-  for (const auto& holder : emergency_->holders())
-    if (node.covers(holder)) return true;
-  return services_.has_requester_under(node);
+  return emergency_->held_by_any_under(node) || services_.has_requester_under(node);
 }
 
 // ---- core messages -----------------------------------------------------------

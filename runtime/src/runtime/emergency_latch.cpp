@@ -72,6 +72,21 @@ void EmergencyLatch::restore(const std::vector<Address>& holders, bool overflowe
   changed();
 }
 
+bool EmergencyLatch::held_by_any_under(const Address& where) const {
+  // The addresses `where` covers share its levels above its first 0 and
+  // follow one another in the set's order; the least of them is where it
+  // would be with 0 from that level down.
+  Address least = where;
+  std::uint8_t* levels[] = {&least.subsystem, &least.node, &least.component, &least.instance};
+  bool below_zero = false;
+  for (std::uint8_t* level : levels) {
+    below_zero = below_zero || *level == 0;
+    if (below_zero) *level = 0;
+  }
+  const auto first = holders_.lower_bound(least);
+  return first != holders_.end() && where.covers(*first);
+}
+
 std::string EmergencyLatch::describe_holders() const {
   std::string text;
   const auto add = [&](const std::string& part) { text += (text.empty() ? "" : ", ") + part; };

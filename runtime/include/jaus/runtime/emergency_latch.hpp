@@ -91,6 +91,10 @@ class EmergencyLatch {
   // unrecorded by the node): cleared only by the local command.
   bool overflowed() const { return overflowed_; }
   std::vector<Address> holders() const { return {holders_.begin(), holders_.end()}; }
+  // A recorded holder at `where` (0 at a level: anything from there down, as
+  // Address::covers). The node asks it of each route a flood touches: a
+  // lookup in the ordered holders, no walk and no copy.
+  bool held_by_any_under(const Address& where) const;
   std::vector<std::string> local_holds() const { return {local_.begin(), local_.end()}; }
   // Set Emergency from senders that could not be recorded (counted, never
   // forgotten): beyond kMaxHolders, or unrecorded by the node.
