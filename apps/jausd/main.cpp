@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
     std::cout << source << ": ok (subsystem " << int{config.subsystem} << ", node " << int{config.node} << ", "
               << config.components.size() << " components, bind " << jaus::transport::to_string(config.transport.bind)
               << (config.jss.enabled ? ", JSS on" : ", JSS off") << ")\n";
-    // Valid but open: said, not refused (an operator may mean it; README, "Open it to an OCU elsewhere").
+    // Valid but open: said, not refused (an operator may mean it; docs/running.md, "Who may command it").
     for (const auto& warning : warnings) std::cerr << source << ": warning: " << warning << "\n";
     return kExitOk;
   }

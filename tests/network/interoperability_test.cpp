@@ -179,7 +179,7 @@ TEST_F(Interoperability, OpenJausNodeFindsQueriesControlsAndDrivesTheDefaultNode
 // behind a router: the ocu host also has 10.78.0.10/24, and veh1 reaches
 // 10.78.0.0/24 through it, so the OCU's source is not one of veh1's networks.
 // With the defaults it is answered but may not take control; with its
-// network added to control_from as the README says, it drives and stops.
+// network added to control_from as docs/running.md says, it drives and stops.
 constexpr const char* kBehindRouterAddress = "10.78.0.10";
 const Address kRoutedOcu{6, 1, 40, 1};
 
@@ -208,7 +208,7 @@ TEST_F(Interoperability, ASpecWrittenOcuBehindARouterIsAnsweredAndDrivesOnceCont
   EXPECT_NE(refused->response_code, msg::control_response::kAccepted);
   EXPECT_FALSE(ra_drive_until([&] { return moving(); }, 2s)) << "an OCU outside control_from drove\n" << node_log();
 
-  // The README's fix: its network in control_from. Confirm arrives, it drives, Set Emergency stops it.
+  // The fix docs/running.md gives: its network in control_from. Confirm arrives, it drives, Set Emergency stops it.
   jausd.reset();
   ASSERT_NO_FATAL_FAILURE(start_default_node("transport: {control_from: [local, 10.78.0.0/24]}\n"));
   const auto confirm = ra->request<msg::ConfirmComponentControl>(kDriver, msg::RequestComponentControl{{10}}, 30s);

@@ -453,6 +453,7 @@ class Walkthrough : public ::testing::Test {
 TEST_F(Walkthrough, Readme) { run_file("README.md"); }
 TEST_F(Walkthrough, TalkToYourNode) { run_file("docs/talk-to-your-node.md"); }
 TEST_F(Walkthrough, Configuration) { run_file("docs/configuration.md"); }
+TEST_F(Walkthrough, Running) { run_file("docs/running.md"); }
 
 }  // namespace
 }  // namespace jaus::test::docs
