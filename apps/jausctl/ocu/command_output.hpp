@@ -1,6 +1,6 @@
 // What jausctl's OCU commands of both dialects say the same way: a failure
-// line, how many times a command went out, and how long an emergency clear
-// is given to settle. Private to apps/jausctl/ocu.
+// line, how many times a command went out, why one did not arrive, and how
+// long an emergency clear is given to settle. Private to apps/jausctl/ocu.
 #pragma once
 
 #include <chrono>
@@ -27,6 +27,22 @@ inline int fail(CommandIo io, std::string_view command, const jaus::Error& why) 
 inline std::string transmissions_text(const jaus::ocu::ArrivalResult& result) {
   return std::to_string(result.transmissions) + (result.transmissions == 1 ? " transmission" : " transmissions") +
          " in " + jaus::ocu::seconds_text(result.elapsed);
+}
+
+// Why a command that must arrive did not, in one line: "Set Emergency to
+// 1.1.33.1 not acknowledged (10 transmissions in 0.5 s)". `target` in either
+// dialect; `nak_means`: what a NAK from its node says.
+template <class Id>
+std::string not_arrived_text(const std::string& what, const Id& target, const jaus::ocu::ArrivalResult& result,
+                             std::string_view nak_means) {
+  const std::string to = what + " to " + target.to_string();
+  switch (result.outcome) {
+    case jaus::ocu::Arrival::refused: return to + " " + std::string(nak_means);
+    case jaus::ocu::Arrival::interrupted: return to + ": interrupted before it was acknowledged";
+    case jaus::ocu::Arrival::acknowledged:
+    case jaus::ocu::Arrival::unacknowledged: break;
+  }
+  return to + " not acknowledged (" + transmissions_text(result) + ")";
 }
 
 // After Clear Emergency: how long the component may take to leave Emergency, asked this often.

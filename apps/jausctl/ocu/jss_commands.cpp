@@ -10,6 +10,7 @@
 #include "jaus/ocu/names.hpp"
 #include "jaus/ocu/rate_meter.hpp"
 #include "command_output.hpp"
+#include "first_reply.hpp"
 #include "jss_commands.hpp"
 
 namespace jausctl::ocu {
@@ -20,6 +21,8 @@ namespace jss_msg = jaus::jss::msg;
 using jaus::jss::JssId;
 
 constexpr std::uint16_t kFirstQueryId = 0x2000;  // below: commands
+// A JSS node's NAK gives no reason.
+constexpr std::string_view kNakMeans = "refused (NAK)";
 
 // The JSON of received contents, as `jausctl msg decode --dialect jss` prints them, with who sent them.
 jaus::Expected<Json> received_json(const JssReceived& message) {
@@ -38,34 +41,6 @@ std::string message_name(std::span<const std::uint8_t> contents) {
   const auto* info = jaus::jss::find_message(id);
   return info ? std::string(info->name) : code_text(id);
 }
-
-std::string not_arrived_text(const std::string& what, const JssId& target, const ArrivalResult& result) {
-  switch (result.outcome) {
-    case Arrival::refused: return what + " to " + target.to_string() + " refused (NAK)";
-    case Arrival::interrupted: return what + " to " + target.to_string() + ": interrupted before it was acknowledged";
-    case Arrival::acknowledged:
-    case Arrival::unacknowledged: break;
-  }
-  return what + " to " + target.to_string() + " not acknowledged (" + transmissions_text(result) + ")";
-}
-
-// The first message from `from` after this is made, kept while a command is retransmitted.
-class FirstJssReply {
- public:
-  FirstJssReply(JssSession& session, const JssId& from)
-      : session_(session), id_(session.listen([this, from](const JssReceived& r) {
-          if (!reply_ && from.matches(r.source())) reply_ = r;
-        })) {}
-  ~FirstJssReply() { session_.unlisten(id_); }
-  FirstJssReply(const FirstJssReply&) = delete;
-  FirstJssReply& operator=(const FirstJssReply&) = delete;
-  const std::optional<JssReceived>& reply() const { return reply_; }
-
- private:
-  JssSession& session_;
-  std::optional<JssReceived> reply_;
-  JssSession::ListenerId id_;
-};
 
 jaus::Expected<jss_msg::ReportStatus> query_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout) {
   auto report = session.query<jss_msg::ReportStatus>(target, jss_msg::QueryStatus{}, timeout);
@@ -107,7 +82,7 @@ int run_jss_query(JssSession& session, const JssId& target, const JssPreparedQue
 
 int run_jss_send(JssSession& session, const JssId& target, const std::vector<std::uint8_t>& message,
                  jaus::rt::Duration timeout, CommandIo io) {
-  const FirstJssReply first(session, target);
+  const FirstReply<JssSession> first(session, target);
   const auto start = session.clock().now();
   const auto id = jaus::jss::message_id_of(message);
   if (id < kFirstQueryId && !target.is_broadcast()) {
@@ -115,7 +90,7 @@ int run_jss_send(JssSession& session, const JssId& target, const std::vector<std
         id == jss_msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical : jaus::jss::JudpPriority::normal;
     const auto arrival = session.send_contents_must_arrive(target, message, priority);
     if (arrival.outcome != Arrival::acknowledged)
-      return fail(io, "send", not_arrived_text(message_name(message), target, arrival));
+      return fail(io, "send", not_arrived_text(message_name(message), target, arrival, kNakMeans));
   } else {
     session.send_contents(target, message);
   }
@@ -145,7 +120,7 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
     return kExitOk;
   }
   if (arrival.outcome != Arrival::acknowledged) {
-    std::string why = not_arrived_text(what, target, arrival);
+    std::string why = not_arrived_text(what, target, arrival, kNakMeans);
     if (set && arrival.outcome != Arrival::interrupted)
       why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
     return fail(io, "emergency", why);

@@ -13,12 +13,16 @@
 #include "jaus/ocu/wildcard_command.hpp"
 #include "jaus/runtime/stop_counter.hpp"
 #include "command_output.hpp"
+#include "first_reply.hpp"
 #include "image_file.hpp"
 #include "ocu_commands.hpp"
 
 namespace jausctl::ocu {
 
 namespace {
+
+// An RA node NAKs a message that no component of it took.
+constexpr std::string_view kNakMeans = "refused by its node (NAK): no component there took it";
 
 // The status report of `target`, decoded.
 jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& session,
@@ -39,38 +43,6 @@ jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& sessio
 bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
   return (report.primary_status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
 }
-
-// Why a command that must arrive did not, in one line: "Set Emergency to
-// 1.1.33.1 not acknowledged (10 transmissions in 0.5 s)".
-std::string not_arrived_text(const std::string& what, const jaus::Address& target, const ArrivalResult& result) {
-  switch (result.outcome) {
-    case Arrival::refused:
-      return what + " to " + target.to_string() + " refused by its node (NAK): no component there took it";
-    case Arrival::interrupted: return what + " to " + target.to_string() + ": interrupted before it was acknowledged";
-    case Arrival::acknowledged:
-    case Arrival::unacknowledged: break;
-  }
-  return what + " to " + target.to_string() + " not acknowledged (" + transmissions_text(result) + ")";
-}
-
-// The first message from `from` after this is made (any code), kept while a
-// command is retransmitted: its reply may come before the ACK.
-class FirstReply {
- public:
-  FirstReply(OcuSession& session, const jaus::Address& from)
-      : session_(session), id_(session.listen([this, from](const Received& r) {
-          if (!reply_ && from.matches(r.header.source)) reply_ = r;
-        })) {}
-  ~FirstReply() { session_.unlisten(id_); }
-  FirstReply(const FirstReply&) = delete;
-  FirstReply& operator=(const FirstReply&) = delete;
-  const std::optional<Received>& reply() const { return reply_; }
-
- private:
-  OcuSession& session_;
-  std::optional<Received> reply_;
-  OcuSession::ListenerId id_;
-};
 
 // `send` retransmits until ACKed what commands (RA command class,
 // 0x0000-0x1FFF: Resume, Standby, Shutdown, Reset, Set/Clear Emergency,
@@ -165,13 +137,13 @@ int run_send(OcuSession& session, const jaus::Address& target, const PreparedMes
   // A command to a wildcard reaches every component it names, each confirming it.
   if (target.is_broadcast() && is_command(message))
     return run_wildcard(session, "send", name, target, message.header, message.payload, timeout, io);
-  const FirstReply first(session, target);
+  const FirstReply<OcuSession> first(session, target);
   jaus::Header header = message.header;
   header.destination = target;
   const auto start = session.clock().now();
   if (must_arrive(message, session.options().dialect) && !target.is_broadcast()) {
     const auto arrival = send_must_arrive(session, target, header, message.payload);
-    if (arrival.outcome != Arrival::acknowledged) return fail(io, "send", not_arrived_text(name, target, arrival));
+    if (arrival.outcome != Arrival::acknowledged) return fail(io, "send", not_arrived_text(name, target, arrival, kNakMeans));
   } else {
     session.send_raw(header, message.payload);
   }
@@ -221,13 +193,13 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   const bool status_must_tell =
       arrival.outcome == Arrival::unacknowledged && session.options().dialect == jaus::wire::Dialect::openjaus;
   if (arrival.outcome != Arrival::acknowledged && !status_must_tell) {
-    std::string why = not_arrived_text(what, target, arrival);
+    std::string why = not_arrived_text(what, target, arrival, kNakMeans);
     if (set && arrival.outcome != Arrival::interrupted)
       why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
     return fail(io, "emergency", why);
   }
   if (status_must_tell)
-    io.err << "jausctl emergency: " << not_arrived_text(what, target, arrival)
+    io.err << "jausctl emergency: " << not_arrived_text(what, target, arrival, kNakMeans)
            << " (the peer may ignore ACK requests): its status tells\n";
   // Acknowledged, so acted on; the status shows the state it left.
   auto report = query_status(session, target, timeout);
