@@ -43,7 +43,7 @@ struct Options {
 // What every component is asked first (its identification, its services):
 // one that does not answer fails this and is tested no further.
 const jaus::conform::ConformanceCase kAnswers{"runner.answers", "answers Query Identification (component)",
-                                              "wire notes: Liveness and discovery (typical OCU sequence)", nullptr,
+                                              "docs/wire-format.md: Typical OCU sequence", nullptr,
                                               nullptr};
 
 int bad_usage(const std::string& what) {

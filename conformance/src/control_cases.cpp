@@ -36,7 +36,7 @@ CaseOutcome round_trip(CaseContext& c) {
 // refused requests leave the controller as it was.
 CaseOutcome lower_authority_refused(CaseContext& c) {
   if (c.profile == Profile::openjaus)
-    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (wire notes)");
+    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (docs/wire-format.md)");
   auto own = ask<msg::ReportComponentAuthority>(c, msg::QueryComponentAuthority{});
   if (!own) return fail(own.error().message());
   if (own->authority == 0) return skip("its authority is 0: no lower authority to ask with");
@@ -119,7 +119,7 @@ bool runner_granted(CaseContext& c, std::uint8_t authority, std::string& seen) {
 // is "uninterruptible" but for a higher authority).
 CaseOutcome other_requester_refused(CaseContext& c) {
   if (c.profile == Profile::openjaus)
-    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (wire notes)");
+    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (docs/wire-format.md)");
   auto own = own_authority(c);
   if (!own) return fail(own.error().message());
   if (*own == 255) return skip("its authority is 255: no authority above it for the controller");
@@ -185,7 +185,7 @@ CaseOutcome higher_authority_takes_over(CaseContext& c) {
 // takes over ("must always accept the control of the highest authority").
 CaseOutcome controller_lowers_authority(CaseContext& c) {
   if (c.profile == Profile::openjaus)
-    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (wire notes)");
+    return skip("profile openjaus: the RA 3.3 implementation never compares authorities (docs/wire-format.md)");
   auto own = own_authority(c);
   if (!own) return fail(own.error().message());
   if (*own >= 253) return skip("its authority is " + std::to_string(*own) + ": no three authorities from it up");
@@ -370,7 +370,7 @@ std::span<const ConformanceCase> control_cases() {
        "Part 3, Code 000Eh Release Component Control", nullptr, release_by_other_requester},
       {"control.silent_requester", "a requester that falls silent loses control and its service connections",
        "docs/architecture.md: controller liveness (controller_timeout_s) and a silent node's service connections; "
-       "wire notes: Liveness and discovery (Part 3 gives no timeout)",
+       "docs/wire-format.md: Liveness and discovery (Part 3 gives no timeout)",
        nullptr, silent_requester},
   };
   return list;

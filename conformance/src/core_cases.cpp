@@ -1,5 +1,5 @@
 // The core cases: what RA 3.x requires of every component, whatever its kind
-// (Part 3 core and communications messages; discovery per the wire notes).
+// (Part 3 core and communications messages; discovery per docs/wire-format.md).
 // Each leaves the component as it found it: control released, emergency
 // cleared, state restored.
 #include "case_support.hpp"
@@ -115,7 +115,8 @@ CaseOutcome emergency_two_holders(CaseContext& c) {
   if (!after_both) return fail("after both holders' Clear Emergency, " + after_both.error().message());
   const auto after = state_of(*after_both);
   if (c.profile == Profile::openjaus && after == msg::PrimaryStatus::standby && *before == msg::PrimaryStatus::ready) {
-    // Its Clear Emergency goes to Standby (wire notes); its Resume needs no control.
+    // Its Clear Emergency goes to Standby (docs/wire-format.md, "Interoperability");
+    // its Resume needs no control.
     send(c, msg::Resume{});
     return pass("Ready -> Emergency (two holders) -> Emergency (one cleared) -> Standby (profile openjaus), resumed");
   }
@@ -151,7 +152,7 @@ CaseOutcome refused_without_control(CaseContext& c) {
   if (c.profile == Profile::openjaus)
     return skip(
         "profile openjaus: the RA 3.3 implementation lets anyone Shutdown, Standby, Resume and Reset "
-        "(wire notes); not sent");
+        "(docs/wire-format.md); not sent");
   auto before = primary_status(c);
   if (!before) return fail(before.error().message());
   if (*before == msg::PrimaryStatus::shutdown) return skip("already in Shutdown");
@@ -226,7 +227,8 @@ CaseOutcome queries_in_every_state(CaseContext& c) {
   std::string wrong;
   if (state && *state == msg::PrimaryStatus::emergency) wrong = core_queries_unanswered(c, asked);
   send(c, msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // never left set
-  if (c.profile == Profile::openjaus) send(c, msg::Resume{});    // its Clear Emergency goes to Standby (wire notes)
+  // Its Clear Emergency goes to Standby (docs/wire-format.md, "Interoperability").
+  if (c.profile == Profile::openjaus) send(c, msg::Resume{});
   if (!state) return fail("after Set Emergency, " + state.error().message());
   if (!wrong.empty()) return fail("in Emergency, " + wrong);
   if (*state == msg::PrimaryStatus::emergency) states += ", Emergency";
@@ -238,13 +240,13 @@ CaseOutcome queries_in_every_state(CaseContext& c) {
 std::span<const ConformanceCase> core_cases() {
   static const std::vector<ConformanceCase> list{
       {"core.identification", "answers Query Identification (component) with Report Identification type 4",
-       "Part 3, Code 2B00h Query Identification; wire notes: Liveness and discovery", nullptr, identification},
+       "Part 3, Code 2B00h Query Identification; docs/wire-format.md: Liveness and discovery", nullptr, identification},
       {"core.status", "answers Query Component Status with a primary status the RA defines",
        "Part 3, Code 2002h Query Component Status, Figure 5.1", nullptr, status},
       {"core.authority", "answers Query Component Authority", "Part 3, Code 2001h Query Component Authority", nullptr,
        authority},
       {"core.services", "answers Query Services, listing the core queries it accepts",
-       "Part 3, Code 2B03h Query Services; wire notes: Liveness and discovery", nullptr, services},
+       "Part 3, Code 2B03h Query Services; docs/wire-format.md: Liveness and discovery", nullptr, services},
       {"core.heartbeat", "answers Query Heartbeat Pulse with Report Heartbeat Pulse",
        "Part 3, Code 2202h Query Heartbeat Pulse", nullptr, heartbeat},
       {"core.emergency", "Set Emergency puts it in Emergency; Clear Emergency returns it to the state it left",

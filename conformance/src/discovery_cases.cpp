@@ -1,6 +1,6 @@
 // The discovery cases: what a node manager (component 1) reports of its
 // subsystem, node and components (RA 3.2/3.3 dynamic configuration, laid out
-// in the wire notes' "Liveness and discovery"; the Part 3 text here predates
+// in docs/wire-format.md, "Liveness and discovery"; the Part 3 text here predates
 // those messages), checked against each other and against what answers.
 // Other components answer only for themselves (the core cases check that).
 // Nothing here changes the node: the one event created is cancelled.
@@ -59,8 +59,8 @@ CaseOutcome identification_at_each_level(CaseContext& c) {
     if (report->query_type != type)
       return fail("Query Identification (" + level + ", " + std::to_string(type) + ") answered with query type " +
                   std::to_string(report->query_type));
-    // The type ranges of the wire notes: 10001+ vehicle, 20001+ OCU, 30001+
-    // other subsystem; 40001+ node.
+    // The type ranges (docs/wire-format.md, "Liveness and discovery"): 10001+
+    // vehicle, 20001+ OCU, 30001+ other subsystem; 40001+ node.
     if (type == msg::identification::kSubsystem && (report->type < 10001 || report->type > 40000))
       return fail("subsystem type " + std::to_string(report->type) + " is not a subsystem's (10001..40000)");
     if (type == msg::identification::kNode && (report->type < 40001 || report->type > 50000))
@@ -339,27 +339,29 @@ std::span<const ConformanceCase> discovery_cases() {
   static const std::vector<ConformanceCase> list{
       {"discovery.identification",
        "answers Query Identification for its subsystem (2), node (3) and itself (4), each with the type asked",
-       "RA 3.3 Code 2B00h Query Identification, Code 4B00h Report Identification; wire notes: Liveness and "
-       "discovery",
+       "RA 3.3 Code 2B00h Query Identification, Code 4B00h Report Identification; docs/wire-format.md: "
+       "Liveness and discovery",
        not_a_node_manager, identification_at_each_level},
       {"discovery.configuration",
        "Report Configuration (subsystem and node) lists this node and its components; each listed answers, each "
        "answering is listed",
-       "RA 3.3 Code 2B01h Query Configuration, Code 4B01h Report Configuration; wire notes: Liveness and discovery",
+       "RA 3.3 Code 2B01h Query Configuration, Code 4B01h Report Configuration; docs/wire-format.md: Liveness and "
+       "discovery",
        not_a_node_manager, configuration_consistent},
       {"discovery.services",
        "Report Services has an entry for each component configured, and agrees with each component's own",
-       "RA 3.3 Code 2B03h Query Services, Code 4B03h Report Services (type = component ID); wire notes: Liveness and "
-       "discovery",
+       "RA 3.3 Code 2B03h Query Services, Code 4B03h Report Services (type = component ID); docs/wire-format.md: "
+       "Liveness and discovery",
        not_a_node_manager, services_consistent},
       {"discovery.subsystem_list", "Report Subsystem List includes this subsystem, and every entry answers",
-       "RA 3.3 Code 2B02h Query Subsystem List, Code 4B02h Report Subsystem List; wire notes: Liveness and discovery",
+       "RA 3.3 Code 2B02h Query Subsystem List, Code 4B02h Report Subsystem List; docs/wire-format.md: Liveness and "
+       "discovery",
        not_a_node_manager, subsystem_list},
       {"discovery.change_event",
        "Create Event for Report Configuration (every change) is confirmed, its Events carry the configuration, Cancel "
        "Event ends it",
-       "RA 3.3 Code 01F0h Create Event, 01F2h Cancel Event, 01F3h Confirm Event Request, 41F1h Event; wire notes: "
-       "Liveness and discovery",
+       "RA 3.3 Code 01F0h Create Event, 01F2h Cancel Event, 01F3h Confirm Event Request, 41F1h Event; "
+       "docs/wire-format.md: Liveness and discovery",
        not_a_node_manager, configuration_event},
   };
   return list;

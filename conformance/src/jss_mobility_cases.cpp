@@ -1,4 +1,4 @@
-// JSS mobility services (AS6009, mobility v1.0; jss-notes.md 4), each asked
+// JSS mobility services (AS6009, mobility v1.0; docs/jss.md, "Mobility services"), each asked
 // of a component that lists it: the primitive driver (effort only from its
 // controller in Ready, zero on leaving Ready), the pose and velocity sensors
 // (the requested AND available presence vector, values decoding whole), the
@@ -432,34 +432,41 @@ std::span<const JssConformanceCase> jss_mobility_cases() {
       mobility_case("jss.primitive_driver.effort",
            "its controller's Set Wrench Effort in Ready is reported; leaving Ready zeroes it and Resume does not "
            "bring it back",
-           "AS6009 PrimitiveDriver; jss-notes 4.1", "PrimitiveDriver", primitive_driver_effort),
+           "AS6009 PrimitiveDriver; docs/jss.md: Primitive Driver", "PrimitiveDriver", primitive_driver_effort),
       mobility_case("jss.primitive_driver.non_controller_ignored", "Set Wrench Effort from a non-controller is not executed",
-           "AS6009 PrimitiveDriver; jss-notes 3.3, 4.1", "PrimitiveDriver", primitive_driver_non_controller_ignored),
+           "AS6009 PrimitiveDriver; docs/jss.md: Access Control, Primitive Driver",
+           "PrimitiveDriver", primitive_driver_non_controller_ignored),
       mobility_case("jss.velocity_state.presence",
            "Query Velocity State gets the requested AND available fields (0x0140, 0x0001, none)",
-           "AS6009 VelocityStateSensor; jss-notes 0.4, 4.2", "VelocityStateSensor", velocity_state_presence),
+           "AS6009 VelocityStateSensor; docs/jss.md: The bytes on the wire, Sensors",
+           "VelocityStateSensor", velocity_state_presence),
       mobility_case("jss.local_pose.presence",
            "Query Local Pose gets the requested AND available fields (0x0043, 0x0103, none)",
-           "AS6009 LocalPoseSensor; jss-notes 0.4, 4.3", "LocalPoseSensor", local_pose_presence),
-      mobility_case("jss.local_pose.values", "Report Local Pose's angles are within +-pi", "AS6009 LocalPoseSensor; jss-notes 4.3",
-           "LocalPoseSensor", local_pose_values),
+           "AS6009 LocalPoseSensor; docs/jss.md: The bytes on the wire, Sensors",
+           "LocalPoseSensor", local_pose_presence),
+      mobility_case("jss.local_pose.values", "Report Local Pose's angles are within +-pi",
+           "AS6009 LocalPoseSensor; docs/jss.md: Sensors", "LocalPoseSensor", local_pose_values),
       mobility_case("jss.global_pose.presence",
            "Query Global Pose gets the requested AND available fields (0x0007, 0x0143, none)",
-           "AS6009 GlobalPoseSensor; jss-notes 0.4, 4.4", "GlobalPoseSensor", global_pose_presence),
+           "AS6009 GlobalPoseSensor; docs/jss.md: The bytes on the wire, Sensors",
+           "GlobalPoseSensor", global_pose_presence),
       mobility_case("jss.local_waypoint.echo",
            "its controller's Set Local Waypoint is what Report Local Waypoint gives; Query Travel Speed is answered",
-           "AS6009 LocalWaypointDriver; jss-notes 4.5", "LocalWaypointDriver", local_waypoint_echo),
+           "AS6009 LocalWaypointDriver; docs/jss.md: Local Waypoint Driver",
+           "LocalWaypointDriver", local_waypoint_echo),
       mobility_case("jss.local_waypoint.non_controller_ignored", "Set Local Waypoint from a non-controller is not executed",
-           "AS6009 LocalWaypointDriver; jss-notes 3.3, 4.5", "LocalWaypointDriver",
+           "AS6009 LocalWaypointDriver; docs/jss.md: Access Control, Local Waypoint Driver", "LocalWaypointDriver",
            local_waypoint_non_controller_ignored),
       mobility_case("jss.list_manager.validity",
            "Set/Delete Element keep the list valid with the Reject codes of the standard; count, list and links "
            "follow; a non-controller is ignored",
-           "AS6009 ListManager; jss-notes 4.6", "ListManager", list_manager_validity),
+           "AS6009 ListManager; docs/jss.md: List Manager and Local Waypoint List Driver",
+           "ListManager", list_manager_validity),
       mobility_case("jss.list_driver.execute",
            "Execute List in Ready makes an element of the list active at the given speed; Standby ends it (active "
            "element 0, speed 0)",
-           "AS6009 LocalWaypointListDriver; jss-notes 4.6", "LocalWaypointListDriver", list_driver_execute),
+           "AS6009 LocalWaypointListDriver; docs/jss.md: List Manager and Local Waypoint List Driver",
+           "LocalWaypointListDriver", list_driver_execute),
   };
   return cases;
 }

@@ -233,7 +233,7 @@ using VelocityState = Sensor<msg::QueryVelocityState, msg::ReportVelocityState>;
 std::span<const ConformanceCase> sensor_cases() {
   static const std::vector<ConformanceCase> list{
       {"sensor.global_pose.presence_and", "Query Global Pose gets the requested AND available fields",
-       "Part 3, Code 2402h Query Global Pose, Code 4402h Report Global Pose; wire notes: Presence vectors",
+       "Part 3, Code 2402h Query Global Pose, Code 4402h Report Global Pose; docs/wire-format.md: Presence vectors",
        GlobalPose::not_applicable, GlobalPose::presence_and},
       {"sensor.global_pose.time_advances", "Report Global Pose time stamps advance",
        "Part 3, Code 4402h Report Global Pose (Time Stamp)", GlobalPose::not_applicable, GlobalPose::time_advances},
@@ -241,7 +241,7 @@ std::span<const ConformanceCase> sensor_cases() {
        "Part 3, Code 4402h Report Global Pose, Code 0008h Create Service Connection", GlobalPose::not_applicable,
        GlobalPose::query_matches_sc},
       {"sensor.local_pose.presence_and", "Query Local Pose gets the requested AND available fields",
-       "Part 3, Code 2403h Query Local Pose, Code 4403h Report Local Pose; wire notes: Presence vectors",
+       "Part 3, Code 2403h Query Local Pose, Code 4403h Report Local Pose; docs/wire-format.md: Presence vectors",
        LocalPose::not_applicable, LocalPose::presence_and},
       {"sensor.local_pose.time_advances", "Report Local Pose time stamps advance",
        "Part 3, Code 4403h Report Local Pose (Time Stamp)", LocalPose::not_applicable, LocalPose::time_advances},
@@ -249,7 +249,7 @@ std::span<const ConformanceCase> sensor_cases() {
        "Part 3, Code 4403h Report Local Pose, Code 0008h Create Service Connection", LocalPose::not_applicable,
        LocalPose::query_matches_sc},
       {"sensor.velocity_state.presence_and", "Query Velocity State gets the requested AND available fields",
-       "Part 3, Code 2404h Query Velocity State, Code 4404h Report Velocity State; wire notes: Presence vectors",
+       "Part 3, Code 2404h Query Velocity State, Code 4404h Report Velocity State; docs/wire-format.md: Presence vectors",
        VelocityState::not_applicable, VelocityState::presence_and},
       {"sensor.velocity_state.time_advances", "Report Velocity State time stamps advance",
        "Part 3, Code 4404h Report Velocity State (Time Stamp)", VelocityState::not_applicable,

@@ -105,7 +105,8 @@ std::optional<std::string> StopAlong::come_back() {
       return std::nullopt;
     case StopPath::emergency:
       send(c_, msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // never left set
-      // The RA 3.3 implementation's Clear Emergency always goes to Standby (wire notes).
+      // The RA 3.3 implementation's Clear Emergency always goes to Standby
+      // (docs/wire-format.md, "Interoperability").
       if (c_.profile == Profile::openjaus) send(c_, msg::Resume{});
       return std::nullopt;
     case StopPath::reset: {

@@ -196,8 +196,8 @@ std::span<const ConformanceCase> visual_sensor_cases() {
        unless_selects, non_controller_ignored},
       {"visual.image_format",
        "Query Image gets the selected camera's image, whole, in a format it advertises (a large data set when large)",
-       "Part 3, Code 2807h Query Image, Code 4807h Report Image, Code 4806h Report Camera Format Options; wire "
-       "notes: Large data sets; docs/components.md Report Image layout",
+       "Part 3, Code 2807h Query Image, Code 4807h Report Image, Code 4806h Report Camera Format Options; "
+       "docs/wire-format.md: Large data sets; docs/components.md Report Image layout",
        unless_images, image_in_advertised_format},
   };
   return list;

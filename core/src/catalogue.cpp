@@ -238,7 +238,7 @@ this file and the descriptions disagree. Regenerate with
   received vector with bits the message does not define is rejected
   (`reserved_presence_bits`), since the layout after it cannot be known. A
   query's `presence_vector` is a request mask: bits beyond the report's are
-  ignored, as the wire notes say.
+  ignored (docs/wire-format.md, "Presence vectors").
 - `enum: 0 initialize, 1 ready, ...` fields appear in JSON by name
   (`"primary_status": "ready"`) and are read back by name or number; a value
   without a name (reserved, vendor, a gear within a range) stays a number.

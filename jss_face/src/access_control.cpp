@@ -1,4 +1,4 @@
-// Access Control (jss-notes.md 3.3) on every component but the node manager,
+// Access Control (docs/jss.md, "Access Control") on every component but the node manager,
 // translated onto the RA component's own arbitration from the client's
 // alias: one controller for both dialects, the RA authority rule, the RA
 // controller timeout (a JSS client keeps control by sending within it, as

@@ -1,4 +1,4 @@
-// Discovery (jss-notes.md 3.6), answered by the face from what the node has:
+// Discovery (docs/jss.md, "Discovery"), answered by the face from what the node has:
 // the node manager (RA component 1) is the subsystem's discovery service
 // (Query Identification types 2 and 3, Configuration, Subsystem List,
 // Services, Service List, Register Services); every component answers Query

@@ -114,7 +114,7 @@ void EventEngine::create(const JssInbound& m) {
     return reject(m, request->request_id, *code, "invalid event setup, or the query is not supported");
   const jss::JssId client_node = client_node_of(m.origin.client);
   const std::uint16_t query_id = jss::message_id_of(request->query_message);
-  // "Already exists" (jss-notes.md 7.7): the same client, component and query message.
+  // "Already exists" (docs/jss.md, "Events"): the same client, component and query message.
   auto existing = std::find_if(events_.begin(), events_.end(), [&](const auto& entry) {
     const Event& e = entry.second;
     return e.client == m.origin.client && e.our_component == m.our_component && jss::message_id_of(e.query) == query_id;

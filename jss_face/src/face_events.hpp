@@ -1,4 +1,4 @@
-// The Events service (jss-notes.md 3.2), kept natively by the face: RA has
+// The Events service (docs/jss.md, "Events"), kept natively by the face: RA has
 // no JSS events, and its own events cannot be forwarded. A client's event
 // asks its query message through the translators (origin.event_id set) at
 // the confirmed rate (periodic) or every FaceConfig::change_poll_period

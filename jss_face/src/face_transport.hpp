@@ -1,4 +1,4 @@
-// The face's part of AS5669A transport (jss-notes.md 1.4): sequence numbers
+// The face's part of AS5669A transport (docs/jss.md, "Transport (AS5669A), done by the face"): sequence numbers
 // per destination, and the duplicate filter of received messages.
 #pragma once
 

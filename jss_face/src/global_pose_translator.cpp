@@ -1,4 +1,4 @@
-// Global Pose Sensor 1.0 on the RA global pose sensor (38), jss-notes.md 4.4:
+// Global Pose Sensor 1.0 on the RA global pose sensor (38), docs/jss.md "Sensors":
 // the query and report are RA's field for field, rescaled. Set Global Pose
 // and the Geomagnetic Property messages are not supported: RA has no message
 // for either, and a correction kept in the face would make JSS and RA clients

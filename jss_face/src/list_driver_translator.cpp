@@ -1,5 +1,5 @@
 // List Manager 1.0 and Local Waypoint List Driver 1.0 on the RA local
-// waypoint driver (46), jss-notes.md 4.6; the element store:
+// waypoint driver (46), docs/jss.md "List Manager and Local Waypoint List Driver"; the element store:
 // list_manager_elements.hpp, loading the RA driver: waypoint_driver_state.hpp.
 //   Set / Delete Element (controller, any state): Confirm Element Request,
 //     or Reject Element Request with the code of the first broken rule (the

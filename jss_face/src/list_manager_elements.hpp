@@ -1,4 +1,4 @@
-// The List Manager's element store of one component (jss-notes.md 4.6):
+// The List Manager's element store of one component (docs/jss.md, "List Manager and Local Waypoint List Driver"):
 // elements with a UID and previous/next links, kept by the face since RA has
 // no list manager. Sans-I/O: requests in, a confirmation or the Reject
 // Element Request code out; a rejected request leaves the list unchanged.

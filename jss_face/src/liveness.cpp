@@ -1,4 +1,4 @@
-// Liveness (jss-notes.md 3.5): every component answers Query Heartbeat
+// Liveness (docs/jss.md, "Liveness"): every component answers Query Heartbeat
 // Pulse itself (the RA component would answer the same, but the face knows
 // it is alive). No unsolicited heartbeat: JSS has none.
 #include "core_translators.hpp"

@@ -1,4 +1,4 @@
-// Local Pose Sensor 1.0 on the RA local pose sensor (41), jss-notes.md 4.3:
+// Local Pose Sensor 1.0 on the RA local pose sensor (41), docs/jss.md "Sensors":
 // the query and report are RA's field for field (RA's Z range lies within
 // JSS's). Set Local Pose is not supported: RA has no message to move the
 // local frame, and a frame offset kept in the face would have to reach every

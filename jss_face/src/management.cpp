@@ -1,4 +1,4 @@
-// Management (jss-notes.md 3.4) on every component but the node manager: the
+// Management (docs/jss.md, "Management") on every component but the node manager: the
 // commands are the same bytes in both dialects and go to the RA component
 // from the client's alias, so its rules hold: Resume, Shutdown and Reset from
 // the controller only (Standby from anyone: it only stops, RA's rule); Set

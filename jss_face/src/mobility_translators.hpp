@@ -1,5 +1,5 @@
-// The mobility services of the JSS face (AS6009 mobility v1.0, jss-notes.md
-// 4), one translator per file: each turns its JSS messages into the RA
+// The mobility services of the JSS face (AS6009 mobility v1.0, docs/jss.md
+// "Mobility services"), one translator per file: each turns its JSS messages into the RA
 // component's messages, sent as the client's alias, and the component's
 // reports back into JSS. mobility_translators() (builtin_translators.hpp)
 // registers them all; the factories and the pure conversions are declared

@@ -1,4 +1,4 @@
-// What the mobility translators share (jss-notes.md 4): encoding and
+// What the mobility translators share (docs/jss.md, "Mobility services"): encoding and
 // decoding on both sides, copying the fields JSS and RA describe alike,
 // reading an RA component in process (never commanding through it), and a
 // rate-limited log for what remote input repeats.

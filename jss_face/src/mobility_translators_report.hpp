@@ -1,5 +1,5 @@
 // A mobility service whose query and report are the RA component's own,
-// field for field (jss-notes.md 4.1-4.4): the JSS query goes to the RA
+// field for field (docs/jss.md, "Primitive Driver", "Sensors"): the JSS query goes to the RA
 // component as the RA query with the same presence vector, and the RA
 // report comes back as the JSS report; every scaled field is a double on
 // both sides, so re-encoding rescales it, and the JSS encoder clamps to

@@ -1,4 +1,4 @@
-// Primitive Driver 1.0 on the RA primitive driver (33), jss-notes.md 4.1:
+// Primitive Driver 1.0 on the RA primitive driver (33), docs/jss.md "Primitive Driver":
 // Set Wrench Effort goes to the RA component as the client's alias, so the
 // RA rules decide (control, Ready, the command timeout, every stop path);
 // the six propulsive efforts are rescaled (JSS unsigned, RA signed) with

@@ -1,5 +1,5 @@
-// Where JSS and RA 3.x scale the same quantity differently (jss-notes.md
-// 0.3, 4). Every scaled field is a double in engineering units on both sides
+// Where JSS and RA 3.x scale the same quantity differently (docs/jss.md,
+// "Scaling"). Every scaled field is a double in engineering units on both sides
 // (the codecs decode and encode), so the face only has to keep each value
 // inside the range of the side it goes to, and give JSS's symmetric ranges
 // the exact zero they lack: JSS's unsigned encoding of [-a, a] has no integer
@@ -22,7 +22,7 @@ constexpr double jss_step(double lo, double hi, int bits) {
   return (hi - lo) / (static_cast<double>((std::uint64_t{1} << bits) - 1));
 }
 
-// The JSS ranges (jss-notes.md 4) and their steps.
+// The JSS ranges (docs/jss-messages.md) and their steps.
 inline constexpr double kEffortPercent = 100;      // U16[-100..100 %]
 inline constexpr double kEffortStep = jss_step(-100, 100, 16);
 inline constexpr double kAngleStep = jss_step(-kPi, kPi, 16);  // U16[-pi..pi rad]

@@ -1,5 +1,5 @@
-// Velocity State Sensor 1.0 on the RA velocity state sensor (42), jss-notes.md
-// 4.2: the query and report are RA's field for field; re-encoding rescales
+// Velocity State Sensor 1.0 on the RA velocity state sensor (42), docs/jss.md
+// "Sensors": the query and report are RA's field for field; re-encoding rescales
 // (RA +-65.534 m/s and +-32.767 rad/s lie within JSS's ranges).
 #include "mobility_translators.hpp"
 #include "mobility_translators_report.hpp"

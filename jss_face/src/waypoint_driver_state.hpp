@@ -1,6 +1,6 @@
 // What the face keeps per RA local waypoint driver (46) for its JSS services
 // (Local Waypoint Driver, List Manager, Local Waypoint List Driver: one JSS
-// component, one access control), jss-notes.md 4.5-4.6, and how it loads the
+// component, one access control), docs/jss.md "Mobility services", and how it loads the
 // RA driver. RA has no list manager, no tolerances, no active element report
 // and its travel speed survives leaving Ready; so:
 //   - the element list, the single waypoint as set (tolerances included) and

@@ -1,5 +1,5 @@
-// Local Waypoint Driver 1.0 on the RA local waypoint driver (46), jss-notes.md
-// 4.5 (state and loading: waypoint_driver_state.hpp):
+// Local Waypoint Driver 1.0 on the RA local waypoint driver (46), docs/jss.md
+// "Local Waypoint Driver (one waypoint)" (state and loading: waypoint_driver_state.hpp):
 //   Set Local Waypoint (controller, any state): kept as set (tolerances
 //     included, RA has none) and loaded as a one-waypoint RA list (number 0:
 //     a new list); in Ready it starts at the JSS travel speed (0 until Set

@@ -10,7 +10,7 @@ namespace jaus::ocu {
 
 namespace {
 using namespace std::chrono_literals;
-// What controlling OCUs use (jaus-wire-notes.md, "Service connections").
+// What controlling OCUs use (docs/wire-format.md, "Service connections").
 constexpr double kStatusRateHz = 5;
 // The fastest rate a service connection can ask for (RA 3.3: 1092 Hz).
 constexpr double kFastestStatusRateHz = 1092;

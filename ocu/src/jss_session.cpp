@@ -16,7 +16,7 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr rt::Duration kRunSlice = 100ms;  // run_until wakes at least this often on UDP
-// What the session answers by itself (jss-notes.md 3.5, 3.6).
+// What the session answers by itself (docs/jss.md, "Liveness", "Discovery").
 constexpr std::uint16_t kQueryHeartbeatPulse = 0x2202;
 constexpr std::uint16_t kReportHeartbeatPulse = 0x4202;
 constexpr std::uint16_t kQueryIdentification = 0x2B00;

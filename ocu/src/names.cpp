@@ -8,7 +8,7 @@
 namespace jaus::ocu {
 
 std::string component_kind(std::uint8_t id) {
-  // RA 3.x component IDs (jaus-wire-notes.md).
+  // RA 3.x component IDs (docs/wire-format.md, "Component IDs").
   static const std::map<std::uint8_t, const char*> kinds = {
       {1, "node manager"},           {32, "subsystem commander"},       {33, "primitive driver"},
       {34, "global vector driver"},  {35, "communicator"},              {36, "mission spooler"},

@@ -221,7 +221,7 @@ TEST(ClearpathClientSim, SetpointsAreLatestWinsAndResentToFeedTheWatchdog) {
   EXPECT_EQ(link.client.counters().setpoints_replaced, 1u);
   const auto sent = link.written_of(cp::SetVelocity::kType);
   for (const auto& m : sent) EXPECT_DOUBLE_EQ(m.get<cp::SetVelocity>().translational, 0.2);
-  // Resent every 50 ms (never less often than the 100 ms the notes require): 0, 50, ... 450 ms.
+  // Resent every 50 ms (never less often than the 100 ms docs/clearpath-protocol.md requires): 0, 50, ... 450 ms.
   EXPECT_EQ(sent.size(), 10u);
 }
 

@@ -143,7 +143,7 @@ std::string key_of(const ReferenceLine& ref) {
 TEST(ClearpathCrc, CheckValueAndWorkedExample) {
   const std::string check = "123456789";
   EXPECT_EQ(cp::clearpath_crc(std::span(reinterpret_cast<const std::uint8_t*>(check.data()), check.size())), 0x29B1);
-  // From the protocol notes: Set Differential Output 50 % / -25 %, timestamp 1000.
+  // docs/clearpath-protocol.md ("Frame"): Set Differential Output 50 % / -25 %, timestamp 1000.
   const std::vector<std::uint8_t> expected = {0xAA, 0x0F, 0xF0, 0x00, 0xE8, 0x03, 0x00, 0x00, 0x00,
                                               0x02, 0x02, 0x55, 0x88, 0x13, 0x3C, 0xF6, 0x94, 0x27};
   cp::SetDifferentialOutput out;

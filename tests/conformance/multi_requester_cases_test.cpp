@@ -167,7 +167,7 @@ TEST_F(MultiRequester, SuspendStopsReportsOnOurNodeAndACaseCatchesOneThatKeepsSe
 }
 
 // The RA 3.3 implementation never compares authorities and has no control
-// timeout (wire notes): under openjaus those checks are skipped, saying why.
+// timeout (docs/wire-format.md, "Interoperability"): under openjaus those checks are skipped, saying why.
 TEST_F(MultiRequester, TheOpenjausProfileSkipsTheAuthorityAndTimeoutChecks) {
   const CaseResult refused = run_one(test::kAnyoneTakesOver, "control.other_requester_refused", Profile::openjaus);
   EXPECT_EQ(refused.outcome.verdict, Verdict::skip);

@@ -1,5 +1,5 @@
-// Reads the byte-exact vectors of another implementation (tests/data, copied
-// from ../shared/vectors): "CODE  FIELD=VALUE;...  HEX", two spaces apart.
+// Reads the byte-exact vectors of another implementation (tests/data):
+// "CODE  FIELD=VALUE;...  HEX", two spaces apart.
 #pragma once
 
 #include <filesystem>

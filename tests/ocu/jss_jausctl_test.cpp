@@ -151,7 +151,7 @@ TEST(JssJausctlInput, BadInputIsOneLineAndExitTwo) {
   EXPECT_EQ(r.err, "jausctl query: unknown JSS message ID 0x1234 (jausctl msg list --dialect jss shows every ID)\n");
 }
 
-TEST(JssJausctlInput, MsgDecodesTheNotesWorkedExample) {
+TEST(JssJausctlInput, MsgDecodesTheWorkedExampleDatagram) {
   const auto r = run({"msg", "decode",
                       "0200110001010101000101"
                       "2a00002b020000",

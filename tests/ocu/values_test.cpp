@@ -142,7 +142,8 @@ TEST(RateMeter, WindowsAndTheWholeRun) {
   EXPECT_EQ(summary_text(RateMeter(t0).total()), "0 reports in 0.0 s (0.00 Hz)");
 }
 
-// The typical OCU sequence of the wire notes, message by message.
+// The typical OCU sequence (docs/wire-format.md, "Typical OCU sequence"),
+// message by message.
 class DiscoveryModel : public ::testing::Test {
  protected:
   template <class M>

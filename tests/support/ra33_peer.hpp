@@ -1,5 +1,5 @@
 // A scripted peer that behaves like the node manager of the common RA 3.3
-// implementation on its subsystem interface (jaus-wire-notes.md,
+// implementation on its subsystem interface (docs/wire-format.md,
 // "Liveness and discovery" and "Interoperability"): subsystem 1, node 1, a
 // plain UDP socket on loopback. It drops every message whose destination
 // subsystem is neither its own nor 255 (and keeps them, so a test can say

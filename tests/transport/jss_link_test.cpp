@@ -1,11 +1,12 @@
-// SAE JAUS (AS5669A) on the UDP link (issue 33, jss-notes.md 1): the three
-// framings share one socket, AS5669A datagrams are checked, filtered and
-// given a standing as RA ones, their JSS sources' endpoints learnt, the
-// face's datagrams routed by JssId (learnt endpoint, else the JSS group and
-// static peers), and JSS endpoints verified by an AS5669A challenge and its
-// ACK. The link runs on virtual time; datagrams are injected with
-// receive_datagram() or sent from real sockets on loopback, what it sends is
-// read back from real sockets (loopback delivers during send).
+// SAE JAUS (AS5669A) on the UDP link (issue 33; docs/jss.md, "Transport: one
+// port, three framings"): the three framings share one socket, AS5669A
+// datagrams are checked, filtered and given a standing as RA ones, their JSS
+// sources' endpoints learnt, the face's datagrams routed by JssId (learnt
+// endpoint, else the JSS group and static peers), and JSS endpoints verified
+// by an AS5669A challenge and its ACK. The link runs on virtual time;
+// datagrams are injected with receive_datagram() or sent from real sockets on
+// loopback, what it sends is read back from real sockets (loopback delivers
+// during send).
 #include <gtest/gtest.h>
 
 #include <boost/asio/ip/udp.hpp>
@@ -44,7 +45,8 @@ std::vector<std::uint8_t> jss_datagram(const jss::JssId& from, const jss::JssId&
   h.ack_nak = ack_nak;
   return jss::make_judp_datagram(h, contents);
 }
-// Query Identification (0x2B00), type 2: the worked example of jss-notes.md 1.7.
+// Query Identification (0x2B00), type 2: the worked example of docs/jss.md,
+// "The bytes on the wire".
 std::vector<std::uint8_t> query_identification(const jss::JssId& from, const jss::JssId& to = kSelf) {
   return jss_datagram(from, to, {0x00, 0x2B, 0x02});
 }

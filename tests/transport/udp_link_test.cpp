@@ -414,7 +414,7 @@ TEST(UdpLinks, BroadcastsReachStaticPeersWhichThenLearnTheRouteBack) {
 }
 
 // Links on loopback, each with its own subsystem and node, recording what
-// reaches them (jaus-wire-notes.md, "Liveness and discovery").
+// reaches them (docs/wire-format.md, "Liveness and discovery").
 class SubsystemLinks : public ::testing::Test {
  protected:
   UdpLink& open(std::uint8_t subsystem, std::uint8_t node, std::vector<UdpLink*> peers = {}, bool relay = true) {

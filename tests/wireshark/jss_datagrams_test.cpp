@@ -1,6 +1,6 @@
 // AS5669A datagrams dissected by tshark with the generated plugin, compared
 // field by field with the JSS codec (jss::decode_judp_datagram and
-// jss::contents_to_json) in-process: the byte examples of jss-notes.md, an
+// jss::contents_to_json) in-process: the byte examples of docs/jss.md, an
 // instance of every JSS message with every field present and one with random
 // fields, an ACK, two transport messages in one datagram, a large message
 // reassembled on its last packet; malformed AS5669A ends in expert info.
@@ -127,10 +127,11 @@ TEST(TsharkJss, DatagramsShowWhatTheCodecDecodes) {
   const UdpEndpoint node{{127, 0, 0, 60}, 3794};
 
   std::vector<std::vector<std::uint8_t>> datagrams;
-  // 1.7 and NM's vector, as they are.
+  // The worked example and the IOP node manager's query (docs/jss.md, "The bytes
+  // on the wire"), as they are.
   datagrams.push_back(hex("02 00 11 00 01 01 01 01 00 01 01 2a 00 00 2b 02 00 00"));
   datagrams.push_back(hex("02 00 11 00 09 ff ff ff ff c8 40 96 00 00 2b 04 ed 0d"));
-  // The notes' contents examples (3.2, 3.6, 4.1, 4.5, 4.6).
+  // The contents of docs/jss.md's "Byte examples".
   std::vector<std::vector<std::uint8_t>> contents = {
       hex("f0 01 01 00 2c 01 04 00 00 00 03 24 ff 01"),
       hex("f1 41 00 07 0c 00 00 00 03 44 03 00 dc 46 03 80 91 5c fe 7f"),

@@ -232,7 +232,7 @@ K.real = function(c, d, tree)
   return true
 end
 
--- The scaled-integer rule of jaus-wire-notes.md, as the codec computes it (core/scaled_integer.hpp).
+-- The scaled-integer rule (docs/wire-format.md, "Scaled integers"), as the codec computes it (core/scaled_integer.hpp).
 K.scaled = function(c, d, tree)
   if not need(c, d.s, d, tree) then return false end
   local peer = c.dialect == OPENJAUS

@@ -1,5 +1,5 @@
 -- SAE JAUS (JSS) in the JAUS dissector: AS5669A datagrams (version byte 0x02,
--- jss-notes.md 1) and the JSS messages of JSS_MESSAGES, which the plugin
+-- docs/jss.md, "The bytes on the wire") and the JSS messages of JSS_MESSAGES, which the plugin
 -- defines from the JSS descriptions (apps/wireshark/jss_table.cpp) before
 -- jaus.lua. Runs after jaus.lua in the same block: it uses its field registry,
 -- hf, ef, the body walkers (K, walk_body, need, fail) and the large data set

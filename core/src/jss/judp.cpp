@@ -1,4 +1,4 @@
-// AS5669A datagrams (jss-notes.md 1.2-1.4): framing only; the contents are
+// AS5669A datagrams (docs/jss.md, "The bytes on the wire"): framing only; the contents are
 // left to the JSS message codec.
 #include "jaus/jss/judp.hpp"
 
@@ -12,7 +12,7 @@ namespace jaus::jss {
 namespace {
 
 // Byte 1: bits 0-5 message type, bits 6-7 header compression. Sources
-// disagree on the HC bits (jss-notes.md 1.6), so bits 0-1 are read as HC too:
+// disagree on the HC bits (docs/jss.md, "The bytes on the wire"), so bits 0-1 are read as HC too:
 // nobody sends either, and guessing would misplace every later field.
 constexpr std::uint8_t kHcBitsEitherReading = 0xC3;
 constexpr std::uint8_t kMessageTypeMask = 0x3F;

@@ -1,4 +1,4 @@
-// Large JSS messages: split and reassembled (jss-notes.md 1.5).
+// Large JSS messages: split and reassembled (docs/jss.md, "The bytes on the wire").
 #include "jaus/jss/large_message.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // What the catalogue says of each JSS message beyond its layout: the service
-// that defines it (jss-notes.md 3, 4, 5) and one sentence of what it does.
+// that defines it (docs/jss.md, "What is supported") and one sentence of what it does.
 // A test checks that every described message has its line here and back.
 #pragma once
 

@@ -369,7 +369,7 @@ void Component::register_core_handlers() {
   handle<QueryComponentStatus>(Access::anyone, false,
                                 [this](const Header& h, const QueryComponentStatus&) { send(h.source, status_report()); });
   // Controlling OCUs watch a component through a service connection to its
-  // status (about 5 Hz) and treat silence as loss (jaus-wire-notes.md).
+  // status (about 5 Hz) and treat silence as loss (docs/wire-format.md, "Service connections").
   provide<ReportComponentStatus>(0, [this] { return status_report(); });
   handle<QueryComponentControl>(Access::anyone, false, [this](const Header& h, const QueryComponentControl&) {
     ReportComponentControl report;

@@ -1,6 +1,6 @@
-// The byte examples of jss-notes.md decode to the values the notes state and
-// encode to the same bytes; JSS scaled integers (all unsigned) match the
-// notes' encodings; values a JTS peer truncated instead of rounding decode
+// The byte examples of docs/jss.md ("Byte examples") decode to the values it
+// states and encode to the same bytes; JSS scaled integers (all unsigned)
+// match its encodings ("Scaled values"); values a JTS peer truncated instead of rounding decode
 // within one step.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ M decoded(const std::vector<std::uint8_t>& contents) {
   return m ? *m : M{};
 }
 
-// 3.2: a periodic 5 Hz event on Query Local Pose with PV 0x01FF, request ID 1.
+// A periodic 5 Hz event on Query Local Pose with PV 0x01FF, request ID 1.
 TEST(JssExamples, CreateEvent) {
   const auto bytes = hex_bytes("f0 01 01 00 2c 01 04 00 00 00 03 24 ff 01");
   const auto create = decoded<msg::CreateEvent>(bytes);
@@ -38,7 +38,7 @@ TEST(JssExamples, CreateEvent) {
   EXPECT_EQ(encode_contents(built), bytes);
 }
 
-// 3.2: an Event carrying Report Local Pose (PV 0x0003, X = 10 m, Y = -5 m), event 0, sequence 7.
+// An Event carrying Report Local Pose (PV 0x0003, X = 10 m, Y = -5 m), event 0, sequence 7.
 TEST(JssExamples, EventWithReportLocalPose) {
   const auto bytes = hex_bytes("f1 41 00 07 0c 00 00 00 03 44 03 00 dc 46 03 80 91 5c fe 7f");
   const auto event = decoded<msg::Event>(bytes);
@@ -61,7 +61,7 @@ TEST(JssExamples, EventWithReportLocalPose) {
   EXPECT_EQ(encode_contents(built), bytes);
 }
 
-// 3.6: Report Identification of the subsystem, a vehicle named "Husky".
+// Report Identification of the subsystem, a vehicle named "Husky".
 TEST(JssExamples, ReportIdentification) {
   const auto bytes = hex_bytes("00 4b 02 11 27 05 48 75 73 6b 79");
   const auto report = decoded<msg::ReportIdentification>(bytes);
@@ -73,7 +73,7 @@ TEST(JssExamples, ReportIdentification) {
             bytes);
 }
 
-// 3.6: Report Services: node 1, component 33 (instance 0), Transport 1.1 and PrimitiveDriver 1.0.
+// Report Services: node 1, component 33 (instance 0), Transport 1.1 and PrimitiveDriver 1.0.
 TEST(JssExamples, ReportServices) {
   const auto bytes = concat({hex_bytes("03 4b 01 01 01 21 00 02 1b"), ascii("urn:jaus:jss:core:Transport"),
                              hex_bytes("01 01 25"), ascii("urn:jaus:jss:mobility:PrimitiveDriver"), hex_bytes("01 00")});
@@ -90,7 +90,7 @@ TEST(JssExamples, ReportServices) {
   EXPECT_EQ(encode_contents(report), bytes);
 }
 
-// 4.1: PV 0x0021, linear X = +50 %, rotational Z = -25 % -> 49151, 24576.
+// Set Wrench Effort, PV 0x0021, linear X = +50 %, rotational Z = -25 % -> 49151, 24576.
 TEST(JssExamples, SetWrenchEffort) {
   const auto bytes = hex_bytes("05 04 21 00 ff bf 00 60");
   const auto set = decoded<msg::SetWrenchEffort>(bytes);
@@ -105,7 +105,7 @@ TEST(JssExamples, SetWrenchEffort) {
   EXPECT_EQ(encode_contents(built), bytes);
 }
 
-// 4.5: Set Local Waypoint X = 10 m, Y = -5 m, no options.
+// Set Local Waypoint X = 10 m, Y = -5 m, no options.
 TEST(JssExamples, SetLocalWaypoint) {
   const auto bytes = hex_bytes("0d 04 00 dc 46 03 80 91 5c fe 7f");
   const auto set = decoded<msg::SetLocalWaypoint>(bytes);
@@ -118,7 +118,7 @@ TEST(JssExamples, SetLocalWaypoint) {
   EXPECT_EQ(encode_contents(built), bytes);
 }
 
-// 4.6: one head-and-tail element UID 1 holding the waypoint of 4.5, request ID 7.
+// Set Element: one head-and-tail element UID 1 holding that waypoint, request ID 7.
 TEST(JssExamples, SetElement) {
   const auto bytes = hex_bytes("1a 04 07 01 01 00 00 00 00 00 00 0b 00 0d 04 00 dc 46 03 80 91 5c fe 7f");
   const auto set = decoded<msg::SetElement>(bytes);
@@ -142,7 +142,7 @@ TEST(JssExamples, SetElement) {
   EXPECT_EQ(encode_contents(built), bytes);
 }
 
-// 4.6: Execute List at 1.5 m/s from UID 1.
+// Execute List at 1.5 m/s from UID 1.
 TEST(JssExamples, ExecuteList) {
   const auto bytes = hex_bytes("1e 04 01 2c 01 01 00");
   const auto execute = decoded<msg::ExecuteList>(bytes);
@@ -151,7 +151,7 @@ TEST(JssExamples, ExecuteList) {
   EXPECT_EQ(encode_contents(msg::ExecuteList{{1.5, 1}}), bytes);
 }
 
-// 0.3 and 4.5: JSS scaled integers are unsigned, step (hi - lo) / (2^n - 1), bias lo, rounded.
+// JSS scaled integers are unsigned, step (hi - lo) / (2^n - 1), bias lo, rounded.
 TEST(JssExamples, ScaledIntegersAreUnsignedAndRounded) {
   EXPECT_EQ(encode_contents(msg::SetTravelSpeed{{1.5}}), hex_bytes("0a 04 2c 01"));
   EXPECT_EQ(encode_contents(msg::SetTravelSpeed{{1.0}}), hex_bytes("0a 04 c8 00"));  // 1 m/s = 200
@@ -169,7 +169,7 @@ TEST(JssExamples, ScaledIntegersAreUnsignedAndRounded) {
   EXPECT_EQ(encode_contents(msg::SetTravelSpeed{{-1}}), hex_bytes("0a 04 00 00"));
 }
 
-// JTS-generated peers cast instead of rounding (jss-notes.md 0.3): 0 % arrives
+// JTS-generated peers cast instead of rounding (docs/jss.md, "Scaled values"): 0 % arrives
 // as 32767, 5 Hz as 300 either way; both decode within one step.
 TEST(JssExamples, TruncatedValuesDecodeWithinOneStep) {
   const auto zero = decoded<msg::SetWrenchEffort>(hex_bytes("05 04 01 00 ff 7f"));

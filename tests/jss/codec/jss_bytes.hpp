@@ -1,4 +1,4 @@
-// Byte vectors from hex text, for the notes' examples.
+// Byte vectors from hex text, for the byte examples of docs/jss.md.
 #pragma once
 
 #include <gtest/gtest.h>

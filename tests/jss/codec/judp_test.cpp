@@ -1,6 +1,7 @@
-// AS5669A datagrams (jss-notes.md 1): the notes' worked example and NM's
-// vector byte for byte, several transport messages per datagram, ACKs, and
-// every malformed framing an error with its offset.
+// AS5669A datagrams (docs/jss.md, "The bytes on the wire"): its worked
+// example and the IOP node manager's query byte for byte, several transport
+// messages per datagram, ACKs, and every malformed framing an error with its
+// offset.
 #include <gtest/gtest.h>
 
 #include "jaus/jss/all.hpp"
@@ -11,9 +12,9 @@ namespace jaus::test::jss_judp {
 using namespace jaus::jss;
 namespace msg = jaus::jss::msg;
 
-// 1.7: Query Identification type 2, 42.1.1 -> 1.1.1, normal priority, sequence 0.
+// The worked example: Query Identification type 2, 42.1.1 -> 1.1.1, normal priority, sequence 0.
 const char* const kWorkedExample = "02 00 11 00 01 01 01 01 00 01 01 2a 00 00 2b 02 00 00";
-// NM tests/test_message.py: component query broadcast from 150.64.200 to all, broadcast 2, sequence 3565.
+// As fkie's IOP node manager sends it: component query from 150.64.200 to all, broadcast 2, sequence 3565.
 const char* const kNmVector = "02 00 11 00 09 ff ff ff ff c8 40 96 00 00 2b 04 ed 0d";
 
 TEST(Judp, WorkedExampleDecodes) {

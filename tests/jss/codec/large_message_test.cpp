@@ -1,4 +1,4 @@
-// Large JSS messages (jss-notes.md 1.5): split into first/middle/last packets
+// Large JSS messages (docs/jss.md, "The bytes on the wire"): split into first/middle/last packets
 // with consecutive sequence numbers, put back together per source; every
 // bound has its rule and its counter.
 #include <gtest/gtest.h>

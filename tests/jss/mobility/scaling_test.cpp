@@ -1,4 +1,4 @@
-// JSS <-> RA scaling (jss-notes.md 0.3, 4): the notes' byte examples, JSS's
+// JSS <-> RA scaling (docs/jss.md, "Scaling"): its byte examples, JSS's
 // missing zero made RA's exact 0, RA's narrower ranges clamped.
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ TEST(JssScaling, WrenchEffortExampleRescalesToRaSigned) {
   jss::msg::SetWrenchEffort jss{};
   jss.propulsive_linear_effort_x_percent = 50;
   jss.propulsive_rotational_effort_z_percent = -25;
-  // The notes' JSS bytes: PV 0x0021, 49151, 24576.
+  // The JSS bytes of docs/jss.md's "Byte examples": PV 0x0021, 49151, 24576.
   EXPECT_EQ(jss::encode_contents(jss), (Bytes{0x05, 0x04, 0x21, 0x00, 0xff, 0xbf, 0x00, 0x60}));
   // The same values in RA: 16384 and -8192, the same PV.
   msg::SetWrenchEffort exact{};
@@ -98,7 +98,7 @@ TEST(JssScaling, TravelSpeedRanges) {
   EXPECT_EQ(ra_payload(msg::SetTravelSpeed{{scaling::travel_speed_to_ra(1.0)}}), (Bytes{0x07, 0x00}));
   EXPECT_EQ(scaling::travel_speed_to_jss(500), scaling::kMaxTravelSpeedMps);
   EXPECT_EQ(scaling::travel_speed_to_ra(-1), 0);
-  // Execute List at 1.5 m/s from element 1: the notes' bytes.
+  // Execute List at 1.5 m/s from element 1: the bytes of "Byte examples".
   jss::msg::ExecuteList run{};
   run.speed_mps = 1.5;
   run.element_uid = 1;

@@ -105,7 +105,7 @@ struct CaseContext {
 struct ConformanceCase {
   std::string_view id;         // stable, for reports and --only: "core.identification"
   std::string_view title;      // what the RA requires, in one line
-  std::string_view reference;  // where it says so: "Part 3 3.2.3 Query Identification", "wire notes: Liveness"
+  std::string_view reference;  // where it says so: "Part 3 3.2.3 Query Identification", "docs/wire-format.md: Liveness"
   // Why the case does not apply to a component (it is then skipped with that
   // reason); empty when it applies. Null: applies to every component.
   std::function<std::string(const ComponentUnderTest&)> not_applicable;

@@ -1,4 +1,4 @@
-// The 16-byte JAUS message header (jaus-wire-notes.md), every multi-byte field
+// The 16-byte JAUS message header (docs/wire-format.md), every multi-byte field
 // little-endian.
 #pragma once
 

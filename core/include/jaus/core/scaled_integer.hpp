@@ -1,4 +1,4 @@
-// Scaled integers (jaus-wire-notes.md): a real value in [lower, upper] sent as
+// Scaled integers (docs/wire-format.md): a real value in [lower, upper] sent as
 // an n-bit integer.
 //   unsigned: scale = (upper - lower) / (2^n - 1), bias = lower
 //   signed:   scale = (upper - lower) / (2^n - 2), bias = (upper + lower) / 2
@@ -20,7 +20,7 @@ struct ScaledRange {
   static_assert(sizeof(I) <= 4, "scaled integers are at most 32 bits wide");
   double lower = 0;
   double upper = 0;
-  // Interoperability knobs for the common RA 3.3 peer (jaus-wire-notes.md):
+  // Interoperability knobs for the common RA 3.3 peer (docs/wire-format.md):
   // it divides 32-bit unsigned ranges into 2^32 - 2 steps, and rounds with
   // (int)(x + 0.5), one step high for negative values.
   bool peer_steps = false;

@@ -1,4 +1,4 @@
-// RA time stamp (u32) and date stamp (u16), jaus-wire-notes.md. Both are kept
+// RA time stamp (u32) and date stamp (u16), docs/wire-format.md. Both are kept
 // as their parts; decoding never rejects odd values (peers send them), encoding
 // rejects parts that do not fit their bits.
 #pragma once

@@ -1,5 +1,5 @@
-// Field codecs that JSS messages need and the RA set does not (jss-notes.md
-// 0.2, 0.4): u8-length strings (str8), embedded JSS messages with their byte
+// Field codecs that JSS messages need and the RA set does not (docs/jss.md,
+// "The bytes on the wire"): u8-length strings (str8), embedded JSS messages with their byte
 // count (msg32: the count includes the embedded message's 2-byte ID), u8-tag
 // variants of integers (Query Events), and the 4-byte JSS ID of Report Control
 // and Report Subsystem List (u16 subsystem, node, component). They plug into

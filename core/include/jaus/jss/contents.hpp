@@ -1,5 +1,5 @@
 // JSS message contents: the u16 message ID (little-endian), then the body
-// (jss-notes.md 0.4). What AS5669A carries in a transport message, what
+// (docs/jss.md, "The bytes on the wire"). What AS5669A carries in a transport message, what
 // Create Event embeds and Event wraps.
 #pragma once
 

@@ -1,5 +1,5 @@
 // A JSS (SAE JAUS, AS5669A) endpoint ID: 16-bit subsystem, 8-bit node and
-// component, no instance (jss-notes.md 1.3). 0 is invalid at every level;
+// component, no instance (docs/jss.md, "The bytes on the wire"). 0 is invalid at every level;
 // 65535 (subsystem) and 255 (node, component) mean "all".
 #pragma once
 

@@ -1,4 +1,4 @@
-// AS5669A ("JUDP") datagrams (jss-notes.md 1): the version byte 0x02, then
+// AS5669A ("JUDP") datagrams (docs/jss.md, "The bytes on the wire"): the version byte 0x02, then
 // one or more transport messages, each a general transport header, the
 // contents (a JSS message: u16 message ID, then its body; empty for an ACK)
 // and a u16 sequence number as a trailer. Every multi-byte field is
@@ -50,7 +50,7 @@ struct JudpPacket {
 // Every transport message of a datagram (several back to back are accepted;
 // we send one per datagram). Errors carry the byte offset in the datagram:
 // not version 0x02, header compression (byte 1 bits 6-7 or 0-1 set: nobody
-// sends it and its bit position is disputed, jss-notes.md 1.6), a data size
+// sends it and its bit position is disputed: docs/jss.md), a data size
 // below 14 or beyond the datagram, a message type other than 0.
 Expected<std::vector<JudpPacket>> decode_judp_datagram(std::span<const std::uint8_t> datagram);
 
@@ -63,7 +63,7 @@ std::vector<std::uint8_t> make_judp_datagram(const JudpHeader& header, std::span
 // The JSS message ID of contents (its first two bytes); 0 when shorter.
 std::uint16_t message_id_of(std::span<const std::uint8_t> contents);
 
-// RA priority (0-15) <-> JSS (0-3), as JRM maps them (jss-notes.md 1.4).
+// RA priority (0-15) <-> JSS (0-3), as JRM maps them (docs/jss.md, "The bytes on the wire").
 JudpPriority jss_priority_from_ra(std::uint8_t ra_priority);
 std::uint8_t ra_priority_from_jss(JudpPriority priority);
 

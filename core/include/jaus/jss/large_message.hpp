@@ -1,4 +1,4 @@
-// Large JSS messages (jss-notes.md 1.5): contents above the per-packet limit
+// Large JSS messages (docs/jss.md, "The bytes on the wire"): contents above the per-packet limit
 // travel as a first packet (data flag 1, starting with the message ID),
 // middle packets (2) and a last packet (3) with consecutive sequence numbers.
 // Splitting is a pure function; the reassembler keeps, per source, the sets
@@ -34,7 +34,7 @@ Expected<std::vector<ContentsPiece>> split_contents(std::span<const std::uint8_t
 
 // The datagrams of a whole message: `header` for each, data flags set, sequence
 // numbers header.sequence, +1, ... (wrapping). Broadcasts are never split
-// (jss-notes.md 1.5): contents above max_contents to a broadcast destination
+// (docs/jss.md, "The bytes on the wire"): contents above max_contents to a broadcast destination
 // are payload_too_large.
 Expected<std::vector<std::vector<std::uint8_t>>> make_judp_datagrams(const JudpHeader& header,
                                                                      std::span<const std::uint8_t> contents,

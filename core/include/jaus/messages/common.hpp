@@ -82,7 +82,7 @@ inline constexpr wire::Scaled<std::int32_t> kLocalXY{-100'000, 100'000};
 inline constexpr wire::Scaled<std::uint16_t> kServiceRate{0, 1092};  // Hz
 
 // Manipulator quantities: the openjaus dialect sends these signed values as
-// unsigned with bias = lower limit (jaus-wire-notes.md, Interoperability).
+// unsigned with bias = lower limit (docs/wire-format.md, "Interoperability").
 constexpr wire::Scaled<std::int32_t> manipulator_int(double lower, double upper) {
   return {lower, upper, wire::Quirk::openjaus_unsigned_bias};
 }

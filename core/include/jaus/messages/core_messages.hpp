@@ -115,7 +115,7 @@ struct TimeBody {
 
 // A query's presence vector: which optional fields the reply should carry
 // (ANDed with what the responder has). A mask, not a layout: bits the report
-// does not define are ignored, as the wire notes say.
+// does not define are ignored (docs/wire-format.md, "Presence vectors").
 template <std::unsigned_integral T>
 struct PresenceQueryBody {
   T presence_vector = 0;

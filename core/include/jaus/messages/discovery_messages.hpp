@@ -1,5 +1,5 @@
 // RA 3.2/3.3 dynamic configuration (discovery): 0x2B00-0x2B03, 0x4B00-0x4B03.
-// Layouts from jaus-wire-notes.md.
+// Layouts: docs/wire-format.md, "Liveness and discovery".
 #pragma once
 
 #include "jaus/messages/common.hpp"

@@ -1,4 +1,4 @@
-// RA 3.2/3.3 events: 0x01F0-0x01F3 and 0x41F1 (jaus-wire-notes.md; the optional
+// RA 3.2/3.3 events: 0x01F0-0x01F3 and 0x41F1 (docs/wire-format.md; the optional
 // fields of Create/Update Event follow the RA 3.3 peers' presence bits).
 #pragma once
 

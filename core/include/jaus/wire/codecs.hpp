@@ -44,7 +44,7 @@ namespace jaus::wire {
 
 // Which peer's reading of the wire to use. `ra` is what Part 3 specifies and
 // what we send; `openjaus` reproduces the quirks of the common open RA 3.3
-// implementation (jaus-wire-notes.md, "Interoperability") so that its messages
+// implementation (docs/wire-format.md, "Interoperability") so that its messages
 // decode to the values it meant.
 enum class Dialect : std::uint8_t { ra, openjaus };
 
@@ -160,7 +160,7 @@ struct Real {
 // bias = lower limit. Marked on the fields it affects.
 enum class Quirk : std::uint8_t { none, openjaus_unsigned_bias };
 
-// A scaled integer with limits (jaus-wire-notes.md); the value is in the
+// A scaled integer with limits (docs/wire-format.md); the value is in the
 // engineering unit named by the field.
 template <std::integral T>
 struct Scaled {

@@ -65,7 +65,7 @@ struct RaOutbound {
   ReplyTo to;                              // the client (and event) the alias stands for
 };
 
-// A service as discovery reports it (jss-notes.md 5).
+// A service as discovery reports it (docs/jss.md, "What is supported").
 struct ServiceUri {
   std::string uri;  // "urn:jaus:jss:mobility:PrimitiveDriver"
   std::uint8_t major = 1;

@@ -20,7 +20,7 @@
 // dropped us during a partition): every kControlCheck the hold asks Query
 // Component Control, and an answer naming another controller (or none) ends
 // the hold like a Reject, so a hold never goes on streaming refused commands.
-// Like other OCUs (jaus-wire-notes.md), the hold watches the component's
+// Like other OCUs (docs/wire-format.md, "Service connections"), the hold watches the component's
 // Report Component Status on a 5 Hz service connection (at the send rate
 // when faster, see send_while_held): it shows state changes, and silence
 // means the component (or its node) is gone. A stop shorter than a report

@@ -1,5 +1,5 @@
 // What `jausctl discover` learns about the JAUS system, and which queries it
-// asks next (jaus-wire-notes.md, "typical OCU sequence"): a subsystem heard
+// asks next (docs/wire-format.md, "Typical OCU sequence"): a subsystem heard
 // for the first time is asked for its identification, configuration and
 // subsystem list, each node for its identification and configuration, each
 // component for its identification and services. Every subsystem in a

@@ -1,4 +1,4 @@
-// Access control of one JSS component (jss-notes.md 3.3): request with an
+// Access control of one JSS component (docs/jss.md, "Access Control"): request with an
 // authority, keep it by requesting again before the component's timeout
 // (Report Timeout; as fkie IOP does, at half of it), release; Reject Control
 // from the component means control was lost (taken by a higher authority,

@@ -1,4 +1,4 @@
-// Discovering a JSS system the way JSS clients do (jss-notes.md 3.6, fkie IOP's
+// Discovering a JSS system the way JSS clients do (docs/jss.md, "Discovery"; fkie IOP's
 // DiscoveryClient): Query Identification (type 2, subsystem) to every
 // subsystem, resent every identification_period until a subsystem answers;
 // then, for each subsystem that answered, Query Configuration (nodes and

@@ -1,4 +1,4 @@
-// JSS events from the client side (jss-notes.md 3.2): Create Event with an
+// JSS events from the client side (docs/jss.md, "Events"): Create Event with an
 // embedded query, periodic at a rate or on every change; each Event the
 // provider sends is handed to a callback with the report it carries.
 // Update and Cancel; the provider's event timeout (core v1.1, Query Event

@@ -1,5 +1,5 @@
 // A SAE JAUS (JSS) operator unit as a library: one JSS endpoint of its own
-// on a UDP socket speaking AS5669A (jss-notes.md 1), with what a JSS client
+// on a UDP socket speaking AS5669A (docs/jss.md, "The bytes on the wire"), with what a JSS client
 // needs to drive a JSS vehicle: sequence numbers, ACK answers to
 // ACK-requested messages, large message reassembly, requests resent until
 // answered, commands resent until ACKed, and listeners for what arrives

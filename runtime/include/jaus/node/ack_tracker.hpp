@@ -4,8 +4,8 @@
 // transmission went unanswered.
 //
 // Defaults: 3 transmissions 1 s apart, failure 1 s after the last one, so a
-// silent peer is given up after 3 s, the time after which the notes treat a
-// component as gone. A message may carry its own AckPolicy instead (commands
+// silent peer is given up after 3 s, the time after which peers treat a component
+// as gone (docs/wire-format.md, "Liveness and discovery"). A message may carry its own AckPolicy instead (commands
 // that must arrive over a lossy link: every 50 ms, 10 times; issue 32). Retransmissions repeat the packet exactly (same
 // sequence number, which the ACK echoes, and same data flag: a flag of 4
 // would hide which part of a large data set the packet is).
@@ -24,8 +24,8 @@
 
 namespace jaus::node {
 
-// The notes key ACKs by destination, command code and sequence number; our
-// sending component is part of the key too, since a node hosts several.
+// An ACK carries the acknowledged message's code and sequence number (docs/wire-format.md, "Priority and
+// ACK/NAK"): keyed by those and its destination, and by our sending component, since a node hosts several.
 struct AckKey {
   Address local;  // our component that sent the message
   Address peer;   // its destination

@@ -1,4 +1,4 @@
-// Reassembles large data sets (jaus-wire-notes.md, "Large data sets") from
+// Reassembles large data sets (docs/wire-format.md, "Large data sets") from
 // received packets, by (source, command code) and sequence number.
 //
 // Packets may arrive in any order; a duplicate is ignored, a retransmitted

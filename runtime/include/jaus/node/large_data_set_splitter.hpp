@@ -1,4 +1,4 @@
-// Splits one message into the packets that carry it (jaus-wire-notes.md,
+// Splits one message into the packets that carry it (docs/wire-format.md,
 // "Large data sets"): a payload of at most 4080 bytes is one packet with data
 // flag 0; a larger one goes as packets of 4080 bytes (the last one shorter)
 // flagged 1 (first), 2 (middle) ... 8 (last), numbered s, s+1, ... from the

@@ -1,5 +1,5 @@
-// Outgoing sequence numbers (header bytes 14-15). The notes make the number
-// "per sender"; we keep one u16 stream per (sender, destination) pair, so that
+// Outgoing sequence numbers (header bytes 14-15). docs/wire-format.md makes
+// the number "per sender"; we keep one u16 stream per (sender, destination) pair, so that
 // every receiver sees a gap-free series from each of our components and a gap
 // means loss. Numbers wrap from 65535 to 0.
 #pragma once

@@ -1,4 +1,4 @@
-// The two datagram framings RA 3.x nodes use on UDP (jaus-wire-notes.md):
+// The two datagram framings RA 3.x nodes use on UDP (docs/wire-format.md):
 //   OPC  : "JAUS01.0" then the JAUS message (16-byte header + payload);
 //   JUDP : 0x01 (transport version), 0x00 (header compression), 0x00
 //          (compression flags), message length as a big-endian u16, then

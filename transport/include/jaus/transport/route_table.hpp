@@ -63,7 +63,7 @@ struct Peer {
   rt::TimePoint last_heard{};
   std::size_t routes = 0;  // routes through this endpoint
   // The RA subsystems of those routes: a subsystem's broadcasts go only to its
-  // own nodes (jaus-wire-notes.md, "Liveness and discovery"). JSS subsystems
+  // own nodes (docs/wire-format.md, "Liveness and discovery"). JSS subsystems
   // above 255 are not recorded (JSS broadcasts go to the group and static peers).
   std::bitset<256> subsystems;
   bool hosts_subsystem(std::uint8_t subsystem) const { return subsystems.test(subsystem); }

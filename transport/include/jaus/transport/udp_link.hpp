@@ -1,4 +1,4 @@
-// The node's UDP transport (jaus-wire-notes.md, "Node-to-node transport"):
+// The node's UDP transport (docs/wire-format.md, "Node-to-node transport"):
 // one JAUS message per datagram, OPC or JUDP framing, routes learnt from the
 // source endpoint of what arrives, static peers, multicast for broadcasts.
 //
@@ -7,7 +7,7 @@
 // one host bind 127.0.0.1:3794 and 127.0.0.2:3794. A subsystem's broadcasts
 // (S.255.x.x) go only to peers known to be nodes of S, and to the multicast
 // group unless S is our own: other subsystems' node managers drop them
-// (jaus-wire-notes.md), and every other subsystem shares the group.
+// (docs/wire-format.md, "Liveness and discovery"), and every other subsystem shares the group.
 // The link relays a message for another subsystem that arrives from a node
 // heard directly to where that subsystem's node was heard, so an OCU that
 // talks to one node reaches the subsystems that node knows. Sending is synchronous and
@@ -31,7 +31,7 @@
 // until it answers a challenge; a command from one is delivered only if its
 // reply can be sent (amplification_guard.hpp, on_datagram).
 //
-// SAE JAUS (jss-notes.md 1): datagrams whose first byte is 0x02 are AS5669A.
+// SAE JAUS (docs/jss.md, "Transport: one port, three framings"): datagrams whose first byte is 0x02 are AS5669A.
 // With a JSS handler set (on_jss_datagram: the node's JSS face), each is
 // checked (jss::decode_judp_datagram), its host filtered by `allow`, its
 // standing decided as above, the endpoint of its source JssId learnt in a

@@ -4,7 +4,7 @@
 // queries are answered to anyone. It is also the subsystem's voice to other
 // subsystems: Report Heartbeat Pulse to (255, 255, 1, 1) at the heartbeat
 // rate, which is how their node managers learn of this subsystem
-// (jaus-wire-notes.md, "Liveness and discovery").
+// (docs/wire-format.md, "Liveness and discovery").
 #pragma once
 
 #include <map>

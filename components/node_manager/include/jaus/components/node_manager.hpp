@@ -1,5 +1,5 @@
 // The node manager (component 1, instance 1): the node's face to discovery
-// (RA 3.2/3.3 dynamic configuration, jaus-wire-notes.md). It sends Report
+// (RA 3.2/3.3 dynamic configuration, docs/wire-format.md). It sends Report
 // Heartbeat Pulse at a configured rate to (subsystem, 255, 1, 1) and
 // (subsystem, node, 255, 255), and to (255, 255, 1, 1) when the node hosts no
 // communicator (which otherwise announces the subsystem to other subsystems),

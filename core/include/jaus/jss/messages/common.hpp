@@ -1,7 +1,7 @@
 // Shared vocabulary of the JSS message descriptions (namespace jaus::jss::msg).
-// JSS scaled integers are all unsigned (jss-notes.md 0.3): wire::Scaled with
+// JSS scaled integers are all unsigned (docs/jss.md, "Scaled values"): wire::Scaled with
 // an unsigned type gives exactly their encoding (step (hi - lo) / (2^n - 1),
-// bias lo, rounded; checked against the notes' examples in
+// bias lo, rounded; checked against that page's examples in
 // tests/jss/codec). Where a JSS body is byte for byte an RA body (empty
 // bodies, authority, emergency code, time, a query's presence vector), the RA
 // body is reused: its codec is already compiled in jaus_core.

@@ -1,5 +1,5 @@
-// JSS core services v1.1 (jss-notes.md 3.3-3.5, 3.7): Access Control,
-// Management, Liveness, Time.
+// JSS core services v1.1 (docs/jss.md, "Core services"): Access Control,
+// Management, Liveness, Time (whose messages are RA's bytes).
 #pragma once
 
 #include "jaus/jss/messages/common.hpp"

@@ -1,4 +1,4 @@
-// JSS Discovery v1.1 (jss-notes.md 3.6): services are URIs with versions,
+// JSS Discovery v1.1 (docs/jss.md, "Discovery"): services are URIs with versions,
 // not RA message codes; subsystem IDs are u16; components carry an instance
 // byte only for legacy RA components (0 otherwise).
 #pragma once
@@ -40,7 +40,7 @@ struct ReportIdentificationBody {
   }
 };
 
-// A service: URI and version (jss-notes.md 5).
+// A service: URI and version (docs/jss.md, "What is supported").
 struct ServiceRecord {
   std::string uri;  // "urn:jaus:jss:mobility:PrimitiveDriver"
   std::uint8_t major_version = 1;

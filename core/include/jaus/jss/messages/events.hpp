@@ -1,4 +1,4 @@
-// JSS Events v1.1 (jss-notes.md 3.2). Unlike RA 3.3 events, the query inside
+// JSS Events v1.1 (docs/jss.md, "Events"). Unlike RA 3.3 events, the query inside
 // Create/Update Event and the report inside Event are complete JSS messages,
 // ID included, after a u32 byte count (codec::Embedded): decode them with
 // jss::decode_contents<M>.

@@ -1,4 +1,4 @@
-// JSS mobility v1.0 (jss-notes.md 4.1-4.4): Primitive Driver, Velocity State
+// JSS mobility v1.0 (docs/jss.md, "Mobility services"): Primitive Driver, Velocity State
 // Sensor, Local and Global Pose Sensor. Same presence vectors and field order
 // as RA, but every scaled field is unsigned (RA's signed ones rescale) and
 // some ranges differ; member names are the RA bodies'.

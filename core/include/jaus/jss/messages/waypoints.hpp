@@ -1,4 +1,4 @@
-// JSS mobility v1.0 (jss-notes.md 4.5, 4.6): Local Waypoint Driver, List
+// JSS mobility v1.0 (docs/jss.md, "Mobility services"): Local Waypoint Driver, List
 // Manager and Local Waypoint List Driver. RA has a numbered waypoint list and
 // no list manager: the face keeps the elements (jss_face/).
 #pragma once
