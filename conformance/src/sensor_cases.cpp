@@ -249,7 +249,8 @@ std::span<const ConformanceCase> sensor_cases() {
        "Part 3, Code 4403h Report Local Pose, Code 0008h Create Service Connection", LocalPose::not_applicable,
        LocalPose::query_matches_sc},
       {"sensor.velocity_state.presence_and", "Query Velocity State gets the requested AND available fields",
-       "Part 3, Code 2404h Query Velocity State, Code 4404h Report Velocity State; docs/wire-format.md: Presence vectors",
+       "Part 3, Code 2404h Query Velocity State, Code 4404h Report Velocity State; "
+       "docs/wire-format.md: Presence vectors",
        VelocityState::not_applicable, VelocityState::presence_and},
       {"sensor.velocity_state.time_advances", "Report Velocity State time stamps advance",
        "Part 3, Code 4404h Report Velocity State (Time Stamp)", VelocityState::not_applicable,

@@ -22,7 +22,7 @@ using jaus::jss::JssId;
 
 constexpr std::uint16_t kFirstQueryId = 0x2000;  // below: commands
 // A JSS node's NAK gives no reason.
-constexpr std::string_view kNakMeans = "refused (NAK)";
+constexpr std::string_view kJssNakMeans = "refused (NAK)";
 
 // The JSON of received contents, as `jausctl msg decode --dialect jss` prints them, with who sent them.
 jaus::Expected<Json> received_json(const JssReceived& message) {
@@ -90,7 +90,7 @@ int run_jss_send(JssSession& session, const JssId& target, const std::vector<std
         id == jss_msg::SetEmergency::code ? jaus::jss::JudpPriority::safety_critical : jaus::jss::JudpPriority::normal;
     const auto arrival = session.send_contents_must_arrive(target, message, priority);
     if (arrival.outcome != Arrival::acknowledged)
-      return fail(io, "send", not_arrived_text(message_name(message), target, arrival, kNakMeans));
+      return fail(io, "send", not_arrived_text(message_name(message), target, arrival, kJssNakMeans));
   } else {
     session.send_contents(target, message);
   }
@@ -120,7 +120,7 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
     return kExitOk;
   }
   if (arrival.outcome != Arrival::acknowledged) {
-    std::string why = not_arrived_text(what, target, arrival, kNakMeans);
+    std::string why = not_arrived_text(what, target, arrival, kJssNakMeans);
     if (set && arrival.outcome != Arrival::interrupted)
       why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
     return fail(io, "emergency", why);

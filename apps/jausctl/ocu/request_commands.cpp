@@ -22,7 +22,7 @@ namespace jausctl::ocu {
 namespace {
 
 // An RA node NAKs a message that no component of it took.
-constexpr std::string_view kNakMeans = "refused by its node (NAK): no component there took it";
+constexpr std::string_view kRaNakMeans = "refused by its node (NAK): no component there took it";
 
 // The status report of `target`, decoded.
 jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& session,
@@ -143,7 +143,8 @@ int run_send(OcuSession& session, const jaus::Address& target, const PreparedMes
   const auto start = session.clock().now();
   if (must_arrive(message, session.options().dialect) && !target.is_broadcast()) {
     const auto arrival = send_must_arrive(session, target, header, message.payload);
-    if (arrival.outcome != Arrival::acknowledged) return fail(io, "send", not_arrived_text(name, target, arrival, kNakMeans));
+    if (arrival.outcome != Arrival::acknowledged)
+      return fail(io, "send", not_arrived_text(name, target, arrival, kRaNakMeans));
   } else {
     session.send_raw(header, message.payload);
   }
@@ -193,13 +194,13 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   const bool status_must_tell =
       arrival.outcome == Arrival::unacknowledged && session.options().dialect == jaus::wire::Dialect::openjaus;
   if (arrival.outcome != Arrival::acknowledged && !status_must_tell) {
-    std::string why = not_arrived_text(what, target, arrival, kNakMeans);
+    std::string why = not_arrived_text(what, target, arrival, kRaNakMeans);
     if (set && arrival.outcome != Arrival::interrupted)
       why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
     return fail(io, "emergency", why);
   }
   if (status_must_tell)
-    io.err << "jausctl emergency: " << not_arrived_text(what, target, arrival, kNakMeans)
+    io.err << "jausctl emergency: " << not_arrived_text(what, target, arrival, kRaNakMeans)
            << " (the peer may ignore ACK requests): its status tells\n";
   // Acknowledged, so acted on; the status shows the state it left.
   auto report = query_status(session, target, timeout);
