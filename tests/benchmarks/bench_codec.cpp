@@ -10,29 +10,9 @@
 #include <cstdlib>
 #include <new>
 
+#include "allocation_count.hpp"
 #include "codec_reference.hpp"
 #include "jaus/messages/all.hpp"
-
-namespace {
-
-// Counts heap allocations made while a benchmark runs.
-std::size_t g_allocations = 0;
-
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// These replace the global allocation functions as a pair, so free() matches
-// the malloc() above; GCC cannot see that and warns.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpragmas"
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace {
 
@@ -48,7 +28,7 @@ void encode_decode(benchmark::State& state, const M& message) {
   header.destination = {1, 1, 33, 1};
   header.source = {2, 1, 40, 1};
   M decoded{};
-  const std::size_t allocations_before = g_allocations;
+  const std::size_t allocations_before = bench::g_allocations;
   for (auto _ : state) {
     benchmark::DoNotOptimize(message);
     auto size = wire::encode_message(header, message, buffer);
@@ -58,8 +38,7 @@ void encode_decode(benchmark::State& state, const M& message) {
     benchmark::DoNotOptimize(decoded);
     benchmark::ClobberMemory();
   }
-  state.counters["allocs_per_msg"] = benchmark::Counter(
-      static_cast<double>(g_allocations - allocations_before) / static_cast<double>(state.iterations()));
+  bench::count_allocations_per_item(state, allocations_before);
   if (!(decoded == message)) {
     // Values are quantised, so exact equality is not expected; presence must match.
     if (wire::presence_of(decoded) != wire::presence_of(message)) state.SkipWithError("round trip lost fields");

@@ -27,40 +27,15 @@
 #include <thread>
 #include <vector>
 
+#include "allocation_count.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/jss/all.hpp"
 #include "jaus/jss/judp.hpp"
 
 namespace {
 
-// Counts heap allocations made while a benchmark runs.
-std::size_t g_allocations = 0;
-
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// These replace the global allocation functions as a pair, so free() matches
-// the malloc() above; GCC cannot see that and warns.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpragmas"
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
-
-namespace {
-
 using namespace jaus;
 using namespace std::chrono_literals;
-
-void count_allocations_per_item(benchmark::State& state, std::size_t allocations_before) {
-  state.counters["allocs_per_msg"] = benchmark::Counter(
-      static_cast<double>(g_allocations - allocations_before) / static_cast<double>(state.iterations()));
-}
 
 // ---- Contents encode + decode ------------------------------------------------
 
@@ -145,7 +120,7 @@ void encode_decode(benchmark::State& state, const M& values) {
     state.SkipWithError("decoded body differs from the encoded one");
     return;
   }
-  const std::size_t allocations_before = g_allocations;
+  const std::size_t allocations_before = bench::g_allocations;
   for (auto _ : state) {
     benchmark::DoNotOptimize(*message);
     const std::vector<std::uint8_t> contents = jss::encode_contents(*message);
@@ -153,7 +128,7 @@ void encode_decode(benchmark::State& state, const M& values) {
     benchmark::DoNotOptimize(decoded);
     benchmark::ClobberMemory();
   }
-  count_allocations_per_item(state, allocations_before);
+  bench::count_allocations_per_item(state, allocations_before);
 }
 
 void BM_JssSetWrenchEffort_EncodeDecode(benchmark::State& state) { encode_decode(state, full_wrench_effort()); }
@@ -264,7 +239,7 @@ void BM_JssQueryWrenchEffort_ThroughNode(benchmark::State& state) {
 
   const auto& face = *node.jss_face();
   const std::uint64_t replies_before = face.counters().messages_to_jss;
-  const std::size_t allocations_before = g_allocations;
+  const std::size_t allocations_before = bench::g_allocations;
   std::size_t received = 0;
   for (auto _ : state) {
     number(datagram, sequence++);
@@ -275,7 +250,7 @@ void BM_JssQueryWrenchEffort_ThroughNode(benchmark::State& state) {
   }
   io.poll();
   state.SetItemsProcessed(state.iterations());
-  count_allocations_per_item(state, allocations_before);
+  bench::count_allocations_per_item(state, allocations_before);
   // Should be 1: each query answered (fewer: the node dropped some, and the
   // figure above is not the whole path's).
   state.counters["replies_per_msg"] =
