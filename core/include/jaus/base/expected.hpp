@@ -55,7 +55,10 @@ class Expected {
 template <class E>
 class Expected<void, E> {
  public:
-  Expected() = default;
+  // User-provided, not `= default`: `return {};` value-initialises, and with a
+  // defaulted constructor that first zero-fills the whole object, the unused
+  // error storage included (88 bytes, a `rep stos` on every success; issue 50).
+  Expected() noexcept {}  // NOLINT(modernize-use-equals-default): see above
   Expected(Unexpected<E> u) : error_(std::in_place, std::move(u.error)) {}  // NOLINT: implicit by design
 
   bool has_value() const { return !error_.has_value(); }
