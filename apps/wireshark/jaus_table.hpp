@@ -133,11 +133,12 @@ std::string count_lua(const Count& count) {
 }  // namespace detail
 
 template <class Body>
-std::string body_lua();
+std::string body_lua(wire::Dialect dialect = wire::Dialect::ra);
 
-// One codec's parameters as Lua table entries (no braces, no name).
+// One codec's parameters as Lua table entries (no braces, no name), as
+// `dialect` puts it on the wire (a scaled field is unsigned in JSS).
 template <class Codec>
-std::string codec_lua(const Codec& codec) {
+std::string codec_lua(const Codec& codec, wire::Dialect dialect = wire::Dialect::ra) {
   using namespace detail;
   // Named values and bits first: they are integers on the wire too.
   if constexpr (requires { codec.enum_names(); }) {
@@ -159,6 +160,9 @@ std::string codec_lua(const Codec& codec) {
   } else if constexpr (IsReal<Codec>::value) {
     return "k=\"real\",s=" + std::to_string(sizeof(typename Codec::value_type));
   } else if constexpr (IsScaled<Codec>::value) {
+    if (dialect == wire::Dialect::jss)
+      return int_params<typename Codec::jss_wire_type>("scaled") + ",lo=" + lua_number(codec.jss_lo()) +
+             ",hi=" + lua_number(codec.jss_hi());
     return int_params<typename Codec::wire_type>("scaled") + ",lo=" + lua_number(codec.lower) +
            ",hi=" + lua_number(codec.upper) + (codec.quirk == wire::Quirk::openjaus_unsigned_bias ? ",quirk=true" : "");
   } else if constexpr (IsLinear<Codec>::value) {
@@ -192,9 +196,10 @@ std::string codec_lua(const Codec& codec) {
     return int_params<T>("dim") + ",dim=" + std::to_string(IsDimension<Codec>::index) +
            ",min=" + std::to_string(codec.min);
   } else if constexpr (IsArray<Codec>::value) {
-    return "k=\"array\",count=" + count_lua(codec.count) + ",elem={" + codec_lua(codec.elem) + "}";
+    return "k=\"array\",count=" + count_lua(codec.count) + ",elem={" + codec_lua(codec.elem, dialect) + "}";
   } else if constexpr (IsRecords<Codec>::value) {
-    return "k=\"records\",count=" + count_lua(codec.count) + ",body=" + body_lua<typename IsRecords<Codec>::record>();
+    return "k=\"records\",count=" + count_lua(codec.count) +
+           ",body=" + body_lua<typename IsRecords<Codec>::record>(dialect);
   } else {
     static_assert(kAlwaysFalse<Codec>,
                   "jaus_table.hpp: a codec kind the dissector does not know; add its case here and in "
@@ -205,7 +210,7 @@ std::string codec_lua(const Codec& codec) {
 
 // The body's fields in wire order: {{n="latitude_deg",bit=0,k="scaled",...}, ...}.
 template <class Body>
-std::string body_lua() {
+std::string body_lua(wire::Dialect dialect) {
   std::string out = "{";
   std::apply(
       [&](const auto&... f) {
@@ -216,9 +221,8 @@ std::string body_lua() {
            } else {
              out += "{n=" + lua_string(f.name);
              if (f.bit >= 0) out += ",bit=" + std::to_string(f.bit);
-             if (f.only_in)
-               out += std::string(",only=") + (*f.only_in == wire::Dialect::openjaus ? "\"openjaus\"" : "\"ra\"");
-             out += "," + codec_lua(f.codec) + "},";
+             if (f.only_in) out += ",only=" + lua_string(wire::to_string(*f.only_in));
+             out += "," + codec_lua(f.codec, dialect) + "},";
            }
          }()),
          ...);
@@ -229,11 +233,11 @@ std::string body_lua() {
 
 // A message's entry of the dissector's table: [0x4402]={name="Report Global Pose",body={...}}.
 template <class M>
-std::string message_lua() {
+std::string message_lua(wire::Dialect dialect = wire::Dialect::ra) {
   char code[8];
   std::snprintf(code, sizeof code, "0x%04X", static_cast<unsigned>(M::code));
-  return std::string("[") + code + "]={name=" + lua_string(M::name) + ",body=" + body_lua<typename M::body_type>() +
-         "},\n";
+  return std::string("[") + code + "]={name=" + lua_string(M::name) +
+         ",body=" + body_lua<typename M::body_type>(dialect) + "},\n";
 }
 
 }  // namespace jaus::wireshark::jaus_table

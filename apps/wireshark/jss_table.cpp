@@ -11,7 +11,7 @@ namespace {
 
 template <class... Ms>
 void append_jss_messages(std::string& out, msg::TypeList<Ms...>) {
-  ((out += jaus_table::message_lua<Ms>()), ...);
+  ((out += jaus_table::message_lua<Ms>(wire::Dialect::jss)), ...);
 }
 
 }  // namespace

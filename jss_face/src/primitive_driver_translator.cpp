@@ -1,9 +1,8 @@
 // Primitive Driver 1.0 on the RA primitive driver (33), docs/jss.md "Primitive Driver":
 // Set Wrench Effort goes to the RA component as the client's alias, so the
 // RA rules decide (control, Ready, the command timeout, every stop path);
-// the six propulsive efforts are rescaled (JSS unsigned, RA signed) with
-// JSS's near-zero made exactly 0, the resistive ones and the presence vector
-// copied. Query / Report Wrench Effort are the RA component's.
+// the body is RA's, decoded in the JSS dialect (unsigned), and the six
+// propulsive efforts get JSS's near-zero made exactly 0. Query / Report Wrench Effort are the RA component's.
 #include "mobility_translators.hpp"
 #include "mobility_translators_report.hpp"
 #include "scaling.hpp"
@@ -40,8 +39,7 @@ class PrimitiveDriverTranslator final
 }  // namespace
 
 msg::SetWrenchEffort wrench_effort_to_ra(const jss::msg::SetWrenchEffort& jss) {
-  msg::SetWrenchEffort ra{};
-  mobility::copy_fields(jss, ra);
+  msg::SetWrenchEffort ra = jss;  // one body, decoded in the JSS dialect
   for (auto* effort : {&ra.propulsive_linear_effort_x_percent, &ra.propulsive_linear_effort_y_percent,
                        &ra.propulsive_linear_effort_z_percent, &ra.propulsive_rotational_effort_x_percent,
                        &ra.propulsive_rotational_effort_y_percent, &ra.propulsive_rotational_effort_z_percent})

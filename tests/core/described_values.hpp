@@ -43,8 +43,8 @@ void random_value(const wire::Real<T>&, T& v, Rng& rng, wire::CodecContext&) {
   v = static_cast<T>(uniform(rng, -1e6, 1e6));
 }
 template <class T>
-void random_value(const wire::Scaled<T>& c, double& v, Rng& rng, wire::CodecContext&) {
-  v = uniform(rng, c.lower, c.upper);
+void random_value(const wire::Scaled<T>& c, double& v, Rng& rng, wire::CodecContext& ctx) {
+  v = ctx.dialect == wire::Dialect::jss ? uniform(rng, c.jss_lo(), c.jss_hi()) : uniform(rng, c.lower, c.upper);
 }
 template <class T>
 void random_value(const wire::Linear<T>& c, double& v, Rng& rng, wire::CodecContext&) {
@@ -144,40 +144,48 @@ struct StepTolerance {
   double saved;
 };
 
+// `dialect`: whose steps (a scaled field's JSS step is its own).
 template <class Codec, class V>
-void expect_close(const Codec&, const V& a, const V& b, const std::string& where) {
+void expect_close(const Codec&, const V& a, const V& b, const std::string& where, wire::Dialect) {
   EXPECT_EQ(a, b) << where;
 }
 template <class T>
-void expect_close(const wire::Scaled<T>& c, const double& a, const double& b, const std::string& where) {
+void expect_close(const wire::Scaled<T>& c, const double& a, const double& b, const std::string& where,
+                  wire::Dialect dialect) {
   // The openjaus quirk uses the unsigned step, never larger than the signed one.
+  const double step = dialect == wire::Dialect::jss ? c.jss_step() : c.step();
+  EXPECT_NEAR(a, b, step * step_tolerance() * 1.001) << where;
+}
+template <class T>
+void expect_close(const wire::Linear<T>& c, const double& a, const double& b, const std::string& where,
+                  wire::Dialect) {
   EXPECT_NEAR(a, b, c.step() * step_tolerance() * 1.001) << where;
 }
 template <class T>
-void expect_close(const wire::Linear<T>& c, const double& a, const double& b, const std::string& where) {
-  EXPECT_NEAR(a, b, c.step() * step_tolerance() * 1.001) << where;
-}
-template <class T>
-void expect_close(const wire::Real<T>&, const T& a, const T& b, const std::string& where) {
+void expect_close(const wire::Real<T>&, const T& a, const T& b, const std::string& where, wire::Dialect) {
   EXPECT_EQ(a, b) << where;
 }
 template <class Body>
-void expect_close_body(const Body& a, const Body& b, const std::string& where);
+void expect_close_body(const Body& a, const Body& b, const std::string& where,
+                       wire::Dialect dialect = wire::Dialect::ra);
 template <class Count, class Elem>
 void expect_close(const wire::Array<Count, Elem>& c, const typename wire::Array<Count, Elem>::value_type& a,
-                  const typename wire::Array<Count, Elem>::value_type& b, const std::string& where) {
+                  const typename wire::Array<Count, Elem>::value_type& b, const std::string& where,
+                  wire::Dialect dialect) {
   ASSERT_EQ(a.size(), b.size()) << where;
-  for (std::size_t i = 0; i < a.size(); ++i) expect_close(c.elem, a[i], b[i], where + "[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < a.size(); ++i)
+    expect_close(c.elem, a[i], b[i], where + "[" + std::to_string(i) + "]", dialect);
 }
 template <class Count, class Record>
 void expect_close(const wire::Records<Count, Record>&, const std::vector<Record>& a, const std::vector<Record>& b,
-                  const std::string& where) {
+                  const std::string& where, wire::Dialect dialect) {
   ASSERT_EQ(a.size(), b.size()) << where;
-  for (std::size_t i = 0; i < a.size(); ++i) expect_close_body(a[i], b[i], where + "[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < a.size(); ++i)
+    expect_close_body(a[i], b[i], where + "[" + std::to_string(i) + "]", dialect);
 }
 
 template <class Body>
-void expect_close_body(const Body& a, const Body& b, const std::string& where) {
+void expect_close_body(const Body& a, const Body& b, const std::string& where, wire::Dialect dialect) {
   std::apply(
       [&](const auto&... f) {
         (([&] {
@@ -188,9 +196,9 @@ void expect_close_body(const Body& a, const Body& b, const std::string& where) {
                const auto& x = a.*f.member;
                const auto& y = b.*f.member;
                ASSERT_EQ(x.has_value(), y.has_value()) << name;
-               if (x) expect_close(f.codec, *x, *y, name);
+               if (x) expect_close(f.codec, *x, *y, name, dialect);
              } else {
-               expect_close(f.codec, a.*f.member, b.*f.member, name);
+               expect_close(f.codec, a.*f.member, b.*f.member, name, dialect);
              }
            }
          }()),

@@ -281,9 +281,10 @@ template Expected<void> embedded_message_from_json<Json>(const Json&, std::vecto
 std::string messages_markdown() {
   std::string out = R"(# Supported JSS messages
 
-Generated from the JSS message descriptions (`core/include/jaus/jss/messages/`)
-by `jausctl msg doc --dialect jss` (or `jss_messages_doc`, built with the
-tests); a test fails when this file and the descriptions disagree. Regenerate
+Generated from the JSS message descriptions (`core/include/jaus/jss/messages/`,
+and the RA bodies JSS shares, read in the JSS dialect: docs/jss.md, "Scaled
+values") by `jausctl msg doc --dialect jss` (or `jss_messages_doc`, built with
+the tests); a test fails when this file and the descriptions disagree. Regenerate
 with `jausctl msg doc --dialect jss > docs/jss-messages.md`.
 The face that speaks them is described in docs/jss.md.
 

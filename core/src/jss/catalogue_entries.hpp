@@ -22,7 +22,7 @@ using Json = nlohmann::ordered_json;
 template <class Body>
 Expected<Json> body_to_json(std::span<const std::uint8_t> body) {
   Body message{};
-  if (auto decoded = wire::decode_payload_into(body, message, wire::Dialect::ra, kMessageIdSize); !decoded)
+  if (auto decoded = wire::decode_payload_into(body, message, wire::Dialect::jss, kMessageIdSize); !decoded)
     return unexpected(decoded.error());
   return wire::fields_to_json<Json>(message);
 }
@@ -33,7 +33,7 @@ Expected<Bytes> body_from_json(const Json& fields) {
   if (auto filled = wire::fields_from_json<Json>(fields, message); !filled) return unexpected(filled.error());
   Bytes out(4096);
   for (;;) {
-    auto size = wire::encode_payload(message, out);
+    auto size = wire::encode_payload(message, out, wire::Dialect::jss);
     if (size) {
       out.resize(*size);
       return out;
@@ -66,7 +66,7 @@ MessageInfo entry_of() {
   info.type_name = TypeName<M>::view();
   info.body_to_json = &body_to_json<Body>;
   info.body_from_json = &body_from_json<Body>;
-  info.fields_doc = [] { return wire::fields_doc<Body>(); };
+  info.fields_doc = [] { return wire::fields_doc<Body>(wire::Dialect::jss); };
   return info;
 }
 

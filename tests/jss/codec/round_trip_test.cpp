@@ -20,7 +20,7 @@ void check_message() {
   Rng rng(0x055'0000u + M::code);
   for (int i = 0; i < 25; ++i) {
     M original{};
-    wire::CodecContext ctx{wire::Dialect::ra, {}};
+    wire::CodecContext ctx{wire::Dialect::jss, {}};
     randomize(static_cast<Body&>(original), rng, ctx, /*all_present=*/i == 0);
     const std::string where = name + " #" + std::to_string(i);
 
@@ -31,7 +31,7 @@ void check_message() {
 
     auto decoded = jss::decode_contents<M>(*contents);
     ASSERT_TRUE(decoded) << where << ": " << decoded.error().message();
-    expect_close_body<Body>(original, *decoded, where);
+    expect_close_body<Body>(original, *decoded, where, wire::Dialect::jss);
 
     // Once quantised, a value re-encodes to the same bytes.
     EXPECT_EQ(jss::encode_contents(*decoded), *contents) << where;

@@ -3,7 +3,8 @@
 // jaus/messages/compiled_codecs.hpp does for the RA bodies: the face, the OCU
 // and the tests call the library's code instead of compiling it again. The
 // bodies JSS shares with RA (empty, authority, emergency, time, presence
-// queries, query identification/configuration) are RA's, compiled in jaus_core.
+// queries, query identification/configuration, wrench effort, poses, velocity
+// state, travel speed) are RA's, compiled in jaus_core.
 #pragma once
 
 #include <cstddef>
@@ -27,9 +28,8 @@
   X(jss::msg::ReportSubsystemListBody) X(jss::msg::QueryServicesBody) X(jss::msg::ReportServicesBody)         \
   X(jss::msg::QueryServiceListBody) X(jss::msg::ReportServiceListBody)
 #define JAUS_JSS_MOBILITY_BODIES(X)                                                                            \
-  X(jss::msg::WrenchEffortBody) X(jss::msg::VelocityStateBody) X(jss::msg::LocalPoseBody)                     \
-  X(jss::msg::GlobalPoseBody) X(jss::msg::GeomagneticPropertyBody) X(jss::msg::LocalWaypointBody)             \
-  X(jss::msg::TravelSpeedBody) X(jss::msg::ElementRecord) X(jss::msg::SetElementBody)                         \
+  X(jss::msg::GeomagneticPropertyBody) X(jss::msg::LocalWaypointBody) X(jss::msg::ElementRecord)             \
+  X(jss::msg::SetElementBody)                                                                                 \
   X(jss::msg::DeleteElementBody) X(jss::msg::ElementRequestBody) X(jss::msg::RejectElementRequestBody)        \
   X(jss::msg::ElementUidBody) X(jss::msg::ElementListBody) X(jss::msg::ElementCountBody)                      \
   X(jss::msg::ExecuteListBody)

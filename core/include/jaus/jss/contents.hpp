@@ -30,7 +30,8 @@ Expected<std::vector<std::uint8_t>> try_encode_contents(const M& message) {
     out.resize(capacity);
     out[0] = static_cast<std::uint8_t>(M::code & 0xFF);
     out[1] = static_cast<std::uint8_t>(M::code >> 8);
-    auto size = wire::encode_payload<typename M::body_type>(message, std::span(out).subspan(kMessageIdSize));
+    auto size = wire::encode_payload<typename M::body_type>(message, std::span(out).subspan(kMessageIdSize),
+                                                            wire::Dialect::jss);
     if (size) {
       out.resize(kMessageIdSize + *size);
       return out;
@@ -59,7 +60,7 @@ std::vector<std::uint8_t> encode_contents(const M& message) {
 template <class M>
 Expected<M> decode_body(std::span<const std::uint8_t> body) {
   M out{};
-  if (auto decoded = wire::decode_payload_into<typename M::body_type>(body, out, wire::Dialect::ra, kMessageIdSize);
+  if (auto decoded = wire::decode_payload_into<typename M::body_type>(body, out, wire::Dialect::jss, kMessageIdSize);
       !decoded)
     return unexpected(decoded.error());
   return out;

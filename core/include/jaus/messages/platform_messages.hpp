@@ -111,8 +111,9 @@ struct TravelSpeedBody {
   double speed_mps = 0;
   bool operator==(const TravelSpeedBody&) const = default;
   static constexpr auto describe() {
-    return std::make_tuple(
-        wire::field("speed_mps", &TravelSpeedBody::speed_mps, wire::Scaled<std::uint16_t>{0, 10'000}));
+    // JSS (Local Waypoint Driver): 0..327.67 m/s.
+    return std::make_tuple(wire::field("speed_mps", &TravelSpeedBody::speed_mps,
+                                       wire::Scaled<std::uint16_t>{0, 10'000}.jss(0, 327.67)));
   }
 };
 
@@ -345,8 +346,10 @@ struct LocalPoseBody {
   bool operator==(const LocalPoseBody&) const = default;
   static constexpr auto describe() {
     using B = LocalPoseBody;
+    // JSS: z over x and y's range, not an elevation's.
+    constexpr auto z = kElevation.jss(-100'000, 100'000);
     return std::make_tuple(wire::presence_vector<std::uint16_t>(), wire::optional(0, "x_m", &B::x_m, kLocalXY),
-                           wire::optional(1, "y_m", &B::y_m, kLocalXY), wire::optional(2, "z_m", &B::z_m, kElevation),
+                           wire::optional(1, "y_m", &B::y_m, kLocalXY), wire::optional(2, "z_m", &B::z_m, z),
                            wire::optional(3, "position_rms_m", &B::position_rms_m, kPositionRms),
                            wire::optional(4, "roll_rad", &B::roll_rad, kAngleShort),
                            wire::optional(5, "pitch_rad", &B::pitch_rad, kAngleShort),
@@ -369,8 +372,9 @@ struct VelocityStateBody {
   bool operator==(const VelocityStateBody&) const = default;
   static constexpr auto describe() {
     using B = VelocityStateBody;
-    constexpr wire::Scaled<std::int32_t> velocity{-65.534, 65.534};
-    constexpr wire::Scaled<std::int16_t> rate{-32.767, 32.767};
+    // JSS has its own ranges: +-327.68 m/s and +-32.768 rad/s, unsigned.
+    constexpr auto velocity = wire::Scaled<std::int32_t>{-65.534, 65.534}.jss(-327.68, 327.67);
+    constexpr auto rate = wire::Scaled<std::int16_t>{-32.767, 32.767}.jss(-32.768, 32.767);
     return std::make_tuple(wire::presence_vector<std::uint16_t>(),
                            wire::optional(0, "velocity_x_mps", &B::velocity_x_mps, velocity),
                            wire::optional(1, "velocity_y_mps", &B::velocity_y_mps, velocity),

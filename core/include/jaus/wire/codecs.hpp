@@ -45,8 +45,20 @@ namespace jaus::wire {
 // Which peer's reading of the wire to use. `ra` is what Part 3 specifies and
 // what we send; `openjaus` reproduces the quirks of the common open RA 3.3
 // implementation (docs/wire-format.md, "Interoperability") so that its messages
-// decode to the values it meant.
-enum class Dialect : std::uint8_t { ra, openjaus };
+// decode to the values it meant; `jss` is SAE JAUS (docs/jss.md, "Scaled
+// values"): a body JSS shares with RA is described once, and its JSS reading
+// differs only where the description says so (every scaled integer unsigned,
+// some ranges its own).
+enum class Dialect : std::uint8_t { ra, openjaus, jss };
+
+constexpr std::string_view to_string(Dialect dialect) {
+  switch (dialect) {
+    case Dialect::ra: return "ra";
+    case Dialect::openjaus: return "openjaus";
+    case Dialect::jss: return "jss";
+  }
+  return "?";
+}
 
 // State shared by the fields of one message while it is encoded or decoded.
 // The dialect is a run-time value: the quirks it selects are a few branches,
@@ -167,15 +179,37 @@ struct Scaled {
   using value_type = double;
   using wire_type = T;
   static constexpr std::size_t fixed_size = sizeof(T);  // also as the quirk's unsigned
+  using jss_wire_type = std::make_unsigned_t<T>;
   double lower;
   double upper;
   Quirk quirk = Quirk::none;
-  std::string doc() const {
+  // The JSS limits when they are not RA's (equal: RA's); see jss().
+  double jss_lower = 0;
+  double jss_upper = 0;
+
+  // The field as JSS has it: unsigned over these limits (a JSS scaled integer
+  // is always unsigned, bias = lower limit). Without it, JSS reads the field
+  // as unsigned over the RA limits.
+  constexpr Scaled jss(double lo, double hi) const {
+    Scaled out = *this;
+    out.jss_lower = lo;
+    out.jss_upper = hi;
+    return out;
+  }
+  constexpr double jss_lo() const { return jss_lower != jss_upper ? jss_lower : lower; }
+  constexpr double jss_hi() const { return jss_lower != jss_upper ? jss_upper : upper; }
+  constexpr ScaledRange<jss_wire_type> jss_range() const { return ScaledRange<jss_wire_type>{jss_lo(), jss_hi()}; }
+
+  std::string doc(Dialect dialect = Dialect::ra) const {
+    if (dialect == Dialect::jss)
+      return detail::wire_name<jss_wire_type>() + " scaled [" + detail::number_text(jss_lo()) + ", " +
+             detail::number_text(jss_hi()) + "]";
     return detail::wire_name<T>() + " scaled [" + detail::number_text(lower) + ", " + detail::number_text(upper) + "]";
   }
 
   // Resolution of the encoding: values round-trip within one step.
   constexpr double step() const { return ScaledRange<T>{lower, upper}.scale(); }
+  constexpr double jss_step() const { return jss_range().scale(); }
 
   // The range as the dialect reads it: the openjaus dialect sends quirk fields
   // as unsigned with bias = lower limit, divides 32-bit unsigned ranges into
@@ -192,14 +226,21 @@ struct Scaled {
       return false;
     }
   }
+  // The RA walk's context has its dialect as a constant (describe.hpp,
+  // RaCodecContext): there the JSS and quirk branches fold away.
   JAUS_ALWAYS_INLINE void encode(const double& v, auto& w, auto& ctx) const {
-    if (uses_quirk(ctx))
+    if (ctx.dialect == Dialect::jss)
+      w.write(jss_range().encode(v));
+    else if (uses_quirk(ctx))
       w.write(range_for<std::make_unsigned_t<T>>(ctx).encode(v));
     else
       w.write(range_for<T>(ctx).encode(v));
   }
   JAUS_ALWAYS_INLINE void decode(auto& r, double& v, auto& ctx) const {
-    if (uses_quirk(ctx)) {
+    if (ctx.dialect == Dialect::jss) {
+      jss_wire_type raw{};
+      if (r.read(raw)) v = jss_range().decode(raw);
+    } else if (uses_quirk(ctx)) {
       std::make_unsigned_t<T> raw{};
       if (r.read(raw)) v = range_for<std::make_unsigned_t<T>>(ctx).decode(raw);
     } else {

@@ -185,12 +185,24 @@ std::string count_doc(const Count&) {
     return "count given earlier, ";
 }
 
+// A codec's words in `dialect`: a codec whose wire form differs by dialect
+// (wire::Scaled, and the lists that hold one) takes it, the others read alike.
+template <class Codec>
+std::string codec_doc(const Codec& codec, Dialect dialect) {
+  if constexpr (requires { codec.doc(dialect); })
+    return codec.doc(dialect);
+  else
+    return codec.doc();
+}
+
 template <class Count, class Elem>
 struct Array {
   using value_type = std::vector<typename Elem::value_type>;
   Count count;
   Elem elem;
-  std::string doc() const { return count_doc(count) + "each " + elem.doc(); }
+  std::string doc(Dialect dialect = Dialect::ra) const {
+    return count_doc(count) + "each " + codec_doc(elem, dialect);
+  }
 
   void encode(const value_type& v, ByteWriter& w, auto& ctx) const {
     if (!detail::encode_count(count, v.size(), w, ctx)) return;
@@ -225,13 +237,15 @@ struct Array {
 
 // A variable-length list of records, each described like a message body.
 template <class Body>
-std::string fields_doc(const std::string& indent = "");
+std::string fields_doc(Dialect dialect = Dialect::ra);
 
 template <class Count, class Record>
 struct Records {
   using value_type = std::vector<Record>;
   Count count;
-  std::string doc() const { return count_doc(count) + "records of: " + fields_doc<Record>(""); }
+  std::string doc(Dialect dialect = Dialect::ra) const {
+    return count_doc(count) + "records of: " + fields_doc<Record>(dialect);
+  }
 
   void encode(const value_type& v, ByteWriter& w, auto& ctx) const {
     if (!detail::encode_count(count, v.size(), w, ctx)) return;
@@ -468,9 +482,11 @@ void decode_fields(ByteReader& r, Body& body, auto& ctx) {
   }
 }
 
-// One line per message: "name: type; name (bit 0): type; ..." for docs/messages.md.
+// One line per message: "name: type; name (bit 0): type; ..." for
+// docs/messages.md (RA) and docs/jss-messages.md (JSS), each in its dialect's
+// wire types.
 template <class Body>
-std::string fields_doc(const std::string&) {
+std::string fields_doc(Dialect dialect) {
   std::string out;
   std::apply(
       [&](const auto&... f) {
@@ -483,7 +499,7 @@ std::string fields_doc(const std::string&) {
              out += "`" + std::string(f.name) + "`";
              if (f.bit >= 0) out += " (bit " + std::to_string(f.bit) + ")";
              if (f.only_in) out += " (openjaus dialect only)";
-             out += ": " + f.codec.doc();
+             out += ": " + codec_doc(f.codec, dialect);
            }
          }()),
          ...);

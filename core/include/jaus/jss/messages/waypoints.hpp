@@ -4,6 +4,7 @@
 #pragma once
 
 #include "jaus/jss/messages/common.hpp"
+#include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::jss::msg {
 
@@ -29,13 +30,8 @@ struct LocalWaypointBody {
   }
 };
 
-struct TravelSpeedBody {
-  double speed_mps = 0;  // 0..327.67 (RA: 0..10000)
-  bool operator==(const TravelSpeedBody&) const = default;
-  static constexpr auto describe() {
-    return std::make_tuple(wire::field("speed_mps", &TravelSpeedBody::speed_mps, kTravelSpeed));
-  }
-};
+// RA's, read in wire::Dialect::jss: 0..327.67 m/s (RA: 0..10000).
+using jaus::msg::TravelSpeedBody;
 
 // ---- List Manager ----------------------------------------------------------
 
