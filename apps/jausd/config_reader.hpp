@@ -131,7 +131,12 @@ inline std::string in(std::string_view where) { return where.empty() ? "" : " in
 
 // Reads a map in file order: every key must be one of `keys` and appear once.
 // A missing or empty (null) map reads as all defaults.
+// `keys` known only at run time (a platform kind's options): the same.
+inline void read_map(const YAML::Node& node, std::string_view where, int where_line, const std::vector<Key>& keys);
 inline void read_map(const YAML::Node& node, std::string_view where, int where_line, std::initializer_list<Key> keys) {
+  read_map(node, where, where_line, std::vector<Key>(keys));
+}
+inline void read_map(const YAML::Node& node, std::string_view where, int where_line, const std::vector<Key>& keys) {
   if (!node.IsDefined() || node.IsNull()) return;
   if (!node.IsMap()) {
     if (where.empty()) fail(line_of(node), "the configuration must be a map of keys, got " + describe(node));
