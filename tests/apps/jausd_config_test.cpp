@@ -986,6 +986,48 @@ TEST(JausdConfigErrors, PlatformAndClearpathValues) {
   expect_error("vehicle: {steering: ackermann}\nclearpath:\n  drive: velocity\n", 2,
                "'clearpath.drive' commands a differential platform: vehicle.steering must be differential on the "
                "simulated platform");
+  // The kinds and their options come from the host's list of platform kinds.
+  expect_error("platform: [serial]\n", 1,
+               "'platform' must be sim, model or a map of a platform's options (serial, baud, udp, tcp), got a list");
+  expect_error("platform: {ssh: robot}\n", 1, "unknown key 'ssh' in platform (known: serial, baud, udp, tcp)");
+  expect_error("platform:\n  serial: /dev/ttyS0\n  baud: 12\n", 3, "'baud' must be an integer 1200..4000000, got '12'");
+  expect_error("platform:\n  serial: [a]\n", 2, "'serial' must be a value, got a list");
+}
+
+// A platform kind jausd has never heard of (as a plugin brings one): named
+// alone as it is written, or by its options; its check's problem points at
+// the option's line, and `platform: model` takes no option of it.
+TEST(JausdConfig, APlatformKindOfOnesOwnIsReadByTheList) {
+  jaus::host::PlatformKind kind;
+  kind.name = "test_rig";
+  kind.written = "rig";
+  kind.options = {"wheels"};
+  kind.check = [](const jaus::host::PlatformSettings& settings,
+                  const jaus::host::SimulationSettings&) -> jaus::Expected<void> {
+    const auto it = settings.options.find("wheels");
+    if (it == settings.options.end() || (it->second >= "2" && it->second <= "8" && it->second.size() == 1)) return {};
+    jaus::Error e = jaus::make_error(jaus::ErrorCode::invalid_argument,
+                                     "'wheels' must be an integer 2..8, got '" + it->second + "'");
+    e.field = "wheels";
+    return jaus::unexpected(e);
+  };
+  kind.make = [](const jaus::host::PlatformSettings&, const jaus::host::SimulationSettings&,
+                 jaus::host::PlatformEnvironment) -> jaus::Expected<std::unique_ptr<jaus::host::Platform>> {
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, "not made here"));
+  };
+  ASSERT_TRUE(jaus::host::add_platform_kind(std::move(kind)));
+  struct Removed {
+    ~Removed() { jaus::host::remove_platform_kind("test_rig"); }
+  } removed;
+  EXPECT_EQ(expect_ok("platform: rig\n").platform.kind, "test_rig");
+  const auto six = expect_ok("platform: {wheels: 6}\n");
+  EXPECT_EQ(six.platform.kind, "test_rig");
+  EXPECT_EQ(six.platform.options.at("wheels"), "6");
+  EXPECT_EQ(jausd::host_config(six).platform.options.at("wheels"), "6");
+  expect_error("platform:\n  wheels: 1\n", 2, "'wheels' must be an integer 2..8, got '1'");
+  expect_error("platform:\n  wheels: 4\n  udp: 1.2.3.4:5\n", 3,
+               "'platform': 'udp' is an option of platform clearpath, not of test_rig");
+  expect_error("platform: hardware\n", 1, "'platform' must be one of sim, model, rig, got 'hardware'");
 }
 
 TEST(JausdConfig, CamerasAndManipulatorAreRead) {
