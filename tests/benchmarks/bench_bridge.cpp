@@ -98,10 +98,10 @@ int main(int argc, char** argv) {
   config.node.node = kNode.node;
   config.link.bind = *transport::parse_endpoint("127.0.0.96:3794");
   config.settings.defaults.controller_timeout = rt::Duration::zero();  // raw datagrams answer no liveness checks
-  cp::PlatformEndpoint endpoint;
-  endpoint.kind = cp::PlatformEndpoint::Kind::serial;
-  endpoint.device = server.pty_path();
-  config.platform = host::clearpath_platform_settings(endpoint);
+  cp::PlatformEndpoint pty;
+  pty.kind = cp::PlatformEndpoint::Kind::serial;
+  pty.device = server.pty_path();
+  config.platform = host::clearpath_platform_settings(pty);
   config.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0, {}},
                        host::ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}}};
   auto opened = host::NodeHost::open(config, io);
