@@ -168,6 +168,11 @@ TEST(PlatformPlugins, APluginPlatformIsConfiguredCheckedAndCarriesANode) {
   const auto bad = jausd::load_config_string(head + "platform:\n  plugin_wheels: 9\n" + components, "test.yaml", folder);
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message(), "test.yaml:3: 'plugin_wheels' must be an integer 2..8, got '9'");
+  // An exception from its check is an error naming the plugin and the kind, at the platform's line.
+  const auto thrown = jausd::load_config_string(head + "platform: {plugin_wheels: explode}\n" + components, "test.yaml", folder);
+  ASSERT_FALSE(thrown);
+  EXPECT_EQ(thrown.error().message(), "test.yaml:2: plugin 'test_rig_platform' (" + std::string(TEST_RIG_PLATFORM_PLUGIN) +
+                                          ") platform kind 'plugin_rig' checking its settings threw: wheels exploded");
   EXPECT_TRUE(jausd::load_config_string(head + "platform: plugin_rig\n" + components, "test.yaml", folder));
   const auto config = jausd::load_config_string(head + "platform: {plugin_wheels: 6}\n" + components, "test.yaml", folder);
   ASSERT_TRUE(config) << config.error().message();

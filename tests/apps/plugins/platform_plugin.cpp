@@ -1,9 +1,10 @@
 // A working platform plugin: platform kind `plugin_rig` (written
 // `plugin_rig`, option plugin_wheels 2..8) carries the components on their
 // own simulations, as `model` does, and says in the host's log when it is
-// made and when it stops.
+// made and when it stops. `plugin_wheels: explode` throws from its check.
 #include <charconv>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "jaus/host/model_platform.hpp"
@@ -32,6 +33,7 @@ jaus::Expected<int> wheels(const jaus::host::PlatformSettings& settings) {
   const auto it = settings.options.find("plugin_wheels");
   if (it == settings.options.end()) return 4;
   const std::string& text = it->second;
+  if (text == "explode") throw std::runtime_error("wheels exploded");  // the loader's guard turns it into an error
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc{} || end != text.data() + text.size() || value < 2 || value > 8) {
