@@ -22,7 +22,7 @@ list(TRANSFORM jaus_component_folders PREPEND components/ OUTPUT_VARIABLE jaus_c
 set(JAUS_EXPORTED_LIBRARIES
     jaus_base jaus_core jaus_jss_codec jaus_runtime ${jaus_component_libraries} jaus_jss_face
     jaus_transport jaus_clearpath jaus_clearpath_sim jaus_clearpath_asio jaus_bridge
-    jaus_host jaus_ocu jaus_conform)
+    jaus_model_platform jaus_clearpath_platform jaus_host jaus_ocu jaus_conform)
 
 # The folders whose include/ holds public headers (all under jaus/, no two alike).
 set(JAUS_PUBLIC_INCLUDE_DIRS core runtime jss_face transport host ocu conformance clearpath bridge ${jaus_component_include_dirs})

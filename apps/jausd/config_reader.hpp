@@ -130,8 +130,14 @@ struct Key {
 inline std::string in(std::string_view where) { return where.empty() ? "" : " in " + std::string(where); }
 
 // Reads a map in file order: every key must be one of `keys` and appear once.
-// A missing or empty (null) map reads as all defaults.
+// A missing or empty (null) map reads as all defaults. The keys are a list
+// known when the reader is written, or one made at run time (a vector: the
+// platform kinds' options).
+inline void read_map(const YAML::Node& node, std::string_view where, int where_line, const std::vector<Key>& keys);
 inline void read_map(const YAML::Node& node, std::string_view where, int where_line, std::initializer_list<Key> keys) {
+  read_map(node, where, where_line, std::vector<Key>(keys));
+}
+inline void read_map(const YAML::Node& node, std::string_view where, int where_line, const std::vector<Key>& keys) {
   if (!node.IsDefined() || node.IsNull()) return;
   if (!node.IsMap()) {
     if (where.empty()) fail(line_of(node), "the configuration must be a map of keys, got " + describe(node));

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-namespace jausd {
+#include "jaus/host/clearpath_platform.hpp"
 
-namespace {
+namespace jausd {
 
 // The platform and the bridge's mapping: the vehicle's figures from `vehicle:`,
 // the protocol's options from `clearpath:`.
@@ -12,9 +12,10 @@ jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
   namespace cp = jaus::clearpath;
   const auto& v = config.vehicle;
   const auto& o = config.clearpath;
-  jaus::host::PlatformSettings p;
-  p.kind = config.platform.kind;
-  p.endpoint = config.platform.endpoint;
+  jaus::host::PlatformSettings settings;
+  settings.kind = config.platform.kind;
+  settings.options = config.platform.options;
+  jaus::host::ClearpathSettings& p = settings.sections.set(jaus::host::ClearpathSettings{});
   const auto max_age = std::chrono::milliseconds(static_cast<long long>(o.setpoint_max_age_s * 1000));
   p.client.setpoint_max_age = max_age;
 
@@ -64,8 +65,10 @@ jaus::host::PlatformSettings platform_settings(const JausdConfig& config) {
     p.sim.vehicle.mounts = std::max<std::size_t>(p.sim.vehicle.mounts, m.mount + 1u);
   for (const auto& j : p.arm.joints)
     p.sim.vehicle.joints = std::max<std::size_t>(p.sim.vehicle.joints, j.clearpath_joint + 1u);
-  return p;
+  return settings;
 }
+
+namespace {
 
 using namespace jaus;
 

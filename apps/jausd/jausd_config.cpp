@@ -2,6 +2,7 @@
 
 #include "config_reader.hpp"
 #include "hardware_config.hpp"
+#include "host_config.hpp"
 #include "plugins_config.hpp"
 
 #include "jaus/base/quoted.hpp"
@@ -157,6 +158,22 @@ struct SourceLines {
 };
 
 int line_at(const std::vector<int>& lines, std::size_t i) { return i < lines.size() ? lines[i] : 0; }
+
+// Where a platform kind's problem is (jaus::host::PlatformKind::check): the
+// first of the places its field names that the file declared (an option of
+// `platform:`, or a section), else the `platform` key.
+int platform_problem_line(const JausdConfig& c, const SourceLines& lines, std::string_view field) {
+  const std::map<std::string_view, int> sections{{"platform", lines.platform},   {"clearpath", lines.clearpath},
+                                                 {"cameras", lines.cameras},     {"manipulator", lines.manipulator}};
+  while (!field.empty()) {
+    const std::string_view place = field.substr(0, field.find('|'));
+    field.remove_prefix(std::min(field.size(), place.size() + 1));
+    if (const auto it = c.platform.option_lines.find(std::string(place)); it != c.platform.option_lines.end())
+      return it->second;
+    if (const auto it = sections.find(place); it != sections.end() && it->second != 0) return it->second;
+  }
+  return lines.platform;
+}
 
 
 std::optional<Issue> check_number(std::string_view key, double v, const NumberRange& range) {
@@ -351,25 +368,12 @@ std::optional<Issue> check(const JausdConfig& c, const SourceLines& lines) {
   if (auto ok = jaus::components::check_cameras_config(c.cameras); !ok) return Issue{lines.cameras, ok.error().message()};
   if (auto ok = jaus::components::check_arm_config(c.manipulator); !ok)
     return Issue{lines.manipulator, ok.error().message()};
-  // The simulated Clearpath platform steers as the vehicle is configured, and
-  // refuses the other kind's commands: the two must agree.
-  const bool ackermann_drive = drive_mode(c.clearpath, c.vehicle.steering) == jaus::bridge::DriveMode::ackermann;
-  const bool ackermann_vehicle = c.vehicle.steering == jaus::components::Steering::ackermann;
-  if (c.platform.kind == jaus::host::PlatformSettings::Kind::clearpath_sim && ackermann_drive != ackermann_vehicle)
-    return Issue{lines.clearpath ? lines.clearpath : lines.platform,
-                 ackermann_drive ? "'clearpath.drive' ackermann needs vehicle.steering ackermann on the simulated platform"
-                                 : "'clearpath.drive' commands a differential platform: vehicle.steering must be "
-                                   "differential on the simulated platform"};
-  if (c.platform.kind != jaus::host::PlatformSettings::Kind::model) {
-    jaus::bridge::ClearpathCamerasConfig mounts;
-    mounts.mounts = camera_mounts(c.clearpath, c.cameras);
-    if (auto ok = jaus::bridge::check_clearpath_cameras_config(c.cameras.cameras, mounts); !mounts.mounts.empty() && !ok)
-      return Issue{lines.clearpath ? lines.clearpath : lines.cameras, ok.error().message()};
-    jaus::bridge::ClearpathArmConfig joints;
-    joints.joints = arm_joints(c.clearpath, c.manipulator);
-    if (auto ok = jaus::bridge::check_clearpath_arm_config(c.manipulator, joints); !joints.joints.empty() && !ok)
-      return Issue{lines.clearpath ? lines.clearpath : lines.manipulator, ok.error().message()};
-  }
+  // The platform's kind checks its options and how the `clearpath:` mapping,
+  // the vehicle, cameras and arm agree with it (no kind is named here).
+  if (auto ok = jaus::host::check_platform(platform_settings(c), jaus::host::SimulationSettings{c.vehicle, c.cameras,
+                                                                                                 c.manipulator});
+      !ok)
+    return Issue{platform_problem_line(c, lines, ok.error().field), ok.error().message()};
   if (c.clearpath.setpoint_max_age_s < 0.05 || c.clearpath.setpoint_max_age_s > 10)
     return Issue{lines.clearpath, "'setpoint_max_age_s' must be a number of seconds 0.05..10"};
   return check_components(c, lines);

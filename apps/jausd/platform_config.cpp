@@ -4,15 +4,15 @@
 #include <numbers>
 #include <string_view>
 
+#include "jaus/host/platform_kinds.hpp"
+
 namespace jausd {
 
 using namespace yaml_reader;
 using jaus::bridge::DeviceOutput;
-using Kind = jaus::host::PlatformSettings::Kind;
 
 namespace {
 
-constexpr std::array kPlatformNames{std::string_view("sim"), std::string_view("model")};
 constexpr std::array kDriveModes{std::string_view("differential_output"), std::string_view("differential_speeds"),
                                  std::string_view("velocity"), std::string_view("ackermann")};
 constexpr std::array kBrakeModes{std::string_view("scale"), std::string_view("ignore")};
@@ -22,12 +22,18 @@ const NumberRange kMaxAgeRange{0.05, true, 10, "a number of seconds 0.05..10"};
 const NumberRange kBatteryRange{1, true, 1000, "a number of volts 1..1000"};
 const NumberRange kEncoderStepRange{0.01, true, 1000, "a number of metres 0.01..1000"};
 
-// "HOST:PORT" for udp and tcp.
-void endpoint_host_port(const Entry& e, jaus::clearpath::PlatformEndpoint& endpoint, std::string_view scheme) {
-  const std::string& text = e.scalar("HOST:PORT");
-  auto parsed = jaus::clearpath::parse_platform_endpoint(std::string(scheme) + ":" + text);
-  if (!parsed) e.must_be("HOST:PORT");
-  endpoint = *parsed;
+// How `platform:` may name each kind alone, and every kind's option keys, in the list's order.
+std::vector<std::string_view> written_kinds() {
+  std::vector<std::string_view> names;
+  for (const auto& kind : jaus::host::platform_kinds())
+    if (!kind.written.empty()) names.push_back(kind.written);
+  return names;
+}
+
+std::vector<std::string_view> platform_options() {
+  std::vector<std::string_view> keys;
+  for (const auto& kind : jaus::host::platform_kinds()) keys.insert(keys.end(), kind.options.begin(), kind.options.end());
+  return keys;
 }
 
 // none | {safety_flag: BITS} | {gpio: PINS, active_high: BOOL}
@@ -126,44 +132,31 @@ std::vector<jaus::bridge::ClearpathJointMapping> arm_joints(const ClearpathOptio
 }
 
 void read_platform(const Entry& e, PlatformChoice& platform) {
+  platform.options.clear();
+  platform.option_lines.clear();
   if (e.value.IsScalar()) {
-    platform.kind = choice(e, kPlatformNames) == "sim" ? Kind::clearpath_sim : Kind::model;
+    platform.kind = std::string(jaus::host::platform_kind_written(choice(e, written_kinds()))->name);
     return;
   }
+  const auto keys = platform_options();
   if (!e.value.IsMap())
-    e.must_be("sim, model, {serial: DEVICE, baud: N}, {udp: HOST:PORT} or {tcp: HOST:PORT}");
-  platform.kind = Kind::clearpath;
-  int transports = 0;
-  bool baud_given = false;
-  read_map(e.value, "platform", e.key_line,
-           {{"serial",
-             [&](const Entry& s) {
-               ++transports;
-               platform.endpoint.kind = jaus::clearpath::PlatformEndpoint::Kind::serial;
-               platform.endpoint.device = s.scalar("a device path such as /dev/ttyUSB0");
-               if (platform.endpoint.device.empty()) s.must_be("a device path such as /dev/ttyUSB0");
-             }},
-            {"baud",
-             [&](const Entry& s) {
-               baud_given = true;
-               platform.endpoint.baud = integer<unsigned>(s, 1200, 4000000);
-             }},
-            {"udp",
-             [&](const Entry& s) {
-               ++transports;
-               const unsigned baud = platform.endpoint.baud;
-               endpoint_host_port(s, platform.endpoint, "udp");
-               platform.endpoint.baud = baud;
-             }},
-            {"tcp", [&](const Entry& s) {
-               ++transports;
-               const unsigned baud = platform.endpoint.baud;
-               endpoint_host_port(s, platform.endpoint, "tcp");
-               platform.endpoint.baud = baud;
-             }}});
-  if (transports != 1) fail(e.key_line, "'platform' needs exactly one of serial, udp or tcp");
-  if (baud_given && platform.endpoint.kind != jaus::clearpath::PlatformEndpoint::Kind::serial)
-    fail(e.key_line, "'platform': baud applies to a serial port only");
+    e.must_be(join(written_kinds()) + " or a map of a platform's options (" + join(keys) + ")");
+  // The first option names the kind; the kind checks them all (validate()).
+  const jaus::host::PlatformKind* kind = nullptr;
+  std::vector<Key> readers;
+  for (const auto key : keys)
+    readers.push_back({key, [&](const Entry& o) {
+                         const jaus::host::PlatformKind* owner = jaus::host::platform_kind_with_option(o.key);
+                         if (kind == nullptr) kind = owner;
+                         if (owner != kind)
+                           fail(o.key_line, "'platform': '" + o.key + "' is an option of platform " +
+                                                std::string(owner->name) + ", not of " + std::string(kind->name));
+                         platform.options[o.key] = o.is_null() ? std::string() : o.scalar("a value");
+                         platform.option_lines[o.key] = o.value_line();
+                       }});
+  read_map(e.value, "platform", e.key_line, readers);
+  if (kind == nullptr) e.must_be("a map of a platform's options (" + join(keys) + ")");
+  platform.kind = std::string(kind->name);
 }
 
 void read_clearpath(const Entry& section, ClearpathOptions& o) {

@@ -6,22 +6,30 @@
 // host. docs/configuration.md and docs/bridge.md are the reference.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "config_reader.hpp"
+#include "jaus/bridge/clearpath_arm.hpp"
+#include "jaus/bridge/clearpath_cameras.hpp"
+#include "jaus/bridge/clearpath_vehicle.hpp"
 #include "jaus/components/arm_config.hpp"
 #include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
-#include "jaus/host/platform_settings.hpp"
 
 namespace jausd {
 
-// platform: sim | model | {serial: DEVICE, baud: N} | {udp: HOST:PORT} | {tcp: HOST:PORT}
+// platform: NAME | {OPTION: VALUE, ...}: a platform kind of the host
+// (jaus/host/platform_kinds.hpp), named alone as it is written (sim, model)
+// or by the options it takes (serial and baud, udp or tcp: a Clearpath
+// platform at that endpoint). The reader knows no kind: it asks the list;
+// the kind checks its options (validate()).
 struct PlatformChoice {
-  jaus::host::PlatformSettings::Kind kind = jaus::host::PlatformSettings::Kind::clearpath_sim;
-  jaus::clearpath::PlatformEndpoint endpoint;
+  std::string kind = "clearpath_sim";  // a kind's name (not as written)
+  std::map<std::string, std::string> options;
+  std::map<std::string, int> option_lines;  // where each option's value is
 };
 
 // clearpath: the mapping options (the rest of ClearpathVehicleConfig comes from `vehicle:`).

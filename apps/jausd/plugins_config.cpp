@@ -19,8 +19,8 @@ std::vector<jaus::host::LoadedPlugin> load_plugins(const Entry& plugins,
   std::map<std::filesystem::path, int> listed;  // canonical path -> line
   for (const auto& node : entries) {
     const Entry entry{"plugins", line_of(node), node};
-    const std::string& text = entry.scalar("a path to a component plugin (.so)");
-    if (text.empty()) entry.must_be("a path to a component plugin (.so)");
+    const std::string& text = entry.scalar("a path to a plugin (.so)");
+    if (text.empty()) entry.must_be("a path to a plugin (.so)");
     std::filesystem::path path(text);
     if (path.is_relative()) path = (*folder / path).lexically_normal();
     std::error_code ec;
@@ -36,9 +36,13 @@ std::vector<jaus::host::LoadedPlugin> load_plugins(const Entry& plugins,
 
 std::vector<std::string> plugin_summaries(const JausdConfig& config) {
   std::vector<std::string> lines;
-  for (const auto& plugin : config.plugins)
-    lines.push_back("plugin '" + plugin.name + "' (" + plugin.path.string() + "): component kinds " +
-                    join(plugin.kinds));
+  for (const auto& plugin : config.plugins) {
+    std::string line = "plugin '" + plugin.name + "' (" + plugin.path.string() + "): ";
+    if (!plugin.kinds.empty()) line += "component kinds " + join(plugin.kinds);
+    if (!plugin.kinds.empty() && !plugin.platform_kinds.empty()) line += "; ";
+    if (!plugin.platform_kinds.empty()) line += "platform kinds " + join(plugin.platform_kinds);
+    lines.push_back(std::move(line));
+  }
   return lines;
 }
 

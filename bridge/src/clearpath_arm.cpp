@@ -114,7 +114,6 @@ struct ClearpathArm::State {
   rt::Scheduler& scheduler;
   ArmConfig geometry;
   ClearpathArmConfig config;
-  std::optional<Error> config_error;
   std::vector<Joint> joints;
   std::unique_ptr<CommandStream> stream;
   ClearpathArmCounters counters;
@@ -189,7 +188,6 @@ struct ClearpathArm::State {
 
   // The common checks of a motion command; the ramp's starting point set.
   Expected<void> check(const std::vector<double>& values, const char* what, bool positions_check) {
-    if (config_error) return refuse(config_error->code, config_error->message());
     if (values.size() != joints.size())
       return refuse(ErrorCode::out_of_range, std::string(what) + " for " + std::to_string(values.size()) +
                                                  " joints; the arm has " + std::to_string(joints.size()));
@@ -275,15 +273,16 @@ struct ClearpathArm::State {
   }
 };
 
+Expected<std::unique_ptr<ClearpathArm>> ClearpathArm::make(PlatformConnection& platform, rt::Scheduler& scheduler,
+                                                           ArmConfig geometry, ClearpathArmConfig config) {
+  if (auto ok = check_clearpath_arm_config(geometry, config); !ok) return unexpected(ok.error());
+  return std::unique_ptr<ClearpathArm>(new ClearpathArm(platform, scheduler, std::move(geometry), std::move(config)));
+}
+
 ClearpathArm::ClearpathArm(PlatformConnection& platform, rt::Scheduler& scheduler, ArmConfig geometry,
                            ClearpathArmConfig config)
     : state_(std::make_shared<State>(platform, scheduler, std::move(geometry), std::move(config))) {
   State& s = *state_;
-  if (auto ok = check_clearpath_arm_config(s.geometry, s.config); !ok) {
-    s.config_error = ok.error();
-    platform.log(rt::LogLevel::error, ok.error().message() + "; every arm command will be refused");
-    return;
-  }
   s.build();
   std::weak_ptr<State> weak = state_;
   platform.on_data(cp::AbsoluteJointsData::kType, [weak](const cp::Envelope& e) {
@@ -352,7 +351,6 @@ Expected<void> ClearpathArm::apply_efforts(const std::vector<double>&) {
 
 void ClearpathArm::hold() {
   State& s = *state_;
-  if (s.config_error) return;
   s.stop_ramp();
   s.motion = Motion::holding;
   s.stream->clear();
@@ -398,7 +396,6 @@ std::optional<JointSample> ClearpathArm::sample() const {
 
 void ClearpathArm::home() {
   State& s = *state_;
-  if (s.config_error) return;
   if (!s.platform.alive()) {
     s.platform.log(rt::LogLevel::warn, "Clearpath arm: homing skipped: the Clearpath platform is not alive");
     return;
@@ -415,7 +412,6 @@ void ClearpathArm::home() {
 ClearpathArm::Motion ClearpathArm::motion() const { return state_->motion; }
 bool ClearpathArm::ramping() const { return state_->timer != rt::kNoTimer; }
 const ClearpathArmConfig& ClearpathArm::config() const { return state_->config; }
-const std::optional<Error>& ClearpathArm::config_error() const { return state_->config_error; }
 const ClearpathArmCounters& ClearpathArm::counters() const { return state_->counters; }
 
 }  // namespace jaus::bridge

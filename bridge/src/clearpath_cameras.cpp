@@ -198,8 +198,6 @@ struct ClearpathCameras::State {
   rt::Scheduler& scheduler;
   components::Cameras& images;
   ClearpathCamerasConfig config;
-  std::optional<Error> config_error;
-  std::set<std::uint8_t> disabled;  // named by an invalid configuration: never move
   std::vector<std::unique_ptr<Mapped>> mapped;
   ClearpathCamerasCounters counters;
   rt::TimerId timer = rt::kNoTimer;
@@ -292,9 +290,7 @@ struct ClearpathCameras::State {
     m.stream->post(c, true);
   }
 
-  void command(std::uint8_t camera_id, const MountCommand& command) {
-    Mapped* m = find(camera_id);
-    if (m == nullptr) return drop(m, camera_id, "the camera's Clearpath mapping is invalid");
+  void command(Mapped* m, std::uint8_t camera_id, const MountCommand& command) {
     if (!platform.alive()) return drop(m, camera_id, "the Clearpath platform is not alive");
     if (!m->fresh) return drop(m, camera_id, "no pan/tilt/zoom data (0x8400) from the mount yet");
     advance(*m);
@@ -388,16 +384,17 @@ struct ClearpathCameras::State {
   }
 };
 
+Expected<std::unique_ptr<ClearpathCameras>> ClearpathCameras::make(PlatformConnection& platform,
+                                                                   rt::Scheduler& scheduler, components::Cameras& images,
+                                                                   ClearpathCamerasConfig config) {
+  if (auto ok = check_clearpath_cameras_config(images.configs(), config); !ok) return unexpected(ok.error());
+  return std::unique_ptr<ClearpathCameras>(new ClearpathCameras(platform, scheduler, images, std::move(config)));
+}
+
 ClearpathCameras::ClearpathCameras(PlatformConnection& platform, rt::Scheduler& scheduler,
                                    components::Cameras& images, ClearpathCamerasConfig config)
     : state_(std::make_shared<State>(platform, scheduler, images, std::move(config))) {
   State& s = *state_;
-  if (auto ok = check_clearpath_cameras_config(images.configs(), s.config); !ok) {
-    s.config_error = ok.error();
-    for (const auto& m : s.config.mounts) s.disabled.insert(m.camera_id);
-    platform.log(rt::LogLevel::error, "Clearpath cameras: " + ok.error().message() + "; the mapped cameras will not move");
-    return;
-  }
   s.build(images.configs());
   std::weak_ptr<State> weak = state_;
   platform.on_data(cp::PanTiltZoomData::kType, [weak](const cp::Envelope& e) {
@@ -428,21 +425,20 @@ const std::vector<CameraConfig>& ClearpathCameras::configs() const { return stat
 
 void ClearpathCameras::command_mount(std::uint8_t camera_id, const MountCommand& command) {
   State& s = *state_;
-  if (s.find(camera_id) == nullptr && !s.disabled.contains(camera_id))
-    return s.images.command_mount(camera_id, command);
-  s.command(camera_id, command);
+  State::Mapped* m = s.find(camera_id);
+  if (m == nullptr) return s.images.command_mount(camera_id, command);  // unmapped: the inner source's
+  s.command(m, camera_id, command);
 }
 
 void ClearpathCameras::hold(std::uint8_t camera_id) {
   State& s = *state_;
   if (State::Mapped* m = s.find(camera_id)) return s.hold(*m);
-  if (!s.disabled.contains(camera_id)) s.images.hold(camera_id);
+  s.images.hold(camera_id);
 }
 
 MountState ClearpathCameras::mount_state(std::uint8_t camera_id) {
   State& s = *state_;
   if (const State::Mapped* m = s.find(camera_id)) return s.state(*m);
-  if (s.disabled.contains(camera_id)) return {};
   return s.images.mount_state(camera_id);
 }
 
@@ -452,7 +448,6 @@ Expected<components::Image> ClearpathCameras::capture(std::uint8_t camera_id,
 }
 
 const ClearpathCamerasConfig& ClearpathCameras::config() const { return state_->config; }
-const std::optional<Error>& ClearpathCameras::config_error() const { return state_->config_error; }
 const ClearpathCamerasCounters& ClearpathCameras::counters() const { return state_->counters; }
 
 }  // namespace jaus::bridge

@@ -12,6 +12,8 @@
 
 #include "jaus/base/version.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/platform_kinds.hpp"
+#include "jaus/host/platform_plugin.hpp"
 #include "jaus/runtime/component_plugin.hpp"
 
 namespace jaus::host {
@@ -20,7 +22,8 @@ namespace {
 
 struct PluginRegistry {
   std::vector<LoadedPlugin> plugins;
-  std::map<std::string, std::string, std::less<>> kind_owner;  // kind -> "plugin 'name' (path)"
+  std::map<std::string, std::string, std::less<>> kind_owner;           // kind -> "plugin 'name' (path)"
+  std::map<std::string, std::string, std::less<>> platform_kind_owner;  // platform kind -> the same
 };
 
 PluginRegistry& registry() {
@@ -69,6 +72,30 @@ void guard(ComponentKind& kind, const std::string& plugin) {
   };
 }
 
+// The same for a platform kind's check and make.
+void guard(PlatformKind& kind, const std::string& plugin) {
+  const std::string who = plugin + " platform kind '" + std::string(kind.name) + "'";
+  if (kind.check)
+    kind.check = [check = std::move(kind.check), who](const PlatformSettings& settings,
+                                                      const SimulationSettings& simulation) -> Expected<void> {
+      try {
+        return check(settings, simulation);
+      } catch (...) {
+        return unexpected(make_error(ErrorCode::invalid_argument,
+                                     who + " checking its settings " + what_of(std::current_exception())));
+      }
+    };
+  kind.make = [make = std::move(kind.make), who](const PlatformSettings& settings, const SimulationSettings& simulation,
+                                                 PlatformEnvironment environment) -> Expected<std::unique_ptr<Platform>> {
+    try {
+      return make(settings, simulation, std::move(environment));
+    } catch (...) {
+      return unexpected(
+          make_error(ErrorCode::invalid_argument, who + " making the platform " + what_of(std::current_exception())));
+    }
+  };
+}
+
 // The entry point's description, checked field by field in the order the
 // fields may be trusted: the ABI number first (nothing else is read when it
 // differs), then the version, toolchain and layout.
@@ -104,6 +131,67 @@ Expected<const rt::ComponentPluginInfo*> checked_info(const std::filesystem::pat
   return info;
 }
 
+// A platform entry point's description, checked as a component one's.
+Expected<const PlatformPluginInfo*> checked_platform_info(const std::filesystem::path& path, void* symbol) {
+  const auto entry = reinterpret_cast<PlatformPluginEntry>(symbol);
+  const PlatformPluginInfo* info = entry();
+  if (!info) return unexpected(plugin_error(path, std::string(kPlatformPluginSymbol) + " returned nothing"));
+  if (info->abi != kPlatformPluginAbi)
+    return unexpected(plugin_error(path, "platform plugin ABI " + std::to_string(info->abi) +
+                                             ", this jausd loads ABI " + std::to_string(kPlatformPluginAbi) +
+                                             ": rebuild the plugin against this jaus"));
+  const std::string name = text_or(info->name, "(unnamed)");
+  const std::string version = text_or(info->jaus_version, "(none)");
+  if (version != kVersion)
+    return unexpected(plugin_error(path, "plugin '" + name + "' was built against jaus " + version +
+                                             ", this jausd is " + std::string(kVersion) + ": rebuild it"));
+  const std::string toolchain = text_or(info->toolchain, "(none)");
+  if (toolchain != rt::kComponentPluginToolchain)
+    return unexpected(plugin_error(path, "plugin '" + name + "' was built for " + toolchain + ", this jausd for " +
+                                             rt::kComponentPluginToolchain + ": rebuild it with the same flags"));
+  if (info->platform_kind_size != sizeof(PlatformKind))
+    return unexpected(plugin_error(path, "plugin '" + name + "' sees a platform kind of " +
+                                             std::to_string(info->platform_kind_size) + " bytes, this jausd of " +
+                                             std::to_string(sizeof(PlatformKind)) +
+                                             ": built against other headers; rebuild it"));
+  if (!info->name || !*info->name) return unexpected(plugin_error(path, "the plugin has no name"));
+  if (!info->kinds) return unexpected(plugin_error(path, "plugin '" + name + "' has no platform kinds function"));
+  return info;
+}
+
+// The platform kinds a plugin brings, each checked before any is added.
+Expected<std::vector<PlatformKind>> listed_platform_kinds(const std::filesystem::path& path,
+                                                          const PlatformPluginInfo& info, const PluginRegistry& r) {
+  const std::string name = info.name;
+  std::vector<PlatformKind> kinds;
+  try {
+    kinds = info.kinds();
+  } catch (...) {
+    return unexpected(
+        plugin_error(path, "plugin '" + name + "' listing its platform kinds " + what_of(std::current_exception())));
+  }
+  if (kinds.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' brings no platform kind"));
+  std::set<std::string_view> names;
+  for (const auto& kind : kinds) {
+    const std::string kind_name(kind.name);
+    if (kind.name.empty())
+      return unexpected(plugin_error(path, "plugin '" + name + "' brings a platform kind without a name"));
+    if (!names.insert(kind.name).second)
+      return unexpected(plugin_error(path, "plugin '" + name + "' brings platform kind '" + kind_name + "' twice"));
+    if (find_platform_kind(kind.name)) {
+      const auto owner = r.platform_kind_owner.find(kind.name);
+      return unexpected(plugin_error(path, "plugin '" + name + "' brings platform kind '" + kind_name +
+                                               "', a name already taken by " +
+                                               (owner != r.platform_kind_owner.end() ? owner->second
+                                                                                      : "a built-in platform kind")));
+    }
+    if (!kind.make)
+      return unexpected(plugin_error(path, "plugin '" + name + "' platform kind '" + kind_name +
+                                               "' cannot make platforms"));
+  }
+  return kinds;
+}
+
 }  // namespace
 
 const std::vector<LoadedPlugin>& loaded_component_plugins() { return registry().plugins; }
@@ -127,18 +215,40 @@ Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& reques
     if (why.starts_with(path.string() + ": ")) why.erase(0, path.string().size() + 2);
     return unexpected(plugin_error(path, "cannot load the plugin: " + why));
   }
-  const auto info = checked_info(path, handle);
-  if (!info) return unexpected(info.error());
-  const std::string name = (*info)->name;
+  // A plugin writes either entry point, or both.
+  dlerror();
+  void* platform_symbol = dlsym(handle, kPlatformPluginSymbol);
+  dlerror();
+  const bool has_components = dlsym(handle, rt::kComponentPluginSymbol) != nullptr;
+  if (!has_components && !platform_symbol)
+    return unexpected(plugin_error(path, "not a jaus component plugin: no " + std::string(rt::kComponentPluginSymbol) +
+                                             " symbol (write JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp), "
+                                             "nor a platform plugin: no " + std::string(kPlatformPluginSymbol) +
+                                             " symbol (JAUS_PLATFORM_PLUGIN, jaus/host/platform_plugin.hpp)"));
+  std::string name;
+  std::vector<ComponentKind> kinds;
+  if (has_components) {
+    const auto info = checked_info(path, handle);
+    if (!info) return unexpected(info.error());
+    name = (*info)->name;
+    try {
+      kinds = (*info)->kinds();
+    } catch (...) {
+      return unexpected(plugin_error(path, "plugin '" + name + "' listing its kinds " + what_of(std::current_exception())));
+    }
+    if (kinds.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' brings no component kind"));
+  }
+  std::vector<PlatformKind> platforms;
+  if (platform_symbol) {
+    const auto info = checked_platform_info(path, platform_symbol);
+    if (!info) return unexpected(info.error());
+    if (name.empty()) name = (*info)->name;
+    auto listed = listed_platform_kinds(path, **info, r);
+    if (!listed) return unexpected(listed.error());
+    platforms = std::move(*listed);
+  }
   const std::string who = "plugin '" + name + "' (" + path.string() + ")";
 
-  std::vector<ComponentKind> kinds;
-  try {
-    kinds = (*info)->kinds();
-  } catch (...) {
-    return unexpected(plugin_error(path, "plugin '" + name + "' listing its kinds " + what_of(std::current_exception())));
-  }
-  if (kinds.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' brings no component kind"));
   // Every kind is checked before any is added: a plugin loads whole or not at all.
   std::set<std::string_view> names;
   for (const auto& kind : kinds) {
@@ -155,19 +265,38 @@ Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& reques
     if (!kind.make)
       return unexpected(plugin_error(path, "plugin '" + name + "' kind '" + kind_name + "' cannot make components"));
   }
-  LoadedPlugin loaded{path, name, {}};
+  LoadedPlugin loaded{path, name, {}, {}};
+  // Undoes what this load added (a kind the list then refuses).
+  const auto undo = [&] {
+    for (const auto& done : loaded.kinds) {
+      remove_component_kind(done);
+      r.kind_owner.erase(done);
+    }
+    for (const auto& done : loaded.platform_kinds) {
+      remove_platform_kind(done);
+      r.platform_kind_owner.erase(done);
+    }
+  };
   for (auto& kind : kinds) {
     const std::string kind_name(kind.name);
     guard(kind, who);
     if (auto added = add_component_kind(std::move(kind)); !added) {
-      for (const auto& done : loaded.kinds) {
-        remove_component_kind(done);
-        r.kind_owner.erase(done);
-      }
+      undo();
       return unexpected(plugin_error(path, "plugin '" + name + "': " + added.error().message()));
     }
     loaded.kinds.push_back(kind_name);
     r.kind_owner.emplace(kind_name, who);
+  }
+  for (auto& kind : platforms) {
+    const std::string kind_name(kind.name);
+    guard(kind, who);
+    // Its written name and options too must be its own (add_platform_kind says whose they are).
+    if (auto added = add_platform_kind(std::move(kind)); !added) {
+      undo();
+      return unexpected(plugin_error(path, "plugin '" + name + "': " + added.error().message()));
+    }
+    loaded.platform_kinds.push_back(kind_name);
+    r.platform_kind_owner.emplace(kind_name, who);
   }
   r.plugins.push_back(loaded);
   return loaded;

@@ -43,4 +43,17 @@ void ModelPlatform::stop() {
   if (frame_thread_ != nullptr) frame_thread_->stop();
 }
 
+const PlatformKind& model_platform_kind() {
+  static const PlatformKind kind{
+      .name = "model",
+      .written = "model",
+      .options = {},
+      .check = {},
+      .make = [](const PlatformSettings&, const SimulationSettings& simulation,
+                 PlatformEnvironment environment) -> Expected<std::unique_ptr<Platform>> {
+        return std::unique_ptr<Platform>(std::make_unique<ModelPlatform>(simulation, std::move(environment)));
+      }};
+  return kind;
+}
+
 }  // namespace jaus::host

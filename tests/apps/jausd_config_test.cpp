@@ -2,6 +2,7 @@
 // error for every kind of mistake.
 #include "jausd_config.hpp"
 #include "host_config.hpp"
+#include "jaus/host/clearpath_platform.hpp"
 #include "jaus/host/component_options.hpp"
 
 #include <gtest/gtest.h>
@@ -821,19 +822,32 @@ TEST(JausdConfigErrors, VehicleValues) {
   expect_error("vehicle: [1]\n", 1, "'vehicle' must be a map of keys, got a list");
 }
 
+// The `clearpath:` mapping as the host gets it: the section a Clearpath platform reads.
+const jaus::host::ClearpathSettings& clearpath_section(const jaus::host::HostConfig& config) {
+  const auto* section = config.platform.sections.find<jaus::host::ClearpathSettings>();
+  if (section == nullptr) throw std::logic_error("no clearpath section");
+  return *section;
+}
+
 TEST(JausdConfig, PlatformAndClearpathMappingAreRead) {
-  using Kind = jaus::host::PlatformSettings::Kind;
-  EXPECT_EQ(expect_ok("").platform.kind, Kind::clearpath_sim);  // the default: a simulated Clearpath platform
-  EXPECT_EQ(expect_ok("platform: model\n").platform.kind, Kind::model);
+  // The kinds by the names the host's list gives them; the endpoint is the
+  // `clearpath` kind's reading of its options.
+  EXPECT_EQ(expect_ok("").platform.kind, "clearpath_sim");  // the default: a simulated Clearpath platform
+  EXPECT_EQ(expect_ok("platform: sim\n").platform.kind, "clearpath_sim");
+  EXPECT_EQ(expect_ok("platform: model\n").platform.kind, "model");
+  EXPECT_EQ(jausd::host_config(expect_ok("platform: model\n")).platform.kind, "model");
   const auto serial = expect_ok("platform: {serial: /dev/ttyS3, baud: 57600}\n");
-  EXPECT_EQ(serial.platform.kind, Kind::clearpath);
-  EXPECT_EQ(serial.platform.endpoint.kind, jaus::clearpath::PlatformEndpoint::Kind::serial);
-  EXPECT_EQ(serial.platform.endpoint.device, "/dev/ttyS3");
-  EXPECT_EQ(serial.platform.endpoint.baud, 57600u);
-  const auto udp = expect_ok("platform: {udp: 10.0.0.5:7000}\n");
-  EXPECT_EQ(udp.platform.endpoint.kind, jaus::clearpath::PlatformEndpoint::Kind::udp);
-  EXPECT_EQ(udp.platform.endpoint.host, "10.0.0.5");
-  EXPECT_EQ(udp.platform.endpoint.port, 7000);
+  EXPECT_EQ(serial.platform.kind, "clearpath");
+  const auto serial_endpoint = jaus::host::clearpath_endpoint(jausd::host_config(serial).platform);
+  ASSERT_TRUE(serial_endpoint) << serial_endpoint.error().message();
+  EXPECT_EQ(serial_endpoint->kind, jaus::clearpath::PlatformEndpoint::Kind::serial);
+  EXPECT_EQ(serial_endpoint->device, "/dev/ttyS3");
+  EXPECT_EQ(serial_endpoint->baud, 57600u);
+  const auto udp = jaus::host::clearpath_endpoint(jausd::host_config(expect_ok("platform: {udp: 10.0.0.5:7000}\n")).platform);
+  ASSERT_TRUE(udp) << udp.error().message();
+  EXPECT_EQ(udp->kind, jaus::clearpath::PlatformEndpoint::Kind::udp);
+  EXPECT_EQ(udp->host, "10.0.0.5");
+  EXPECT_EQ(udp->port, 7000);
 
   const auto c = expect_ok(R"(
 platform: {tcp: robot:2000}
@@ -870,36 +884,40 @@ clearpath:
   EXPECT_EQ(o.platform_status_flags, 0x01);
 
   // What the host gets: the vehicle's figures and the mapping together.
-  const auto host = jausd::host_config(c);
-  EXPECT_EQ(host.platform.kind, Kind::clearpath);
-  EXPECT_EQ(host.platform.client.setpoint_max_age, std::chrono::milliseconds(300));
-  EXPECT_EQ(host.platform.vehicle.setpoint_max_age, std::chrono::milliseconds(300));
-  EXPECT_EQ(host.platform.vehicle.drive, jaus::bridge::DriveMode::velocity);
-  EXPECT_EQ(host.platform.vehicle.max_speed_mps, c.vehicle.max_speed_mps);
-  EXPECT_EQ(host.platform.vehicle.datum, c.vehicle.start);
+  const auto host_config = jausd::host_config(c);
+  EXPECT_EQ(host_config.platform.kind, "clearpath");
+  const auto& host = clearpath_section(host_config);
+  EXPECT_EQ(host.client.setpoint_max_age, std::chrono::milliseconds(300));
+  EXPECT_EQ(host.vehicle.setpoint_max_age, std::chrono::milliseconds(300));
+  EXPECT_EQ(host.vehicle.drive, jaus::bridge::DriveMode::velocity);
+  EXPECT_EQ(host.vehicle.max_speed_mps, c.vehicle.max_speed_mps);
+  EXPECT_EQ(host.vehicle.datum, c.vehicle.start);
   // By default the pan-tilt camera is on mount 0 and the six joints on Clearpath joints 0..5.
-  const auto defaults = jausd::host_config(expect_ok(""));
-  ASSERT_EQ(defaults.platform.cameras.mounts.size(), 1u);
-  EXPECT_EQ(defaults.platform.cameras.mounts[0].camera_id, 1);
-  EXPECT_EQ(defaults.platform.cameras.mounts[0].mount, 0);
-  ASSERT_EQ(defaults.platform.arm.joints.size(), 6u);
-  EXPECT_EQ(defaults.platform.arm.joints[5].clearpath_joint, 5);
-  const auto mapped = jausd::host_config(expect_ok(R"(
+  const auto defaults_config = jausd::host_config(expect_ok(""));
+  const auto& defaults = clearpath_section(defaults_config);
+  ASSERT_EQ(defaults.cameras.mounts.size(), 1u);
+  EXPECT_EQ(defaults.cameras.mounts[0].camera_id, 1);
+  EXPECT_EQ(defaults.cameras.mounts[0].mount, 0);
+  ASSERT_EQ(defaults.arm.joints.size(), 6u);
+  EXPECT_EQ(defaults.arm.joints[5].clearpath_joint, 5);
+  const auto mapped_config = jausd::host_config(expect_ok(R"(
 clearpath:
   mounts: [{camera_id: 1, mount: 1, pan_sign: -1, pan_offset_deg: 10, zoom_min_factor: 1, zoom_max_factor: 4}]
   arm_joints: [{clearpath_joint: 5, sign: -1, offset_deg: 90}, {clearpath_joint: 4}, {clearpath_joint: 3},
                {clearpath_joint: 2}, {clearpath_joint: 1}, {clearpath_joint: 0}]
 )"));
-  EXPECT_EQ(mapped.platform.cameras.mounts[0].mount, 1);
-  EXPECT_EQ(mapped.platform.cameras.mounts[0].pan_sign, -1);
-  EXPECT_EQ(mapped.platform.cameras.mounts[0].zoom_max_factor, 4);
-  EXPECT_EQ(mapped.platform.arm.joints[0].clearpath_joint, 5);
-  EXPECT_NEAR(mapped.platform.arm.joints[0].offset_rad, std::numbers::pi / 2, 1e-12);
-  EXPECT_EQ(mapped.platform.sim.vehicle.mounts, 2u);
+  const auto& mapped = clearpath_section(mapped_config);
+  EXPECT_EQ(mapped.cameras.mounts[0].mount, 1);
+  EXPECT_EQ(mapped.cameras.mounts[0].pan_sign, -1);
+  EXPECT_EQ(mapped.cameras.mounts[0].zoom_max_factor, 4);
+  EXPECT_EQ(mapped.arm.joints[0].clearpath_joint, 5);
+  EXPECT_NEAR(mapped.arm.joints[0].offset_rad, std::numbers::pi / 2, 1e-12);
+  EXPECT_EQ(mapped.sim.vehicle.mounts, 2u);
   // An Ackermann vehicle drives with Ackermann commands unless told otherwise.
-  const auto ackermann = jausd::host_config(expect_ok("vehicle: {steering: ackermann}\n"));
-  EXPECT_EQ(ackermann.platform.vehicle.drive, jaus::bridge::DriveMode::ackermann);
-  EXPECT_EQ(ackermann.platform.sim.vehicle.drive, jaus::clearpath::sim::Drive::ackermann);
+  const auto ackermann_config = jausd::host_config(expect_ok("vehicle: {steering: ackermann}\n"));
+  const auto& ackermann = clearpath_section(ackermann_config);
+  EXPECT_EQ(ackermann.vehicle.drive, jaus::bridge::DriveMode::ackermann);
+  EXPECT_EQ(ackermann.sim.vehicle.drive, jaus::clearpath::sim::Drive::ackermann);
 }
 
 // Safe by default (issue 28): only this machine's networks may command; the
@@ -968,6 +986,48 @@ TEST(JausdConfigErrors, PlatformAndClearpathValues) {
   expect_error("vehicle: {steering: ackermann}\nclearpath:\n  drive: velocity\n", 2,
                "'clearpath.drive' commands a differential platform: vehicle.steering must be differential on the "
                "simulated platform");
+  // The kinds and their options come from the host's list of platform kinds.
+  expect_error("platform: [serial]\n", 1,
+               "'platform' must be sim, model or a map of a platform's options (serial, baud, udp, tcp), got a list");
+  expect_error("platform: {ssh: robot}\n", 1, "unknown key 'ssh' in platform (known: serial, baud, udp, tcp)");
+  expect_error("platform:\n  serial: /dev/ttyS0\n  baud: 12\n", 3, "'baud' must be an integer 1200..4000000, got '12'");
+  expect_error("platform:\n  serial: [a]\n", 2, "'serial' must be a value, got a list");
+}
+
+// A platform kind jausd has never heard of (as a plugin brings one): named
+// alone as it is written, or by its options; its check's problem points at
+// the option's line, and `platform: model` takes no option of it.
+TEST(JausdConfig, APlatformKindOfOnesOwnIsReadByTheList) {
+  jaus::host::PlatformKind kind;
+  kind.name = "test_rig";
+  kind.written = "rig";
+  kind.options = {"wheels"};
+  kind.check = [](const jaus::host::PlatformSettings& settings,
+                  const jaus::host::SimulationSettings&) -> jaus::Expected<void> {
+    const auto it = settings.options.find("wheels");
+    if (it == settings.options.end() || (it->second >= "2" && it->second <= "8" && it->second.size() == 1)) return {};
+    jaus::Error e = jaus::make_error(jaus::ErrorCode::invalid_argument,
+                                     "'wheels' must be an integer 2..8, got '" + it->second + "'");
+    e.field = "wheels";
+    return jaus::unexpected(e);
+  };
+  kind.make = [](const jaus::host::PlatformSettings&, const jaus::host::SimulationSettings&,
+                 jaus::host::PlatformEnvironment) -> jaus::Expected<std::unique_ptr<jaus::host::Platform>> {
+    return jaus::unexpected(jaus::make_error(jaus::ErrorCode::invalid_argument, "not made here"));
+  };
+  ASSERT_TRUE(jaus::host::add_platform_kind(std::move(kind)));
+  struct Removed {
+    ~Removed() { jaus::host::remove_platform_kind("test_rig"); }
+  } removed;
+  EXPECT_EQ(expect_ok("platform: rig\n").platform.kind, "test_rig");
+  const auto six = expect_ok("platform: {wheels: 6}\n");
+  EXPECT_EQ(six.platform.kind, "test_rig");
+  EXPECT_EQ(six.platform.options.at("wheels"), "6");
+  EXPECT_EQ(jausd::host_config(six).platform.options.at("wheels"), "6");
+  expect_error("platform:\n  wheels: 1\n", 2, "'wheels' must be an integer 2..8, got '1'");
+  expect_error("platform:\n  wheels: 4\n  udp: 1.2.3.4:5\n", 3,
+               "'platform': 'udp' is an option of platform clearpath, not of test_rig");
+  expect_error("platform: hardware\n", 1, "'platform' must be one of sim, model, rig, got 'hardware'");
 }
 
 TEST(JausdConfig, CamerasAndManipulatorAreRead) {

@@ -23,6 +23,7 @@
 #include "jaus/clearpath/frame.hpp"
 #include "jaus/clearpath/sim/sim_server.hpp"
 #include "jaus/components/primitive_driver.hpp"
+#include "jaus/host/clearpath_platform.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/transport/framing.hpp"
@@ -97,9 +98,10 @@ int main(int argc, char** argv) {
   config.node.node = kNode.node;
   config.link.bind = *transport::parse_endpoint("127.0.0.96:3794");
   config.settings.defaults.controller_timeout = rt::Duration::zero();  // raw datagrams answer no liveness checks
-  config.platform.kind = host::PlatformSettings::Kind::clearpath;
-  config.platform.endpoint.kind = cp::PlatformEndpoint::Kind::serial;
-  config.platform.endpoint.device = server.pty_path();
+  cp::PlatformEndpoint pty;
+  pty.kind = cp::PlatformEndpoint::Kind::serial;
+  pty.device = server.pty_path();
+  config.platform = host::clearpath_platform_settings(pty);
   config.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0, {}},
                        host::ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}}};
   auto opened = host::NodeHost::open(config, io);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "jaus/components/primitive_driver.hpp"
+#include "jaus/host/model_platform.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/transport/framing.hpp"

@@ -58,7 +58,8 @@ class ClearpathArmTest : public ::testing::Test {
   ClearpathArmTest()
       : loopback(time, time),
         platform(loopback, time, [this](rt::LogLevel, const std::string& line) { logs.push_back(line); }),
-        arm(platform, time, three_joints(), mapping()) {
+        made_arm(bridge::ClearpathArm::make(platform, time, three_joints(), mapping()).value()),
+        arm(*made_arm) {
     loopback.on_written([this](std::span<const std::uint8_t> frame) {
       const auto f = cp::decode_frame(frame);
       if (!f) return;
@@ -83,7 +84,8 @@ class ClearpathArmTest : public ::testing::Test {
   sim::LoopbackClient loopback;
   std::vector<std::string> logs;
   bridge::PlatformConnection platform;
-  bridge::ClearpathArm arm;
+  std::unique_ptr<bridge::ClearpathArm> made_arm;
+  bridge::ClearpathArm& arm;
   std::vector<cp::SetAbsoluteJoints> joint_commands;
   std::vector<std::uint8_t> homes;
 };
@@ -102,7 +104,6 @@ TEST_F(ClearpathArmTest, TheSampleMapsTheSetpointsBack) {
   EXPECT_TRUE(s->efforts_percent.empty());
   ASSERT_EQ(s->force_torques.size(), 3u);
   EXPECT_EQ(arm.geometry().joints.size(), 3u);
-  EXPECT_FALSE(arm.config_error());
 }
 
 TEST_F(ClearpathArmTest, JointTargetsArriveMappedAndRampedAtTheSpeedLimits) {
@@ -328,20 +329,19 @@ TEST(ClearpathArmConfig, BadMappingsAreRefusedNamingTheJoint) {
   EXPECT_NE(ok.error().message().find("prismatic"), std::string::npos) << ok.error().message();
 }
 
-TEST(ClearpathArmConfig, AnInvalidMappingRefusesEveryCommand) {
+// No arm exists in an invalid state: the factory says why and makes none,
+// and nothing reaches the platform (no subscription, no joint moved).
+TEST(ClearpathArmConfig, AnInvalidMappingMakesNoArm) {
   rt::VirtualTime time;
   sim::LoopbackClient loopback(time, time);
   bridge::PlatformConnection platform(loopback, time);
   auto bad = mapping();
   bad.joints[0].sign = 0;
-  bridge::ClearpathArm arm(platform, time, three_joints(), bad);
-  ASSERT_TRUE(arm.config_error());
-  time.advance(200ms);
-  EXPECT_FALSE(arm.move_to_positions({0, 0, 0}));
-  EXPECT_FALSE(arm.sample());
-  arm.hold();
-  arm.home();
+  const auto arm = bridge::ClearpathArm::make(platform, time, three_joints(), bad);
+  ASSERT_FALSE(arm);
+  EXPECT_EQ(arm.error().message(), bridge::check_clearpath_arm_config(three_joints(), bad).error().message());
   time.advance(1s);
+  EXPECT_EQ(loopback.platform().subscription_count(), 0u);
   for (const auto& j : loopback.platform().vehicle().joints()) EXPECT_EQ(j.target, 0);
 }
 

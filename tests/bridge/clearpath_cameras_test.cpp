@@ -71,7 +71,8 @@ class ClearpathCamerasTest : public ::testing::Test {
       : loopback(time, time),
         platform(loopback, time, [this](rt::LogLevel, const std::string& line) { logs.push_back(line); }),
         images(two_cameras(), time),
-        cameras(platform, time, images, std::move(mapping)) {
+        made_cameras(bridge::ClearpathCameras::make(platform, time, images, std::move(mapping)).value()),
+        cameras(*made_cameras) {
     loopback.on_written([this](std::span<const std::uint8_t> frame) {
       const auto f = cp::decode_frame(frame);
       if (!f || f->header.type != cp::SetPanTiltZoom::kType) return;
@@ -91,7 +92,8 @@ class ClearpathCamerasTest : public ::testing::Test {
   std::vector<std::string> logs;
   bridge::PlatformConnection platform;
   components::SimulatedCameras images;
-  bridge::ClearpathCameras cameras;
+  std::unique_ptr<bridge::ClearpathCameras> made_cameras;
+  bridge::ClearpathCameras& cameras;
   std::vector<cp::SetPanTiltZoom> sent;
 };
 
@@ -101,7 +103,6 @@ TEST_F(ClearpathCamerasTest, ConfigsAndImagesComeFromTheInnerSource) {
   const auto image = cameras.capture(1, components::ImageRequest{});
   ASSERT_TRUE(image) << image.error().message();
   EXPECT_FALSE(image->data.empty());
-  EXPECT_FALSE(cameras.config_error());
 }
 
 TEST_F(ClearpathCamerasTest, PanPositionReachesTheMountInItsDegreesAndSign) {
@@ -309,24 +310,22 @@ TEST(ClearpathCamerasConfig, BadMappingsAreRefusedNamingTheCamera) {
   EXPECT_FALSE(bridge::check_clearpath_cameras_config(cameras, c));
 }
 
-TEST(ClearpathCamerasConfig, AnInvalidMappingKeepsItsCamerasStill) {
+// No cameras exist in an invalid state: the factory says why and makes none,
+// and nothing reaches the platform (no subscription, no mount moved).
+TEST(ClearpathCamerasConfig, AnInvalidMappingMakesNoCameras) {
   rt::VirtualTime time;
   sim::LoopbackClient loopback(time, time);
-  std::vector<std::string> logs;
-  bridge::PlatformConnection platform(loopback, time, [&](rt::LogLevel, const std::string& l) { logs.push_back(l); });
+  bridge::PlatformConnection platform(loopback, time);
   components::SimulatedCameras images(two_cameras(), time);
   auto bad = mast_on_mount_1();
   bad.mounts[0].pan_sign = 2;
-  bridge::ClearpathCameras cameras(platform, time, images, bad);
-  ASSERT_TRUE(cameras.config_error());
-  time.advance(200ms);
-  cameras.command_mount(1, pan(AxisMode::position, 0.5));
-  cameras.command_mount(2, pan(AxisMode::position, 0.5));
+  const auto cameras = bridge::ClearpathCameras::make(platform, time, images, bad);
+  ASSERT_FALSE(cameras);
+  EXPECT_EQ(cameras.error().message(),
+            bridge::check_clearpath_cameras_config(images.configs(), bad).error().message());
   time.advance(1s);
-  EXPECT_NEAR(images.mount_state(1).pan_rad, 0, 1e-9);    // not handed to the simulated mount either
-  EXPECT_NEAR(images.mount_state(2).pan_rad, 0.5, 1e-9);  // unmapped: the inner source's
+  EXPECT_EQ(loopback.platform().subscription_count(), 0u);
   EXPECT_NEAR(loopback.platform().vehicle().mounts()[1].pan, 0, 1e-9);
-  EXPECT_EQ(cameras.counters().commands_dropped, 1u);
 }
 
 }  // namespace

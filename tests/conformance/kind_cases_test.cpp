@@ -13,6 +13,7 @@
 #include "broken_components.hpp"
 #include "case_results.hpp"
 #include "jaus/conform/reports.hpp"
+#include "jaus/host/model_platform.hpp"
 #include "jaus/conform/runner.hpp"
 #include "kind_node.hpp"
 

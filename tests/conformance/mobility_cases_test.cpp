@@ -17,6 +17,7 @@
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/conform/reports.hpp"
 #include "jaus/conform/runner.hpp"
+#include "jaus/host/model_platform.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/messages/platform_messages.hpp"
 #include "jaus/testing/memory_link.hpp"

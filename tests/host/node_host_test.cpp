@@ -17,6 +17,8 @@
 #include "jaus/components/primitive_driver_kind.hpp"
 #include "jaus/components/primitive_manipulator_kind.hpp"
 #include "jaus/host/component_options.hpp"
+#include "jaus/host/clearpath_platform.hpp"
+#include "jaus/host/model_platform.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/jss/judp.hpp"
 #include "jaus/testing/memory_link.hpp"
@@ -407,10 +409,11 @@ void deliver(rt::Component& to, const Address& from, const M& message) {
 TEST(NodeHost, OnAClearpathPlatformItsEstopAndJausEmergencyMirrorEachOther) {
   boost::asio::io_context io;
   HostConfig config = loopback_config();
-  config.platform.kind = PlatformSettings::Kind::clearpath_sim;
-  config.platform.vehicle.emergency_flags = 0x08;
+  ClearpathSettings settings;
+  settings.vehicle.emergency_flags = 0x08;
   config.arm.joints = {components::JointConfig{}};
-  config.platform.arm.joints = {{0, 1, 0}};  // the one joint on Clearpath joint 0
+  settings.arm.joints = {{0, 1, 0}};  // the one joint on Clearpath joint 0
+  config.platform = clearpath_sim_platform_settings(settings);
   auto host = NodeHost::open(config, io);
   ASSERT_TRUE(host) << host.error().message();
   NodeHost& h = **host;
@@ -555,7 +558,7 @@ TEST_F(AttachedHost, ItsPrimitiveDriverStopsWhenTheControllerGoesSilent) {
 // the driver in Emergency, in virtual time.
 TEST_F(AttachedHost, OnASimulatedClearpathPlatformItsEstopHoldsTheDriver) {
   HostConfig config;
-  config.platform.kind = PlatformSettings::Kind::clearpath_sim;
+  config.platform.kind = "clearpath_sim";  // by name alone: the kind's settings all default
   config.components = {ComponentSpec{"primitive_driver", 33, 1, 0, "", {}, 0, {}}};
   auto host = attach(config);
   ASSERT_NE(host, nullptr);
@@ -574,7 +577,10 @@ TEST(NodeHostAttach, ARealClearpathPlatformNeedsAnOpenedHost) {
   rt::VirtualTime time;
   testing::MemoryNetwork network(time, time);
   HostConfig config = loopback_config();
-  config.platform.kind = PlatformSettings::Kind::clearpath;
+  clearpath::PlatformEndpoint endpoint;
+  endpoint.kind = clearpath::PlatformEndpoint::Kind::udp;
+  endpoint.port = 7000;
+  config.platform = clearpath_platform_settings(endpoint);
   auto host = NodeHost::attach(config, network.attach(1, 1), time, time);
   ASSERT_FALSE(host);
   EXPECT_NE(host.error().message().find("NodeHost::open"), std::string::npos) << host.error().message();

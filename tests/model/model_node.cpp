@@ -33,11 +33,11 @@ host::HostConfig node_config(const std::filesystem::path& state_directory) {
   c.components = {host::ComponentSpec{"node_manager", 1, 1, 0, "", {}, 0, {}},
                   host::ComponentSpec{"primitive_driver", 33, 1, 0, "", {}, 0, {}},
                   host::ComponentSpec{"local_vector_driver", 44, 1, 1, "", {}, 0, {}}};
-  auto& p = c.platform;
-  p.kind = host::PlatformSettings::Kind::clearpath_sim;
+  host::ClearpathSettings p;
   p.sim.vehicle.drive = clearpath::sim::Drive::differential;
   p.vehicle.drive = bridge::DriveMode::differential_output;
   p.vehicle.emergency_flags = 0x08;  // the Husky's: shared with its e-stop
+  c.platform = host::clearpath_sim_platform_settings(p);
   c.emergency.state_directory = state_directory.string();
   c.jss.enabled = true;
   return c;

@@ -3,6 +3,7 @@
 // and hosted on a node under virtual time, answering a query.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,6 +15,8 @@
 #include "jaus/messages/platform_messages.hpp"
 #include "jaus/testing/memory_link.hpp"
 #include "jaus/testing/virtual_time.hpp"
+#include "host_config.hpp"
+#include "jaus/host/node_host.hpp"
 #include "jausd_config.hpp"
 
 namespace {
@@ -46,7 +49,9 @@ TEST(ComponentPlugins, APluginOfAnotherJausVersionIsRefused) {
 TEST(ComponentPlugins, ALibraryWithoutTheEntryPointIsNotAPlugin) {
   EXPECT_EQ(refusal(NO_ENTRY_PLUGIN),
             std::string(NO_ENTRY_PLUGIN) + ": not a jaus component plugin: no jaus_component_plugin symbol (write "
-                                           "JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp)");
+                                           "JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp), nor a platform "
+                                           "plugin: no jaus_platform_plugin symbol (JAUS_PLATFORM_PLUGIN, "
+                                           "jaus/host/platform_plugin.hpp)");
 }
 
 TEST(ComponentPlugins, AnUndefinedSymbolIsRefusedWhenOpened) {
@@ -139,6 +144,59 @@ TEST(ComponentPlugins, APluginKindIsConfiguredCheckedAndHosted) {
   ASSERT_TRUE(jaus::testing::run_until(time, [&] { return op.report.has_value(); }, std::chrono::seconds(1)));
   ASSERT_TRUE(op.report->velocity_x_mps);
   EXPECT_NEAR(*op.report->velocity_x_mps, 2.5, 0.01);
+}
+
+TEST(PlatformPlugins, APlatformPluginOfAnotherAbiIsRefusedOnItsFirstField) {
+  EXPECT_NE(refusal(WRONG_ABI_PLATFORM_PLUGIN).find("platform plugin ABI 2, this jausd loads ABI 1"), std::string::npos);
+  EXPECT_EQ(jaus::host::find_platform_kind("plugin_rig"), nullptr);
+}
+
+// A platform kind from a plugin: listed, named in a configuration by its
+// option (checked with the option's line), and a node built on it whose
+// driver's hardware it provides and whose stop path it runs.
+TEST(PlatformPlugins, APluginPlatformIsConfiguredCheckedAndCarriesANode) {
+  const auto loaded = load_component_plugin(TEST_RIG_PLATFORM_PLUGIN);
+  ASSERT_TRUE(loaded) << loaded.error().message();
+  EXPECT_EQ(loaded->name, "test_rig_platform");
+  EXPECT_TRUE(loaded->kinds.empty());
+  EXPECT_EQ(loaded->platform_kinds, std::vector<std::string>{"plugin_rig"});
+  ASSERT_NE(jaus::host::platform_kind_with_option("plugin_wheels"), nullptr);
+
+  const fs::path folder = fs::path(TEST_RIG_PLATFORM_PLUGIN).parent_path();
+  const std::string head = "plugins: [libtest_rig_platform.so]\n";
+  const std::string components = "components:\n  - kind: node_manager\n  - kind: primitive_driver\n";
+  const auto bad = jausd::load_config_string(head + "platform:\n  plugin_wheels: 9\n" + components, "test.yaml", folder);
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message(), "test.yaml:3: 'plugin_wheels' must be an integer 2..8, got '9'");
+  // An exception from its check is an error naming the plugin and the kind, at the platform's line.
+  const auto thrown = jausd::load_config_string(head + "platform: {plugin_wheels: explode}\n" + components, "test.yaml", folder);
+  ASSERT_FALSE(thrown);
+  EXPECT_EQ(thrown.error().message(), "test.yaml:2: plugin 'test_rig_platform' (" + std::string(TEST_RIG_PLATFORM_PLUGIN) +
+                                          ") platform kind 'plugin_rig' checking its settings threw: wheels exploded");
+  EXPECT_TRUE(jausd::load_config_string(head + "platform: plugin_rig\n" + components, "test.yaml", folder));
+  const auto config = jausd::load_config_string(head + "platform: {plugin_wheels: 6}\n" + components, "test.yaml", folder);
+  ASSERT_TRUE(config) << config.error().message();
+  EXPECT_EQ(config->platform.kind, "plugin_rig");
+  EXPECT_EQ(jausd::plugin_summaries(*config),
+            std::vector<std::string>{"plugin 'test_rig_platform' (" + std::string(TEST_RIG_PLATFORM_PLUGIN) +
+                                     "): platform kinds plugin_rig"});
+
+  jaus::rt::VirtualTime time;
+  jaus::testing::MemoryNetwork network(time, time);
+  std::vector<std::string> lines;
+  auto host = jaus::host::NodeHost::attach(jausd::host_config(*config), network.attach(1, 1), time, time,
+                                           [&](jaus::rt::LogLevel, const std::string& l) { lines.push_back(l); });
+  ASSERT_TRUE(host) << host.error().message();
+  const auto logged = [&](const std::string& text) {
+    return std::find(lines.begin(), lines.end(), text) != lines.end();
+  };
+  EXPECT_TRUE(logged("plugin rig: 6 wheels"));
+  EXPECT_NE((*host)->backends().find<jaus::components::Drive>(), nullptr);  // the driver's, from the plugin's platform
+  jaus::rt::Component& driver = *(*host)->node().find(jaus::Address{1, 1, 33, 1});
+  EXPECT_TRUE(jaus::testing::run_until(time, [&] { return driver.state() == jaus::rt::PrimaryStatus::ready; },
+                                       std::chrono::seconds(5)));
+  (*host)->stop("test");
+  EXPECT_TRUE(logged("plugin rig: stopped"));
 }
 
 TEST(ComponentPlugins, AnExceptionFromAKindsCheckOrMakeIsAnErrorNamingThePluginAndKind) {

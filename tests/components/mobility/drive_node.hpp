@@ -67,8 +67,8 @@ inline host::HostConfig drive_node_config(const DriveNodeOptions& o) {
   }
   if (o.platform == PlatformUnderTest::clearpath_sim) {
     // As jausd maps `vehicle:` onto the simulated Clearpath platform and the bridge.
-    auto& p = c.platform;
-    p.kind = host::PlatformSettings::Kind::clearpath_sim;
+    auto& p = c.platform.sections.set(host::ClearpathSettings{});
+    c.platform.kind = "clearpath_sim";
     const auto& v = c.vehicle;
     p.sim.vehicle.drive = v.steering == components::Steering::ackermann ? clearpath::sim::Drive::ackermann
                                                                         : clearpath::sim::Drive::differential;

@@ -78,7 +78,7 @@ std::string param_name(const ::testing::TestParamInfo<Param>& info) {
 host::HostConfig vehicle_config(const DriveNodeOptions& options) {
   host::HostConfig config = drive_node_config(options);
   if (options.platform == PlatformUnderTest::clearpath_sim && options.steering == Steering::ackermann) {
-    auto& specifications = config.platform.vehicle.specifications;
+    auto& specifications = config.platform.sections.find<host::ClearpathSettings>()->vehicle.specifications;
     specifications.wheel_base_m = config.vehicle.wheel_base_m;
     specifications.turning_radius_m = config.vehicle.wheel_base_m / std::tan(config.vehicle.max_steering_rad);
   }

@@ -101,11 +101,11 @@ struct ClearpathArmCounters {
 
 class ClearpathArm final : public components::ManipulatorArm {
  public:
-  // Subscribes at once (the client keeps subscriptions across reconnects).
-  // An invalid `config` (check_clearpath_arm_config) is logged and every
-  // command is then refused with its error.
-  ClearpathArm(PlatformConnection& platform, rt::Scheduler& scheduler, components::ArmConfig geometry,
-               ClearpathArmConfig config);
+  // The arm `config` maps onto the platform, subscribed at once (the client
+  // keeps subscriptions across reconnects); or the configuration's problem
+  // (check_clearpath_arm_config), and no arm: none exists in an invalid state.
+  static Expected<std::unique_ptr<ClearpathArm>> make(PlatformConnection& platform, rt::Scheduler& scheduler,
+                                                      components::ArmConfig geometry, ClearpathArmConfig config);
   ~ClearpathArm() override;
   ClearpathArm(const ClearpathArm&) = delete;
   ClearpathArm& operator=(const ClearpathArm&) = delete;
@@ -126,11 +126,13 @@ class ClearpathArm final : public components::ManipulatorArm {
   // Whether a ramp or an integrated velocity is still sending targets.
   bool ramping() const;
   const ClearpathArmConfig& config() const;
-  const std::optional<Error>& config_error() const;
   const ClearpathArmCounters& counters() const;
 
  private:
   struct State;
+  // `config` checked (make).
+  ClearpathArm(PlatformConnection& platform, rt::Scheduler& scheduler, components::ArmConfig geometry,
+               ClearpathArmConfig config);
   std::shared_ptr<State> state_;  // shared with the client's callbacks, which hold it weakly
 };
 

@@ -92,7 +92,7 @@ Expected<void> check_clearpath_cameras_config(const std::vector<components::Came
 struct ClearpathCamerasCounters {
   std::uint64_t commands_sent = 0;     // 0x0400 handed to the client
   std::uint64_t commands_failed = 0;   // refused by the platform, unanswered, or link down
-  std::uint64_t commands_dropped = 0;  // mount commands not sent: no data yet, platform not alive, bad config
+  std::uint64_t commands_dropped = 0;  // mount commands not sent: no data yet, platform not alive
   std::uint64_t mount_data = 0;        // 0x8400 received for a mapped mount
 };
 
@@ -101,10 +101,10 @@ class ClearpathCameras final : public components::Cameras {
   // `images` serves configs() and capture() (and the mounts of unmapped
   // cameras); it must outlive this. Subscribes to every mapped mount at once
   // (the client keeps subscriptions across reconnects). An invalid `config`
-  // (check_clearpath_cameras_config) is logged: the cameras it names then
-  // never move, the others are the inner source's.
-  ClearpathCameras(PlatformConnection& platform, rt::Scheduler& scheduler, components::Cameras& images,
-                   ClearpathCamerasConfig config);
+  // (check_clearpath_cameras_config against images.configs()) is the error,
+  // and no cameras: none exist in an invalid state.
+  static Expected<std::unique_ptr<ClearpathCameras>> make(PlatformConnection& platform, rt::Scheduler& scheduler,
+                                                          components::Cameras& images, ClearpathCamerasConfig config);
   ~ClearpathCameras() override;
   ClearpathCameras(const ClearpathCameras&) = delete;
   ClearpathCameras& operator=(const ClearpathCameras&) = delete;
@@ -116,12 +116,13 @@ class ClearpathCameras final : public components::Cameras {
   Expected<components::Image> capture(std::uint8_t camera_id, const components::ImageRequest& request) override;
 
   const ClearpathCamerasConfig& config() const;
-  // The configuration's problem, if it has one (nothing mapped then moves).
-  const std::optional<Error>& config_error() const;
   const ClearpathCamerasCounters& counters() const;
 
  private:
   struct State;
+  // `config` checked (make).
+  ClearpathCameras(PlatformConnection& platform, rt::Scheduler& scheduler, components::Cameras& images,
+                   ClearpathCamerasConfig config);
   std::shared_ptr<State> state_;  // shared with the client's callbacks, which hold it weakly
 };
 

@@ -8,9 +8,15 @@
 // scheduler) or real (ClearpathLink, on the host's io_context): only the
 // client differs. The client is opened when a component first needs the
 // platform: a configuration that puts nothing on it opens nothing.
+//
+// Its own library (jaus_clearpath_platform), which registers the kinds
+// `clearpath_sim` (written `sim`) and `clearpath` (options serial and baud,
+// udp or tcp: where the platform is) with the host (platform_kinds.hpp);
+// both read the section ClearpathSettings.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -21,15 +27,45 @@
 #include "jaus/bridge/platform_emergency.hpp"
 #include "jaus/clearpath/client.hpp"
 #include "jaus/clearpath/link.hpp"
+#include "jaus/clearpath/sim/sim_platform.hpp"
 #include "jaus/host/model_platform.hpp"
 #include "jaus/host/platform.hpp"
+#include "jaus/host/platform_kinds.hpp"
 
 namespace jaus::host {
 
+// A Clearpath platform's settings beyond where it is (PlatformSettings'
+// section "clearpath"; absent: all defaults).
+struct ClearpathSettings {
+  static constexpr std::string_view kSection = "clearpath";
+  clearpath::sim::PlatformConfig sim;      // clearpath_sim: the simulated platform
+  clearpath::ClientConfig client;          // retries, silence, setpoint period and maximum age
+  bridge::ClearpathVehicleConfig vehicle;  // the mobility components' mapping
+  // The visual sensor's camera mounts on the platform (images still come from
+  // the simulated cameras); cameras not listed keep their simulated mount.
+  bridge::ClearpathCamerasConfig cameras;
+  // The manipulator's joints on the platform; none: the arm stays simulated.
+  bridge::ClearpathArmConfig arm;
+};
+
+// The kinds this library registers.
+const PlatformKind& clearpath_sim_platform_kind();  // `clearpath_sim`: simulated in this process
+const PlatformKind& clearpath_platform_kind();      // `clearpath`: at an endpoint, on an opened host
+
+// Platform settings naming a simulated Clearpath platform, or a real one at
+// `endpoint` (its options written from it), with `settings`.
+PlatformSettings clearpath_sim_platform_settings(ClearpathSettings settings = {});
+PlatformSettings clearpath_platform_settings(const clearpath::PlatformEndpoint& endpoint,
+                                             ClearpathSettings settings = {});
+// Where a `clearpath` platform is, read from its options (serial and baud,
+// udp or tcp); the error's field is the option at fault (empty: the platform).
+Expected<clearpath::PlatformEndpoint> clearpath_endpoint(const PlatformSettings& settings);
+
 class ClearpathPlatform final : public Platform {
  public:
-  // settings.kind: clearpath_sim, or clearpath with environment.io set.
-  ClearpathPlatform(PlatformSettings settings, SimulationSettings simulation, PlatformEnvironment environment);
+  // In this process (no endpoint), or at `endpoint` with environment.io set.
+  ClearpathPlatform(std::optional<clearpath::PlatformEndpoint> endpoint, ClearpathSettings settings,
+                    SimulationSettings simulation, PlatformEnvironment environment);
   ~ClearpathPlatform() override;
   ClearpathPlatform(const ClearpathPlatform&) = delete;
   ClearpathPlatform& operator=(const ClearpathPlatform&) = delete;
@@ -56,7 +92,8 @@ class ClearpathPlatform final : public Platform {
  private:
   bridge::PlatformConnection& connect();  // opens the client and the connection, once
 
-  PlatformSettings settings_;
+  std::optional<clearpath::PlatformEndpoint> endpoint_;  // none: simulated in this process
+  ClearpathSettings settings_;
   SimulationSettings simulation_;
   PlatformEnvironment environment_;
   ModelPlatform simulated_;

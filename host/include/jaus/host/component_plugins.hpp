@@ -1,4 +1,5 @@
-// Component kinds from shared libraries (jaus/runtime/component_plugin.hpp):
+// Component and platform kinds from shared libraries
+// (jaus/runtime/component_plugin.hpp, jaus/host/platform_plugin.hpp):
 // a plugin is opened, its entry point checked (ABI number first, then the
 // jaus version, toolchain and layout) and its kinds added to the host's list
 // (component_kinds.hpp). Every failure is an error naming the file, never a
@@ -23,10 +24,12 @@ namespace jaus::host {
 struct LoadedPlugin {
   std::filesystem::path path;      // as opened (absolute)
   std::string name;                // the plugin's own name
-  std::vector<std::string> kinds;  // the kinds it added, in its order
+  std::vector<std::string> kinds;  // the component kinds it added, in its order
+  std::vector<std::string> platform_kinds;  // the platform kinds it added (jaus/host/platform_plugin.hpp)
 };
 
-// Opens the plugin at `path` and adds its kinds. Loading the same file again
+// Opens the plugin at `path` and adds its kinds: component kinds, platform
+// kinds (platform_kinds.hpp), or both, each entry point checked alike. Loading the same file again
 // (the same canonical path) adds nothing and returns what the first load did.
 Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& path);
 

@@ -12,6 +12,7 @@
 #include "jaus/components/simulated_cameras.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/platform.hpp"
+#include "jaus/host/platform_kinds.hpp"
 
 namespace jaus::host {
 
@@ -41,5 +42,8 @@ class ModelPlatform final : public Platform {
   std::unique_ptr<components::FrameWorker> frame_worker_;
   components::ThreadFrameWorker* frame_thread_ = nullptr;  // frame_worker_, when it is a thread
 };
+
+// The kind `model` (written `model`, no options): a ModelPlatform.
+const PlatformKind& model_platform_kind();
 
 }  // namespace jaus::host

@@ -20,9 +20,8 @@
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/host/emergency_holds.hpp"
-#include "jaus/host/clearpath_platform.hpp"
-#include "jaus/host/model_platform.hpp"
 #include "jaus/host/platform.hpp"
+#include "jaus/host/platform_kinds.hpp"
 #include "jaus/jss_face/face.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
@@ -42,8 +41,9 @@ struct HostConfig {
   // host's clock when those components are configured.
   components::VisualSensorConfig cameras;
   components::ArmConfig arm;
-  // What carries the vehicle: the simulated vehicle above (model), or a
-  // Clearpath platform through the bridge.
+  // What carries the vehicle: a platform kind by name (platform_kinds.hpp),
+  // the simulated vehicle above by default (`model`), or e.g. a Clearpath
+  // platform through the bridge (clearpath_platform.hpp).
   PlatformSettings platform;
   // How far Set Emergency reaches, and where its holds persist (emergency_holds.hpp).
   EmergencySettings emergency;
@@ -139,9 +139,9 @@ class NodeHost {
   const transport::UdpLink* udp_link() const { return udp_link_.get(); }
   rt::Clock& clock() { return *clock_; }
   rt::Scheduler& scheduler() { return *scheduler_; }
-  // The platform the components' hardware is on: a ModelPlatform or a
-  // ClearpathPlatform (make_platform), whose typed accessors reach each
-  // backend; backends() is what the components were made with, by interface.
+  // The platform the components' hardware is on, as its kind made it (a
+  // ModelPlatform, a ClearpathPlatform, ...), whose typed accessors reach
+  // each backend; backends() is what the components were made with, by interface.
   Platform& platform() { return *platform_; }
   // The platform as its class (nullptr when it is another), e.g.
   // platform_as<ModelPlatform>()->vehicle().

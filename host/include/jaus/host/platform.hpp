@@ -1,14 +1,15 @@
 // The hardware a host's components run on, one class per platform: it hands
 // out the backends it has, by interface name (rt::Backends), says which of
 // them its e-stop holds, and does what that platform needs on an emergency,
-// on the local clear and on a stop. NodeHost knows no platform by name:
-// make_platform() is the one place a PlatformSettings::Kind becomes a class.
+// on the local clear and on a stop. NodeHost knows no platform by name: a
+// platform kind (platform_kinds.hpp) makes it from PlatformSettings.
 //
-//   ModelPlatform (model_platform.hpp): the components' own simulations.
-//   ClearpathPlatform (clearpath_platform.hpp): the bridge's backends on a
-//     Clearpath platform, simulated in process or real (only the client
-//     differs); what the platform lacks (images, unmapped joints) stays
-//     simulated.
+//   ModelPlatform (model_platform.hpp, kind `model`): the components' own
+//     simulations.
+//   ClearpathPlatform (clearpath_platform.hpp, kinds `clearpath_sim` and
+//     `clearpath`): the bridge's backends on a Clearpath platform, simulated
+//     in process or real (only the client differs); what the platform lacks
+//     (images, unmapped joints) stays simulated.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
@@ -23,7 +24,6 @@
 #include "jaus/components/arm_config.hpp"
 #include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
-#include "jaus/host/platform_settings.hpp"
 #include "jaus/runtime/component_kind.hpp"
 #include "jaus/runtime/emergency_latch.hpp"
 #include "jaus/base/log.hpp"
@@ -73,10 +73,5 @@ class Platform {
   // process exits without running its loop again. Idempotent.
   virtual void stop() {}
 };
-
-// The platform `settings` names, on `environment`. A real Clearpath platform
-// needs an io_context (environment.io).
-Expected<std::unique_ptr<Platform>> make_platform(const PlatformSettings& settings, const SimulationSettings& simulation,
-                                                  PlatformEnvironment environment);
 
 }  // namespace jaus::host
