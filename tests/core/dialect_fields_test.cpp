@@ -4,9 +4,11 @@
 // (wire::Scaled::jss). The RA and openjaus bytes do not change (vectors_test).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <span>
 #include <string>
 #include <vector>
@@ -14,7 +16,7 @@
 #include "jaus/messages/all.hpp"
 
 namespace jaus {
-namespace {
+namespace dialect_fields_test {  // named: the unity batches mix this file's helpers with others'
 
 using Bytes = std::vector<std::uint8_t>;
 
@@ -89,6 +91,34 @@ TEST(JssDialect, EveryJssIntegerRoundTrips) {
   EXPECT_DOUBLE_EQ(rate.step(), (ScaledRange<std::int16_t>{-32.767, 32.767}.scale()));
 }
 
+// Which bodies get a JSS walk with the dialect as a constant: JSS's own
+// (read as RA reads them, so RA's walk) and those JSS shares (their own).
+static_assert(wire::jss_reads_as_ra<msg::AuthorityBody>());
+static_assert(wire::jss_reads_as_ra<msg::TimeBody>());
+static_assert(!wire::jss_reads_as_ra<msg::WrenchEffortBody>());  // signed fields
+static_assert(!wire::jss_reads_as_ra<msg::TravelSpeedBody>());   // unsigned, JSS's own limits
+static_assert(wire::shared_with_jss<msg::WrenchEffortBody>() && !wire::shared_with_jss<msg::AuthorityBody>());
+
+TEST(JssDialect, TheConstantJssWalkWritesWhatTheRunTimeOneWrites) {
+  msg::ReportLocalPose pose{};
+  pose.x_m = -12.5;
+  pose.z_m = -80'000;  // outside RA's z range, inside JSS's
+  pose.yaw_rad = 3.0;
+  pose.time_stamp = TimeStamp{1, 2, 3, 4, 5};
+  std::array<std::uint8_t, 64> constant{}, run_time{};
+  UncheckedWriter a(constant.data());
+  wire::write_fields(static_cast<const msg::LocalPoseBody&>(pose), a, wire::kJssContext);
+  UncheckedWriter b(run_time.data());
+  wire::CodecContext ctx{wire::Dialect::jss, {}};
+  wire::write_fields(static_cast<const msg::LocalPoseBody&>(pose), b, ctx);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(constant, run_time);
+  // And the whole encoder (which takes the constant walk) agrees, after the presence vector.
+  const Bytes encoded = payload(pose, wire::Dialect::jss);
+  ASSERT_EQ(encoded.size(), 2 + b.size());
+  EXPECT_TRUE(std::equal(encoded.begin() + 2, encoded.end(), run_time.begin()));
+}
+
 TEST(JssDialect, TheDocsSayEachDialectsWireType) {
   const std::string ra = wire::fields_doc<msg::WrenchEffortBody>(wire::Dialect::ra);
   const std::string jss = wire::fields_doc<msg::WrenchEffortBody>(wire::Dialect::jss);
@@ -104,5 +134,5 @@ TEST(JssDialect, TheDocsSayEachDialectsWireType) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace dialect_fields_test
 }  // namespace jaus

@@ -20,6 +20,7 @@ struct WrenchEffortBody {
   std::optional<double> resistive_rotational_effort_y_percent;
   std::optional<double> resistive_rotational_effort_z_percent;
   bool operator==(const WrenchEffortBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = WrenchEffortBody;
     constexpr wire::Scaled<std::int16_t> propulsive{-100, 100};
@@ -110,6 +111,7 @@ struct LocalVectorBody {
 struct TravelSpeedBody {
   double speed_mps = 0;
   bool operator==(const TravelSpeedBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     // JSS (Local Waypoint Driver): 0..327.67 m/s.
     return std::make_tuple(wire::field("speed_mps", &TravelSpeedBody::speed_mps,
@@ -318,6 +320,7 @@ struct GlobalPoseBody {
   std::optional<double> attitude_rms_rad;
   std::optional<TimeStamp> time_stamp;
   bool operator==(const GlobalPoseBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = GlobalPoseBody;
     return std::make_tuple(wire::presence_vector<std::uint16_t>(),
@@ -344,6 +347,7 @@ struct LocalPoseBody {
   std::optional<double> attitude_rms_rad;
   std::optional<TimeStamp> time_stamp;
   bool operator==(const LocalPoseBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = LocalPoseBody;
     // JSS: z over x and y's range, not an elevation's.
@@ -370,6 +374,7 @@ struct VelocityStateBody {
   std::optional<double> rate_rms_rps;
   std::optional<TimeStamp> time_stamp;
   bool operator==(const VelocityStateBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = VelocityStateBody;
     // JSS has its own ranges: +-327.68 m/s and +-32.768 rad/s, unsigned.

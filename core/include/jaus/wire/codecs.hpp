@@ -196,9 +196,12 @@ struct Scaled {
     out.jss_upper = hi;
     return out;
   }
-  constexpr double jss_lo() const { return jss_lower != jss_upper ? jss_lower : lower; }
-  constexpr double jss_hi() const { return jss_lower != jss_upper ? jss_upper : upper; }
-  constexpr ScaledRange<jss_wire_type> jss_range() const { return ScaledRange<jss_wire_type>{jss_lo(), jss_hi()}; }
+  // Always inlined: on the walk's constant description they fold to constants.
+  JAUS_ALWAYS_INLINE constexpr double jss_lo() const { return jss_lower != jss_upper ? jss_lower : lower; }
+  JAUS_ALWAYS_INLINE constexpr double jss_hi() const { return jss_lower != jss_upper ? jss_upper : upper; }
+  JAUS_ALWAYS_INLINE constexpr ScaledRange<jss_wire_type> jss_range() const {
+    return ScaledRange<jss_wire_type>{jss_lo(), jss_hi()};
+  }
 
   std::string doc(Dialect dialect = Dialect::ra) const {
     if (dialect == Dialect::jss)

@@ -349,6 +349,62 @@ struct RaCodecContext {
 };
 inline constexpr RaCodecContext kRaContext{};
 
+// The JSS dialect as a compile-time value, for the bodies JSS shares with RA
+// (a body says so: `static constexpr bool kSharedWithJss = true;`). Only
+// those get a JSS walk of their own: the JSS round trip of a shared body
+// stays as fast as when it was a JSS copy, and no other RA body compiles a
+// walk JSS never takes.
+struct JssCodecContext {
+  static constexpr Dialect dialect = Dialect::jss;
+};
+inline constexpr JssCodecContext kJssContext{};
+
+template <class Body>
+constexpr bool shared_with_jss() {
+  if constexpr (requires { Body::kSharedWithJss; })
+    return Body::kSharedWithJss;
+  else
+    return false;
+}
+
+// Whether JSS reads the body's bytes as RA does: no signed scaled field, no
+// scaled field with limits of its own in JSS, no field of one dialect only
+// (JSS's own bodies: their RA walk is their JSS walk).
+template <class Body>
+constexpr bool jss_reads_as_ra() {
+  return std::apply(
+      [](const auto&... f) {
+        return ([&] {
+          using F = std::decay_t<decltype(f)>;
+          if constexpr (is_presence_vector<F>::value) {
+            return true;
+          } else {
+            if (f.only_in.has_value()) return false;
+            if constexpr (requires { f.codec.jss_range(); })
+              return std::is_unsigned_v<typename F::codec_type::wire_type> && f.codec.jss_lo() == f.codec.lower &&
+                     f.codec.jss_hi() == f.codec.upper;
+            else
+              return true;
+          }
+        }() && ...);
+      },
+      Body::describe());
+}
+
+// Runs `walk` with the dialect as a constant where the walk is compiled so
+// (RA; JSS for the bodies above), else with the run-time context.
+template <class Body, class Walk>
+JAUS_ALWAYS_INLINE void walk_in_dialect(auto& ctx, Walk&& walk) {
+  if (ctx.dialect == Dialect::ra) [[likely]]
+    return walk(kRaContext);
+  if constexpr (jss_reads_as_ra<Body>()) {
+    if (ctx.dialect == Dialect::jss) return walk(kRaContext);
+  } else if constexpr (shared_with_jss<Body>()) {
+    if (ctx.dialect == Dialect::jss) return walk(kJssContext);
+  }
+  walk(ctx);
+}
+
 // Writes every field after the presence vector. W is a ByteWriter, or an
 // UncheckedWriter with room for fixed_layout_size() bytes.
 template <class Body, class W>
@@ -429,10 +485,7 @@ void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
     // Room for every field (the usual case) spares working out the exact size.
     if (room >= kMaxFixedLayoutSize<Body> || room >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
       UncheckedWriter fast(w.cursor());
-      if (ctx.dialect == Dialect::ra) [[likely]]
-        write_fields(body, fast, kRaContext);
-      else
-        write_fields(body, fast, ctx);
+      walk_in_dialect<Body>(ctx, [&](auto& dialect) JAUS_ALWAYS_INLINE_LAMBDA { write_fields(body, fast, dialect); });
       if (!fast.failed()) [[likely]] {
         assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
         w.commit(fast.size());
@@ -467,10 +520,7 @@ void decode_fields(ByteReader& r, Body& body, auto& ctx) {
     const std::size_t left = r.remaining();
     if (left >= kMaxFixedLayoutSize<Body> || left >= fixed_layout_size<Body>(pv, ctx)) [[likely]] {
       UncheckedReader fast(r.cursor());
-      if (ctx.dialect == Dialect::ra) [[likely]]
-        read_fields(fast, body, pv, kRaContext);
-      else
-        read_fields(fast, body, pv, ctx);
+      walk_in_dialect<Body>(ctx, [&](auto& dialect) JAUS_ALWAYS_INLINE_LAMBDA { read_fields(fast, body, pv, dialect); });
       assert(fast.size() == fixed_layout_size<Body>(pv, ctx));
       r.skip(fast.size());
       return;

@@ -17,6 +17,9 @@ using jaus::msg::GlobalPoseBody;     // latitude -90..90, longitude -180..180, "
 using jaus::msg::LocalPoseBody;      // x, y, z -100000..100000 (RA z: -10000..35000)
 using jaus::msg::VelocityStateBody;  // velocity -327.68..327.67, rates -32.768..32.767
 using jaus::msg::WrenchEffortBody;   // propulsive -100..100, resistive 0..100
+static_assert(wire::shared_with_jss<GlobalPoseBody>() && wire::shared_with_jss<LocalPoseBody>() &&
+                  wire::shared_with_jss<VelocityStateBody>() && wire::shared_with_jss<WrenchEffortBody>(),
+              "a body JSS shares says so (kSharedWithJss): its JSS walk is compiled with the dialect as a constant");
 
 struct GeomagneticPropertyBody {
   double magnetic_variation_rad = 0;  // -pi..pi

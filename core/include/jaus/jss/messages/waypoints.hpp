@@ -32,6 +32,7 @@ struct LocalWaypointBody {
 
 // RA's, read in wire::Dialect::jss: 0..327.67 m/s (RA: 0..10000).
 using jaus::msg::TravelSpeedBody;
+static_assert(wire::shared_with_jss<TravelSpeedBody>(), "a body JSS shares says so (kSharedWithJss)");
 
 // ---- List Manager ----------------------------------------------------------
 
