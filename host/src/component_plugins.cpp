@@ -96,6 +96,20 @@ void guard(PlatformKind& kind, const std::string& plugin) {
   };
 }
 
+// A plugin of either kind was built against this jaus, with this toolchain.
+Expected<void> check_build(const std::filesystem::path& path, const std::string& name, const char* jaus_version,
+                           const char* plugin_toolchain) {
+  const std::string version = text_or(jaus_version, "(none)");
+  if (version != kVersion)
+    return unexpected(plugin_error(path, "plugin '" + name + "' was built against jaus " + version +
+                                             ", this jausd is " + std::string(kVersion) + ": rebuild it"));
+  const std::string toolchain = text_or(plugin_toolchain, "(none)");
+  if (toolchain != rt::kComponentPluginToolchain)
+    return unexpected(plugin_error(path, "plugin '" + name + "' was built for " + toolchain + ", this jausd for " +
+                                             rt::kComponentPluginToolchain + ": rebuild it with the same flags"));
+  return {};
+}
+
 // The entry point's description, checked field by field in the order the
 // fields may be trusted: the ABI number first (nothing else is read when it
 // differs), then the version, toolchain and layout.
@@ -113,14 +127,8 @@ Expected<const rt::ComponentPluginInfo*> checked_info(const std::filesystem::pat
                                              std::to_string(rt::kComponentPluginAbi) +
                                              ": rebuild the plugin against this jaus"));
   const std::string name = text_or(info->name, "(unnamed)");
-  const std::string version = text_or(info->jaus_version, "(none)");
-  if (version != kVersion)
-    return unexpected(plugin_error(path, "plugin '" + name + "' was built against jaus " + version +
-                                             ", this jausd is " + std::string(kVersion) + ": rebuild it"));
-  const std::string toolchain = text_or(info->toolchain, "(none)");
-  if (toolchain != rt::kComponentPluginToolchain)
-    return unexpected(plugin_error(path, "plugin '" + name + "' was built for " + toolchain + ", this jausd for " +
-                                             rt::kComponentPluginToolchain + ": rebuild it with the same flags"));
+  if (auto built = check_build(path, name, info->jaus_version, info->toolchain); !built)
+    return unexpected(built.error());
   if (info->component_kind_size != sizeof(rt::ComponentKind))
     return unexpected(plugin_error(path, "plugin '" + name + "' sees a component kind of " +
                                              std::to_string(info->component_kind_size) + " bytes, this jausd of " +
@@ -141,14 +149,8 @@ Expected<const PlatformPluginInfo*> checked_platform_info(const std::filesystem:
                                              ", this jausd loads ABI " + std::to_string(kPlatformPluginAbi) +
                                              ": rebuild the plugin against this jaus"));
   const std::string name = text_or(info->name, "(unnamed)");
-  const std::string version = text_or(info->jaus_version, "(none)");
-  if (version != kVersion)
-    return unexpected(plugin_error(path, "plugin '" + name + "' was built against jaus " + version +
-                                             ", this jausd is " + std::string(kVersion) + ": rebuild it"));
-  const std::string toolchain = text_or(info->toolchain, "(none)");
-  if (toolchain != rt::kComponentPluginToolchain)
-    return unexpected(plugin_error(path, "plugin '" + name + "' was built for " + toolchain + ", this jausd for " +
-                                             rt::kComponentPluginToolchain + ": rebuild it with the same flags"));
+  if (auto built = check_build(path, name, info->jaus_version, info->toolchain); !built)
+    return unexpected(built.error());
   if (info->platform_kind_size != sizeof(PlatformKind))
     return unexpected(plugin_error(path, "plugin '" + name + "' sees a platform kind of " +
                                              std::to_string(info->platform_kind_size) + " bytes, this jausd of " +
