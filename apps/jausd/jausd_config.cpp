@@ -37,22 +37,20 @@ using jaus::host::ComponentKind;
 using jaus::host::find_component_kind;
 
 std::vector<ComponentSpec> JausdConfig::default_components() {
-  return {ComponentSpec{"node_manager", 1, 1, 0, "node_manager", {}, 0, {}},
-          ComponentSpec{"communicator", 35, 1, 0, "communicator", {}, 0, {}},
-          ComponentSpec{"primitive_driver", 33, 1, 0, "primitive_driver", {}, 0, {}},
-          ComponentSpec{"global_pose_sensor", 38, 1, 0, "global_pose_sensor", {}, 0, {}},
-          ComponentSpec{"local_pose_sensor", 41, 1, 0, "local_pose_sensor", {}, 0, {}},
-          ComponentSpec{"velocity_state_sensor", 42, 1, 0, "velocity_state_sensor", {}, 0, {}},
-          ComponentSpec{"visual_sensor", 37, 1, 0, "visual_sensor", {}, 0, {}},
-          ComponentSpec{"primitive_manipulator", 49, 1, 0, "primitive_manipulator", {}, 0, {}},
+  // Each kind at its own RA ID (ComponentKind::default_id), instance 1, named
+  // as its kind.
+  const auto at_its_id = [](std::string kind, std::uint8_t authority) {
+    const ComponentKind* known = find_component_kind(kind);
+    return ComponentSpec{kind, known ? known->default_id : std::uint8_t{0}, 1, authority, kind, {}, 0, {}};
+  };
+  return {at_its_id("node_manager", 0), at_its_id("communicator", 0), at_its_id("primitive_driver", 0),
+          at_its_id("global_pose_sensor", 0), at_its_id("local_pose_sensor", 0),
+          at_its_id("velocity_state_sensor", 0), at_its_id("visual_sensor", 0), at_its_id("primitive_manipulator", 0),
           // The drivers above the primitive driver, each with authority 1:
           // below an operator's, who takes the primitive driver over at once.
-          ComponentSpec{"global_vector_driver", 34, 1, 1, "global_vector_driver", {}, 0, {}},
-          ComponentSpec{"local_vector_driver", 44, 1, 1, "local_vector_driver", {}, 0, {}},
-          ComponentSpec{"global_waypoint_driver", 45, 1, 1, "global_waypoint_driver", {}, 0, {}},
-          ComponentSpec{"local_waypoint_driver", 46, 1, 1, "local_waypoint_driver", {}, 0, {}},
-          ComponentSpec{"global_path_segment_driver", 47, 1, 1, "global_path_segment_driver", {}, 0, {}},
-          ComponentSpec{"local_path_segment_driver", 48, 1, 1, "local_path_segment_driver", {}, 0, {}}};
+          at_its_id("global_vector_driver", 1), at_its_id("local_vector_driver", 1),
+          at_its_id("global_waypoint_driver", 1), at_its_id("local_waypoint_driver", 1),
+          at_its_id("global_path_segment_driver", 1), at_its_id("local_path_segment_driver", 1)};
 }
 
 jaus::components::VisualSensorConfig JausdConfig::default_cameras() { return jausd::default_cameras(); }

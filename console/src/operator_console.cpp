@@ -6,6 +6,7 @@
 #include <numbers>
 #include <utility>
 
+#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/wire/message.hpp"
 
@@ -14,12 +15,6 @@ namespace jaus::console {
 namespace {
 
 using namespace std::chrono_literals;
-
-// The component IDs followed by service connection (RA Part 3's IDs).
-constexpr std::uint8_t kGlobalPoseSensor = 38;
-constexpr std::uint8_t kLocalPoseSensor = 41;
-constexpr std::uint8_t kVelocityStateSensor = 42;
-constexpr std::uint8_t kPrimitiveManipulator = 49;
 
 // Presence vectors: x, y, yaw (bits 0, 1, 6) and latitude, longitude (0, 1).
 constexpr std::uint32_t kLocalPoseFields = 0x43;
@@ -652,7 +647,7 @@ void OperatorConsole::follow_new_components() {
         if (followed_.count(a)) continue;
         const auto rate = options_.report_rate_hz;
         switch (a.component) {
-          case kLocalPoseSensor:
+          case component_id::kLocalPoseSensor:
             report_subscriptions_.push_back(component.subscribe<jaus::msg::ReportLocalPose>(
                 a, rate, kLocalPoseFields, [this, a](const jaus::Header&, const jaus::msg::ReportLocalPose& p) {
                   PoseFrame frame{a, p.x_m.value_or(0), p.y_m.value_or(0), p.yaw_rad.value_or(0), {}, {}};
@@ -663,21 +658,21 @@ void OperatorConsole::follow_new_components() {
                   to_all(frame);
                 }));
             break;
-          case kGlobalPoseSensor:
+          case component_id::kGlobalPoseSensor:
             report_subscriptions_.push_back(component.subscribe<jaus::msg::ReportGlobalPose>(
                 a, rate, kGlobalPoseFields, [this, a](const jaus::Header&, const jaus::msg::ReportGlobalPose& p) {
                   if (p.latitude_deg && p.longitude_deg)
                     latitude_longitude_[node_key(a)] = {*p.latitude_deg, *p.longitude_deg};
                 }));
             break;
-          case kVelocityStateSensor:
+          case component_id::kVelocityStateSensor:
             report_subscriptions_.push_back(component.subscribe<jaus::msg::ReportVelocityState>(
                 a, rate, kVelocityFields, [this, a](const jaus::Header&, const jaus::msg::ReportVelocityState& v) {
                   to_all(VelocityFrame{a, v.velocity_x_mps.value_or(0), v.velocity_y_mps.value_or(0),
                                        v.yaw_rate_rps.value_or(0)});
                 }));
             break;
-          case kPrimitiveManipulator:
+          case component_id::kPrimitiveManipulator:
             session_.send(a, jaus::msg::QueryManipulatorSpecifications{});
             report_subscriptions_.push_back(component.subscribe<jaus::msg::ReportJointPositions>(
                 a, rate, 0, [this, a](const jaus::Header&, const jaus::msg::ReportJointPositions& j) {

@@ -3,11 +3,9 @@
 "use strict";
 
 (() => {
-  // JAUS component IDs (RA 3.x) the page picks its default targets by.
-  const KIND = {
-    primitive_driver: 33, visual_sensor: 37, global_pose_sensor: 38, local_pose_sensor: 41,
-    velocity_state_sensor: 42, primitive_manipulator: 49, local_waypoint_driver: 46, global_waypoint_driver: 45,
-  };
+  // JAUS component IDs (RA 3.x) by kind ("primitive_driver": 33), the page's
+  // default targets are picked by: the server's welcome gives them.
+  const KIND = {};
   const DRIVE_PERIOD_MS = 50;      // the protocol: drive frames every 50 ms while held
   const TRACK_POINTS = 3000;       // the map's track, oldest dropped first
   const LOG_ENTRIES = 400;
@@ -107,6 +105,7 @@
   // ---------------------------------------------------------------- incoming
   const handlers = {
     welcome(m) {
+      Object.assign(KIND, m.component_ids || {});
       state.self = m.self;
       state.page = m.page ?? null;
       if (m.deadman_ms) state.deadmanMs = m.deadman_ms;

@@ -36,11 +36,11 @@ class AccessControlTranslator final : public ServiceTranslator {
  public:
   std::string_view name() const override { return "access control"; }
   std::vector<ServiceUri> services(std::uint8_t ra_id) const override {
-    if (ra_id == kNodeManagerId) return {};
+    if (ra_id == component_id::kNodeManager) return {};
     return {core_service("AccessControl")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
-    if (ra_id == kNodeManagerId) return false;
+    if (ra_id == component_id::kNodeManager) return false;
     switch (message_id) {
       case jss_msg::SetAuthority::code:
       case jss_msg::RequestControl::code:

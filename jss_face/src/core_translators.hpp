@@ -8,14 +8,13 @@
 #include <optional>
 #include <string>
 
+#include "jaus/core/component_ids.hpp"
 #include "jaus/jss/contents.hpp"
 #include "jaus/jss_face/face.hpp"
 #include "jaus/jss_face/translator.hpp"
 #include "jaus/wire/message.hpp"
 
 namespace jaus::jss_face {
-
-inline constexpr std::uint8_t kNodeManagerId = 1;  // the RA node manager: Discovery, no control
 
 std::unique_ptr<ServiceTranslator> make_transport_events_translator();
 std::unique_ptr<ServiceTranslator> make_discovery_translator(const FaceConfig& config);

@@ -32,12 +32,12 @@ class DiscoveryTranslator final : public ServiceTranslator {
 
   std::string_view name() const override { return "discovery"; }
   std::vector<ServiceUri> services(std::uint8_t ra_id) const override {
-    if (ra_id != kNodeManagerId) return {};
+    if (ra_id != component_id::kNodeManager) return {};
     return {core_service("Discovery")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
     if (message_id == jss_msg::QueryIdentification::code) return true;
-    if (ra_id != kNodeManagerId) return false;
+    if (ra_id != component_id::kNodeManager) return false;
     switch (message_id) {
       case jss_msg::RegisterServices::code:
       case jss_msg::QueryConfiguration::code:
@@ -102,7 +102,7 @@ class DiscoveryTranslator final : public ServiceTranslator {
 
   void identification(const JssInbound& m, const jss_msg::QueryIdentification& q, FacePort& port) {
     const FaceConfig& config = port.config();
-    const bool manager = m.ra_component.component == kNodeManagerId;
+    const bool manager = m.ra_component.component == component_id::kNodeManager;
     jss_msg::ReportIdentification report;
     report.query_type = q.query_type;
     if (q.query_type == identification::kSubsystem && manager) {

@@ -15,7 +15,7 @@ class GlobalPoseTranslator final
                                         msg::ReportGlobalPose> {
  public:
   GlobalPoseTranslator()
-      : ReportTranslator("global pose sensor", kGlobalPoseSensorComponent,
+      : ReportTranslator("global pose sensor", component_id::kGlobalPoseSensor,
                          {ServiceUri{"urn:jaus:jss:mobility:GlobalPoseSensor", 1, 0}}) {}
 
  protected:

@@ -30,12 +30,12 @@ class ListDriverTranslator final : public ServiceTranslator {
 
   std::string_view name() const override { return "local waypoint list driver"; }
   std::vector<ServiceUri> services(std::uint8_t ra_component_id) const override {
-    if (ra_component_id != kLocalWaypointDriverComponent) return {};
+    if (ra_component_id != component_id::kLocalWaypointDriver) return {};
     return {ServiceUri{"urn:jaus:jss:mobility:ListManager", 1, 0},
             ServiceUri{"urn:jaus:jss:mobility:LocalWaypointListDriver", 1, 0}};
   }
   bool handles(std::uint16_t id, std::uint8_t ra_component_id) const override {
-    if (ra_component_id != kLocalWaypointDriverComponent) return false;
+    if (ra_component_id != component_id::kLocalWaypointDriver) return false;
     switch (id) {
       case jss::msg::SetElement::code:
       case jss::msg::DeleteElement::code:
@@ -51,7 +51,7 @@ class ListDriverTranslator final : public ServiceTranslator {
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {
-    if (m.ra_component.component != kLocalWaypointDriverComponent || !handles(m.message_id, m.ra_component.component))
+    if (m.ra_component.component != component_id::kLocalWaypointDriver || !handles(m.message_id, m.ra_component.component))
       return false;
     answer(m, port);
     // Execute List reaches the RA driver itself; the rest only the face.

@@ -16,7 +16,7 @@ class LocalPoseTranslator final
                                         msg::ReportLocalPose> {
  public:
   LocalPoseTranslator()
-      : ReportTranslator("local pose sensor", kLocalPoseSensorComponent,
+      : ReportTranslator("local pose sensor", component_id::kLocalPoseSensor,
                          {ServiceUri{"urn:jaus:jss:mobility:LocalPoseSensor", 1, 0}}) {}
 
  protected:

@@ -27,11 +27,11 @@ class ManagementTranslator final : public ServiceTranslator {
  public:
   std::string_view name() const override { return "management"; }
   std::vector<ServiceUri> services(std::uint8_t ra_id) const override {
-    if (ra_id == kNodeManagerId) return {};
+    if (ra_id == component_id::kNodeManager) return {};
     return {core_service("Management")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
-    if (ra_id == kNodeManagerId) return false;
+    if (ra_id == component_id::kNodeManager) return false;
     switch (message_id) {
       case jss_msg::Shutdown::code:
       case jss_msg::Standby::code:

@@ -10,18 +10,12 @@
 #include <memory>
 #include <optional>
 
+#include "jaus/core/component_ids.hpp"
 #include "jaus/jss/all.hpp"
 #include "jaus/jss_face/translator.hpp"
 #include "jaus/messages/all.hpp"
 
 namespace jaus::jss_face {
-
-// The RA component IDs whose JSS services these are (the RA kinds' IDs).
-inline constexpr std::uint8_t kPrimitiveDriverComponent = 33;
-inline constexpr std::uint8_t kGlobalPoseSensorComponent = 38;
-inline constexpr std::uint8_t kLocalPoseSensorComponent = 41;
-inline constexpr std::uint8_t kVelocityStateSensorComponent = 42;
-inline constexpr std::uint8_t kLocalWaypointDriverComponent = 46;
 
 std::unique_ptr<ServiceTranslator> make_primitive_driver_translator();
 std::unique_ptr<ServiceTranslator> make_velocity_state_translator();

@@ -17,7 +17,7 @@ class PrimitiveDriverTranslator final
                               msg::ReportWrenchEffort> {
  public:
   PrimitiveDriverTranslator()
-      : ReportTranslator("primitive driver", kPrimitiveDriverComponent,
+      : ReportTranslator("primitive driver", component_id::kPrimitiveDriver,
                          {ServiceUri{"urn:jaus:jss:mobility:PrimitiveDriver", 1, 0}}) {}
 
  protected:

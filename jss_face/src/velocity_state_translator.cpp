@@ -9,7 +9,7 @@ namespace jaus::jss_face {
 std::unique_ptr<ServiceTranslator> make_velocity_state_translator() {
   using Translator = mobility::ReportTranslator<jss::msg::QueryVelocityState, jss::msg::ReportVelocityState,
                                                 msg::QueryVelocityState, msg::ReportVelocityState>;
-  return std::make_unique<Translator>("velocity state sensor", kVelocityStateSensorComponent,
+  return std::make_unique<Translator>("velocity state sensor", component_id::kVelocityStateSensor,
                                       std::vector<ServiceUri>{{"urn:jaus:jss:mobility:VelocityStateSensor", 1, 0}});
 }
 

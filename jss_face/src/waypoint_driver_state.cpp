@@ -108,7 +108,7 @@ void WaypointDrivers::heard(FacePort& port, const JssInbound& m, mobility::Trans
 
 bool WaypointDrivers::is_heard_answer(const RaOutbound& m) {
   return m.header.command_code == msg::ReportTravelSpeed::code &&
-         m.header.source.component == kLocalWaypointDriverComponent && !m.to.event_id;
+         m.header.source.component == component_id::kLocalWaypointDriver && !m.to.event_id;
 }
 
 bool WaypointDrivers::left_ready(FacePort& port, const Address& ra_driver, const WaypointDriverState& s) {

@@ -26,17 +26,17 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
 
   std::string_view name() const override { return "local waypoint driver"; }
   std::vector<ServiceUri> services(std::uint8_t ra_component_id) const override {
-    if (ra_component_id != kLocalWaypointDriverComponent) return {};
+    if (ra_component_id != component_id::kLocalWaypointDriver) return {};
     return {ServiceUri{"urn:jaus:jss:mobility:LocalWaypointDriver", 1, 0}};
   }
   bool handles(std::uint16_t id, std::uint8_t ra_component_id) const override {
-    return ra_component_id == kLocalWaypointDriverComponent &&
+    return ra_component_id == component_id::kLocalWaypointDriver &&
            (id == jss::msg::SetLocalWaypoint::code || id == jss::msg::QueryLocalWaypoint::code ||
             id == jss::msg::SetTravelSpeed::code || id == jss::msg::QueryTravelSpeed::code);
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {
-    if (m.ra_component.component != kLocalWaypointDriverComponent) return false;
+    if (m.ra_component.component != component_id::kLocalWaypointDriver) return false;
     switch (m.message_id) {
       case jss::msg::SetLocalWaypoint::code:
         set_waypoint(m, port);

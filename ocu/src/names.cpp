@@ -1,24 +1,14 @@
 #include "jaus/ocu/names.hpp"
 
 #include <cstdio>
-#include <map>
 
+#include "jaus/core/component_ids.hpp"
 #include "jaus/runtime/lifecycle.hpp"
 
 namespace jaus::ocu {
 
 std::string component_kind(std::uint8_t id) {
-  // RA 3.x component IDs (docs/wire-format.md, "Component IDs").
-  static const std::map<std::uint8_t, const char*> kinds = {
-      {1, "node manager"},           {32, "subsystem commander"},       {33, "primitive driver"},
-      {34, "global vector driver"},  {35, "communicator"},              {36, "mission spooler"},
-      {37, "visual sensor"},         {38, "global pose sensor"},        {39, "mission planner"},
-      {40, "system commander"},      {41, "local pose sensor"},         {42, "velocity state sensor"},
-      {43, "reflexive driver"},      {44, "local vector driver"},       {45, "global waypoint driver"},
-      {46, "local waypoint driver"}, {47, "global path segment driver"}, {48, "local path segment driver"},
-      {49, "primitive manipulator"}, {50, "range sensor"},              {61, "world model vector knowledge store"}};
-  if (const auto it = kinds.find(id); it != kinds.end()) return it->second;
-  if (id >= 51 && id <= 59) return "manipulator sensor/driver";
+  if (const std::string_view name = component_id::ra_name(id); !name.empty()) return std::string(name);
   return "component " + std::to_string(id);
 }
 

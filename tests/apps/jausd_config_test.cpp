@@ -3,10 +3,12 @@
 #include "jausd_config.hpp"
 #include "host_config.hpp"
 #include "jaus/host/clearpath_platform.hpp"
+#include "jaus/host/component_kinds.hpp"
 #include "jaus/host/component_options.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 
 #include <cstdio>
@@ -17,6 +19,7 @@
 #include <tuple>
 #include <unistd.h>
 
+#include "jaus/core/component_ids.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
 
@@ -1441,6 +1444,22 @@ TEST(JausdConfigValidate, TheAliasSubsystemRuleHoldsAfterOverrides) {
   const auto valid = validate(c);
   ASSERT_FALSE(valid);
   EXPECT_NE(valid.error().message().find("'client_alias_subsystem' (250) must differ"), std::string::npos);
+}
+
+TEST(ComponentKinds, EachBuiltInKindIsAtTheRaIdOfItsNameAndSoIsTheDefaultNode) {
+  for (const jaus::host::ComponentKind* kind : jaus::host::builtin_component_kinds()) {
+    std::string ra_kind(jaus::component_id::ra_name(kind->default_id));
+    std::replace(ra_kind.begin(), ra_kind.end(), ' ', '_');
+    EXPECT_EQ(ra_kind, kind->name) << "id " << int(kind->default_id);
+  }
+  const auto defaults = JausdConfig::default_components();
+  ASSERT_EQ(defaults.size(), jaus::host::builtin_component_kinds().size());
+  for (const jaus::host::ComponentSpec& spec : defaults) {
+    const jaus::host::ComponentKind* kind = find_component_kind(spec.kind);
+    ASSERT_NE(kind, nullptr) << spec.kind;
+    EXPECT_EQ(spec.id, kind->default_id) << spec.kind;
+    EXPECT_EQ(spec.instance, 1) << spec.kind;
+  }
 }
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {

@@ -1,13 +1,14 @@
 #include "jaus/components/communicator_kind.hpp"
 
 #include "jaus/components/communicator.hpp"
+#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
 
 const rt::ComponentKind& communicator_kind() {
   static const rt::ComponentKind kind{
       .name = "communicator",
-      .default_id = 35,
+      .default_id = component_id::kCommunicator,
       .options = {},
       .needs = {},
       .moves_hardware = false,

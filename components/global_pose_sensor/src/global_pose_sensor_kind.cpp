@@ -1,5 +1,7 @@
 #include "jaus/components/global_pose_sensor_kind.hpp"
 
+#include "jaus/core/component_ids.hpp"
+
 namespace jaus::components {
 
 Expected<GlobalPoseSensorOptions> global_pose_sensor_options(const rt::KindOptions& options) {
@@ -16,7 +18,7 @@ Expected<GlobalPoseSensorOptions> global_pose_sensor_options(const rt::KindOptio
 const rt::ComponentKind& global_pose_sensor_kind() {
   static const rt::ComponentKind kind{
       .name = "global_pose_sensor",
-      .default_id = 38,
+      .default_id = component_id::kGlobalPoseSensor,
       .options = {"stale_after_s", "local_pose"},
       .needs = {PoseSource::kInterface},
       .moves_hardware = false,

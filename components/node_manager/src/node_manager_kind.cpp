@@ -1,13 +1,14 @@
 #include "jaus/components/node_manager_kind.hpp"
 
 #include "jaus/components/node_manager.hpp"
+#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
 
 const rt::ComponentKind& node_manager_kind() {
   static const rt::ComponentKind kind{
       .name = "node_manager",
-      .default_id = 1,
+      .default_id = component_id::kNodeManager,
       .options = {},
       .needs = {},
       .moves_hardware = false,

@@ -1,5 +1,7 @@
 #include "jaus/components/primitive_driver_kind.hpp"
 
+#include "jaus/core/component_ids.hpp"
+
 namespace jaus::components {
 
 namespace {
@@ -20,7 +22,7 @@ Expected<PrimitiveDriverOptions> primitive_driver_options(const rt::KindOptions&
 const rt::ComponentKind& primitive_driver_kind() {
   static const rt::ComponentKind kind{
       .name = "primitive_driver",
-      .default_id = 33,
+      .default_id = component_id::kPrimitiveDriver,
       .options = {"command_timeout_s", "stop_brake_percent"},
       .needs = {Drive::kInterface},
       .moves_hardware = true,

@@ -1,5 +1,7 @@
 #include "jaus/components/primitive_manipulator_kind.hpp"
 
+#include "jaus/core/component_ids.hpp"
+
 namespace jaus::components {
 
 namespace {
@@ -17,7 +19,7 @@ Expected<PrimitiveManipulatorOptions> primitive_manipulator_options(const rt::Ki
 const rt::ComponentKind& primitive_manipulator_kind() {
   static const rt::ComponentKind kind{
       .name = "primitive_manipulator",
-      .default_id = 49,
+      .default_id = component_id::kPrimitiveManipulator,
       .options = {"command_timeout_s"},
       .needs = {ManipulatorArm::kInterface},
       .moves_hardware = true,

@@ -1,13 +1,14 @@
 #include "jaus/components/velocity_state_sensor_kind.hpp"
 
 #include "jaus/components/velocity_state_sensor.hpp"
+#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
 
 const rt::ComponentKind& velocity_state_sensor_kind() {
   static const rt::ComponentKind kind{
       .name = "velocity_state_sensor",
-      .default_id = 42,
+      .default_id = component_id::kVelocityStateSensor,
       .options = {"stale_after_s"},
       .needs = {PoseSource::kInterface},
       .moves_hardware = false,

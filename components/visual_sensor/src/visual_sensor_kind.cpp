@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "jaus/components/frame_worker.hpp"
+#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
 
@@ -21,7 +22,7 @@ Expected<VisualSensorOptions> visual_sensor_options(const rt::KindOptions& optio
 const rt::ComponentKind& visual_sensor_kind() {
   static const rt::ComponentKind kind{
       .name = "visual_sensor",
-      .default_id = 37,
+      .default_id = component_id::kVisualSensor,
       .options = {"image_connections_per_requester"},
       .needs = {Cameras::kInterface},
       .moves_hardware = true,  // the cameras' mounts

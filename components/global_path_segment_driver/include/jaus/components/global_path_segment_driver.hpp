@@ -14,11 +14,12 @@
 
 #include "jaus/components/local_frame.hpp"
 #include "jaus/components/path_segment_driver.hpp"
+#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
 
-inline constexpr std::uint8_t kGlobalPathSegmentDriverId = 47;
+inline constexpr std::uint8_t kGlobalPathSegmentDriverId = component_id::kGlobalPathSegmentDriver;
 
 class GlobalPathSegmentDriver final : public PathSegmentDriver {
  public:

@@ -5,11 +5,12 @@
 #pragma once
 
 #include "jaus/components/sensor_component.hpp"
+#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
 
-inline constexpr std::uint8_t kVelocityStateSensorId = 42;
+inline constexpr std::uint8_t kVelocityStateSensorId = component_id::kVelocityStateSensor;
 
 class VelocityStateSensor final : public SensorComponent {
  public:
