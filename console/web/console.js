@@ -3,8 +3,8 @@
 "use strict";
 
 (() => {
-  // JAUS component IDs (RA 3.x) by kind ("primitive_driver": 33), the page's
-  // default targets are picked by: the server's welcome gives them.
+  // JAUS component IDs (RA 3.x) by kind ("primitive_driver": 33), as the
+  // server's welcome gives them: the page picks its default targets by them.
   const KIND = {};
   const DRIVE_PERIOD_MS = 50;      // the protocol: drive frames every 50 ms while held
   const TRACK_POINTS = 3000;       // the map's track, oldest dropped first

@@ -19,7 +19,7 @@
 // a whole message encode or decode as straight-line code. Only where the
 // compiler optimizes: at -O0 (the sanitizer tree) forced inlining buys no
 // speed and made every message's walk one huge function to compile and
-// instrument (a third of the catalogue's compile time).
+// instrument (about half of the catalogue's compile time there).
 #if defined(__OPTIMIZE__)
 #define JAUS_ALWAYS_INLINE [[gnu::always_inline]] inline
 // The same for a lambda (placed after the parameter list).
