@@ -216,12 +216,15 @@ std::string body_lua(wire::Dialect dialect) {
       [&](const auto&... f) {
         (([&] {
            using F = std::decay_t<decltype(f)>;
+           // The fields and bits this dialect sends (an openjaus extension in RA's table, marked).
+           const std::optional<wire::Dialect> shown = wire::shown_in(f, dialect);
+           if (!shown) return;
            if constexpr (wire::is_presence_vector<F>::value) {
              out += "{k=\"pv\",s=" + std::to_string(sizeof(typename F::wire_type)) + "},";
            } else {
              out += "{n=" + lua_string(f.name);
-             if (f.bit >= 0) out += ",bit=" + std::to_string(f.bit);
-             if (f.only_in) out += ",only=" + lua_string(wire::to_string(*f.only_in));
+             if (f.presence_in(*shown) == wire::Presence::by_bit) out += ",bit=" + std::to_string(f.bit);
+             if (*shown != dialect) out += ",only=" + lua_string(wire::to_string(*shown));
              out += "," + codec_lua(f.codec, dialect) + "},";
            }
          }()),

@@ -469,7 +469,7 @@ Expected<m::ConfirmEventRequest> create_event(JssCaseContext& c, std::uint8_t re
 
 // Cancel Event and its confirmation.
 Expected<void> cancel_event(JssCaseContext& c, std::uint8_t event_id) {
-  send(c, m::CancelEvent{{9, event_id}});
+  send(c, m::CancelEvent{m::cancel_event_by_id(9, event_id)});
   auto reply = await_from(c, c.session, {m::ConfirmEventRequest::code, m::RejectEventRequest::code});
   if (!reply) return unexpected(reply.error());
   if (reply->message_id() != m::ConfirmEventRequest::code)
@@ -483,7 +483,7 @@ CaseOutcome events_periodic(JssCaseContext& c) {
   EventLog log(c);
   auto confirm = create_event(c, 1, kPeriodic, 5.0, query);
   if (!confirm) return fail("Create Event (periodic, 5 Hz): " + confirm.error().message());
-  const double rate = confirm->confirmed_rate_hz;
+  const double rate = confirm->confirmed_rate_hz.value_or(0);
   const auto id = confirm->event_id;
   if (!(rate > 0 && rate <= 5.1)) {
     (void)cancel_event(c, id);
@@ -602,7 +602,7 @@ CaseOutcome events_unsupported_rejected(JssCaseContext& c) {
   if (listed)
     while (std::any_of(listed->events.begin(), listed->events.end(), [&](const auto& e) { return e.event_id == unused; }))
       --unused;
-  send(c, m::CancelEvent{{5, unused}});
+  send(c, m::CancelEvent{m::cancel_event_by_id(5, unused)});
   auto reply = await_from(c, c.session, {m::ConfirmEventRequest::code, m::RejectEventRequest::code});
   if (!reply) return fail("Cancel Event of unknown event " + std::to_string(unused) + ": " + reply.error().message());
   if (reply->message_id() != m::RejectEventRequest::code)

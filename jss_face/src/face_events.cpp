@@ -168,7 +168,8 @@ void EventEngine::update(const JssInbound& m) {
 void EventEngine::cancel(const JssInbound& m) {
   const auto request = decode<jss_msg::CancelEvent>(m);
   if (!request) return;
-  const auto it = events_.find(Key{client_node_of(m.origin.client), request->event_id});
+  const std::uint8_t event_id = request->event_id.value_or(0);  // always sent in JSS
+  const auto it = events_.find(Key{client_node_of(m.origin.client), event_id});
   if (it == events_.end() || it->second.our_component != m.our_component)
     return reject(m, request->request_id, event_reject::kInvalidEventIdForUpdate, "no such event");
   stop(it->second);

@@ -1,5 +1,5 @@
 // Global Pose Sensor 1.0 on the RA global pose sensor (38), docs/jss.md "Sensors":
-// the query and report are RA's field for field, rescaled. Set Global Pose
+// the query and report are RA's, read in the JSS dialect (rescaled). Set Global Pose
 // and the Geomagnetic Property messages are not supported: RA has no message
 // for either, and a correction kept in the face would make JSS and RA clients
 // of one vehicle see two positions; they are left to the face's unsupported
@@ -11,8 +11,7 @@ namespace jaus::jss_face {
 namespace {
 
 class GlobalPoseTranslator final
-    : public mobility::ReportTranslator<jss::msg::QueryGlobalPose, jss::msg::ReportGlobalPose, msg::QueryGlobalPose,
-                                        msg::ReportGlobalPose> {
+    : public mobility::ReportTranslator<jss::msg::QueryGlobalPose, jss::msg::ReportGlobalPose> {
  public:
   GlobalPoseTranslator()
       : ReportTranslator("global pose sensor", component_id::kGlobalPoseSensor,

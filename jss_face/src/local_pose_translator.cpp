@@ -1,5 +1,5 @@
 // Local Pose Sensor 1.0 on the RA local pose sensor (41), docs/jss.md "Sensors":
-// the query and report are RA's field for field (RA's Z range lies within
+// the query and report are RA's, read in the JSS dialect (RA's Z range lies within
 // JSS's). Set Local Pose is not supported: RA has no message to move the
 // local frame, and a frame offset kept in the face would have to reach every
 // consumer of the RA frame (the RA waypoint drivers, RA clients of the same
@@ -12,8 +12,7 @@ namespace jaus::jss_face {
 namespace {
 
 class LocalPoseTranslator final
-    : public mobility::ReportTranslator<jss::msg::QueryLocalPose, jss::msg::ReportLocalPose, msg::QueryLocalPose,
-                                        msg::ReportLocalPose> {
+    : public mobility::ReportTranslator<jss::msg::QueryLocalPose, jss::msg::ReportLocalPose> {
  public:
   LocalPoseTranslator()
       : ReportTranslator("local pose sensor", component_id::kLocalPoseSensor,

@@ -1,7 +1,6 @@
 // What the mobility translators share (docs/jss.md, "Mobility services"): encoding and
-// decoding on both sides, copying the fields JSS and RA describe alike,
-// reading an RA component in process (never commanding through it), and a
-// rate-limited log for what remote input repeats.
+// decoding on both sides, reading an RA component in process (never
+// commanding through it), and a rate-limited log for what remote input repeats.
 #pragma once
 
 #include <array>
@@ -25,33 +24,6 @@
 #include "core_translators.hpp"
 
 namespace jaus::jss_face::mobility {
-
-// Copies every field of `from` into the field of `to` at the same place of
-// the description. The two bodies must describe the same fields by the same
-// names (a JSS body and the RA body of the same message, jss_design.md):
-// checked at compile time, so a layout that drifts apart does not build.
-template <class To, class From>
-void copy_fields(const From& from, To& to) {
-  using FromBody = typename From::body_type;
-  using ToBody = typename To::body_type;
-  static_assert(std::tuple_size_v<decltype(wire::kFields<FromBody>)> ==
-                    std::tuple_size_v<decltype(wire::kFields<ToBody>)>,
-                "the JSS and RA bodies describe different numbers of fields");
-  wire::for_each_field_index<FromBody>([&](auto index) {
-    constexpr std::size_t i = decltype(index)::value;
-    constexpr const auto& source = std::get<i>(wire::kFields<FromBody>);
-    constexpr const auto& target = std::get<i>(wire::kFields<ToBody>);
-    using S = std::decay_t<decltype(source)>;
-    using T = std::decay_t<decltype(target)>;
-    static_assert(wire::is_presence_vector<S>::value == wire::is_presence_vector<T>::value,
-                  "the presence vectors are at different places");
-    if constexpr (!wire::is_presence_vector<S>::value) {
-      static_assert(source.name == target.name, "a field differs in name between JSS and RA");
-      static_assert(source.bit == target.bit, "a field differs in presence bit between JSS and RA");
-      static_cast<ToBody&>(to).*target.member = static_cast<const FromBody&>(from).*source.member;
-    }
-  });
-}
 
 // An RA message's payload (no header).
 template <class M>

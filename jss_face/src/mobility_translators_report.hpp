@@ -1,10 +1,10 @@
-// A mobility service whose query and report are the RA component's own,
-// field for field (docs/jss.md, "Primitive Driver", "Sensors"): the JSS query goes to the RA
-// component as the RA query with the same presence vector, and the RA
-// report comes back as the JSS report; every scaled field is a double on
-// both sides, so re-encoding rescales it, and the JSS encoder clamps to
-// JSS's range (every RA report range lies within JSS's). Commands of the
-// service, if any, are the derived class's.
+// A mobility service whose query and report are the RA component's own
+// (docs/jss.md, "Primitive Driver", "Sensors"): one description read in each
+// dialect, so the JSS query goes to the RA component as it came (the same
+// presence vector) and the RA report goes back to the JSS client as it is;
+// every scaled field is a double, so encoding in JSS rescales it, and the
+// JSS encoder clamps to JSS's range (every RA report range lies within
+// JSS's). Commands of the service, if any, are the derived class's.
 #pragma once
 
 #include <string>
@@ -16,7 +16,7 @@
 
 namespace jaus::jss_face::mobility {
 
-template <class JssQuery, class JssReport, class RaQuery, class RaReport>
+template <class Query, class Report>
 class ReportTranslator : public ServiceTranslator {
  public:
   ReportTranslator(std::string name, std::uint8_t ra_component_id, std::vector<ServiceUri> services)
@@ -27,37 +27,33 @@ class ReportTranslator : public ServiceTranslator {
     return ra_component_id == ra_component_id_ ? services_ : std::vector<ServiceUri>{};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_component_id) const override {
-    return ra_component_id == ra_component_id_ && (message_id == JssQuery::code || handles_command(message_id));
+    return ra_component_id == ra_component_id_ && (message_id == Query::code || handles_command(message_id));
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {
     if (m.ra_component.component != ra_component_id_) return false;
-    if (m.message_id != JssQuery::code) return command(m, port);
-    auto query = decode_jss_body<JssQuery>(m.body);
+    if (m.message_id != Query::code) return command(m, port);
+    auto query = decode_jss_body<Query>(m.body);
     if (!query) {
-      log_malformed(port, m, JssQuery::name, query.error());
+      log_malformed(port, m, Query::name, query.error());
       return true;
     }
-    RaQuery ra{};
-    copy_fields(*query, ra);
-    send_ra(port, m, ra, log_);
+    send_ra(port, m, *query, log_);
     return true;
   }
 
   bool from_ra(const RaOutbound& m, FacePort& port) override {
-    if (m.header.command_code != RaReport::code || m.header.source.component != ra_component_id_) return false;
-    auto report = decode_ra<RaReport>(m.payload);
+    if (m.header.command_code != Report::code || m.header.source.component != ra_component_id_) return false;
+    auto report = decode_ra<Report>(m.payload);
     if (!report) {
       // Our own component's message: a bug, not remote input.
       log_.repeated(port, "RA reports not decoded", rt::LogLevel::error, [&] {
-        return std::string(RaReport::name) + " from " + m.header.source.to_string() +
+        return std::string(Report::name) + " from " + m.header.source.to_string() +
                " not decoded: " + report.error().message();
       });
       return true;
     }
-    JssReport jss{};
-    copy_fields(*report, jss);
-    reply_jss(port, m.to, m.our_component, jss);
+    reply_jss(port, m.to, m.our_component, *report);
     return true;
   }
 

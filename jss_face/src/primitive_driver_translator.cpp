@@ -13,8 +13,7 @@ namespace {
 using mobility::ReportTranslator;
 
 class PrimitiveDriverTranslator final
-    : public ReportTranslator<jss::msg::QueryWrenchEffort, jss::msg::ReportWrenchEffort, msg::QueryWrenchEffort,
-                              msg::ReportWrenchEffort> {
+    : public ReportTranslator<jss::msg::QueryWrenchEffort, jss::msg::ReportWrenchEffort> {
  public:
   PrimitiveDriverTranslator()
       : ReportTranslator("primitive driver", component_id::kPrimitiveDriver,

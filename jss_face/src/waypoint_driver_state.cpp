@@ -6,6 +6,8 @@
 namespace jaus::jss_face {
 
 msg::SetLocalWaypoint local_waypoint_to_ra(const jss::msg::SetLocalWaypoint& jss, std::uint16_t number) {
+  // One body, read in each dialect: the RA side gets the list position as
+  // its number, the values inside its ranges, and no tolerances (RA has none).
   msg::SetLocalWaypoint ra{};
   ra.waypoint_number = number;
   ra.x_m = scaling::local_xy_to_ra(jss.x_m);

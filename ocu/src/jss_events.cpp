@@ -123,10 +123,10 @@ void JssEvent::heard(const JssReceived& m) {
     auto confirm = jss::decode_contents<jss_msg::ConfirmEventRequest>(m.contents);
     if (!confirm) return;
     if (pending_request_ && confirm->request_id == *pending_request_) {
-      answer_ = Answer{true, confirm->event_id, confirm->confirmed_rate_hz, std::nullopt};
+      answer_ = Answer{true, confirm->event_id, confirm->confirmed_rate_hz.value_or(0), std::nullopt};
     } else if (refresh_request_ && confirm->request_id == *refresh_request_) {
       refresh_request_.reset();
-      confirmed_rate_hz_ = confirm->confirmed_rate_hz;
+      confirmed_rate_hz_ = confirm->confirmed_rate_hz.value_or(0);
     } else if (open_ && confirm->event_id == event_id_) {
       // Not asked for: the provider cancelled the event (its event timeout).
       open_ = false;

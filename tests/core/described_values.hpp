@@ -112,14 +112,18 @@ void randomize(Body& body, Rng& rng, wire::CodecContext& ctx, bool all_present) 
            if constexpr (!wire::is_presence_vector<F>::value) {
              if constexpr (F::is_optional) {
                auto& member = body.*f.member;
-               // A dialect-only field is always there in its dialect, never elsewhere.
-               const bool present = f.only_in ? *f.only_in == ctx.dialect : (all_present || (rng() & 1));
+               // A field the dialect always sends is always there, one it does not send never.
+               const wire::Presence presence = f.presence_in(ctx.dialect);
+               const bool present = presence == wire::Presence::always ||
+                                    (presence == wire::Presence::by_bit && (all_present || (rng() & 1)));
                if (present) {
                  member.emplace();
                  random_value(f.codec, *member, rng, ctx);
                } else {
                  member.reset();
                }
+             } else if (f.presence_in(ctx.dialect) == wire::Presence::absent) {
+               body.*f.member = typename F::codec_type::value_type{};  // what a decode in this dialect gives
              } else {
                random_value(f.codec, body.*f.member, rng, ctx);
              }

@@ -24,13 +24,14 @@ Expected<Json> body_to_json(std::span<const std::uint8_t> body) {
   Body message{};
   if (auto decoded = wire::decode_payload_into(body, message, wire::Dialect::jss, kMessageIdSize); !decoded)
     return unexpected(decoded.error());
-  return wire::fields_to_json<Json>(message);
+  return wire::fields_to_json<Json>(message, wire::Dialect::jss);
 }
 
 template <class Body>
 Expected<Bytes> body_from_json(const Json& fields) {
   Body message{};
-  if (auto filled = wire::fields_from_json<Json>(fields, message); !filled) return unexpected(filled.error());
+  if (auto filled = wire::fields_from_json<Json>(fields, message, wire::Dialect::jss); !filled)
+    return unexpected(filled.error());
   Bytes out(4096);
   for (;;) {
     auto size = wire::encode_payload(message, out, wire::Dialect::jss);

@@ -44,7 +44,7 @@ void check_message() {
     ASSERT_TRUE(back) << where << ": " << back.error().message() << "\n" << json->dump();
     EXPECT_EQ(*back, *contents) << where << "\n" << json->dump();
     M from_json{};
-    ASSERT_TRUE(wire::fields_from_json((*json)["fields"], static_cast<Body&>(from_json))) << where;
+    ASSERT_TRUE(wire::fields_from_json((*json)["fields"], static_cast<Body&>(from_json), wire::Dialect::jss)) << where;
     EXPECT_EQ(jss::encode_contents(from_json), *contents) << where;
 
     // Every truncation is an error naming a field, at an offset within the bytes given

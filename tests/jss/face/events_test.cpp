@@ -24,7 +24,7 @@ TEST(JssFaceEvents, PeriodicAt5HzGivesFiveEventsASecondWithSequenceNumbers) {
       create_event(7, msg::event_type::kPeriodic, 5.0, jss::encode_contents(msg::QueryHeartbeatPulse{})));
   ASSERT_TRUE(confirm.has_value());
   EXPECT_EQ(confirm->request_id, 7);
-  EXPECT_NEAR(confirm->confirmed_rate_hz, 5.0, 0.02);
+  EXPECT_NEAR(confirm->confirmed_rate_hz.value_or(0), 5.0, 0.02);
   node.drop(kClientA, msg::Event::code);
   node.run_for(1s);
   const auto events = node.take_all<msg::Event>(kClientA);
@@ -73,14 +73,14 @@ TEST(JssFaceEvents, CancelEndsTheEvent) {
       kClientA, kDriver,
       create_event(3, msg::event_type::kPeriodic, 5.0, jss::encode_contents(msg::QueryHeartbeatPulse{})));
   ASSERT_TRUE(confirm.has_value());
-  const auto cancelled = node.ask<msg::ConfirmEventRequest>(kClientA, kDriver, msg::CancelEvent{{4, confirm->event_id}});
+  const auto cancelled = node.ask<msg::ConfirmEventRequest>(kClientA, kDriver, msg::CancelEvent{msg::cancel_event_by_id(4, confirm->event_id)});
   ASSERT_TRUE(cancelled.has_value());
   EXPECT_EQ(cancelled->request_id, 4);
   node.drop(kClientA, msg::Event::code);
   node.run_for(1s);
   EXPECT_EQ(node.count(kClientA, msg::Event::code), 0u);
   // Cancelling again: no such event.
-  const auto again = node.ask<msg::RejectEventRequest>(kClientA, kDriver, msg::CancelEvent{{5, confirm->event_id}});
+  const auto again = node.ask<msg::RejectEventRequest>(kClientA, kDriver, msg::CancelEvent{msg::cancel_event_by_id(5, confirm->event_id)});
   ASSERT_TRUE(again.has_value());
   EXPECT_EQ(again->response_code, msg::reject_event::kInvalidEventIdForUpdate);
 }

@@ -88,6 +88,7 @@ TEST(JssScaling, LocalWaypointExampleAndRaRanges) {
   const auto clamped = local_waypoint_to_ra(jss, 0);
   EXPECT_EQ(clamped.z_m, 35'000);
   EXPECT_EQ(clamped.yaw_rad, 0.0);
+  EXPECT_FALSE(clamped.waypoint_tolerance_m);  // one body, but RA has no tolerances
   jss.z_m = -50'000;
   EXPECT_EQ(local_waypoint_to_ra(jss, 0).z_m, -10'000);
 }
@@ -105,14 +106,14 @@ TEST(JssScaling, TravelSpeedRanges) {
   EXPECT_EQ(jss::encode_contents(run), (Bytes{0x1e, 0x04, 0x01, 0x2c, 0x01, 0x01, 0x00}));
 }
 
-TEST(JssScaling, ReportsCopyEveryFieldAndRescale) {
+TEST(JssScaling, AnRaReportSentAsItIsIsRescaledInJss) {
+  // The face sends the RA component's report to the JSS client unchanged:
+  // one body, encoded in the JSS dialect.
   msg::ReportVelocityState ra{};
   ra.velocity_x_mps = 1.25;
   ra.yaw_rate_rps = -0.5;
   ra.velocity_rms_mps = 0.02;
-  jss::msg::ReportVelocityState jss{};
-  mobility::copy_fields(ra, jss);
-  auto decoded = jss::decode_contents<jss::msg::ReportVelocityState>(jss::encode_contents(jss));
+  auto decoded = jss::decode_contents<jss::msg::ReportVelocityState>(jss::encode_contents(ra));
   ASSERT_TRUE(decoded);
   EXPECT_NEAR(*decoded->velocity_x_mps, 1.25, 1e-5);
   EXPECT_NEAR(*decoded->yaw_rate_rps, -0.5, 1e-3);
@@ -124,9 +125,7 @@ TEST(JssScaling, ReportsCopyEveryFieldAndRescale) {
   pose.x_m = -12.5;
   pose.z_m = 34'000;
   pose.yaw_rad = 3.0;
-  jss::msg::ReportLocalPose jss_pose{};
-  mobility::copy_fields(pose, jss_pose);
-  auto pose_back = jss::decode_contents<jss::msg::ReportLocalPose>(jss::encode_contents(jss_pose));
+  auto pose_back = jss::decode_contents<jss::msg::ReportLocalPose>(jss::encode_contents(pose));
   ASSERT_TRUE(pose_back);
   EXPECT_NEAR(*pose_back->x_m, -12.5, 1e-4);
   EXPECT_NEAR(*pose_back->z_m, 34'000, 1e-4);

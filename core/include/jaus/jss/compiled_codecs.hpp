@@ -4,7 +4,8 @@
 // and the tests call the library's code instead of compiling it again. The
 // bodies JSS shares with RA (empty, authority, emergency, time, presence
 // queries, query identification/configuration, wrench effort, poses, velocity
-// state, travel speed) are RA's, compiled in jaus_core.
+// state, travel speed, local waypoint, cancel event, confirm event request)
+// are RA's, compiled in jaus_core.
 #pragma once
 
 #include <cstddef>
@@ -21,14 +22,14 @@
 #define JAUS_JSS_CORE_BODIES(X)                                                                                \
   X(jss::msg::ConfirmControlBody) X(jss::msg::RejectControlBody) X(jss::msg::ReportControlBody)               \
   X(jss::msg::TimeoutBody) X(jss::msg::StatusBody) X(jss::msg::CreateEventBody) X(jss::msg::UpdateEventBody)  \
-  X(jss::msg::CancelEventBody) X(jss::msg::ConfirmEventRequestBody) X(jss::msg::RejectEventRequestBody)       \
+  X(jss::msg::RejectEventRequestBody)                                                                         \
   X(jss::msg::QueryEventsBody) X(jss::msg::ReportEventsBody) X(jss::msg::EventBody)                           \
   X(jss::msg::EventTimeoutBody) X(jss::msg::CreateCommandEventBody) X(jss::msg::CommandEventBody)             \
   X(jss::msg::ReportIdentificationBody) X(jss::msg::RegisterServicesBody) X(jss::msg::ReportConfigurationBody) \
   X(jss::msg::ReportSubsystemListBody) X(jss::msg::QueryServicesBody) X(jss::msg::ReportServicesBody)         \
   X(jss::msg::QueryServiceListBody) X(jss::msg::ReportServiceListBody)
 #define JAUS_JSS_MOBILITY_BODIES(X)                                                                            \
-  X(jss::msg::GeomagneticPropertyBody) X(jss::msg::LocalWaypointBody) X(jss::msg::ElementRecord)             \
+  X(jss::msg::GeomagneticPropertyBody) X(jss::msg::ElementRecord)                                          \
   X(jss::msg::SetElementBody)                                                                                 \
   X(jss::msg::DeleteElementBody) X(jss::msg::ElementRequestBody) X(jss::msg::RejectElementRequestBody)        \
   X(jss::msg::ElementUidBody) X(jss::msg::ElementListBody) X(jss::msg::ElementCountBody)                      \

@@ -11,10 +11,11 @@
 
 #include "jaus/messages/compiled_codecs.hpp"
 
-#define JAUS_JSON_CODEC_INSTANCES(extern_or_not, Body)                                                          \
-  extern_or_not template nlohmann::ordered_json wire::fields_to_json<nlohmann::ordered_json, Body>(const Body&); \
+#define JAUS_JSON_CODEC_INSTANCES(extern_or_not, Body)                                                      \
+  extern_or_not template nlohmann::ordered_json wire::fields_to_json<nlohmann::ordered_json, Body>(          \
+      const Body&, wire::Dialect);                                                                             \
   extern_or_not template Expected<void> wire::fields_from_json<nlohmann::ordered_json, Body>(                 \
-      const nlohmann::ordered_json&, Body&);
+      const nlohmann::ordered_json&, Body&, wire::Dialect);
 #define JAUS_DECLARE_JSON_CODEC(Body) JAUS_JSON_CODEC_INSTANCES(extern, Body)
 // In the catalogue file of the body's group: the codec and its JSON form.
 #define JAUS_DEFINE_CODEC(Body) JAUS_CODEC_INSTANCES(, Body) JAUS_JSON_CODEC_INSTANCES(, Body)

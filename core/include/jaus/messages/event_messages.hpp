@@ -84,16 +84,21 @@ struct EventUpdateBody {
   }
 };
 
+// RA cancels by message code or event ID; JSS by event ID alone, with no
+// presence vector.
 struct CancelEventBody {
   std::uint8_t request_id = 0;
-  std::optional<std::uint16_t> message_code;
-  std::optional<std::uint8_t> event_id;
+  std::optional<std::uint16_t> message_code;  // RA only
+  std::optional<std::uint8_t> event_id;       // JSS: always sent
   bool operator==(const CancelEventBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = CancelEventBody;
-    return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
-                           wire::optional(0, "message_code", &B::message_code, UShort{}),
-                           wire::optional(1, "event_id", &B::event_id, Byte{}));
+    using wire::Dialect;
+    return std::make_tuple(wire::presence_vector<std::uint8_t>().not_in(Dialect::jss),
+                           wire::field("request_id", &B::request_id, Byte{}),
+                           wire::optional(0, "message_code", &B::message_code, UShort{}).not_in(Dialect::jss),
+                           wire::optional(1, "event_id", &B::event_id, Byte{}).always_in(Dialect::jss));
   }
 };
 
@@ -118,20 +123,25 @@ inline constexpr auto kEventResponse =
                                  {event_response::kMessageNotSupported, "message_not_supported"},
                                  {event_response::kInvalidEventIdForUpdate, "invalid_event_id_for_update"}});
 
+// JSS confirms with the request and event IDs and the rate, always, and no
+// presence vector; a refusal is its own message (Reject Event Request).
 struct ConfirmEventRequestBody {
   std::uint8_t request_id = 0;
-  std::uint16_t message_code = 0;
+  std::uint16_t message_code = 0;  // RA only
   std::uint8_t event_id = 0;
-  std::optional<double> confirmed_rate_hz;
-  std::uint8_t response_code = 0;  // kEventResponse
+  std::optional<double> confirmed_rate_hz;  // JSS: always sent
+  std::uint8_t response_code = 0;           // kEventResponse; RA only
   bool operator==(const ConfirmEventRequestBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = ConfirmEventRequestBody;
-    return std::make_tuple(wire::presence_vector<std::uint8_t>(), wire::field("request_id", &B::request_id, Byte{}),
-                           wire::field("message_code", &B::message_code, UShort{}),
-                           wire::field("event_id", &B::event_id, Byte{}),
-                           wire::optional(0, "confirmed_rate_hz", &B::confirmed_rate_hz, kServiceRate),
-                           wire::field("response_code", &B::response_code, kEventResponse));
+    using wire::Dialect;
+    return std::make_tuple(
+        wire::presence_vector<std::uint8_t>().not_in(Dialect::jss), wire::field("request_id", &B::request_id, Byte{}),
+        wire::field("message_code", &B::message_code, UShort{}).not_in(Dialect::jss),
+        wire::field("event_id", &B::event_id, Byte{}),
+        wire::optional(0, "confirmed_rate_hz", &B::confirmed_rate_hz, kServiceRate).always_in(Dialect::jss),
+        wire::field("response_code", &B::response_code, kEventResponse).not_in(Dialect::jss));
   }
 };
 

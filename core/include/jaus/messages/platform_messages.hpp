@@ -141,24 +141,35 @@ struct GlobalWaypointBody {
   }
 };
 
+// RA numbers its waypoints in the message; JSS keeps them in a list manager
+// (the element's UID, not a field) and adds two tolerances, bits 4 and 5.
 struct LocalWaypointBody {
-  std::uint16_t waypoint_number = 0;
+  std::uint16_t waypoint_number = 0;  // RA only
   double x_m = 0;
   double y_m = 0;
-  std::optional<double> z_m;
+  std::optional<double> z_m;  // RA -10000..35000 (an elevation), JSS -100000..100000
   std::optional<double> roll_rad;
   std::optional<double> pitch_rad;
   std::optional<double> yaw_rad;
+  std::optional<double> waypoint_tolerance_m;  // JSS only: 0..100
+  std::optional<double> path_tolerance_m;      // JSS only: 0..100000, 0 = infinite
   bool operator==(const LocalWaypointBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = LocalWaypointBody;
-    return std::make_tuple(wire::presence_vector<std::uint8_t>(),
-                           wire::field("waypoint_number", &B::waypoint_number, UShort{}),
-                           wire::field("x_m", &B::x_m, kLocalXY), wire::field("y_m", &B::y_m, kLocalXY),
-                           wire::optional(0, "z_m", &B::z_m, kElevation),
-                           wire::optional(1, "roll_rad", &B::roll_rad, kAngleShort),
-                           wire::optional(2, "pitch_rad", &B::pitch_rad, kAngleShort),
-                           wire::optional(3, "yaw_rad", &B::yaw_rad, kAngleShort));
+    using wire::Dialect;
+    return std::make_tuple(
+        wire::presence_vector<std::uint8_t>(),
+        wire::field("waypoint_number", &B::waypoint_number, UShort{}).not_in(Dialect::jss),
+        wire::field("x_m", &B::x_m, kLocalXY), wire::field("y_m", &B::y_m, kLocalXY),
+        wire::optional(0, "z_m", &B::z_m, kElevation.jss(-100'000, 100'000)),
+        wire::optional(1, "roll_rad", &B::roll_rad, kAngleShort),
+        wire::optional(2, "pitch_rad", &B::pitch_rad, kAngleShort),
+        wire::optional(3, "yaw_rad", &B::yaw_rad, kAngleShort),
+        wire::optional(4, "waypoint_tolerance_m", &B::waypoint_tolerance_m, wire::Scaled<std::uint16_t>{0, 100})
+            .only_in(Dialect::jss),
+        wire::optional(5, "path_tolerance_m", &B::path_tolerance_m, wire::Scaled<std::uint32_t>{0, 100'000})
+            .only_in(Dialect::jss));
   }
 };
 

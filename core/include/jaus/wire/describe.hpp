@@ -35,23 +35,75 @@ struct is_optional : std::false_type {};
 template <class T>
 struct is_optional<std::optional<T>> : std::true_type {};
 
+// Dialects as a set, a bit per wire::Dialect: where a field or a presence
+// vector is sent. Most are sent in every dialect; a body JSS shares with RA
+// names the few that one side alone defines.
+struct DialectSet {
+  std::uint8_t bits = 0;
+  static constexpr DialectSet every() { return {0xFF}; }
+  static constexpr DialectSet of(Dialect d) { return {static_cast<std::uint8_t>(1u << static_cast<unsigned>(d))}; }
+  constexpr bool has(Dialect d) const { return ((bits >> static_cast<unsigned>(d)) & 1u) != 0; }
+  constexpr bool is_every() const { return bits == 0xFF; }
+  constexpr bool is_empty() const { return bits == 0; }
+  constexpr DialectSet with(Dialect d) const { return {static_cast<std::uint8_t>(bits | of(d).bits)}; }
+  constexpr DialectSet without(Dialect d) const { return {static_cast<std::uint8_t>(bits & ~of(d).bits)}; }
+};
+
+// How a field is sent in one dialect: not at all, always (a required field, an
+// optional one with no presence bit there), or when its presence bit is set.
+enum class Presence : std::uint8_t { absent, always, by_bit };
+
 template <class Owner, class Member, class Codec>
 struct Field {
   std::string_view name;
   Member Owner::*member;
   Codec codec;
   int bit = -1;  // presence-vector bit of an optional field
-  // For an optional field that only one dialect sends (no presence bit): that dialect.
-  std::optional<Dialect> only_in{};
+  DialectSet dialects = DialectSet::every();  // where the field is sent
+  // Where an optional field with a presence bit is sent always, without its
+  // bit (the dialect has no presence vector, or defines the field required).
+  DialectSet always = {};
   using codec_type = Codec;
   static constexpr bool is_optional = wire::is_optional<Member>::value;
+
+  constexpr Field only_in(Dialect d) const { return with_dialects(DialectSet::of(d)); }
+  constexpr Field not_in(Dialect d) const { return with_dialects(dialects.without(d)); }
+  constexpr Field always_in(Dialect d) const {
+    Field out = *this;
+    out.always = always.with(d);
+    return out;
+  }
+  constexpr Presence presence_in(Dialect d) const {
+    if (!dialects.has(d)) return Presence::absent;
+    if (!is_optional || bit < 0 || always.has(d)) return Presence::always;
+    return Presence::by_bit;
+  }
+
+ private:
+  constexpr Field with_dialects(DialectSet set) const {
+    Field out = *this;
+    out.dialects = set;
+    return out;
+  }
 };
 
 // The presence vector itself: its value is derived from the optional members.
 template <std::unsigned_integral T>
 struct PresenceVector {
   using wire_type = T;
+  DialectSet dialects = DialectSet::every();  // where it is sent
+  constexpr PresenceVector only_in(Dialect d) const { return {DialectSet::of(d)}; }
+  constexpr PresenceVector not_in(Dialect d) const { return {dialects.without(d)}; }
 };
+
+// Whether field or presence vector `f` is sent alike in every dialect.
+template <class F>
+constexpr bool same_in_every_dialect(const F& f) {
+  if constexpr (requires { f.always; })
+    return f.dialects.is_every() && f.always.is_empty();
+  else
+    return f.dialects.is_every();
+}
 
 template <std::unsigned_integral T>
 constexpr PresenceVector<T> presence_vector() {
@@ -61,14 +113,14 @@ constexpr PresenceVector<T> presence_vector() {
 template <class Owner, class M, class C>
 constexpr Field<Owner, M, C> field(std::string_view name, M Owner::*member, C codec) {
   static_assert(std::is_same_v<M, typename C::value_type>, "member type must match the codec");
-  return {name, member, codec, -1, std::nullopt};
+  return {name, member, codec, -1};
 }
 
 template <class Owner, class M, class C>
 constexpr Field<Owner, std::optional<M>, C> optional(int bit, std::string_view name, std::optional<M> Owner::*member,
                                                      C codec) {
   static_assert(std::is_same_v<M, typename C::value_type>, "member type must match the codec");
-  return {name, member, codec, bit, std::nullopt};
+  return {name, member, codec, bit};
 }
 
 // A field one peer sends that Part 3 does not define (see docs/messages.md):
@@ -77,7 +129,7 @@ template <class Owner, class M, class C>
 constexpr Field<Owner, std::optional<M>, C> dialect_field(Dialect dialect, std::string_view name,
                                                           std::optional<M> Owner::*member, C codec) {
   static_assert(std::is_same_v<M, typename C::value_type>, "member type must match the codec");
-  return {name, member, codec, -1, dialect};
+  return Field<Owner, std::optional<M>, C>{name, member, codec, -1}.only_in(dialect);
 }
 
 template <class T>
@@ -100,15 +152,23 @@ JAUS_ALWAYS_INLINE void for_each_field_index(F&& f) {
   }(std::make_index_sequence<std::tuple_size_v<decltype(kFields<Body>)>>{});
 }
 
-// Bits the body defines; any other bit of a received presence vector is reserved.
+// Whether every field (and the presence vector) is sent alike in every
+// dialect: the walks then take no dialect into account.
 template <class Body>
-constexpr std::uint32_t optional_mask() {
+constexpr bool same_in_every_dialect() {
+  return std::apply([](const auto&... f) { return (same_in_every_dialect(f) && ...); }, Body::describe());
+}
+
+// Bits the body defines in `dialect`; any other bit of a received presence
+// vector is reserved.
+template <class Body>
+constexpr std::uint32_t optional_mask(Dialect dialect = Dialect::ra) {
   std::uint32_t mask = 0;
   std::apply(
       [&](const auto&... f) {
         (([&] {
            if constexpr (!is_presence_vector<std::decay_t<decltype(f)>>::value)
-             if (f.bit >= 0) mask |= 1u << f.bit;
+             if (f.presence_in(dialect) == Presence::by_bit) mask |= 1u << f.bit;
          }()),
          ...);
       },
@@ -116,21 +176,52 @@ constexpr std::uint32_t optional_mask() {
   return mask;
 }
 
+// optional_mask() of the dialect a message is read in, a constant per dialect.
+template <class Body>
+JAUS_ALWAYS_INLINE std::uint32_t defined_bits(Dialect dialect) {
+  if constexpr (same_in_every_dialect<Body>()) {
+    constexpr std::uint32_t mask = optional_mask<Body>();
+    return mask;
+  } else {
+    constexpr std::uint32_t ra = optional_mask<Body>(Dialect::ra);
+    constexpr std::uint32_t openjaus = optional_mask<Body>(Dialect::openjaus);
+    constexpr std::uint32_t jss = optional_mask<Body>(Dialect::jss);
+    return dialect == Dialect::jss ? jss : dialect == Dialect::openjaus ? openjaus : ra;
+  }
+}
+
+// Whether the body has a presence vector in some dialect.
 template <class Body>
 constexpr bool has_presence_vector() {
   return std::apply([](const auto&... f) { return (is_presence_vector<std::decay_t<decltype(f)>>::value || ...); },
                     Body::describe());
 }
 
+// Whether a body with a presence vector (which is its first field) sends it in `dialect`.
 template <class Body>
-JAUS_ALWAYS_INLINE std::uint32_t presence_of(const Body& body) {
+JAUS_ALWAYS_INLINE bool presence_vector_sent_in(Dialect dialect) {
+  constexpr const auto& pv = std::get<0>(kFields<Body>);
+  if constexpr (pv.dialects.is_every())
+    return true;
+  else
+    return pv.dialects.has(dialect);
+}
+
+// The presence vector `body` is sent with in `dialect`.
+template <class Body>
+JAUS_ALWAYS_INLINE std::uint32_t presence_of(const Body& body, Dialect dialect = Dialect::ra) {
   std::uint32_t pv = 0;
   for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
     constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
     using F = std::decay_t<decltype(f)>;
     if constexpr (!is_presence_vector<F>::value) {
-      if constexpr (F::is_optional && f.bit >= 0)
-        pv |= static_cast<std::uint32_t>((body.*f.member).has_value()) << f.bit;
+      if constexpr (F::is_optional && f.bit >= 0) {
+        const auto present = static_cast<std::uint32_t>((body.*f.member).has_value());
+        if constexpr (same_in_every_dialect(f))
+          pv |= present << f.bit;
+        else if (f.presence_in(dialect) == Presence::by_bit)
+          pv |= present << f.bit;
+      }
     }
   });
   return pv;
@@ -310,12 +401,18 @@ JAUS_ALWAYS_INLINE std::size_t fixed_layout_size(std::uint32_t pv, const auto& c
     using F = std::decay_t<decltype(f)>;
     if constexpr (!is_presence_vector<F>::value) {
       constexpr std::size_t n = fixed_size_of<typename F::codec_type>();
-      if constexpr (!F::is_optional)
+      if constexpr (same_in_every_dialect(f) && !F::is_optional) {
         size += n;
-      else if constexpr (f.only_in.has_value())
-        size += *f.only_in == ctx.dialect ? n : 0;
-      else
+      } else if constexpr (same_in_every_dialect(f)) {
         size += ((pv >> f.bit) & 1u) * n;
+      } else {
+        constexpr unsigned bit = f.bit < 0 ? 0 : f.bit;  // by_bit only where there is one
+        switch (f.presence_in(ctx.dialect)) {
+          case Presence::absent: break;
+          case Presence::always: size += n; break;
+          case Presence::by_bit: size += ((pv >> bit) & 1u) * n; break;
+        }
+      }
     }
   });
   return size;
@@ -368,18 +465,18 @@ constexpr bool shared_with_jss() {
 }
 
 // Whether JSS reads the body's bytes as RA does: no signed scaled field, no
-// scaled field with limits of its own in JSS, no field of one dialect only
-// (JSS's own bodies: their RA walk is their JSS walk).
+// scaled field with limits of its own in JSS, no field or presence vector of
+// one dialect only (JSS's own bodies: their RA walk is their JSS walk).
 template <class Body>
 constexpr bool jss_reads_as_ra() {
   return std::apply(
       [](const auto&... f) {
         return ([&] {
           using F = std::decay_t<decltype(f)>;
+          if (!same_in_every_dialect(f)) return false;
           if constexpr (is_presence_vector<F>::value) {
             return true;
           } else {
-            if (f.only_in.has_value()) return false;
             if constexpr (requires { f.codec.jss_range(); })
               return std::is_unsigned_v<typename F::codec_type::wire_type> && f.codec.jss_lo() == f.codec.lower &&
                      f.codec.jss_hi() == f.codec.upper;
@@ -412,15 +509,25 @@ JAUS_ALWAYS_INLINE void write_fields(const Body& body, W& w, auto& ctx) {
   for_each_field_index<Body>([&](auto index) JAUS_ALWAYS_INLINE_LAMBDA {
     constexpr const auto& f = std::get<decltype(index)::value>(kFields<Body>);
     using F = std::decay_t<decltype(f)>;
-    if constexpr (!is_presence_vector<F>::value) {
+    if constexpr (is_presence_vector<F>::value) {
+      // written by encode_fields
+    } else if constexpr (same_in_every_dialect(f)) {
       w.set_field(f.name);
       if constexpr (F::is_optional) {
-        if constexpr (f.only_in.has_value()) {
-          if (*f.only_in == ctx.dialect)
-            f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
-        } else if ((body.*f.member).has_value()) {
+        if ((body.*f.member).has_value()) f.codec.encode(*(body.*f.member), w, ctx);
+      } else {
+        f.codec.encode(body.*f.member, w, ctx);
+      }
+    } else {
+      const Presence presence = f.presence_in(ctx.dialect);
+      if (presence == Presence::absent) return;
+      w.set_field(f.name);
+      if constexpr (F::is_optional) {
+        // Sent always in this dialect: an unset member goes as its zero value.
+        if (presence == Presence::always)
+          f.codec.encode((body.*f.member).value_or(typename F::codec_type::value_type{}), w, ctx);
+        else if ((body.*f.member).has_value())
           f.codec.encode(*(body.*f.member), w, ctx);
-        }
       } else {
         f.codec.encode(body.*f.member, w, ctx);
       }
@@ -440,10 +547,13 @@ JAUS_ALWAYS_INLINE void read_fields(R& r, Body& body, std::uint32_t pv, auto& ct
     } else if constexpr (F::is_optional) {
       auto& member = body.*f.member;
       bool present;
-      if constexpr (f.only_in.has_value())
-        present = *f.only_in == ctx.dialect;
-      else
+      if constexpr (same_in_every_dialect(f)) {
         present = ((pv >> f.bit) & 1u) != 0;
+      } else {
+        constexpr unsigned bit = f.bit < 0 ? 0 : f.bit;  // by_bit only where there is one
+        const Presence presence = f.presence_in(ctx.dialect);
+        present = presence == Presence::always || (presence == Presence::by_bit && ((pv >> bit) & 1u) != 0);
+      }
       if (present) {
         r.set_field(f.name);
         if (!member) member.emplace();
@@ -451,6 +561,11 @@ JAUS_ALWAYS_INLINE void read_fields(R& r, Body& body, std::uint32_t pv, auto& ct
       } else {
         member.reset();
       }
+    } else if constexpr (same_in_every_dialect(f)) {
+      r.set_field(f.name);
+      f.codec.decode(r, body.*f.member, ctx);
+    } else if (f.presence_in(ctx.dialect) == Presence::absent) {
+      body.*f.member = typename F::codec_type::value_type{};  // not sent in this dialect: its zero value
     } else {
       r.set_field(f.name);
       f.codec.decode(r, body.*f.member, ctx);
@@ -474,11 +589,13 @@ void encode_fields(const Body& body, ByteWriter& w, auto& ctx) {
   // The presence vector first, from the optional members alone: computed
   // inside the field branches it cost more than the fields themselves.
   static_assert(presence_vector_first<Body>());
-  const std::uint32_t pv = presence_of(body);
+  const std::uint32_t pv = presence_of(body, ctx.dialect);
   if constexpr (has_presence_vector<Body>()) {
     using Pv = typename std::decay_t<decltype(std::get<0>(kFields<Body>))>::wire_type;
-    w.set_field("presence_vector");
-    w.write(static_cast<Pv>(pv));
+    if (presence_vector_sent_in<Body>(ctx.dialect)) {
+      w.set_field("presence_vector");
+      w.write(static_cast<Pv>(pv));
+    }
   }
   if constexpr (has_fixed_layout<Body>()) {
     const std::size_t room = w.room();
@@ -506,14 +623,16 @@ void decode_fields(ByteReader& r, Body& body, auto& ctx) {
   std::uint32_t pv = 0;
   if constexpr (has_presence_vector<Body>()) {
     using Pv = typename std::decay_t<decltype(std::get<0>(kFields<Body>))>::wire_type;
-    r.set_field("presence_vector");
-    Pv raw{};
-    // On failure pv stays 0 and the fields below fail in turn (sticky error).
-    if (r.read(raw)) {
-      pv = raw;
-      constexpr std::uint32_t defined = optional_mask<Body>();
-      if ((pv & ~defined) != 0) [[unlikely]]
-        detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
+    if (presence_vector_sent_in<Body>(ctx.dialect)) {
+      r.set_field("presence_vector");
+      Pv raw{};
+      // On failure pv stays 0 and the fields below fail in turn (sticky error).
+      if (r.read(raw)) {
+        pv = raw;
+        const std::uint32_t defined = defined_bits<Body>(ctx.dialect);
+        if ((pv & ~defined) != 0) [[unlikely]]
+          detail::fail_reserved_bits(r, r.offset() - sizeof(raw), defined, pv);
+      }
     }
   }
   if constexpr (has_fixed_layout<Body>()) {
@@ -532,9 +651,19 @@ void decode_fields(ByteReader& r, Body& body, auto& ctx) {
   }
 }
 
+// The dialect whose reading of field `f` a document or JSON form in `dialect`
+// shows. RA's shows the fields of the openjaus peers' extensions too (said so
+// in the document), JSS's only its own; nullopt: the field is not shown.
+template <class F>
+constexpr std::optional<Dialect> shown_in(const F& f, Dialect dialect) {
+  if (f.dialects.has(dialect)) return dialect;
+  if (dialect == Dialect::ra && f.dialects.has(Dialect::openjaus)) return Dialect::openjaus;
+  return std::nullopt;
+}
+
 // One line per message: "name: type; name (bit 0): type; ..." for
 // docs/messages.md (RA) and docs/jss-messages.md (JSS), each in its dialect's
-// wire types.
+// wire types and with the fields and presence bits that dialect sends.
 template <class Body>
 std::string fields_doc(Dialect dialect) {
   std::string out;
@@ -542,13 +671,15 @@ std::string fields_doc(Dialect dialect) {
       [&](const auto&... f) {
         (([&] {
            using F = std::decay_t<decltype(f)>;
+           const std::optional<Dialect> shown = shown_in(f, dialect);
+           if (!shown) return;
            if (!out.empty()) out += "; ";
            if constexpr (is_presence_vector<F>::value) {
              out += "presence vector (" + detail::wire_name<typename F::wire_type>() + ")";
            } else {
              out += "`" + std::string(f.name) + "`";
-             if (f.bit >= 0) out += " (bit " + std::to_string(f.bit) + ")";
-             if (f.only_in) out += " (openjaus dialect only)";
+             if (f.presence_in(*shown) == Presence::by_bit) out += " (bit " + std::to_string(f.bit) + ")";
+             if (*shown != dialect) out += " (" + std::string(to_string(*shown)) + " dialect only)";
              out += ": " + codec_doc(f.codec, dialect);
            }
          }()),
@@ -561,15 +692,18 @@ std::string fields_doc(Dialect dialect) {
 // ---- JSON ------------------------------------------------------------------
 // Keys are the field names; an optional field is present in JSON exactly when
 // it is present on the wire. The presence vector is not a key: it is derived.
+// The form is a dialect's (RA's by default): a field that dialect does not
+// send is no key of it (see shown_in).
 
 template <class Json, class Body>
-Json fields_to_json(const Body& body) {
+Json fields_to_json(const Body& body, Dialect dialect = Dialect::ra) {
   Json out = Json::object();
   std::apply(
       [&](const auto&... f) {
         (([&] {
            using F = std::decay_t<decltype(f)>;
            if constexpr (!is_presence_vector<F>::value) {
+             if (!shown_in(f, dialect)) return;
              if constexpr (F::is_optional) {
                if ((body.*f.member).has_value())
                  out[std::string(f.name)] = f.codec.template to_json<Json>(*(body.*f.member));
@@ -584,10 +718,11 @@ Json fields_to_json(const Body& body) {
   return out;
 }
 
-// Fills `body` from a JSON object. Unknown keys and missing required fields
-// are errors (ErrorCode::json); the detail names the field.
+// Fills `body` from a JSON object in `dialect`'s form. Unknown keys and
+// missing required fields are errors (ErrorCode::json); the detail names the
+// field.
 template <class Json, class Body>
-Expected<void> fields_from_json(const Json& j, Body& body) {
+Expected<void> fields_from_json(const Json& j, Body& body, Dialect dialect = Dialect::ra) {
   if (!j.is_object()) return detail::json_error("expected a JSON object");
   std::size_t known = 0;
   Expected<void> result;
@@ -597,13 +732,24 @@ Expected<void> fields_from_json(const Json& j, Body& body) {
            using F = std::decay_t<decltype(f)>;
            if constexpr (!is_presence_vector<F>::value) {
              if (!result) return;
+             const std::optional<Dialect> shown = shown_in(f, dialect);
+             if (!shown) {  // not a key of this form: left at its zero value, and refused below if given
+               if constexpr (F::is_optional)
+                 (body.*f.member).reset();
+               else
+                 body.*f.member = typename F::codec_type::value_type{};
+               return;
+             }
              const std::string key(f.name);
              const auto it = j.find(key);
              if (it == j.end()) {
-               if constexpr (F::is_optional) {
-                 (body.*f.member).reset();
-               } else {
+               // Required: a required field, and an optional one this dialect
+               // always sends (a peer's extension field, with no bit, aside).
+               const bool required = !F::is_optional || (f.bit >= 0 && f.presence_in(*shown) == Presence::always);
+               if (required) {
                  result = detail::json_error("'" + key + "' is missing");
+               } else if constexpr (F::is_optional) {
+                 (body.*f.member).reset();
                }
                return;
              }
@@ -628,7 +774,7 @@ Expected<void> fields_from_json(const Json& j, Body& body) {
       std::apply([&](const auto&... f) {
         ((is_known = is_known || [&] {
             if constexpr (is_presence_vector<std::decay_t<decltype(f)>>::value) return false;
-            else return f.name == item.key();
+            else return f.name == item.key() && shown_in(f, dialect).has_value();
           }()), ...);
       }, Body::describe());
       if (!is_known) return detail::json_error("unknown field '" + item.key() + "'");

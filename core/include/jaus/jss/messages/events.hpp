@@ -5,6 +5,7 @@
 #pragma once
 
 #include "jaus/jss/messages/common.hpp"
+#include "jaus/messages/event_messages.hpp"
 
 namespace jaus::jss::msg {
 
@@ -73,29 +74,20 @@ struct UpdateEventBody {
   }
 };
 
-struct CancelEventBody {
-  std::uint8_t request_id = 0;
-  std::uint8_t event_id = 0;
-  bool operator==(const CancelEventBody&) const = default;
-  static constexpr auto describe() {
-    using B = CancelEventBody;
-    return std::make_tuple(wire::field("request_id", &B::request_id, Byte{}),
-                           wire::field("event_id", &B::event_id, Byte{}));
-  }
-};
+// RA's, read in wire::Dialect::jss: no presence vector, no message code or
+// response code; the event ID and the confirmed rate always sent.
+using jaus::msg::CancelEventBody;
+using jaus::msg::ConfirmEventRequestBody;
+static_assert(wire::shared_with_jss<CancelEventBody>() && wire::shared_with_jss<ConfirmEventRequestBody>(),
+              "a body JSS shares says so (kSharedWithJss)");
 
-struct ConfirmEventRequestBody {
-  std::uint8_t request_id = 0;
-  std::uint8_t event_id = 0;
-  double confirmed_rate_hz = 0;
-  bool operator==(const ConfirmEventRequestBody&) const = default;
-  static constexpr auto describe() {
-    using B = ConfirmEventRequestBody;
-    return std::make_tuple(wire::field("request_id", &B::request_id, Byte{}),
-                           wire::field("event_id", &B::event_id, Byte{}),
-                           wire::field("confirmed_rate_hz", &B::confirmed_rate_hz, kEventRate));
-  }
-};
+// JSS's Cancel Event: an event by its ID.
+inline CancelEventBody cancel_event_by_id(std::uint8_t request_id, std::uint8_t event_id) {
+  CancelEventBody cancel;
+  cancel.request_id = request_id;
+  cancel.event_id = event_id;
+  return cancel;
+}
 
 struct RejectEventRequestBody {
   std::uint8_t request_id = 0;

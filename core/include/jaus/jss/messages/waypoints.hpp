@@ -8,27 +8,10 @@
 
 namespace jaus::jss::msg {
 
-struct LocalWaypointBody {
-  double x_m = 0;  // -100000..100000
-  double y_m = 0;
-  std::optional<double> z_m;  // -100000..100000
-  std::optional<double> roll_rad;
-  std::optional<double> pitch_rad;
-  std::optional<double> yaw_rad;
-  std::optional<double> waypoint_tolerance_m;  // 0..100
-  std::optional<double> path_tolerance_m;      // 0..100000, 0 = infinite
-  bool operator==(const LocalWaypointBody&) const = default;
-  static constexpr auto describe() {
-    using B = LocalWaypointBody;
-    return std::make_tuple(
-        wire::presence_vector<std::uint8_t>(), wire::field("x_m", &B::x_m, kLocalXYZ),
-        wire::field("y_m", &B::y_m, kLocalXYZ), wire::optional(0, "z_m", &B::z_m, kLocalXYZ),
-        wire::optional(1, "roll_rad", &B::roll_rad, kAngle), wire::optional(2, "pitch_rad", &B::pitch_rad, kAngle),
-        wire::optional(3, "yaw_rad", &B::yaw_rad, kAngle),
-        wire::optional(4, "waypoint_tolerance_m", &B::waypoint_tolerance_m, wire::Scaled<std::uint16_t>{0, 100}),
-        wire::optional(5, "path_tolerance_m", &B::path_tolerance_m, wire::Scaled<std::uint32_t>{0, 100'000}));
-  }
-};
+// RA's, read in wire::Dialect::jss: no waypoint number (the list manager
+// keeps the elements), tolerances in bits 4 and 5, z over -100000..100000.
+using jaus::msg::LocalWaypointBody;
+static_assert(wire::shared_with_jss<LocalWaypointBody>(), "a body JSS shares says so (kSharedWithJss)");
 
 // RA's, read in wire::Dialect::jss: 0..327.67 m/s (RA: 0..10000).
 using jaus::msg::TravelSpeedBody;
