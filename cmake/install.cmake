@@ -20,7 +20,7 @@ list(TRANSFORM jaus_component_folders PREPEND components/ OUTPUT_VARIABLE jaus_c
 
 # The libraries of docs/architecture.md, in dependency order.
 set(JAUS_EXPORTED_LIBRARIES
-    jaus_base jaus_core jaus_jss_codec jaus_runtime ${jaus_component_libraries} jaus_jss_face
+    jaus_base jaus_core jaus_runtime ${jaus_component_libraries} jaus_jss_face
     jaus_transport jaus_clearpath jaus_clearpath_sim jaus_clearpath_asio jaus_bridge
     jaus_model_platform jaus_clearpath_platform jaus_host jaus_ocu jaus_conform)
 

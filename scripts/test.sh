@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what the project needs, builds it and runs every test:
-#   1. Release build (GCC, -O2 as Debian builds, -Wall -Wextra -Werror): libraries, apps, benchmarks,
+#   1. Release build (GCC, -O2 as Debian builds, -Wall -Wextra -Werror): libraries, apps, the codec's speed guard,
 #      the system suite, which runs the shipped programs end to end, the network suite (nodes in
 #      network namespaces under packet loss: needs root), the browser suite (jaus-console's page in
 #      headless Chromium, installed meanwhile) and the load suite (a node under a million datagrams;
@@ -57,7 +57,10 @@ run_sanitizer_tests() {  # $1 build dir
 }
 
 echo "== release build"
-configure_and_build build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_TEST_SUITES=system
+# The benchmark programs are not built here (about 170 CPU s, a tenth of the
+# tree; `ninja -C build/release benchmarks` builds them), but for
+# codec_speed_guard, which the suites run.
+configure_and_build build/release -DCMAKE_BUILD_TYPE=Release -DJAUS_TEST_SUITES=system -DJAUS_BENCHMARKS_IN_ALL=OFF
 
 if ! wait "$browser_setup"; then echo "== installing Chromium failed:"; cat build/setup-browser.log; exit 1; fi
 echo "== release system, network, browser and load suites (in the background, output at the end of the sanitizer build)"

@@ -76,6 +76,10 @@ struct IsRecords<wire::Records<Count, Record>> : std::true_type {
   using record = Record;
 };
 template <class C>
+struct IsPerDialect : std::false_type {};
+template <class Ra, class Jss>
+struct IsPerDialect<wire::PerDialect<Ra, Jss>> : std::true_type {};
+template <class C>
 struct IsEmbedded : std::false_type {};
 template <class S>
 struct IsEmbedded<jss::codec::Embedded<S>> : std::true_type {
@@ -183,6 +187,8 @@ std::string codec_lua(const Codec& codec, wire::Dialect dialect = wire::Dialect:
     return "k=\"str8\"";
   } else if constexpr (std::is_same_v<Codec, jss::codec::IdCodec>) {
     return "k=\"jssid\",s=4";
+  } else if constexpr (IsPerDialect<Codec>::value) {
+    return dialect == wire::Dialect::jss ? codec_lua(codec.jss, dialect) : codec_lua(codec.ra, dialect);
   } else if constexpr (IsEmbedded<Codec>::value) {
     return "k=\"embedded\",size=" + std::to_string(IsEmbedded<Codec>::size_bytes) + ",min=" +
            std::to_string(codec.min_size);

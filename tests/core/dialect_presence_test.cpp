@@ -182,5 +182,34 @@ TEST(DialectPresence, APresenceVectorOfOneDialectOnly) {
   EXPECT_TRUE(wire::fields_from_json(Json{{"request_id", 1}}, filled, Dialect::ra));
 }
 
+TEST(DialectPresence, EventEmbedsTheReportAsEachDialectDoes) {
+  msg::Event event{};
+  event.event_id = 4;
+  event.report_code = 0x4402;
+  event.sequence_number = 9;
+  event.report_message = {0x01, 0x00, 0x2A};
+  // RA: event ID, report code, sequence number, u32 size, the payload.
+  EXPECT_EQ(payload(event, Dialect::ra), (Bytes{4, 0x02, 0x44, 9, 3, 0, 0, 0, 0x01, 0x00, 0x2A}));
+  // JSS: event ID, sequence number, u32 count, the whole report (ID first); no report code.
+  EXPECT_EQ(payload(event, Dialect::jss), (Bytes{4, 9, 3, 0, 0, 0, 0x01, 0x00, 0x2A}));
+  const auto back = wire::decode_payload<msg::Event>(Bytes{4, 9, 3, 0, 0, 0, 0x01, 0x00, 0x2A}, Dialect::jss);
+  ASSERT_TRUE(back) << back.error().message();
+  EXPECT_EQ(back->report_code, 0);
+  EXPECT_EQ(back->report_message, (Bytes{0x01, 0x00, 0x2A}));
+  // JSS's embedded report must hold at least its ID; RA's payload may be empty.
+  EXPECT_FALSE(wire::decode_payload<msg::Event>(Bytes{4, 9, 1, 0, 0, 0, 0x01}, Dialect::jss));
+  EXPECT_TRUE(wire::decode_payload<msg::Event>(Bytes{4, 0x02, 0x44, 9, 0, 0, 0, 0}, Dialect::ra));
+
+  EXPECT_NE(wire::fields_doc<msg::EventBody>(Dialect::jss).find("embedded JSS message"), std::string::npos);
+  EXPECT_NE(wire::fields_doc<msg::EventBody>(Dialect::ra).find("u32 size + bytes"), std::string::npos);
+  const Json ra_json = wire::fields_to_json<Json>(static_cast<const msg::EventBody&>(event));
+  EXPECT_TRUE(ra_json["report_message"].is_string()) << ra_json.dump();  // hex
+  const Json jss_json = wire::fields_to_json<Json>(static_cast<const msg::EventBody&>(event), Dialect::jss);
+  EXPECT_FALSE(jss_json["report_message"].is_string()) << jss_json.dump();  // the embedded message's JSON
+  msg::EventBody filled{};
+  ASSERT_TRUE(wire::fields_from_json(jss_json, filled, Dialect::jss));
+  EXPECT_EQ(filled.report_message, event.report_message);
+}
+
 }  // namespace dialect_presence_test
 }  // namespace jaus

@@ -11,7 +11,7 @@
 #include "pcap_writer.hpp"
 
 namespace jaus::test {
-namespace {
+namespace clearpath_frames_test {  // named: the unity build mixes this file's names with others'
 
 struct ReferenceFrame {
   std::string type;
@@ -67,5 +67,5 @@ TEST(TsharkClearpathFrames, EveryReferenceFrameShowsWhatJausctlDecodes) {
   EXPECT_EQ(bad.count("clearpath.bad_crc"), 1u) << layers.back().dump();
 }
 
-}  // namespace
+}  // namespace clearpath_frames_test
 }  // namespace jaus::test

@@ -22,7 +22,7 @@
 #include "pcap_writer.hpp"
 
 namespace jaus::test {
-namespace {
+namespace clearpath_sim_exchange_test {  // named: the unity build mixes this file's names with others'
 
 namespace cp = jaus::clearpath;
 
@@ -132,5 +132,5 @@ TEST(TsharkClearpathSim, EveryFrameOfAnExchangeShowsWhatJausctlDecodes) {
     EXPECT_EQ(names.count(name), 1u) << name;
 }
 
-}  // namespace
+}  // namespace clearpath_sim_exchange_test
 }  // namespace jaus::test

@@ -1,11 +1,11 @@
-// The codec of every JSS message body, compiled once in jaus_jss_codec (by
+// The codec of every JSS message body, compiled once in jaus_core (by
 // the catalogue file of its family) and declared extern here, as
 // jaus/messages/compiled_codecs.hpp does for the RA bodies: the face, the OCU
 // and the tests call the library's code instead of compiling it again. The
 // bodies JSS shares with RA (empty, authority, emergency, time, presence
 // queries, query identification/configuration, wrench effort, poses, velocity
-// state, travel speed, local waypoint, cancel event, confirm event request)
-// are RA's, compiled in jaus_core.
+// state, travel speed, local waypoint, cancel event, confirm event request,
+// event) are RA's, compiled in jaus_core.
 #pragma once
 
 #include <cstddef>
@@ -23,7 +23,7 @@
   X(jss::msg::ConfirmControlBody) X(jss::msg::RejectControlBody) X(jss::msg::ReportControlBody)               \
   X(jss::msg::TimeoutBody) X(jss::msg::StatusBody) X(jss::msg::CreateEventBody) X(jss::msg::UpdateEventBody)  \
   X(jss::msg::RejectEventRequestBody)                                                                         \
-  X(jss::msg::QueryEventsBody) X(jss::msg::ReportEventsBody) X(jss::msg::EventBody)                           \
+  X(jss::msg::QueryEventsBody) X(jss::msg::ReportEventsBody)                                                \
   X(jss::msg::EventTimeoutBody) X(jss::msg::CreateCommandEventBody) X(jss::msg::CommandEventBody)             \
   X(jss::msg::ReportIdentificationBody) X(jss::msg::RegisterServicesBody) X(jss::msg::ReportConfigurationBody) \
   X(jss::msg::ReportSubsystemListBody) X(jss::msg::QueryServicesBody) X(jss::msg::ReportServicesBody)         \

@@ -2,6 +2,7 @@
 // fields of Create/Update Event follow the RA 3.3 peers' presence bits).
 #pragma once
 
+#include "jaus/jss/codecs.hpp"
 #include "jaus/messages/common.hpp"
 
 namespace jaus::msg {
@@ -145,18 +146,24 @@ struct ConfirmEventRequestBody {
   }
 };
 
+// RA's Event carries the report's command code and its payload; JSS's the
+// whole report, ID first, after a byte count that counts the ID too
+// (docs/jss.md, "Events"). One member holds the report as its dialect embeds it.
 struct EventBody {
   std::uint8_t event_id = 0;
-  std::uint16_t report_code = 0;
+  std::uint16_t report_code = 0;  // RA only
   std::uint8_t sequence_number = 0;
-  std::vector<std::uint8_t> report_message;  // payload of the report (no header)
+  std::vector<std::uint8_t> report_message;  // RA: the report's payload (no header); JSS: its contents, ID first
   bool operator==(const EventBody&) const = default;
+  static constexpr bool kSharedWithJss = true;  // also a JSS body (jaus/jss/messages), read in Dialect::jss
   static constexpr auto describe() {
     using B = EventBody;
+    using wire::Dialect;
+    using Report = wire::PerDialect<wire::Bytes<std::uint32_t>, jss::codec::Embedded<std::uint32_t>>;
     return std::make_tuple(wire::field("event_id", &B::event_id, Byte{}),
-                           wire::field("report_code", &B::report_code, UShort{}),
+                           wire::field("report_code", &B::report_code, UShort{}).not_in(Dialect::jss),
                            wire::field("sequence_number", &B::sequence_number, Byte{}),
-                           wire::field("report_message", &B::report_message, wire::Bytes<std::uint32_t>{}));
+                           wire::field("report_message", &B::report_message, Report{}));
   }
 };
 

@@ -286,6 +286,58 @@ std::string codec_doc(const Codec& codec, Dialect dialect) {
     return codec.doc();
 }
 
+// A codec's JSON form in `dialect`: a codec whose value reads differently by
+// dialect (wire::PerDialect) takes it, the others read alike.
+template <class Json, class Codec>
+Json codec_to_json(const Codec& codec, const typename Codec::value_type& v, Dialect dialect) {
+  if constexpr (requires { codec.template to_json<Json>(v, dialect); })
+    return codec.template to_json<Json>(v, dialect);
+  else
+    return codec.template to_json<Json>(v);
+}
+template <class Json, class Codec>
+Expected<void> codec_from_json(const Codec& codec, const Json& j, typename Codec::value_type& v, Dialect dialect) {
+  if constexpr (requires { codec.template from_json<Json>(j, v, dialect); })
+    return codec.template from_json<Json>(j, v, dialect);
+  else
+    return codec.template from_json<Json>(j, v);
+}
+
+// A field whose wire form differs by dialect beyond scaling: one codec in RA
+// (and openjaus), another in JSS, over the same value type. Event's report is
+// the one: RA's payload bytes, JSS's whole embedded message, ID first.
+template <class RaCodec, class JssCodec>
+struct PerDialect {
+  static_assert(std::is_same_v<typename RaCodec::value_type, typename JssCodec::value_type>,
+                "both dialects' codecs hold the same value type");
+  using value_type = typename RaCodec::value_type;
+  RaCodec ra{};
+  JssCodec jss{};
+  std::string doc(Dialect dialect = Dialect::ra) const {
+    return dialect == Dialect::jss ? codec_doc(jss, dialect) : codec_doc(ra, dialect);
+  }
+  void encode(const value_type& v, auto& w, auto& ctx) const {
+    if (ctx.dialect == Dialect::jss)
+      jss.encode(v, w, ctx);
+    else
+      ra.encode(v, w, ctx);
+  }
+  void decode(auto& r, value_type& v, auto& ctx) const {
+    if (ctx.dialect == Dialect::jss)
+      jss.decode(r, v, ctx);
+    else
+      ra.decode(r, v, ctx);
+  }
+  template <class Json>
+  Json to_json(const value_type& v, Dialect dialect) const {
+    return dialect == Dialect::jss ? codec_to_json<Json>(jss, v, dialect) : codec_to_json<Json>(ra, v, dialect);
+  }
+  template <class Json>
+  Expected<void> from_json(const Json& j, value_type& v, Dialect dialect) const {
+    return dialect == Dialect::jss ? codec_from_json(jss, j, v, dialect) : codec_from_json(ra, j, v, dialect);
+  }
+};
+
 template <class Count, class Elem>
 struct Array {
   using value_type = std::vector<typename Elem::value_type>;
@@ -706,9 +758,9 @@ Json fields_to_json(const Body& body, Dialect dialect = Dialect::ra) {
              if (!shown_in(f, dialect)) return;
              if constexpr (F::is_optional) {
                if ((body.*f.member).has_value())
-                 out[std::string(f.name)] = f.codec.template to_json<Json>(*(body.*f.member));
+                 out[std::string(f.name)] = codec_to_json<Json>(f.codec, *(body.*f.member), dialect);
              } else {
-               out[std::string(f.name)] = f.codec.template to_json<Json>(body.*f.member);
+               out[std::string(f.name)] = codec_to_json<Json>(f.codec, body.*f.member, dialect);
              }
            }
          }()),
@@ -758,9 +810,9 @@ Expected<void> fields_from_json(const Json& j, Body& body, Dialect dialect = Dia
              if constexpr (F::is_optional) {
                auto& member = body.*f.member;
                member.emplace();
-               field = f.codec.template from_json<Json>(*it, *member);
+               field = codec_from_json(f.codec, *it, *member, dialect);
              } else {
-               field = f.codec.template from_json<Json>(*it, body.*f.member);
+               field = codec_from_json(f.codec, *it, body.*f.member, dialect);
              }
              if (!field) result = detail::json_error_in("'" + key + "'", field.error());
            }

@@ -145,18 +145,10 @@ struct ReportEventsBody {
   }
 };
 
-struct EventBody {
-  std::uint8_t event_id = 0;
-  std::uint8_t sequence_number = 0;          // Events sent for this event ID, wrapping
-  std::vector<std::uint8_t> report_message;  // the report's contents, ID first
-  bool operator==(const EventBody&) const = default;
-  static constexpr auto describe() {
-    using B = EventBody;
-    return std::make_tuple(wire::field("event_id", &B::event_id, Byte{}),
-                           wire::field("sequence_number", &B::sequence_number, Byte{}),
-                           wire::field("report_message", &B::report_message, kMsg32));
-  }
-};
+// RA's, read in wire::Dialect::jss: no report code; `report_message` is the
+// report's whole contents, ID first (jss::decode_contents<M>).
+using jaus::msg::EventBody;
+static_assert(wire::shared_with_jss<EventBody>(), "a body JSS shares says so (kSharedWithJss)");
 
 struct EventTimeoutBody {
   std::uint8_t timeout_min = 0;  // 0: events never time out
