@@ -72,7 +72,8 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
   rt::Backends offered = backends;
   offered.offer<const components::NodeManagerConfig>(&settings.identity);
   offered.offer<const rt::Duration>("heartbeat_period", &settings.identity.heartbeat_period);
-  const rt::KindContext context{c, node.environment(), node, rt::KindOptions{kind->name, spec.options}, offered};
+  const rt::KindContext context{c, node.environment(), node, rt::KindOptions{kind->name, spec.options, spec.authority},
+                                offered};
   auto made = kind->make(context);
   if (made && !*made)
     return unexpected(make_error(ErrorCode::invalid_argument, spec.kind + " made no component"));
@@ -82,7 +83,7 @@ Expected<std::unique_ptr<rt::Component>> make_component(const ComponentSpec& spe
 Expected<void, OptionProblem> check_component_options(const ComponentSpec& spec) {
   const ComponentKind* kind = find_component_kind(spec.kind);
   if (!kind || !kind->check) return {};
-  const Expected<void> checked = kind->check(rt::KindOptions{kind->name, spec.options});
+  const Expected<void> checked = kind->check(rt::KindOptions{kind->name, spec.options, spec.authority});
   if (checked) return {};
   const auto line = spec.option_lines.find(checked.error().field);
   return unexpected(

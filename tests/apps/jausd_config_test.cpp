@@ -745,6 +745,19 @@ TEST(JausdConfigErrors, ADriversMaxAuthorityIsAWholeNumberUpTo254) {
                "to ask for more), got '1.5'");
 }
 
+// A driver's authority above its ceiling is a configuration error where the
+// file is checked (`jausd --check-config` says so), not only when jausd
+// starts: an operator above the ceiling must always be able to take over.
+TEST(JausdConfigErrors, ADriversAuthorityAboveItsCeilingIsRefusedAtItsComponent) {
+  expect_error("components:\n  - kind: node_manager\n  - kind: global_vector_driver\n    authority: 5\n", 3,
+               "global_vector_driver: authority 5 is above its max_authority 1 (an operator above max_authority must "
+               "always be able to take the primitive driver from it; raise max_authority, at most 254, or lower "
+               "authority)");
+  const auto raised = expect_ok("components:\n  - kind: node_manager\n  - kind: global_vector_driver\n"
+                                "    authority: 5\n    options:\n      max_authority: 5\n");
+  EXPECT_EQ(raised.components[1].authority, 5);
+}
+
 // The local pose sensor (issue 30): configured by its kind, at its RA ID, its
 // one option checked at the option's line; its origin is the vehicle's
 // start, not an option of its own.

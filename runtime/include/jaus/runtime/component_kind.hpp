@@ -28,11 +28,13 @@
 
 namespace jaus::rt {
 
-// A component's options as a configuration wrote them (key -> text), and the
-// kind they are for (error messages name it).
+// A component's options as a configuration wrote them (key -> text), the
+// kind they are for (error messages name it), and the authority the
+// configuration gives the component (a kind may bound it by an option).
 struct KindOptions {
   std::string_view kind;
   const std::map<std::string, std::string>& values;
+  std::uint8_t authority = 0;
 };
 
 // What a host offers the components it makes, by interface name: the
@@ -108,8 +110,9 @@ struct ComponentKind {
   // Every node has exactly one, at default_id and instance 1, and no other
   // component has that ID (the node manager).
   bool one_per_node = false;
-  // The first problem with the options (Error::field names the key), or
-  // nothing; nothing is built. Empty: the kind has no options to check.
+  // The first problem with the options, or with the authority they bound
+  // (Error::field names the key, or "authority"), or nothing; nothing is
+  // built. Empty: the kind has no options to check.
   std::function<Expected<void>(const KindOptions&)> check;
   std::function<Expected<std::unique_ptr<Component>>(const KindContext&)> make;
 };

@@ -29,13 +29,20 @@ rt::ComponentKind mobility_driver_kind(std::string_view name, std::uint8_t id,
       .needs = {PoseSource::kInterface},
       .moves_hardware = true,
       .one_per_node = false,
-      .check = rt::check_by(read_options),
+      // The options, and the authority under their ceiling: `jausd --check-config`
+      // refuses what make() would (operators always win).
+      .check = [read_options](const rt::KindOptions& k) -> Expected<void> {
+        const auto options = read_options(k);
+        if (!options) return unexpected(options.error());
+        return check_driver_authority(k.kind, k.authority, options->mobility);
+      },
       .make = [read_options, frame](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
         const auto pose = k.need<PoseSource>();
         if (!pose) return unexpected(pose.error());
         const auto options = read_options(k.options);
         if (!options) return unexpected(options.error());
-        // Safety: never made with an authority above its ceiling (operators always win).
+        // Safety: never made with an authority above its ceiling (operators always win), checked
+        // again here for hosts that make components without check().
         if (auto authority = check_driver_authority(k.options.kind, k.config.authority, options->mobility); !authority)
           return unexpected(authority.error());
         if (frame == DriverFrame::local)
