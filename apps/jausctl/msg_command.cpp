@@ -24,6 +24,7 @@ namespace jausctl {
 namespace {
 
 jaus::wire::Dialect parse_dialect(const std::string& name) {
+  if (name == "jss") return jaus::wire::Dialect::jss;
   return name == "openjaus" ? jaus::wire::Dialect::openjaus : jaus::wire::Dialect::ra;
 }
 
@@ -59,12 +60,14 @@ int encode(const std::string& dialect) {
   return kExitOk;
 }
 
-int list() {
-  for (const auto& m : jaus::msg::catalogue()) {
+// One line a message of the dialect's set: code, name, (subgroup or JSS service, class).
+int list(jaus::wire::Dialect dialect) {
+  for (const auto& m : jaus::msg::catalogue(dialect)) {
     char code[8];
     std::snprintf(code, sizeof code, "0x%04X", m.code);
-    std::cout << code << "  " << m.name << "  (" << jaus::msg::message_subgroup(m.code) << ", "
-              << jaus::msg::message_class(m.code) << ")\n";
+    const auto group = m.set == jaus::wire::Dialect::jss ? jaus::jss::service_name(m.service_uri)
+                                                          : jaus::msg::message_subgroup(m.code);
+    std::cout << code << "  " << m.name << "  (" << group << ", " << jaus::msg::to_string(m.message_class) << ")\n";
   }
   return kExitOk;
 }
@@ -130,7 +133,7 @@ void add_msg_commands(CLI::App& app, int& exit_code) {
   auto* list_cmd = msg->add_subcommand("list", "List every supported message: code, name, subgroup (jss: service), class");
   add_dialect(list_cmd);
   list_cmd->callback([&exit_code, dialect] {
-    exit_code = *dialect == "jss" ? ocu::jss_msg_list({std::cout, std::cerr}) : list();
+    exit_code = list(parse_dialect(*dialect));
   });
 }
 

@@ -485,9 +485,10 @@ void add_ocu_commands(CLI::App& app, int& exit_code) {
       if (!info) return void(exit_code = bad_input("subscribe", info.error().message()));
       // A report names the event by its query (Report X -> Query X); a query is taken as it is.
       const auto* query_info = *info;
-      if (query_info->message_class == jaus::jss::MessageClass::inform)
-        query_info = jaus::jss::find_message(static_cast<std::uint16_t>(query_info->id - 0x2000));
-      if (!query_info || query_info->message_class != jaus::jss::MessageClass::query)
+      if (query_info->message_class == jaus::msg::MessageClass::inform)
+        query_info =
+            jaus::msg::find_message(jaus::wire::Dialect::jss, static_cast<std::uint16_t>(query_info->code - 0x2000));
+      if (!query_info || query_info->message_class != jaus::msg::MessageClass::query)
         return void(exit_code = bad_input("subscribe", std::string((*info)->name) + " is neither a report nor a query"));
       auto query_fields = ocu::Json::object();
       if (!pv->empty()) {

@@ -2,7 +2,7 @@
 // YAML map read key by key in file order (unknown and duplicate keys are
 // errors), numbers and integers checked against their range, and the first
 // problem thrown as a Failure with its line, caught once in
-// load_config_string. jausd_config.cpp reads the node's sections with them,
+// load_config_string. config_file.cpp reads the node's sections with them,
 // hardware_config.cpp the vehicle, cameras and manipulator.
 #pragma once
 

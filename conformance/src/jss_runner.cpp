@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "jaus/conform/jss_case.hpp"
+#include "case_loop.hpp"
 #include "jaus/jss/all.hpp"
 
 namespace jaus::conform {
@@ -85,39 +86,26 @@ std::vector<CaseResult> run_jss_cases(ocu::JssSession& session, const JssCompone
                                       const std::vector<JssComponentUnderTest>& node_components,
                                       const std::vector<const JssConformanceCase*>& cases, const RunOptions& options,
                                       const JssClientOpener& open_client, const ResultListener& on_result) {
-  std::vector<CaseResult> results;
-  for (const JssConformanceCase* test_case : cases) {
-    const std::string_view id = test_case->describe.id;
-    if (!options.only.empty() && id.find(options.only) == std::string_view::npos) continue;
-    if (!options.skip.empty() && id.find(options.skip) != std::string_view::npos) continue;
-    CaseResult result{&test_case->describe, Address{}, component.name, {}, {}, {}, component.id};
-    if (session.interrupted()) {
-      result.outcome = {Verdict::fail, "interrupted before it ran"};
-    } else if (std::string why = test_case->not_applicable ? test_case->not_applicable(component) : std::string();
-               !why.empty()) {
-      result.outcome = {Verdict::skip, "does not apply: " + why};
-    } else {
-      JssCaseContext context{session, component, options.reply_timeout, {}, session.clock().now(), open_client};
-      context.node_components = &node_components;
-      // What the component sends the runner during the case, for the report.
-      const auto recorder = session.listen([&](const ocu::JssReceived& r) {
-        if (r.source() != component.id) return;
-        Exchanged e;
-        e.header.command_code = r.message_id();
-        if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
-        e.at = session.clock().now() - context.started;
-        e.jss_peer = r.source();
-        context.exchange.push_back(std::move(e));
-      });
-      result.outcome = test_case->run(context);
-      session.unlisten(recorder);
-      result.took = session.clock().now() - context.started;
-      result.exchange = std::move(context.exchange);
-    }
-    if (on_result) on_result(result);
-    results.push_back(std::move(result));
-  }
-  return results;
+  const CaseResult blank{nullptr, Address{}, component.name, {}, {}, {}, component.id};
+  const auto run_case = [&](const JssConformanceCase& test_case, CaseResult& result) {
+    JssCaseContext context{session, component, options.reply_timeout, {}, session.clock().now(), open_client};
+    context.node_components = &node_components;
+    // What the component sends the runner during the case, for the report.
+    const auto recorder = session.listen([&](const ocu::JssReceived& r) {
+      if (r.source() != component.id) return;
+      Exchanged e;
+      e.header.command_code = r.message_id();
+      if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
+      e.at = session.clock().now() - context.started;
+      e.jss_peer = r.source();
+      context.exchange.push_back(std::move(e));
+    });
+    result.outcome = test_case.run(context);
+    session.unlisten(recorder);
+    result.took = session.clock().now() - context.started;
+    result.exchange = std::move(context.exchange);
+  };
+  return detail::run_each_case(session, cases, component, blank, options, on_result, run_case);
 }
 
 }  // namespace jaus::conform

@@ -209,7 +209,7 @@ msg::SetTravelSpeed travel_speed(double mps) {
 }
 
 std::string unless_accepts_code(const ComponentUnderTest& component, std::uint16_t code) {
-  const msg::MessageInfo* info = msg::find_message(code);
+  const msg::MessageInfo* info = msg::find_message(wire::Dialect::ra, code);
   return unless_accepts(component, code,
                         (info ? std::string(info->name) + " (" : "(") + ocu::code_text(code) + ")");
 }

@@ -55,12 +55,12 @@ std::string cell(std::string_view text) {
 }
 
 std::string message_name(std::uint16_t code) {
-  const auto* info = msg::find_message(code);
+  const auto* info = msg::find_message(wire::Dialect::ra, code);
   return info ? std::string(info->name) : "unknown message";
 }
 
 std::string jss_message_name(std::uint16_t id) {
-  const auto* info = jss::find_message(id);
+  const auto* info = msg::find_message(wire::Dialect::jss, id);
   return info ? std::string(info->name) : "unknown JSS message";
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "case_loop.hpp"
 #include "jaus/messages/discovery_messages.hpp"
 #include "jaus/wire/codecs.hpp"
 
@@ -182,32 +183,20 @@ std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnder
   // jaus-conform's other OCUs: on UDP beside its session.
   std::unique_ptr<OcuFactory> udp_ocus = !options.ocus && session.on_udp() ? udp_ocu_factory(session) : nullptr;
   OcuFactory* ocus = options.ocus ? options.ocus : udp_ocus.get();
-  std::vector<CaseResult> results;
-  for (const ConformanceCase* test_case : cases) {
-    if (!options.only.empty() && std::string_view(test_case->id).find(options.only) == std::string_view::npos) continue;
-    if (!options.skip.empty() && std::string_view(test_case->id).find(options.skip) != std::string_view::npos) continue;
-    CaseResult result{test_case, component.address, component.name, {}, {}, {}};
-    if (session.interrupted()) {
-      result.outcome = {Verdict::fail, "interrupted before it ran"};
-    } else if (std::string why = test_case->not_applicable ? test_case->not_applicable(component) : std::string();
-               !why.empty()) {
-      result.outcome = {Verdict::skip, "does not apply: " + why};
-    } else {
-      CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now(), ocus};
-      // What the component sends the runner during the case, for the report.
-      const auto recorder = session.listen([&](const ocu::Received& r) {
-        if (r.header.source == component.address)
-          context.exchange.push_back(Exchanged{false, r.header, r.payload, session.clock().now() - context.started});
-      });
-      result.outcome = test_case->run(context);
-      session.unlisten(recorder);
-      result.took = session.clock().now() - context.started;
-      result.exchange = std::move(context.exchange);
-    }
-    if (on_result) on_result(result);
-    results.push_back(std::move(result));
-  }
-  return results;
+  const CaseResult blank{nullptr, component.address, component.name, {}, {}, {}};
+  const auto run_case = [&](const ConformanceCase& test_case, CaseResult& result) {
+    CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now(), ocus};
+    // What the component sends the runner during the case, for the report.
+    const auto recorder = session.listen([&](const ocu::Received& r) {
+      if (r.header.source == component.address)
+        context.exchange.push_back(Exchanged{false, r.header, r.payload, session.clock().now() - context.started});
+    });
+    result.outcome = test_case.run(context);
+    session.unlisten(recorder);
+    result.took = session.clock().now() - context.started;
+    result.exchange = std::move(context.exchange);
+  };
+  return detail::run_each_case(session, cases, component, blank, options, on_result, run_case);
 }
 
 }  // namespace jaus::conform

@@ -55,14 +55,16 @@ class UdpOcuFactory final : public OcuFactory {
 
   Expected<std::unique_ptr<ocu::OcuSession>> open(ocu::SessionOptions options) override {
     options.bind.port = 0;  // the runner's address, a port of its own
-    return ocu::OcuSession::open(std::move(options), &runner_.io_context());
+    return ocu::OcuSession::open(std::move(options), runner_.io_context());
   }
 
   Expected<std::unique_ptr<DeafEndpoint>> silence(ocu::OcuSession& session, Heard heard) override {
-    auto& link = session.link();
-    const transport::Ipv4Endpoint port = link.local_endpoint();
-    link.close();
-    auto deaf = std::make_shared<DeafPort>(runner_.io_context(), std::move(heard));
+    auto* link = session.udp_link();
+    if (link == nullptr || runner_.io_context() == nullptr)
+      return unexpected(make_error(ErrorCode::invalid_argument, "silencing an OCU: it is not on UDP"));
+    const transport::Ipv4Endpoint port = link->local_endpoint();
+    link->close();
+    auto deaf = std::make_shared<DeafPort>(*runner_.io_context(), std::move(heard));
     boost::system::error_code ec;
     deaf->socket.open(DeafPort::udp::v4(), ec);
     if (!ec) deaf->socket.bind(DeafPort::udp::endpoint(boost::asio::ip::address_v4(port.address), port.port), ec);

@@ -11,21 +11,21 @@ namespace jaus::msg {
 
 namespace {
 
-std::vector<MessageInfo> build_catalogue() {
+using detail::code_text;
+
+std::vector<MessageInfo> sorted_by_code(std::vector<MessageInfo> all) {
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.code < b.code; });
+  return all;
+}
+
+std::vector<MessageInfo> ra_set() {
   std::vector<MessageInfo> all;
   for (auto part : {detail::core_entries(), detail::communications_entries(), detail::platform_state_entries(),
                     detail::platform_waypoint_entries(), detail::manipulator_entries(),
                     detail::environment_entries(), detail::discovery_and_event_entries()}) {
     all.insert(all.end(), part.begin(), part.end());
   }
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.code < b.code; });
-  return all;
-}
-
-std::string code_text(std::uint16_t code) {
-  char text[8];
-  std::snprintf(text, sizeof text, "0x%04X", code);
-  return text;
+  return sorted_by_code(std::move(all));
 }
 
 Error json_error(std::string_view field, std::string detail) {
@@ -115,7 +115,7 @@ Expected<std::uint16_t, Error> code_from_json(const nlohmann::ordered_json& mess
     return unexpected(json_error("code", "expected a command code such as \"0x4402\""));
   }
   if (const auto it = message.find("name"); it != message.end() && it->is_string()) {
-    if (const auto* info = find_message(it->get<std::string>())) return info->code;
+    if (const auto* info = find_message(wire::Dialect::ra, it->get<std::string>())) return info->code;
     return unexpected(json_error("name", "no message named '" + it->get<std::string>() + "'"));
   }
   return unexpected(json_error("code", "'code' or 'name' is required"));
@@ -123,33 +123,60 @@ Expected<std::uint16_t, Error> code_from_json(const nlohmann::ordered_json& mess
 
 }  // namespace
 
-std::span<const MessageInfo> catalogue() {
-  static const std::vector<MessageInfo> all = build_catalogue();
-  return all;
+namespace detail {
+std::string code_text(std::uint16_t code) {
+  char text[8];
+  std::snprintf(text, sizeof text, "0x%04X", code);
+  return text;
+}
+}  // namespace detail
+
+std::span<const MessageInfo> catalogue(wire::Dialect dialect) {
+  static const std::vector<MessageInfo> ra = ra_set();
+  static const std::vector<MessageInfo> jss = sorted_by_code(detail::jss_set());
+  return message_set_of(dialect) == wire::Dialect::jss ? std::span<const MessageInfo>(jss)
+                                                       : std::span<const MessageInfo>(ra);
 }
 
-const MessageInfo* find_message(std::uint16_t code) {
-  const auto all = catalogue();
+const MessageInfo* find_message(wire::Dialect dialect, std::uint16_t code) {
+  const auto all = catalogue(dialect);
   const auto it = std::lower_bound(all.begin(), all.end(), code, [](const auto& m, auto c) { return m.code < c; });
   return it != all.end() && it->code == code ? &*it : nullptr;
 }
 
-const MessageInfo* find_message(std::string_view name) {
-  for (const auto& m : catalogue())
-    if (m.name == name) return &m;
+const MessageInfo* find_message(wire::Dialect dialect, std::string_view name) {
+  for (const auto& m : catalogue(dialect))
+    if (m.name == name || m.type_name == name) return &m;
   return nullptr;
 }
 
-std::string_view message_class(std::uint16_t code) {
+MessageClass message_class_of(wire::Dialect set, std::uint16_t code) {
   switch (code >> 12) {
-    case 0x0: return "command";
-    case 0x2: return "query";
-    case 0x4: return "inform";
-    case 0x6: return "event setup";
-    case 0x8: return "event notification";
-    case 0xD: return "node management";
-    default: return "experimental";
+    case 0x0: return MessageClass::command;
+    case 0x2: return MessageClass::query;
+    case 0x4: return MessageClass::inform;
+    default: break;
   }
+  if (message_set_of(set) == wire::Dialect::jss) return MessageClass::command;
+  switch (code >> 12) {
+    case 0x6: return MessageClass::event_setup;
+    case 0x8: return MessageClass::event_notification;
+    case 0xD: return MessageClass::node_management;
+    default: return MessageClass::experimental;
+  }
+}
+
+std::string_view to_string(MessageClass message_class) {
+  switch (message_class) {
+    case MessageClass::command: return "command";
+    case MessageClass::query: return "query";
+    case MessageClass::inform: return "inform";
+    case MessageClass::event_setup: return "event setup";
+    case MessageClass::event_notification: return "event notification";
+    case MessageClass::node_management: return "node management";
+    case MessageClass::experimental: return "experimental";
+  }
+  return "command";
 }
 
 std::string_view message_subgroup(std::uint16_t code) {
@@ -180,13 +207,13 @@ Expected<nlohmann::ordered_json, Error> message_to_json(std::span<const std::uin
   auto packet = decode_packet(bytes);
   if (!packet) return unexpected(packet.error());
   const Header& h = packet->header;
-  const MessageInfo* info = find_message(h.command_code);
+  const MessageInfo* info = find_message(wire::Dialect::ra, h.command_code);
   if (!info)
     return unexpected(Error{ErrorCode::unknown_message, 2, "command_code", code_text(h.command_code)});
   if (h.data_flag != DataFlag::single)
     return unexpected(Error{ErrorCode::bad_data_flag, 13, "data_flag",
                             "one packet of a large data set: reassemble before decoding"});
-  auto fields = info->payload_to_json(packet->payload, dialect);
+  auto fields = info->body_to_json(packet->payload, dialect);
   if (!fields) return unexpected(fields.error());
   return nlohmann::ordered_json{
       {"code", code_text(h.command_code)}, {"name", info->name}, {"header", header_to_json(h)}, {"fields", *fields}};
@@ -199,11 +226,11 @@ Expected<Bytes, Error> message_from_json(const nlohmann::ordered_json& message, 
       return unexpected(json_error({}, "unknown key '" + key + "'"));
   auto code = code_from_json(message);
   if (!code) return unexpected(code.error());
-  const MessageInfo* info = find_message(*code);
+  const MessageInfo* info = find_message(wire::Dialect::ra, *code);
   if (!info) return unexpected(Error{ErrorCode::unknown_message, 0, "code", code_text(*code)});
   auto header = header_from_json(message.value("header", nlohmann::ordered_json()));
   if (!header) return unexpected(header.error());
-  auto payload = info->payload_from_json(message.value("fields", nlohmann::ordered_json::object()), dialect);
+  auto payload = info->body_from_json(message.value("fields", nlohmann::ordered_json::object()), dialect);
   if (!payload) return unexpected(payload.error());
   if (payload->size() > kMaxPayloadSize)
     return unexpected(Error{ErrorCode::payload_too_large, 0, {}, std::to_string(payload->size()) + " bytes, at most 4080 in one packet"});
@@ -286,9 +313,9 @@ this file and the descriptions disagree. Regenerate with
 | code | name | subgroup | class | payload |
 |---|---|---|---|---|
 )";
-  for (const auto& m : catalogue()) {
+  for (const auto& m : catalogue(wire::Dialect::ra)) {
     out += "| " + code_text(m.code) + " | " + std::string(m.name) + " | " + std::string(message_subgroup(m.code)) +
-           " | " + std::string(message_class(m.code)) + " | " + m.fields_doc() + " |\n";
+           " | " + std::string(to_string(m.message_class)) + " | " + m.fields_doc() + " |\n";
   }
   return out;
 }

@@ -1,4 +1,5 @@
 #include "catalogue_entries.hpp"
+#include "jaus/messages/all.hpp"
 
 // The codec of the bodies listed for this file (jaus/messages/compiled_codecs.hpp).
 namespace jaus {
@@ -6,5 +7,7 @@ JAUS_PLATFORM_STATE_BODIES(JAUS_DEFINE_CODEC)
 }  // namespace jaus
 
 namespace jaus::msg::detail {
-std::vector<MessageInfo> platform_state_entries() { return entries_of<is_platform_state>(PlatformMessages{}); }
+std::vector<MessageInfo> platform_state_entries() {
+  return entries_of<wire::Dialect::ra, is_platform_state>(PlatformMessages{});
+}
 }  // namespace jaus::msg::detail

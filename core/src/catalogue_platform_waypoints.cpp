@@ -1,4 +1,5 @@
 #include "catalogue_entries.hpp"
+#include "jaus/messages/all.hpp"
 
 // The codec of the bodies listed for this file (jaus/messages/compiled_codecs.hpp).
 namespace jaus {
@@ -6,5 +7,7 @@ JAUS_PLATFORM_WAYPOINT_BODIES(JAUS_DEFINE_CODEC)
 }  // namespace jaus
 
 namespace jaus::msg::detail {
-std::vector<MessageInfo> platform_waypoint_entries() { return entries_of<is_platform_waypoint>(PlatformMessages{}); }
+std::vector<MessageInfo> platform_waypoint_entries() {
+  return entries_of<wire::Dialect::ra, is_platform_waypoint>(PlatformMessages{});
+}
 }  // namespace jaus::msg::detail

@@ -18,6 +18,7 @@
 #include "id_map.hpp"
 #include "jaus/jss/judp.hpp"
 #include "jaus/jss/large_message.hpp"
+#include "jaus/node/sequence_counters.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
 
 namespace jaus::jss_face {
@@ -361,7 +362,9 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   Translators translators_;
   EventEngine events_;
   jss::LargeMessageReassembler reassembler_;
-  SequenceNumbers sequences_;
+  // Per destination; the bound as the RA node's (a destination least
+  // recently sent to starts again at 0 when used again).
+  node::BasicSequenceCounters<jss::JssId> sequences_{{.max_streams = 4096}};
   JssDuplicateFilter duplicates_;
   rt::RepeatedLines lines_;
   std::uint8_t inbound_priority_ = priority::kDefault;  // RA priority of the JSS message being handled

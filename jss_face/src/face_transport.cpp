@@ -4,22 +4,6 @@
 
 namespace jaus::jss_face {
 
-std::uint16_t SequenceNumbers::take(const jss::JssId& to, std::uint16_t count) {
-  auto it = next_.find(to);
-  if (it == next_.end()) {
-    if (next_.size() >= max_) {
-      const auto least = std::min_element(next_.begin(), next_.end(),
-                                          [](const auto& a, const auto& b) { return a.second.used < b.second.used; });
-      next_.erase(least);
-    }
-    it = next_.emplace(to, Entry{}).first;
-  }
-  const std::uint16_t first = it->second.next;
-  it->second.next = static_cast<std::uint16_t>(first + count);
-  it->second.used = ++uses_;
-  return first;
-}
-
 namespace {
 
 // Where senders number from after a start: Jr from 1, JRM (and this face) from 0.

@@ -1,5 +1,5 @@
-// The face's part of AS5669A transport (docs/jss.md, "Transport (AS5669A), done by the face"): sequence numbers
-// per destination, and the duplicate filter of received messages.
+// The face's part of AS5669A transport (docs/jss.md, "Transport (AS5669A), done by the face"): the duplicate
+// filter of received messages (its sequence numbers are the node's counters, node/sequence_counters.hpp).
 #pragma once
 
 #include <cstdint>
@@ -14,26 +14,6 @@
 #include "jaus/jss/judp.hpp"
 
 namespace jaus::jss_face {
-
-// Sequence numbers per destination, bounded: beyond `max_destinations` the
-// destination least recently sent to starts again at 0 (a peer that still
-// remembers our old numbers within its 10 s window may drop one copy).
-class SequenceNumbers {
- public:
-  explicit SequenceNumbers(std::size_t max_destinations = 4096) : max_(max_destinations) {}
-  // The next `count` consecutive numbers to `to` (a large message's packets): the first of them.
-  std::uint16_t take(const jss::JssId& to, std::uint16_t count = 1);
-  std::size_t size() const { return next_.size(); }
-
- private:
-  struct Entry {
-    std::uint16_t next = 0;
-    std::uint64_t used = 0;  // when last taken (a counter, for the bound)
-  };
-  std::size_t max_;
-  std::uint64_t uses_ = 0;
-  std::map<jss::JssId, Entry> next_;
-};
 
 // Received messages a sender retransmitted (AS5669A: a message with ACK
 // requested is sent again until its ACK arrives, so when the ACK is lost the

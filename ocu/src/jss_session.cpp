@@ -8,6 +8,7 @@
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jss_socket.hpp"
+#include "run_loop.hpp"
 
 namespace jaus::ocu {
 
@@ -15,7 +16,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr rt::Duration kRunSlice = 100ms;  // run_until wakes at least this often on UDP
 // What the session answers by itself (docs/jss.md, "Liveness", "Discovery").
 constexpr std::uint16_t kQueryHeartbeatPulse = 0x2202;
 constexpr std::uint16_t kReportHeartbeatPulse = 0x4202;
@@ -431,34 +431,13 @@ Expected<JssReceived> JssSession::request_contents(const jss::JssId& to, std::sp
 }
 
 bool JssSession::run_until(const std::function<bool()>& done, rt::Duration limit) {
-  const auto deadline = clock().now() + limit;
-  for (;;) {
-    if (done()) return true;
-    if (interrupted()) return false;
-    const auto now = clock().now();
-    if (now >= deadline) return false;
-    if (!impl_->io) {
-      impl_->environment.wait(deadline);
-      continue;
-    }
-    if (impl_->io->stopped()) impl_->io->restart();
-    impl_->io->run_one_for(std::min(deadline - now, kRunSlice));
-  }
+  return detail::run_session({clock(), impl_->io, impl_->environment.wait, [this] { return interrupted(); }}, done,
+                             limit, false);
 }
 
 bool JssSession::run_cleanup_until(const std::function<bool()>& done, rt::Duration limit) {
-  const auto deadline = clock().now() + std::min(limit, kLongestCleanup);
-  for (;;) {
-    if (done()) return true;
-    const auto now = clock().now();
-    if (now >= deadline) return false;
-    if (!impl_->io) {
-      impl_->environment.wait(deadline);
-      continue;
-    }
-    if (impl_->io->stopped()) impl_->io->restart();
-    impl_->io->run_one_for(std::min(deadline - now, kRunSlice));
-  }
+  return detail::run_session({clock(), impl_->io, impl_->environment.wait, [this] { return interrupted(); }}, done,
+                             std::min(limit, kLongestCleanup), true);
 }
 
 }  // namespace jaus::ocu

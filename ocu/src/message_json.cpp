@@ -31,7 +31,7 @@ std::optional<std::string> missing_field(const jaus::Error& error) {
 }
 
 std::string message_label(std::uint16_t code) {
-  const auto* info = jaus::msg::find_message(code);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, code);
   return info ? std::string(info->name) + " (" + code_text(code) + ")" : code_text(code);
 }
 
@@ -50,13 +50,13 @@ std::string describe_error(const jaus::Error& error) {
 std::optional<std::uint16_t> report_code_for(std::uint16_t query_code) {
   if (!is_query(query_code)) return std::nullopt;
   const auto report = static_cast<std::uint16_t>(query_code + (kReportClass - kQueryClass));
-  if (!jaus::msg::find_message(report)) return std::nullopt;
+  if (!jaus::msg::find_message(jaus::wire::Dialect::ra, report)) return std::nullopt;
   return report;
 }
 
 jaus::Expected<PreparedMessage> prepare_query(std::uint16_t code, std::optional<std::uint32_t> presence_vector,
                                       const Json& fields) {
-  const auto* info = jaus::msg::find_message(code);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, code);
   if (!info) return invalid("unknown message code " + code_text(code));
   if (!is_query(code))
     return invalid(message_label(code) + " is not a query (queries are 0x2nnn; `jausctl send` sends any message)");
@@ -69,7 +69,7 @@ jaus::Expected<PreparedMessage> prepare_query(std::uint16_t code, std::optional<
   }
   Json filled = given;
   for (int attempt = 0; attempt < kMaxQueryFields; ++attempt) {
-    auto payload = info->payload_from_json(filled, jaus::wire::Dialect::ra);
+    auto payload = info->body_from_json(filled, jaus::wire::Dialect::ra);
     if (payload) {
       PreparedMessage out;
       out.header.command_code = code;
@@ -103,7 +103,7 @@ jaus::Expected<Json> message_json(const Received& message, jaus::wire::Dialect d
   const jaus::Header& h = message.header;
   Json out;
   out["code"] = code_text(h.command_code);
-  const auto* info = jaus::msg::find_message(h.command_code);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, h.command_code);
   if (!info) {
     out["name"] = nullptr;
     out["header"] = jaus::msg::header_to_json(h);
@@ -112,7 +112,7 @@ jaus::Expected<Json> message_json(const Received& message, jaus::wire::Dialect d
   }
   out["name"] = info->name;
   out["header"] = jaus::msg::header_to_json(h);
-  auto fields = info->payload_to_json(message.payload, dialect);
+  auto fields = info->body_to_json(message.payload, dialect);
   if (!fields)
     return unexpected(jaus::make_error(jaus::ErrorCode::malformed, message_label(h.command_code) + " from " +
                                                                 h.source.to_string() + " does not decode: " +

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <random>
-#include <stdexcept>
 
 #include "jaus/components/node_manager.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/ocu/names.hpp"
+#include "run_loop.hpp"
 
 namespace jaus::ocu {
 
@@ -15,8 +15,6 @@ namespace {
 using namespace std::chrono_literals;
 using jaus::unexpected;
 
-// run_until() wakes at least this often to look at its deadline.
-constexpr jaus::rt::Duration kRunSlice = 100ms;
 constexpr std::uint8_t kNodeManagerComponent = 1;
 constexpr const char* kExits = "jausctl exits";
 
@@ -135,15 +133,7 @@ void OcuSession::receive_packet(std::span<const std::uint8_t> bytes) {
   node_->receive(*packet);
 }
 
-jaus::transport::UdpLink& OcuSession::link() {
-  if (!host_) throw std::logic_error("OcuSession::link(): an attached session has no UDP link");
-  return *host_->udp_link();
-}
-
-boost::asio::io_context& OcuSession::io_context() {
-  if (!io_) throw std::logic_error("OcuSession::io_context(): an attached session has no io_context");
-  return *io_;
-}
+jaus::transport::UdpLink* OcuSession::udp_link() { return host_ ? host_->udp_link() : nullptr; }
 
 OcuSession::~OcuSession() {
   // While the link is open: the OCU component's service connections are
@@ -210,19 +200,8 @@ bool OcuSession::run_cleanup_until(const std::function<bool()>& done, jaus::rt::
 }
 
 bool OcuSession::run(const std::function<bool()>& done, jaus::rt::Duration limit, bool through_stop) {
-  const auto deadline = clock().now() + limit;
-  for (;;) {
-    if (done()) return true;
-    if (interrupted() && !through_stop) return false;
-    const auto now = clock().now();
-    if (now >= deadline) return false;
-    if (!io_) {
-      environment_.wait(deadline);
-      continue;
-    }
-    if (io_->stopped()) io_->restart();
-    io_->run_one_for(std::min(deadline - now, kRunSlice));
-  }
+  return detail::run_session({clock(), io_, environment_.wait, [this] { return interrupted(); }}, done, limit,
+                             through_stop);
 }
 
 jaus::Expected<Received> OcuSession::await_reply(const jaus::Address& from,

@@ -701,14 +701,14 @@ TEST(JausdConfigErrors, Peers) {
 TEST(JausdConfigErrors, ComponentKinds) {
   expect_error("components:\n  - kind: node_manager\n  - kind: world_model_vector_store\n", 3,
                "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
-               "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, "
-               "global_vector_driver, local_vector_driver, global_waypoint_driver, local_waypoint_driver, "
-               "local_path_segment_driver, global_path_segment_driver, visual_sensor, primitive_manipulator)");
+               "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, "
+               "primitive_manipulator, global_vector_driver, local_vector_driver, global_waypoint_driver, "
+               "local_waypoint_driver, global_path_segment_driver, local_path_segment_driver)");
   expect_error("components:\n  - kind: node_manager\n  - id: 35\n", 3,
                "a component needs a 'kind' (one of node_manager, communicator, primitive_driver, "
-               "global_pose_sensor, local_pose_sensor, velocity_state_sensor, "
-               "global_vector_driver, local_vector_driver, global_waypoint_driver, local_waypoint_driver, "
-               "local_path_segment_driver, global_path_segment_driver, visual_sensor, primitive_manipulator)");
+               "global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, "
+               "primitive_manipulator, global_vector_driver, local_vector_driver, global_waypoint_driver, "
+               "local_waypoint_driver, global_path_segment_driver, local_path_segment_driver)");
 }
 
 TEST(JausdConfigErrors, ComponentOptionValuesPointAtTheirLine) {
@@ -1306,9 +1306,9 @@ TEST(JausdConfigValidate, EveryRuleAlsoHoldsForValues) {
             "duplicate component id 35 instance 1");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[1].kind = "world_model_vector_store"; }),
             "unknown component kind 'world_model_vector_store' (known: node_manager, communicator, "
-            "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, "
-               "global_vector_driver, local_vector_driver, global_waypoint_driver, local_waypoint_driver, "
-               "local_path_segment_driver, global_path_segment_driver, visual_sensor, primitive_manipulator)");
+            "primitive_driver, global_pose_sensor, local_pose_sensor, velocity_state_sensor, visual_sensor, "
+               "primitive_manipulator, global_vector_driver, local_vector_driver, global_waypoint_driver, "
+               "local_waypoint_driver, global_path_segment_driver, local_path_segment_driver)");
   EXPECT_EQ(broken([](JausdConfig& c) { c.components[2].options["stop_brake_percent"] = "150"; }),
             "primitive_driver option 'stop_brake_percent' must be a number 0..100, got '150'");
   EXPECT_EQ(broken([](JausdConfig& c) { c.vehicle.update_rate_hz = 0; }),
@@ -1472,7 +1472,17 @@ TEST(ComponentKinds, EachBuiltInKindIsAtTheRaIdOfItsNameAndSoIsTheDefaultNode) {
     ASSERT_NE(kind, nullptr) << spec.kind;
     EXPECT_EQ(spec.id, kind->default_id) << spec.kind;
     EXPECT_EQ(spec.instance, 1) << spec.kind;
+    // Each at the authority its kind gives it there: the drivers above the
+    // primitive driver 1 (below any operator's), everything else 0.
+    ASSERT_TRUE(kind->default_node_authority.has_value()) << spec.kind;
+    EXPECT_EQ(spec.authority, *kind->default_node_authority) << spec.kind;
+    const bool above_primitive_driver = spec.kind.ends_with("_vector_driver") ||
+                                        spec.kind.ends_with("_waypoint_driver") ||
+                                        spec.kind.ends_with("_path_segment_driver");
+    EXPECT_EQ(spec.authority, above_primitive_driver ? 1 : 0) << spec.kind;
   }
+  // A kind that does not say so (a plugin's, by default) is in no default node.
+  EXPECT_FALSE(jaus::rt::ComponentKind{}.default_node_authority.has_value());
 }
 
 TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
@@ -1480,9 +1490,9 @@ TEST(ComponentKinds, RegistryHoldsWhatTheNodeImplements) {
   const std::pair<const char*, int> kinds[] = {
       {"node_manager", 1},           {"communicator", 35},           {"primitive_driver", 33},
       {"global_pose_sensor", 38},    {"local_pose_sensor", 41},      {"velocity_state_sensor", 42},
-      {"global_vector_driver", 34},  {"local_vector_driver", 44},    {"global_waypoint_driver", 45},
-      {"local_waypoint_driver", 46}, {"local_path_segment_driver", 48}, {"global_path_segment_driver", 47},
-      {"visual_sensor", 37},         {"primitive_manipulator", 49}};
+      {"visual_sensor", 37},         {"primitive_manipulator", 49},  {"global_vector_driver", 34},
+      {"local_vector_driver", 44},   {"global_waypoint_driver", 45}, {"local_waypoint_driver", 46},
+      {"global_path_segment_driver", 47}, {"local_path_segment_driver", 48}};
   ASSERT_EQ(component_kinds().size(), std::size(kinds));
   for (std::size_t i = 0; i < std::size(kinds); ++i) {
     EXPECT_EQ(component_kinds()[i].name, kinds[i].first);

@@ -751,7 +751,7 @@ int main(int argc, char** argv) {
   {
     std::lock_guard lock(attack.codes_mutex);
     for (const auto& [code, counts] : attack.received_codes) {
-      const auto* info = msg::find_message(code);
+      const auto* info = msg::find_message(wire::Dialect::ra, code);
       std::printf("    0x%04X %-32s %10llu datagrams %14llu bytes\n", code, info ? std::string(info->name).c_str() : "?",
                   static_cast<unsigned long long>(counts.first), static_cast<unsigned long long>(counts.second));
     }

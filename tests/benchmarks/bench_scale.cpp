@@ -519,7 +519,7 @@ std::string duration_text(const std::optional<rt::Duration>& d) {
 }
 
 std::string message_name(std::uint16_t code) {
-  const msg::MessageInfo* info = msg::find_message(code);
+  const msg::MessageInfo* info = msg::find_message(wire::Dialect::ra, code);
   if (info) return std::string(info->name);
   char text[16];
   std::snprintf(text, sizeof text, "0x%04X", code);

@@ -8,6 +8,8 @@
 namespace jaus::msg {
 namespace {
 
+constexpr auto kRa = wire::Dialect::ra;
+
 // The codes the RA 3.x Part 3 message set defines, plus the component control
 // query/report, discovery and events of RA 3.2/3.3.
 const std::vector<std::uint16_t> kRequiredCodes = {
@@ -25,14 +27,14 @@ const std::vector<std::uint16_t> kRequiredCodes = {
 
 TEST(Catalogue, HoldsEveryMessageOfTheSetOnce) {
   EXPECT_EQ(kRequiredCodes.size(), 110u + 15u);
-  for (auto code : kRequiredCodes) EXPECT_NE(find_message(code), nullptr) << std::hex << code;
-  EXPECT_EQ(catalogue().size(), kRequiredCodes.size());
+  for (auto code : kRequiredCodes) EXPECT_NE(find_message(kRa, code), nullptr) << std::hex << code;
+  EXPECT_EQ(catalogue(kRa).size(), kRequiredCodes.size());
   std::set<std::string_view> names;
-  for (const auto& m : catalogue()) {
+  for (const auto& m : catalogue(kRa)) {
     EXPECT_FALSE(m.name.empty());
     EXPECT_TRUE(names.insert(m.name).second) << "duplicate name " << m.name;
   }
-  EXPECT_TRUE(std::is_sorted(catalogue().begin(), catalogue().end(),
+  EXPECT_TRUE(std::is_sorted(catalogue(kRa).begin(), catalogue(kRa).end(),
                              [](const auto& a, const auto& b) { return a.code < b.code; }));
 }
 
@@ -40,18 +42,24 @@ TEST(Catalogue, EveryTypeAppearsUnderItsOwnCode) {
   std::size_t count = 0;
   test::for_each_message_type([&]<class M>() {
     ++count;
-    const auto* info = find_message(M::code);
+    const auto* info = find_message(kRa, M::code);
     ASSERT_NE(info, nullptr);
     EXPECT_EQ(info->name, M::name);
-    EXPECT_EQ(find_message(M::name), info);
+    EXPECT_EQ(find_message(kRa, M::name), info);
+    EXPECT_EQ(find_message(kRa, info->type_name), info);
+    EXPECT_EQ(info->set, kRa);
   });
   EXPECT_EQ(count, kRequiredCodes.size());
 }
 
 TEST(Catalogue, ClassAndSubgroupFollowTheCode) {
-  EXPECT_EQ(message_class(0x0405), "command");
-  EXPECT_EQ(message_class(0x2402), "query");
-  EXPECT_EQ(message_class(0x4402), "inform");
+  EXPECT_EQ(find_message(kRa, 0x0405)->message_class, MessageClass::command);
+  EXPECT_EQ(find_message(kRa, 0x2402)->message_class, MessageClass::query);
+  EXPECT_EQ(find_message(kRa, 0x4402)->message_class, MessageClass::inform);
+  EXPECT_EQ(find_message(kRa, 0x01F0)->message_class, MessageClass::command);
+  EXPECT_EQ(to_string(message_class_of(kRa, 0x6000)), "event setup");
+  EXPECT_EQ(to_string(message_class_of(kRa, 0xD000)), "node management");
+  EXPECT_EQ(to_string(message_class_of(wire::Dialect::jss, 0xD000)), "command");  // JSS has three classes
   EXPECT_EQ(message_subgroup(0x4402), "platform");
   EXPECT_EQ(message_subgroup(0x0601), "manipulator");
   EXPECT_EQ(message_subgroup(0x4807), "environment sensor");
@@ -61,9 +69,9 @@ TEST(Catalogue, ClassAndSubgroupFollowTheCode) {
 }
 
 TEST(Catalogue, UnknownCodesAreNotFound) {
-  EXPECT_EQ(find_message(0x0000), nullptr);
-  EXPECT_EQ(find_message(0x4409), nullptr);
-  EXPECT_EQ(find_message("Report Nothing"), nullptr);
+  EXPECT_EQ(find_message(kRa, 0x0000), nullptr);
+  EXPECT_EQ(find_message(kRa, 0x4409), nullptr);
+  EXPECT_EQ(find_message(kRa, "Report Nothing"), nullptr);
 }
 
 }  // namespace

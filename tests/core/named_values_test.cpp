@@ -236,11 +236,11 @@ TEST(NamedValues, WiderBitFieldsAreNumbersOrTheirNames) {
 }
 
 TEST(NamedValues, DocumentationListsTheNames) {
-  const MessageInfo* status = find_message(0x4002);
+  const MessageInfo* status = find_message(wire::Dialect::ra, 0x4002);
   ASSERT_NE(status, nullptr);
   EXPECT_NE(status->fields_doc().find("`primary_status`: u8 enum: 0 initialize, 1 ready, 2 standby"), std::string::npos)
       << status->fields_doc();
-  const MessageInfo* devices = find_message(0x0406);
+  const MessageInfo* devices = find_message(wire::Dialect::ra, 0x0406);
   ASSERT_NE(devices, nullptr);
   EXPECT_NE(devices->fields_doc().find("u8 bits: bit 0 power_plant_on, bit 1 main_fuel_on"), std::string::npos)
       << devices->fields_doc();

@@ -61,7 +61,7 @@ TEST_F(Restart, ANodeKilledAndRestartedIsForgottenAndRelearntAndItsServiceConnec
     options.self = {254, node_id, 40, 1};
     options.to = {*jaus::transport::parse_endpoint(host.address)};
     options.bind = ocu_any_port();
-    return jaus::ocu::OcuSession::open(options, &session->io_context());
+    return jaus::ocu::OcuSession::open(options, session->io_context());
   };
   auto through_veh1_opened = open_through(kVeh1, 11);
   ASSERT_TRUE(through_veh1_opened) << through_veh1_opened.error().message();

@@ -91,9 +91,9 @@ TEST(TsharkJausdExchange, EveryMessageShowsWhatJausctlDecodes) {
     if (flag == 1) sets[key].clear();
     sets[key].insert(sets[key].end(), message.begin() + 16, message.end());
     if (flag != 8) continue;
-    const auto* info = msg::find_message(code);
+    const auto* info = msg::find_message(wire::Dialect::ra, code);
     ASSERT_NE(info, nullptr);
-    const auto decoded = info->payload_to_json(sets[key], wire::Dialect::ra);
+    const auto decoded = info->body_to_json(sets[key], wire::Dialect::ra);
     ASSERT_TRUE(decoded) << decoded.error().message();
     FieldValues expected, shown;
     const std::string prefix = "jaus." + slug(std::string(info->name));

@@ -25,8 +25,8 @@ TEST(WiresharkJssLua, EveryJssMessageAndEveryFieldIsInThePlugin) {
   const std::string lua = wireshark::jss_tables_lua();
   ASSERT_EQ(lua.rfind("local JSS_MESSAGES = {\n", 0), 0u);
   std::size_t fields = 0;
-  for (const auto& m : jss::catalogue()) {
-    const std::string entry = jss_entry_of(lua, m.id);
+  for (const auto& m : msg::catalogue(wire::Dialect::jss)) {
+    const std::string entry = jss_entry_of(lua, m.code);
     ASSERT_FALSE(entry.empty()) << m.name << " is missing";
     EXPECT_NE(entry.find("name=\"" + std::string(m.name) + "\""), std::string::npos) << entry;
     const std::string doc = m.fields_doc();

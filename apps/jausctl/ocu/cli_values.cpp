@@ -35,12 +35,12 @@ Parsed<jaus::Address> parse_address(std::string_view text, bool allow_broadcast)
 Parsed<std::uint16_t> parse_message_code(std::string_view text) {
   std::uint32_t value = 0;
   if (parse_hex_u32(text, value) && value <= 0xFFFF) {
-    if (!jaus::msg::find_message(static_cast<std::uint16_t>(value)))
+    if (!jaus::msg::find_message(jaus::wire::Dialect::ra, static_cast<std::uint16_t>(value)))
       return invalid("unknown message code " + code_text(static_cast<std::uint16_t>(value)) +
                         " (jausctl msg list shows every code)");
     return static_cast<std::uint16_t>(value);
   }
-  if (const auto* info = jaus::msg::find_message(text)) return info->code;
+  if (const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, text)) return info->code;
   return invalid("unknown message '" + std::string(text) +
                     "': expected a code such as 0x2002 or a name such as \"Query Component Status\"");
 }

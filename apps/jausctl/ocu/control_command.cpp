@@ -45,7 +45,7 @@ std::string controller_text(const std::optional<jaus::msg::ReportComponentContro
 
 // "Set Wrench Effort", or the code of a message the catalogue does not name.
 std::string message_text(const PreparedMessage& message) {
-  const auto* info = jaus::msg::find_message(message.header.command_code);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, message.header.command_code);
   return info ? std::string(info->name) : code_text(message.header.command_code);
 }
 }  // namespace

@@ -37,7 +37,7 @@ Json identification_json(const std::optional<Identification>& identification) {
 Json codes_json(const std::map<std::uint16_t, std::uint32_t>& codes) {
   Json out = Json::array();
   for (const auto& [code, presence] : codes) {
-    const auto* info = jaus::msg::find_message(code);
+    const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, code);
     out.push_back(Json{{"code", code_text(code)},
                        {"name", info ? Json(info->name) : Json(nullptr)},
                        {"presence_vector", presence}});

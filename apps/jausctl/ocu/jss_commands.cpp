@@ -38,7 +38,7 @@ jaus::Expected<Json> received_json(const JssReceived& message) {
 
 std::string message_name(std::span<const std::uint8_t> contents) {
   const auto id = jaus::jss::message_id_of(contents);
-  const auto* info = jaus::jss::find_message(id);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::jss, id);
   return info ? std::string(info->name) : code_text(id);
 }
 
@@ -51,10 +51,6 @@ jaus::Expected<jss_msg::ReportStatus> query_status(JssSession& session, const Js
   return report;
 }
 
-bool is_emergency(const jss_msg::ReportStatus& report) {
-  return (report.status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
-}
-
 }  // namespace
 
 int run_jss_status(JssSession& session, const JssId& target, jaus::rt::Duration timeout, CommandIo io) {
@@ -65,7 +61,7 @@ int run_jss_status(JssSession& session, const JssId& target, jaus::rt::Duration 
   const Json out{{"component", target.to_string()},
                  {"primary_status", name.empty() ? Json(code) : Json(std::string(name))},
                  {"primary_status_code", code},
-                 {"emergency", is_emergency(*report)}};
+                 {"emergency", is_emergency_state(report->status)}};
   io.out << json_line(out) << "\n";
   return kExitOk;
 }
@@ -119,32 +115,11 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
            << transmissions_text(arrival) << "; a broadcast is not acknowledged)\n";
     return kExitOk;
   }
-  if (arrival.outcome != Arrival::acknowledged) {
-    std::string why = not_arrived_text(what, target, arrival, kJssNakMeans);
-    if (set && arrival.outcome != Arrival::interrupted)
-      why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
-    return fail(io, "emergency", why);
-  }
-  auto report = query_status(session, target, timeout);
-  if (!report)
-    return fail(io, "emergency", what + " acknowledged, but " + report.error().message() + " to show its state");
-  if (set && !is_emergency(*report))
-    return fail(io, "emergency",
-                target.to_string() + " is in " + primary_status_text(report->status) + " after Set Emergency");
-  const auto settle_until = session.clock().now() + std::min<jaus::rt::Duration>(timeout, kClearSettles);
-  while (!set && is_emergency(*report) && session.clock().now() < settle_until) {
-    session.run_for(kClearPoll);
-    auto again = query_status(session, target, timeout);
-    if (!again) break;
-    report = std::move(again);
-  }
-  if (!set && is_emergency(*report))
-    return fail(io, "emergency",
-                target.to_string() + " is still in Emergency: another sender holds it, " +
-                    "the platform's own stop does, or " + session.self().to_string() + " never set it");
-  io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " by " << session.self().to_string()
-         << " (state " << primary_status_text(report->status) << ")\n";
-  return kExitOk;
+  if (arrival.outcome != Arrival::acknowledged)
+    return fail(io, "emergency", emergency_not_arrived_text(set, what, target, arrival, kJssNakMeans));
+  return confirm_emergency_state(
+      session, target, set, what, io, timeout, [&] { return query_status(session, target, timeout); },
+      [](const jss_msg::ReportStatus& report) { return report.status; });
 }
 
 int run_jss_control(JssSession& session, const JssControlCommand& command, CommandIo io) {

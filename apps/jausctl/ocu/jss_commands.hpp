@@ -36,13 +36,13 @@ Parsed<JssCommon> parse_jss_common(const JssCommonText& text);
 // "S.N.C": subsystem 1..65534 (65535 all), node and component 1..254 (255 all where `allow_broadcast`).
 Parsed<jaus::jss::JssId> parse_jss_id(std::string_view text, bool allow_broadcast);
 // "0x2404", "2404" (hex), or a JSS message name ("Query Velocity State", "QueryVelocityState").
-Parsed<const jaus::jss::MessageInfo*> parse_jss_message(std::string_view text);
+Parsed<const jaus::msg::MessageInfo*> parse_jss_message(std::string_view text);
 // The contents of a query with its fields (JSON object; fields left out are 0), and its report's ID.
 struct JssPreparedQuery {
   std::vector<std::uint8_t> contents;
   std::uint16_t report_id = 0;
 };
-Parsed<JssPreparedQuery> prepare_jss_query(const jaus::jss::MessageInfo& query, const Json& fields);
+Parsed<JssPreparedQuery> prepare_jss_query(const jaus::msg::MessageInfo& query, const Json& fields);
 // A message as `jausctl msg decode --dialect jss` prints its contents ({"id" or "name", "fields"}).
 Parsed<std::vector<std::uint8_t>> prepare_jss_message(const Json& message);
 
@@ -79,6 +79,5 @@ int run_jss_subscribe(JssSession& session, const JssSubscribeCommand& command, C
 // `jausctl msg ... --dialect jss`.
 int jss_msg_decode(const std::string& hex, CommandIo io);
 int jss_msg_encode(const std::string& json_text, CommandIo io);
-int jss_msg_list(CommandIo io);
 
 }  // namespace jausctl::ocu

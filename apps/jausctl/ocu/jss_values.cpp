@@ -56,13 +56,13 @@ Parsed<jaus::jss::JssId> parse_jss_id(std::string_view text, bool allow_broadcas
   return *id;
 }
 
-Parsed<const jaus::jss::MessageInfo*> parse_jss_message(std::string_view text) {
+Parsed<const jaus::msg::MessageInfo*> parse_jss_message(std::string_view text) {
   std::uint16_t id = 0;
   if (parse_hex_u16(text, id)) {
-    if (const auto* info = jaus::jss::find_message(id)) return info;
+    if (const auto* info = jaus::msg::find_message(jaus::wire::Dialect::jss, id)) return info;
     return invalid("unknown JSS message ID " + code_text(id) + " (jausctl msg list --dialect jss shows every ID)");
   }
-  if (const auto* info = jaus::jss::find_message(text)) return info;
+  if (const auto* info = jaus::msg::find_message(jaus::wire::Dialect::jss, text)) return info;
   return invalid("unknown JSS message '" + std::string(text) +
                  "': expected an ID such as 0x2404 or a name such as \"Query Velocity State\"");
 }
@@ -85,13 +85,14 @@ Parsed<JssCommon> parse_jss_common(const JssCommonText& text) {
   return out;
 }
 
-Parsed<JssPreparedQuery> prepare_jss_query(const jaus::jss::MessageInfo& query, const Json& fields) {
-  if (query.message_class != jaus::jss::MessageClass::query)
-    return invalid(std::string(query.name) + " (" + code_text(query.id) + ") is not a query");
-  const std::uint16_t report_id = static_cast<std::uint16_t>(query.id + 0x2000);  // Query X -> Report X
-  if (!jaus::jss::find_message(report_id)) return invalid("no report is known for " + std::string(query.name));
+Parsed<JssPreparedQuery> prepare_jss_query(const jaus::msg::MessageInfo& query, const Json& fields) {
+  if (query.message_class != jaus::msg::MessageClass::query)
+    return invalid(std::string(query.name) + " (" + code_text(query.code) + ") is not a query");
+  const std::uint16_t report_id = static_cast<std::uint16_t>(query.code + 0x2000);  // Query X -> Report X
+  if (!jaus::msg::find_message(jaus::wire::Dialect::jss, report_id))
+    return invalid("no report is known for " + std::string(query.name));
   if (!fields.is_object()) return invalid("--fields must be a JSON object");
-  Json message{{"id", code_text(query.id)}, {"fields", fields}};
+  Json message{{"id", code_text(query.code)}, {"fields", fields}};
   // Fields not given are 0 (as for RA queries): each one the codec misses is added, once.
   for (std::size_t added = 0;; ++added) {
     auto contents = jaus::jss::contents_from_json(message);
@@ -143,13 +144,6 @@ int jss_msg_encode(const std::string& json_text, CommandIo io) {
     return kExitBadInput;
   }
   io.out << jaus::to_hex(*bytes) << "\n";
-  return kExitOk;
-}
-
-int jss_msg_list(CommandIo io) {
-  for (const auto& m : jaus::jss::catalogue())
-    io.out << code_text(m.id) << "  " << m.name << "  (" << jaus::jss::service_name(m.service_uri) << ", "
-           << jaus::jss::to_string(m.message_class) << ")\n";
   return kExitOk;
 }
 

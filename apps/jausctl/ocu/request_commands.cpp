@@ -40,10 +40,6 @@ jaus::Expected<jaus::msg::ReportComponentStatus> query_status(OcuSession& sessio
   return report;
 }
 
-bool is_emergency(const jaus::msg::ReportComponentStatus& report) {
-  return (report.primary_status & 0x0F) == static_cast<unsigned>(jaus::msg::PrimaryStatus::emergency);
-}
-
 // `send` retransmits until ACKed what commands (RA command class,
 // 0x0000-0x1FFF: Resume, Standby, Shutdown, Reset, Set/Clear Emergency,
 // control, service connections, Set ...), on the RA dialect: the common
@@ -109,7 +105,7 @@ int run_status(OcuSession& session, const jaus::Address& target, jaus::rt::Durat
                  {"secondary_status", report->secondary_status},
                  // The stop counter of bits 20-31 (jaus/runtime/stop_counter.hpp).
                  {"stops", jaus::rt::stop_counter::of(report->secondary_status)},
-                 {"emergency", is_emergency(*report)}};
+                 {"emergency", is_emergency_state(report->primary_status)}};
   io.out << json_line(out) << "\n";
   return kExitOk;
 }
@@ -132,7 +128,7 @@ int run_query(OcuSession& session, const jaus::Address& target, const PreparedMe
 
 int run_send(OcuSession& session, const jaus::Address& target, const PreparedMessage& message,
              jaus::rt::Duration timeout, CommandIo io) {
-  const auto* info = jaus::msg::find_message(message.header.command_code);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, message.header.command_code);
   const std::string name = info ? std::string(info->name) : code_text(message.header.command_code);
   // A command to a wildcard reaches every component it names, each confirming it.
   if (target.is_broadcast() && is_command(message))
@@ -193,38 +189,14 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
   // there, only its status can tell (the state check below).
   const bool status_must_tell =
       arrival.outcome == Arrival::unacknowledged && session.options().dialect == jaus::wire::Dialect::openjaus;
-  if (arrival.outcome != Arrival::acknowledged && !status_must_tell) {
-    std::string why = not_arrived_text(what, target, arrival, kRaNakMeans);
-    if (set && arrival.outcome != Arrival::interrupted)
-      why += ": it may NOT have stopped; stop it another way (its own stop button, the radio's)";
-    return fail(io, "emergency", why);
-  }
+  if (arrival.outcome != Arrival::acknowledged && !status_must_tell)
+    return fail(io, "emergency", emergency_not_arrived_text(set, what, target, arrival, kRaNakMeans));
   if (status_must_tell)
     io.err << "jausctl emergency: " << not_arrived_text(what, target, arrival, kRaNakMeans)
            << " (the peer may ignore ACK requests): its status tells\n";
-  // Acknowledged, so acted on; the status shows the state it left.
-  auto report = query_status(session, target, timeout);
-  if (!report)
-    return fail(io, "emergency", what + " acknowledged, but " + report.error().message() + " to show its state");
-  const std::string state = primary_status_text(report->primary_status);
-  if (set && !is_emergency(*report))
-    return fail(io, "emergency", target.to_string() + " is in " + state + " after Set Emergency");
-  // A clear may need a moment: a vehicle whose platform must first report its
-  // emergency flag clear stays in Emergency until it does (docs/safety.md).
-  const auto settle_until = session.clock().now() + std::min<jaus::rt::Duration>(timeout, kClearSettles);
-  while (!set && is_emergency(*report) && session.clock().now() < settle_until) {
-    session.run_for(kClearPoll);
-    auto again = query_status(session, target, timeout);
-    if (!again) break;
-    report = std::move(again);
-  }
-  if (!set && is_emergency(*report))
-    return fail(io, "emergency", target.to_string() + " is still in Emergency: another sender holds it, " +
-                                     "the platform's own stop does, or " + session.self().to_string() + " never set it");
-  // Who set or cleared it: the holder's ID is what clears the hold later (--as).
-  io.out << target.to_string() << ": emergency " << (set ? "set" : "cleared") << " by " << session.self().to_string()
-         << " (state " << state << ")\n";
-  return kExitOk;
+  return confirm_emergency_state(
+      session, target, set, what, io, timeout, [&] { return query_status(session, target, timeout); },
+      [](const jaus::msg::ReportComponentStatus& report) { return report.primary_status; });
 }
 
 }  // namespace jausctl::ocu

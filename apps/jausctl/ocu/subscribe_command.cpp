@@ -15,7 +15,7 @@ namespace jausctl::ocu {
 namespace {
 
 std::string report_label(std::uint16_t code) {
-  const auto* info = jaus::msg::find_message(code);
+  const auto* info = jaus::msg::find_message(jaus::wire::Dialect::ra, code);
   return (info ? std::string(info->name) + " " : std::string()) + "(" + code_text(code) + ")";
 }
 

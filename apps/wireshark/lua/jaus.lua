@@ -475,37 +475,53 @@ dissect_body = function(tvb, off, len, code, pinfo, tree)
   dissect_inside(c, code, pinfo, item)
 end
 
--- Large data sets: packets by (source, destination, code) in capture order;
--- the whole message is dissected on the last packet.
+-- Large messages of both dialects (RA's large data sets, JSS's large
+-- messages): packets by key in capture order, collected on the first pass.
+-- The first packet starts one, each next sequence number adds to it, the
+-- last completes it, kept under `done_key`; a retransmission of the packet
+-- just received adds nothing; anything else drops what was collected.
 local pending, reassembled = {}, {}
 
-local function large_data_set(tvb, off, size, code, flag, seq, src, dst, pinfo, tree)
-  local key = src .. ">" .. dst .. ":" .. code
-  if not pinfo.visited then
-    local p = pending[key]
-    if flag == 1 then
-      pending[key] = {next = (seq + 1) % 65536, data = tvb(off, size):bytes(), packets = 1, first = pinfo.number}
-    elseif p and seq == p.next then
-      p.data:append(tvb(off, size):bytes())
-      p.next = (seq + 1) % 65536
-      p.packets = p.packets + 1
-      if flag == 8 then
-        reassembled[pinfo.number] = p
-        pending[key] = nil
-      end
-    elseif p and flag == 4 and seq == (p.next + 65535) % 65536 then
-      -- A retransmission of the packet just received: nothing new.
-    else
+local function collect_packet(key, done_key, flags, tvb, off, size, flag, seq, pinfo)
+  if pinfo.visited then return end
+  local p = pending[key]
+  if flag == flags.first then
+    pending[key] = {next = (seq + 1) % 65536, data = tvb(off, size):bytes(), packets = 1, first = pinfo.number}
+  elseif p and seq == p.next then
+    p.data:append(tvb(off, size):bytes())
+    p.next = (seq + 1) % 65536
+    p.packets = p.packets + 1
+    if flag == flags.last then
+      reassembled[done_key] = p
       pending[key] = nil
     end
+  elseif p and flag == flags.retransmitted and seq == (p.next + 65535) % 65536 then
+    -- A retransmission of the packet just received: nothing new.
+  else
+    pending[key] = nil
   end
+end
+
+-- The whole message of which this is the last packet (when reassembly is
+-- on), its packet count, length and first frame shown under `tree`; else nil.
+local function reassembled_tvb(done_key, tree, label)
+  local whole = reassembled[done_key]
+  if not (whole and jaus.prefs.reassemble) then return nil end
+  local rtvb = whole.data:tvb(label)
+  tree:add(hf.lds_packets, whole.packets):set_generated()
+  tree:add(hf.lds_length, whole.data:len()):set_generated()
+  tree:add(hf.lds_first_frame, whole.first):set_generated()
+  return rtvb
+end
+
+-- RA: by (source, destination, code); data flags 1 first, 2 middle, 4 retransmitted, 8 last.
+local RA_LDS_FLAGS = {first = 1, last = 8, retransmitted = 4}
+
+local function large_data_set(tvb, off, size, code, flag, seq, src, dst, pinfo, tree)
+  collect_packet(src .. ">" .. dst .. ":" .. code, pinfo.number, RA_LDS_FLAGS, tvb, off, size, flag, seq, pinfo)
   tree:add_proto_expert_info(ef.lds, string.format("Large data set packet (%s, sequence %d)", DATA_FLAGS[flag] or flag, seq))
-  local whole = reassembled[pinfo.number]
-  if whole and jaus.prefs.reassemble then
-    local rtvb = whole.data:tvb("Reassembled large data set")
-    tree:add(hf.lds_packets, whole.packets):set_generated()
-    tree:add(hf.lds_length, whole.data:len()):set_generated()
-    tree:add(hf.lds_first_frame, whole.first):set_generated()
+  local rtvb = reassembled_tvb(pinfo.number, tree, "Reassembled large data set")
+  if rtvb then
     dissect_body(rtvb, 0, rtvb:len(), code, pinfo, tree)
     return true
   end

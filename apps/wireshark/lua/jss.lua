@@ -160,34 +160,16 @@ local function jss_id_at(tvb, off)  -- the header's u32: component, node, subsys
   return string.format("%d.%d.%d", tvb(off + 2, 2):le_uint(), tvb(off + 1, 1):uint(), tvb(off, 1):uint())
 end
 
--- Large messages: packets by (source, destination) with consecutive sequence
--- numbers, in capture order; the whole message is dissected on the last packet.
+-- Large messages: by (source, destination), data flags 1 first, 2 middle, 3 last
+-- (collect_packet, jaus.lua); the whole message is dissected on the last packet.
+local JSS_LARGE_FLAGS = {first = 1, last = 3}
+
 local function large_message(tvb, off, size, flag, seq, src, dst, pinfo, tree, index)
-  local key = "jss:" .. src .. ">" .. dst
   local done_key = pinfo.number .. "/" .. index
-  if not pinfo.visited then
-    local p = pending[key]
-    if flag == 1 then
-      pending[key] = {next = (seq + 1) % 65536, data = tvb(off, size):bytes(), packets = 1, first = pinfo.number}
-    elseif p and seq == p.next then
-      p.data:append(tvb(off, size):bytes())
-      p.next = (seq + 1) % 65536
-      p.packets = p.packets + 1
-      if flag == 3 then
-        reassembled[done_key] = p
-        pending[key] = nil
-      end
-    else
-      pending[key] = nil
-    end
-  end
+  collect_packet("jss:" .. src .. ">" .. dst, done_key, JSS_LARGE_FLAGS, tvb, off, size, flag, seq, pinfo)
   tree:add_proto_expert_info(ef.lds, string.format("Packet of a large message (%s, sequence %d)", JSS_DATA_FLAGS[flag], seq))
-  local whole = reassembled[done_key]
-  if whole and jaus.prefs.reassemble then
-    local rtvb = whole.data:tvb("Reassembled JSS message")
-    tree:add(hf.lds_packets, whole.packets):set_generated()
-    tree:add(hf.lds_length, whole.data:len()):set_generated()
-    tree:add(hf.lds_first_frame, whole.first):set_generated()
+  local rtvb = reassembled_tvb(done_key, tree, "Reassembled JSS message")
+  if rtvb then
     local body = tree:add(hf.jss_body, rtvb())
     return dissect_jss_contents(rtvb, 0, rtvb:len(), body, hf.jss_contents)
   end

@@ -13,6 +13,7 @@ const rt::ComponentKind& communicator_kind() {
       .needs = {},
       .moves_hardware = false,
       .one_per_node = false,
+      .default_node_authority = std::uint8_t{0},  // in the default node
       .check = {},
       // One data link; heartbeats to other subsystems at the node's heartbeat
       // period, which the host offers as "heartbeat_period".

@@ -1,17 +1,19 @@
 #include "jaus/components/local_pose_sensor_kind.hpp"
 
 #include "jaus/components/local_pose_sensor.hpp"
+#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
 
 const rt::ComponentKind& local_pose_sensor_kind() {
   static const rt::ComponentKind kind{
       .name = "local_pose_sensor",
-      .default_id = kLocalPoseSensorId,
+      .default_id = component_id::kLocalPoseSensor,
       .options = {"stale_after_s"},
       .needs = {PoseSource::kInterface},
       .moves_hardware = false,
       .one_per_node = false,
+      .default_node_authority = std::uint8_t{0},  // in the default node
       .check = rt::check_by(sensor_options),
       .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
         const auto pose = k.need<PoseSource>();

@@ -2,13 +2,14 @@
 
 #include "jaus/components/local_vector_driver.hpp"
 #include "jaus/components/mobility_driver_kind.hpp"
+#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
 
 const rt::ComponentKind& local_vector_driver_kind() {
   static const rt::ComponentKind kind =
-      mobility_driver_kind<LocalVectorDriver>("local_vector_driver", kLocalVectorDriverId, vector_driver_option_keys(),
-                                              vector_driver_options, DriverFrame::any);
+      mobility_driver_kind<LocalVectorDriver>("local_vector_driver", component_id::kLocalVectorDriver,
+                                              vector_driver_option_keys(), vector_driver_options, DriverFrame::any);
   return kind;
 }
 

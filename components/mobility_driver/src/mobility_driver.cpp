@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "jaus/components/primitive_driver.hpp"
+#include "jaus/core/component_ids.hpp"
 #include "jaus/wire/message.hpp"
 
 namespace jaus::components {
@@ -72,7 +73,7 @@ MobilityDriver::MobilityDriver(ComponentConfig config, Environment env, PoseSour
       pose_(pose),
       options_(options),
       primitive_driver_(options.primitive_driver.value_or(
-          Address{address().subsystem, address().node, kPrimitiveDriverId, 1})),
+          Address{address().subsystem, address().node, component_id::kPrimitiveDriver, 1})),
       control_client_(this->env(), options.control,
                       ControlClient::Io{
                           .request = [this](const Address& to, const msg::RequestComponentControl& m) { send(to, m); },

@@ -13,6 +13,7 @@ const rt::ComponentKind& node_manager_kind() {
       .needs = {},
       .moves_hardware = false,
       .one_per_node = true,
+      .default_node_authority = std::uint8_t{0},  // in the default node
       .check = {},
       // The node's identity is the host's (its defaults when it offers none).
       .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {

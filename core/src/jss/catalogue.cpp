@@ -4,38 +4,37 @@
 #include <cstdio>
 #include <type_traits>
 
-#include "catalogue_entries.hpp"
+#include "../catalogue_entries.hpp"
 #include "jaus/base/hex.hpp"
+#include "jaus/jss/contents.hpp"
 #include "message_notes.hpp"
+
+namespace jaus::msg::detail {
+
+std::vector<MessageInfo> jss_set() {
+  std::vector<MessageInfo> all = jss_core_entries();
+  for (auto& m : jss_mobility_entries()) all.push_back(m);
+  for (auto& m : all) {
+    for (const auto& note : jss::detail::kMessageNotes) {
+      if (note.id != m.code) continue;
+      m.service_uri = note.service_uri;
+      m.summary = note.summary;
+    }
+  }
+  return all;
+}
+
+}  // namespace jaus::msg::detail
 
 namespace jaus::jss {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
+using msg::MessageInfo;
+constexpr auto kJss = wire::Dialect::jss;
 
-std::vector<MessageInfo> build_catalogue() {
-  std::vector<MessageInfo> all = detail::core_entries();
-  for (auto& m : detail::mobility_entries()) all.push_back(m);
-  for (auto& m : all) {
-    for (const auto& note : detail::kMessageNotes) {
-      if (note.id != m.id) continue;
-      m.service_uri = note.service_uri;
-      m.summary = note.summary;
-    }
-    m.message_class = (m.id >> 12) == 0x2 ? MessageClass::query
-                      : (m.id >> 12) == 0x4 ? MessageClass::inform
-                                            : MessageClass::command;
-  }
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
-  return all;
-}
-
-std::string id_text(std::uint16_t id) {
-  char text[8];
-  std::snprintf(text, sizeof text, "0x%04X", id);
-  return text;
-}
+std::string id_text(std::uint16_t id) { return msg::detail::code_text(id); }
 
 Unexpected<Error> json_error(std::string_view field, std::string detail) {
   return unexpected(Error{ErrorCode::json, 0, std::string(field), std::move(detail)});
@@ -55,7 +54,7 @@ Expected<std::uint16_t> id_from_json(const Json& message) {
     return json_error("id", "expected a message ID such as \"0x4402\"");
   }
   if (const auto it = message.find("name"); it != message.end() && it->is_string()) {
-    if (const auto* info = find_message(it->get<std::string>())) return info->id;
+    if (const auto* info = msg::find_message(kJss, it->get<std::string>())) return info->code;
     return json_error("name", "no JSS message named '" + it->get<std::string>() + "'");
   }
   return json_error("id", "'id' or 'name' is required");
@@ -78,32 +77,6 @@ bool named_from_json(const Json& j, std::span<const std::string_view> names, uns
 
 }  // namespace
 
-std::string_view to_string(MessageClass message_class) {
-  switch (message_class) {
-    case MessageClass::command: return "command";
-    case MessageClass::query: return "query";
-    case MessageClass::inform: return "inform";
-  }
-  return "command";
-}
-
-std::span<const MessageInfo> catalogue() {
-  static const std::vector<MessageInfo> all = build_catalogue();
-  return all;
-}
-
-const MessageInfo* find_message(std::uint16_t id) {
-  const auto all = catalogue();
-  const auto it = std::lower_bound(all.begin(), all.end(), id, [](const auto& m, auto c) { return m.id < c; });
-  return it != all.end() && it->id == id ? &*it : nullptr;
-}
-
-const MessageInfo* find_message(std::string_view name) {
-  for (const auto& m : catalogue())
-    if (m.name == name || m.type_name == name) return &m;
-  return nullptr;
-}
-
 std::string_view service_name(std::string_view service_uri) {
   const auto colon = service_uri.rfind(':');
   return colon == std::string_view::npos ? service_uri : service_uri.substr(colon + 1);
@@ -114,9 +87,9 @@ Expected<Json> contents_to_json(std::span<const std::uint8_t> contents) {
     return unexpected(Error{ErrorCode::truncated, 0, "message_id",
                             "needs 2 bytes, " + std::to_string(contents.size()) + " left"});
   const std::uint16_t id = message_id_of(contents);
-  const MessageInfo* info = find_message(id);
+  const MessageInfo* info = msg::find_message(kJss, id);
   if (info == nullptr) return unexpected(Error{ErrorCode::unknown_message, 0, "message_id", id_text(id)});
-  auto fields = info->body_to_json(contents.subspan(kMessageIdSize));
+  auto fields = info->body_to_json(contents.subspan(kMessageIdSize), kJss);
   if (!fields) return unexpected(fields.error());
   return Json{{"id", id_text(id)}, {"name", info->name}, {"fields", std::move(*fields)}};
 }
@@ -127,9 +100,9 @@ Expected<Bytes> contents_from_json(const Json& message) {
     if (key != "id" && key != "name" && key != "fields") return json_error({}, "unknown key '" + key + "'");
   auto id = id_from_json(message);
   if (!id) return unexpected(id.error());
-  const MessageInfo* info = find_message(*id);
+  const MessageInfo* info = msg::find_message(kJss, *id);
   if (info == nullptr) return unexpected(Error{ErrorCode::unknown_message, 0, "id", id_text(*id)});
-  auto body = info->body_from_json(message.value("fields", Json::object()));
+  auto body = info->body_from_json(message.value("fields", Json::object()), kJss);
   if (!body) return unexpected(body.error());
   Bytes out{static_cast<std::uint8_t>(*id & 0xFF), static_cast<std::uint8_t>(*id >> 8)};
   out.insert(out.end(), body->begin(), body->end());
@@ -318,13 +291,13 @@ The face that speaks them is described in docs/jss.md.
 | ID | name | service | class | body |
 |---|---|---|---|---|
 )";
-  for (const auto& m : catalogue()) {
-    out += "| " + id_text(m.id) + " | " + std::string(m.name) + " | " + std::string(service_name(m.service_uri)) +
+  for (const auto& m : msg::catalogue(kJss)) {
+    out += "| " + id_text(m.code) + " | " + std::string(m.name) + " | " + std::string(service_name(m.service_uri)) +
            " | " + std::string(to_string(m.message_class)) + " | " + m.fields_doc() + " |\n";
   }
   out += "\n## What each message does\n\n| ID | name | summary |\n|---|---|---|\n";
-  for (const auto& m : catalogue())
-    out += "| " + id_text(m.id) + " | " + std::string(m.name) + " | " + std::string(m.summary) + " |\n";
+  for (const auto& m : msg::catalogue(kJss))
+    out += "| " + id_text(m.code) + " | " + std::string(m.name) + " | " + std::string(m.summary) + " |\n";
   return out;
 }
 

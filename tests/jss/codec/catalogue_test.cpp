@@ -1,5 +1,5 @@
-// The JSS catalogue: every described message is in it once with its service
-// and summary, found by ID, name and type name; contents and datagrams
+// The catalogue's JSS set: every described message is in it once with its
+// service and summary, found by ID, name and type name; contents and datagrams
 // round-trip through JSON; embedded messages show by field.
 #include <gtest/gtest.h>
 
@@ -15,7 +15,11 @@ namespace jaus::test::jss_catalogue {
 
 using namespace jaus::jss;
 namespace msg = jaus::jss::msg;
+using jaus::msg::catalogue;
+using jaus::msg::find_message;
+using jaus::msg::MessageClass;
 using Json = nlohmann::ordered_json;
+constexpr auto kJss = wire::Dialect::jss;
 
 template <class... Ms>
 std::vector<std::uint16_t> ids_of(msg::TypeList<Ms...>) {
@@ -25,32 +29,59 @@ std::vector<std::uint16_t> ids_of(msg::TypeList<Ms...>) {
 TEST(JssCatalogue, EveryDescribedMessageOnceWithServiceAndSummary) {
   const auto ids = ids_of(AllJssMessages{});
   EXPECT_EQ(std::set<std::uint16_t>(ids.begin(), ids.end()).size(), ids.size()) << "an ID is described twice";
-  EXPECT_EQ(catalogue().size(), ids.size());
+  EXPECT_EQ(catalogue(kJss).size(), ids.size());
   for (const auto id : ids) {
-    const auto* info = find_message(id);
+    const auto* info = find_message(kJss, id);
     ASSERT_NE(info, nullptr) << id;
     EXPECT_TRUE(info->service_uri.starts_with("urn:jaus:jss:")) << info->name;
     EXPECT_FALSE(info->summary.empty()) << info->name;
-    EXPECT_EQ(find_message(info->name), info);
-    EXPECT_EQ(find_message(info->type_name), info);
+    EXPECT_EQ(find_message(kJss, info->name), info);
+    EXPECT_EQ(find_message(kJss, info->type_name), info);
     EXPECT_EQ(info->type_name.find(' '), std::string_view::npos);
     EXPECT_FALSE(info->fields_doc().empty());
   }
-  EXPECT_TRUE(std::is_sorted(catalogue().begin(), catalogue().end(),
-                             [](const auto& a, const auto& b) { return a.id < b.id; }));
+  EXPECT_TRUE(std::is_sorted(catalogue(kJss).begin(), catalogue(kJss).end(),
+                             [](const auto& a, const auto& b) { return a.code < b.code; }));
 }
 
 TEST(JssCatalogue, ClassesServicesAndNames) {
-  EXPECT_EQ(find_message(0x2B00)->message_class, MessageClass::query);
-  EXPECT_EQ(find_message(0x4B00)->message_class, MessageClass::inform);
-  EXPECT_EQ(find_message(0x000D)->message_class, MessageClass::command);
-  EXPECT_EQ(find_message("RequestControl")->id, 0x000D);
-  EXPECT_EQ(service_name(find_message(0x0405)->service_uri), "PrimitiveDriver");
-  EXPECT_EQ(find_message(0x041A)->service_uri, "urn:jaus:jss:mobility:ListManager");
-  EXPECT_EQ(find_message(0x041E)->service_uri, "urn:jaus:jss:mobility:LocalWaypointListDriver");
-  EXPECT_EQ(find_message(0x0010)->name, "Reject Control");
-  EXPECT_EQ(find_message(0x1234), nullptr);
-  EXPECT_EQ(find_message("Report Component Status"), nullptr);  // RA's name, not JSS's
+  EXPECT_EQ(find_message(kJss, 0x2B00)->message_class, MessageClass::query);
+  EXPECT_EQ(find_message(kJss, 0x4B00)->message_class, MessageClass::inform);
+  EXPECT_EQ(find_message(kJss, 0x000D)->message_class, MessageClass::command);
+  EXPECT_EQ(find_message(kJss, "RequestControl")->code, 0x000D);
+  EXPECT_EQ(service_name(find_message(kJss, 0x0405)->service_uri), "PrimitiveDriver");
+  EXPECT_EQ(find_message(kJss, 0x041A)->service_uri, "urn:jaus:jss:mobility:ListManager");
+  EXPECT_EQ(find_message(kJss, 0x041E)->service_uri, "urn:jaus:jss:mobility:LocalWaypointListDriver");
+  EXPECT_EQ(find_message(kJss, 0x0010)->name, "Reject Control");
+  EXPECT_EQ(find_message(kJss, 0x1234), nullptr);
+  EXPECT_EQ(find_message(kJss, "Report Component Status"), nullptr);  // RA's name, not JSS's
+  EXPECT_EQ(find_message(kJss, 0x0405)->set, kJss);
+}
+
+// One catalogue, two sets: a code is looked up in the set its dialect speaks.
+TEST(JssCatalogue, TheSameCodeNamesEachSetsOwnMessage) {
+  const auto* jss_status = find_message(kJss, 0x4002);
+  const auto* ra_status = find_message(wire::Dialect::ra, 0x4002);
+  ASSERT_NE(jss_status, nullptr);
+  ASSERT_NE(ra_status, nullptr);
+  EXPECT_EQ(jss_status->name, "Report Status");
+  EXPECT_EQ(ra_status->name, "Report Component Status");
+  EXPECT_EQ(find_message(wire::Dialect::openjaus, 0x4002), ra_status);
+  // A body both sets share reads in each set's dialect: JSS's Report Local
+  // Pose is unsigned where RA's is signed, so one set's bytes are another value in the other.
+  const auto* jss_pose = find_message(kJss, 0x4403);
+  const auto* ra_pose = find_message(wire::Dialect::ra, 0x4403);
+  ASSERT_NE(jss_pose, nullptr);
+  ASSERT_NE(ra_pose, nullptr);
+  const auto fields = Json::parse(R"({"x_m": -10.0, "y_m": 0})");
+  const auto jss_body = jss_pose->body_from_json(fields, kJss);
+  const auto ra_body = ra_pose->body_from_json(fields, wire::Dialect::ra);
+  ASSERT_TRUE(jss_body && ra_body);
+  EXPECT_NE(*jss_body, *ra_body);
+  EXPECT_NEAR((*jss_pose->body_to_json(*jss_body, kJss))["x_m"].get<double>(), -10.0, 1e-4);
+  EXPECT_NEAR((*ra_pose->body_to_json(*ra_body, wire::Dialect::ra))["x_m"].get<double>(), -10.0, 1e-4);
+  // A JSS entry is read as JSS whatever dialect is asked.
+  EXPECT_EQ(*jss_pose->body_to_json(*jss_body, wire::Dialect::ra), *jss_pose->body_to_json(*jss_body, kJss));
 }
 
 TEST(JssCatalogue, ContentsJsonShowsEmbeddedMessagesByField) {
@@ -129,7 +160,7 @@ TEST(JssCatalogue, DatagramJsonRoundTrip) {
 
 TEST(JssCatalogue, MarkdownListsEveryMessage) {
   const auto doc = messages_markdown();
-  for (const auto& m : catalogue()) EXPECT_NE(doc.find("| " + std::string(m.name) + " |"), std::string::npos) << m.name;
+  for (const auto& m : catalogue(kJss)) EXPECT_NE(doc.find("| " + std::string(m.name) + " |"), std::string::npos) << m.name;
   EXPECT_NE(doc.find("u8 length + text"), std::string::npos);
 }
 

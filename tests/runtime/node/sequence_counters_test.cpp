@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "jaus/jss/jss_id.hpp"
+
 namespace jaus::node {
 namespace {
 
@@ -59,6 +61,21 @@ TEST(SequenceCounters, NewStreamsStartAtTheConfiguredFirstNumber) {
   EXPECT_EQ(counters.take({kDriver, kOcu}), 40001);
   counters.take({kDriver, kOtherOcu});  // evicts kDriver -> kOcu
   EXPECT_EQ(counters.take({kDriver, kOcu}), 40000);
+}
+
+// The JSS face numbers per destination JSS ID with the same counters: one
+// series per destination, the least recently used forgotten when full.
+TEST(SequenceCounters, AJssFaceCountsPerDestinationId) {
+  BasicSequenceCounters<jss::JssId> counters({.max_streams = 2});
+  const jss::JssId client{200, 1, 1}, other{201, 1, 1}, third{202, 1, 1};
+  EXPECT_EQ(counters.take(client, 3), 0);  // a large message's three packets
+  EXPECT_EQ(counters.take(client), 3);
+  EXPECT_EQ(counters.take(other), 0);
+  counters.take(client);  // client is now the most recent
+  EXPECT_EQ(counters.take(third), 0);  // forgets other
+  EXPECT_EQ(counters.evicted(), 1u);
+  EXPECT_EQ(counters.peek(other), 0);
+  EXPECT_EQ(counters.peek(client), 5);
 }
 
 }  // namespace

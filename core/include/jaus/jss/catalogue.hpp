@@ -1,7 +1,7 @@
-// The JSS message catalogue: every JSS message in scope by ID, with its name,
-// service, class and JSON form, built from the descriptions (all.hpp). Used by
-// tools (jausctl --dialect jss, the Wireshark generator, docs/jss-messages.md)
-// and tests, not on the hot path.
+// JSS's side of the message catalogue (jaus/messages/catalogue.hpp holds both
+// sets): contents, AS5669A headers and whole datagrams as JSON, service names
+// and docs/jss-messages.md. Used by tools (jausctl --dialect jss, the
+// Wireshark generator) and tests, not on the hot path.
 #pragma once
 
 #include <cstdint>
@@ -14,33 +14,16 @@
 
 #include "jaus/base/expected.hpp"
 #include "jaus/jss/judp.hpp"
+#include "jaus/messages/catalogue.hpp"
 
 namespace jaus::jss {
 
 using Bytes = std::vector<std::uint8_t>;
 
-// From the ID's top nibble: 0x0 command, 0x2 query, 0x4 inform.
-enum class MessageClass : std::uint8_t { command, query, inform };
-std::string_view to_string(MessageClass message_class);
+// The JSS messages' entries (name, class, service, summary, JSON form) are
+// the catalogue's JSS set: msg::catalogue(wire::Dialect::jss),
+// msg::find_message(wire::Dialect::jss, id or name).
 
-struct MessageInfo {
-  std::uint16_t id = 0;
-  std::string_view name;         // "Query Identification"
-  std::string_view type_name;    // "QueryIdentification" (jss::msg::QueryIdentification)
-  std::string_view service_uri;  // "urn:jaus:jss:core:Discovery": the service that defines it
-  MessageClass message_class = MessageClass::command;
-  std::string_view summary;      // one sentence: what it asks, says or does
-  // Body (the contents after the ID) to the JSON object of its fields, and back.
-  Expected<nlohmann::ordered_json> (*body_to_json)(std::span<const std::uint8_t> body) = nullptr;
-  Expected<Bytes> (*body_from_json)(const nlohmann::ordered_json& fields) = nullptr;
-  std::string (*fields_doc)() = nullptr;  // the fields as described, for docs
-};
-
-// Every message, sorted by ID.
-std::span<const MessageInfo> catalogue();
-const MessageInfo* find_message(std::uint16_t id);
-// By name ("Query Identification") or type name ("QueryIdentification").
-const MessageInfo* find_message(std::string_view name);
 // The short service name of a URI: "urn:jaus:jss:core:Discovery" -> "Discovery".
 std::string_view service_name(std::string_view service_uri);
 

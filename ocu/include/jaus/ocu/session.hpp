@@ -119,10 +119,10 @@ class OcuSession {
   jaus::rt::Scheduler& scheduler() { return *scheduler_; }
   // Whether it was opened on UDP (open()) rather than attached.
   bool on_udp() const { return io_ != nullptr; }
-  // Only for a session opened on UDP: its link, and what runs it (another
-  // session opened on it runs whenever this one does).
-  jaus::transport::UdpLink& link();
-  boost::asio::io_context& io_context();
+  // A session opened on UDP: its link, and what runs it (another session
+  // opened on it runs whenever this one does); null for an attached session.
+  jaus::transport::UdpLink* udp_link();
+  boost::asio::io_context* io_context() { return io_; }
 
   // Sends from the OCU component; the datagram has left when this returns.
   template <class M>

@@ -110,6 +110,10 @@ struct ComponentKind {
   // Every node has exactly one, at default_id and instance 1, and no other
   // component has that ID (the node manager).
   bool one_per_node = false;
+  // jausd's default node (a configuration without `components:`) has one, at
+  // default_id, instance 1, named as the kind, with this authority; nullopt:
+  // the default node has none.
+  std::optional<std::uint8_t> default_node_authority = std::nullopt;
   // The first problem with the options, or with the authority they bound
   // (Error::field names the key, or "authority"), or nothing; nothing is
   // built. Empty: the kind has no options to check.

@@ -14,12 +14,9 @@
 
 #include "jaus/components/local_frame.hpp"
 #include "jaus/components/path_segment_driver.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kGlobalPathSegmentDriverId = component_id::kGlobalPathSegmentDriver;
 
 class GlobalPathSegmentDriver final : public PathSegmentDriver {
  public:

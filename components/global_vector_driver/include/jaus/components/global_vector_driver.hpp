@@ -9,12 +9,9 @@
 #include <optional>
 
 #include "jaus/components/vector_driver.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kGlobalVectorDriverId = component_id::kGlobalVectorDriver;
 
 namespace global_vector_field {
 inline constexpr std::uint8_t kSpeed = 1u << 0;

@@ -13,11 +13,8 @@
 
 #include "jaus/components/local_frame.hpp"
 #include "jaus/components/waypoint_driver.hpp"
-#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kGlobalWaypointDriverId = component_id::kGlobalWaypointDriver;
 
 struct GlobalWaypoints {
   using Body = msg::GlobalWaypointBody;

@@ -8,12 +8,9 @@
 #pragma once
 
 #include "jaus/components/path_segment_driver.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kLocalPathSegmentDriverId = component_id::kLocalPathSegmentDriver;
 
 class LocalPathSegmentDriver final : public PathSegmentDriver {
  public:

@@ -16,12 +16,9 @@
 #pragma once
 
 #include "jaus/components/sensor_component.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kLocalPoseSensorId = component_id::kLocalPoseSensor;
 
 class LocalPoseSensor final : public SensorComponent {
  public:

@@ -6,12 +6,9 @@
 #pragma once
 
 #include "jaus/components/vector_driver.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kLocalVectorDriverId = component_id::kLocalVectorDriver;
 
 class LocalVectorDriver final : public VectorDriver {
  public:

@@ -10,11 +10,8 @@
 #include <string_view>
 
 #include "jaus/components/waypoint_driver.hpp"
-#include "jaus/core/component_ids.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kLocalWaypointDriverId = component_id::kLocalWaypointDriver;
 
 struct LocalWaypoints {
   using Body = msg::LocalWaypointBody;

@@ -46,14 +46,11 @@
 
 #include "jaus/components/guidance/loops.hpp"
 #include "jaus/components/pose_source.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/runtime/component.hpp"
 #include "jaus/runtime/component_kind.hpp"
 #include "jaus/runtime/control_client.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kPrimitiveDriverId = component_id::kPrimitiveDriver;
 
 // The default ceiling of a driver's authority: below every operator that
 // asks with 2 or more.

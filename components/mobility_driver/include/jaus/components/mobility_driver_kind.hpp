@@ -29,6 +29,9 @@ rt::ComponentKind mobility_driver_kind(std::string_view name, std::uint8_t id,
       .needs = {PoseSource::kInterface},
       .moves_hardware = true,
       .one_per_node = false,
+      // In the default node with authority 1: below an operator's, who takes
+      // the primitive driver over at once.
+      .default_node_authority = std::uint8_t{1},
       // The options, and the authority under their ceiling: `jausd --check-config`
       // refuses what make() would (operators always win).
       .check = [read_options](const rt::KindOptions& k) -> Expected<void> {

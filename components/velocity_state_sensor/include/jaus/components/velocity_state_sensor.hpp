@@ -5,12 +5,9 @@
 #pragma once
 
 #include "jaus/components/sensor_component.hpp"
-#include "jaus/core/component_ids.hpp"
 #include "jaus/messages/platform_messages.hpp"
 
 namespace jaus::components {
-
-inline constexpr std::uint8_t kVelocityStateSensorId = component_id::kVelocityStateSensor;
 
 class VelocityStateSensor final : public SensorComponent {
  public:

@@ -1,0 +1,48 @@
+// The loop both profiles' runners share (runner.cpp for RA, jss_runner.cpp
+// for JSS): the cases --only and --skip leave, in order; a case is failed as
+// interrupted once the session is, skipped with its reason when it does not
+// apply, else run by `run_case(test_case, result)` (which fills the
+// outcome, the time it took and the exchange); each result is heard as soon
+// as its case ends.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "jaus/conform/jss_case.hpp"
+#include "jaus/conform/runner.hpp"
+
+namespace jaus::conform::detail {
+
+// What a report says of a case: its id, title and reference.
+inline const ConformanceCase& describe(const ConformanceCase& test_case) { return test_case; }
+inline const ConformanceCase& describe(const JssConformanceCase& test_case) { return test_case.describe; }
+
+template <class Session, class Case, class Component, class RunCase>
+std::vector<CaseResult> run_each_case(Session& session, const std::vector<const Case*>& cases,
+                                      const Component& component, const CaseResult& blank, const RunOptions& options,
+                                      const ResultListener& on_result, RunCase run_case) {
+  std::vector<CaseResult> results;
+  for (const Case* test_case : cases) {
+    const ConformanceCase& described = describe(*test_case);
+    const std::string_view id = described.id;
+    if (!options.only.empty() && id.find(options.only) == std::string_view::npos) continue;
+    if (!options.skip.empty() && id.find(options.skip) != std::string_view::npos) continue;
+    CaseResult result = blank;
+    result.test_case = &described;
+    if (session.interrupted()) {
+      result.outcome = {Verdict::fail, "interrupted before it ran"};
+    } else if (std::string why = test_case->not_applicable ? test_case->not_applicable(component) : std::string();
+               !why.empty()) {
+      result.outcome = {Verdict::skip, "does not apply: " + why};
+    } else {
+      run_case(*test_case, result);
+    }
+    if (on_result) on_result(result);
+    results.push_back(std::move(result));
+  }
+  return results;
+}
+
+}  // namespace jaus::conform::detail
