@@ -14,15 +14,35 @@
 #include "builtin_translators.hpp"
 #include "face_text.hpp"
 #include "face_events.hpp"
-#include "face_transport.hpp"
 #include "id_map.hpp"
 #include "jaus/jss/judp.hpp"
 #include "jaus/jss/large_message.hpp"
+#include "jaus/node/duplicate_filter.hpp"
 #include "jaus/node/sequence_counters.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
 
 namespace jaus::jss_face {
+
 namespace {
+
+// What the duplicate filter needs of a JSS packet: its contents (ID and body)
+// and data flag make it this message.
+node::PacketIdentity identity_of(const jss::JudpPacket& packet) {
+  const jss::JudpHeader& h = packet.header;
+  node::PacketIdentity identity;
+  identity.source = h.source.packed();
+  identity.destination = h.destination.packed();
+  identity.sequence = h.sequence;
+  identity.ack_requested = h.ack_nak == jss::JudpAckNak::ack_requested;
+  identity.piece = h.data_flag != jss::JudpDataFlag::single;
+  identity.stop = !identity.piece && packet.contents.size() >= 2 &&
+                  node::DuplicateFilter::always_delivered(jss::message_id_of(packet.contents));
+  const std::uint8_t flag[1] = {static_cast<std::uint8_t>(h.data_flag)};  // a packet is not a whole message
+  if (identity.ack_requested && !identity.stop)
+    identity.fingerprint = node::fingerprint_of(packet.contents, node::fingerprint_of(flag));
+  identity.size = packet.contents.size();
+  return identity;
+}
 
 constexpr std::uint16_t kSetEmergency = 0x0006;
 // A client not heard from for this long, whose alias holds no state in the
@@ -82,22 +102,22 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
       return malformed("AS5669A message from " + h.source.to_string(),
                        std::to_string(packet.contents.size()) + " bytes of contents: no message ID");
     // A copy is answered (ACK) but not acted on again; a stop always acts
-    // (the filter never takes one for a copy: face_transport.hpp).
-    const JssCopyVerdict verdict = duplicates_.check(h, packet.contents, now);
-    if (verdict == JssCopyVerdict::new_session) {
+    // (the filter never takes one for a copy: node/duplicate_filter.hpp).
+    const node::DuplicateVerdict verdict = duplicates_.check(identity_of(packet), now);
+    if (verdict == node::DuplicateVerdict::new_session) {
       ++counters_.new_sessions;
       lines_.write({"JSS clients restarted", rt::kNoteworthyBurst}, rt::LogLevel::info, [&] {
         return describe_client(h.source) + " restarted (sequence number " + std::to_string(h.sequence) +
                " to " + h.destination.to_string() + " begins a new session): its earlier messages forgotten";
       });
     }
-    if (is_dropped(verdict)) {
+    if (node::is_dropped(verdict)) {
       ++counters_.duplicates;
       lines_.write("JSS copies not acted on", rt::LogLevel::debug, [&] {
         return "JSS message " + hex16(single ? jss::message_id_of(packet.contents) : 0) + " from " +
                describe_client(h.source) + " to " + h.destination.to_string() + ", sequence number " +
                std::to_string(h.sequence) + ": a copy of one delivered" +
-               (verdict == JssCopyVerdict::late_copy ? ", since followed by a stop" : "") +
+               (verdict == node::DuplicateVerdict::late_copy ? ", since followed by a stop" : "") +
                "; acknowledged, not acted on";
       });
     } else if (single) {
@@ -365,7 +385,9 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   // Per destination; the bound as the RA node's (a destination least
   // recently sent to starts again at 0 when used again).
   node::BasicSequenceCounters<jss::JssId> sequences_{{.max_streams = 4096}};
-  JssDuplicateFilter duplicates_;
+  // The node's filter with JSS's window (Jr's own, 3 s) and its large
+  // messages' packets filtered too (AS5669A retransmits them one by one).
+  node::DuplicateFilter duplicates_{{.window = std::chrono::seconds(3), .max_entries = 4096, .pieces_filtered = true}};
   rt::RepeatedLines lines_;
   std::uint8_t inbound_priority_ = priority::kDefault;  // RA priority of the JSS message being handled
   rt::TimerId housekeeping_ = rt::kNoTimer;

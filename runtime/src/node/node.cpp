@@ -278,8 +278,15 @@ void Node::drain() {
     // Checked here, not on arrival: a first copy the full queue dropped was
     // never delivered, so its retransmission is not a duplicate; and of two
     // copies queued together only the first acts.
-    if (message->exclude == Address{} &&
-        duplicates_.check(h, message->payload, clock_.now()) == DuplicateVerdict::duplicate) {
+    const DuplicateVerdict verdict = message->exclude == Address{}
+                                         ? duplicates_.check(h, message->payload, clock_.now())
+                                         : DuplicateVerdict::not_filtered;
+    if (verdict == DuplicateVerdict::new_session)
+      lines_.write({"senders restarted", rt::kNoteworthyBurst}, rt::LogLevel::info, [&] {
+        return h.source.to_string() + " restarted (sequence number " + std::to_string(h.sequence) + " to " +
+               h.destination.to_string() + " begins a new session): its earlier messages forgotten";
+      });
+    if (is_dropped(verdict)) {
       ++counters_.duplicates_filtered;
       answer_ack_request(h, first_local_match(h.destination));  // the ACK of the first copy was lost
       recycle_payload(std::move(message->payload));
