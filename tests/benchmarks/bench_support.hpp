@@ -15,7 +15,8 @@
 namespace jaus::bench {
 
 template <class M>
-std::vector<std::uint8_t> datagram(const Address& from, const Address& to, const M& message, std::uint8_t priority = 6) {
+std::vector<std::uint8_t> datagram(const Address& from, const Address& to, const M& message, std::uint8_t priority = 6,
+                                   AckNak ack_nak = AckNak::none, std::uint16_t sequence = 0) {
   std::vector<std::uint8_t> payload(kMaxPayloadSize);
   const auto size = wire::encode_payload(message, payload);
   Header h;
@@ -24,6 +25,8 @@ std::vector<std::uint8_t> datagram(const Address& from, const Address& to, const
   h.source = from;
   h.destination = to;
   h.data_size = static_cast<std::uint16_t>(*size);
+  h.ack_nak = ack_nak;
+  h.sequence = sequence;
   std::vector<std::uint8_t> out(transport::kOpcPrefix.begin(), transport::kOpcPrefix.end());
   out.resize(out.size() + kHeaderSize);
   encode_header_unchecked(h, std::span<std::uint8_t, kHeaderSize>(out.data() + out.size() - kHeaderSize, kHeaderSize));

@@ -152,6 +152,12 @@ class NeverAckingOcu {
   void send(const Address& to, const M& message) {
     socket_.send_to(boost::asio::buffer(bench::datagram(kSelf, to, message)), node_);
   }
+  // With an ACK request and this sequence number (it never ACKs, but it may ask).
+  template <class M>
+  void send_asking_ack(const Address& to, const M& message, std::uint16_t sequence) {
+    socket_.send_to(boost::asio::buffer(bench::datagram(kSelf, to, message, 6, AckNak::ack_requested, sequence)),
+                    node_);
+  }
   // Sends `query` to `to` (again every second) until a `Report` from `to` arrives or the deadline.
   template <class Report, class Query>
   std::optional<Report> ask(const Address& to, const Query& query, std::chrono::seconds deadline = 10s) {
@@ -209,6 +215,35 @@ class NeverAckingOcu {
   boost::asio::ip::udp::socket socket_;
   boost::asio::ip::udp::endpoint node_;
 };
+
+// An RA operator unit that keeps no state numbers from 1 on every start (as
+// Jr does in JSS) and asks ACKs of its commands. Restarted within the node's
+// duplicate window, its Request Component Control is the same message under
+// the same number as the first run's: the default jausd obeys it at once
+// rather than ACK it and drop it as a copy.
+TEST_F(HostileNetwork, ARestartedRaOperatorNumberingFromOneIsObeyedAtOnce) {
+  jausd = std::make_unique<DefaultJausd>("restarted-ra-operator", kSubsystem, kNode);  // the default configuration
+  ASSERT_TRUE(jausd->started());
+  const Address driver{kSubsystem, 1, 33, 1};
+  const auto run = [&](const char* name) -> std::optional<msg::ConfirmComponentControl> {
+    NeverAckingOcu ocu(kRawOcuHost, kNode);  // a new port each run, as a restarted program gets
+    // The daemon may still be starting (generous deadline).
+    EXPECT_TRUE(ocu.ask<msg::ReportComponentStatus>(driver, msg::QueryComponentStatus{}, 30s)) << name;
+    ocu.send_asking_ack(driver, msg::RequestComponentControl{{10}}, 1);
+    auto confirm = ocu.receive<msg::ConfirmComponentControl>(driver, 3s);
+    ocu.send_asking_ack(driver, msg::ReleaseComponentControl{}, 2);
+    (void)ocu.receive<msg::RejectComponentControl>(driver, 1s);
+    return confirm;
+  };
+  const auto first = run("first run");
+  ASSERT_TRUE(first) << jausd->output();
+  EXPECT_EQ(first->response_code, 0) << jausd->output();  // control accepted
+  const auto again = run("restarted run");  // well within the 2 s window
+  ASSERT_TRUE(again) << "the restarted operator's Request Component Control was dropped as a copy\n" << jausd->output();
+  EXPECT_EQ(again->response_code, 0) << jausd->output();
+  // The node says so (its first message after the restart is the status query, number 0).
+  EXPECT_TRUE(jausd->output_shows("254.54.40.1 restarted (sequence number ")) << jausd->output();
+}
 
 TEST_F(HostileNetwork, AnOcuThatNeverAcksIsAnsweredControlsDrivesAndStops) {
   jausd = std::make_unique<DefaultJausd>("never-acks", kSubsystem, kNode);  // the default configuration
