@@ -69,9 +69,10 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
     h->make_jss_face([udp](const jss::JssId& to, std::span<const std::uint8_t> datagram) {
       udp->transmit_jss(to, datagram);
     });
-    h->udp_link_->on_jss_datagram([face = h->jss_face_.get()](std::span<const std::uint8_t> datagram,
-                                                              rt::SenderStanding standing) {
-      face->receive(datagram, standing);
+    // The link decodes each datagram once; the face takes its messages.
+    h->udp_link_->on_jss_packets([face = h->jss_face_.get()](const transport::Inbound& inbound,
+                                                             rt::SenderStanding standing) {
+      face->receive_packets(inbound.jss, standing);
     });
     // Log lines about a JSS client name its host: where its node's route is.
     h->jss_face_->locate_clients_with([udp](const jss::JssId& client) -> std::optional<std::string> {
@@ -424,7 +425,7 @@ NodeHost::~NodeHost() {
   // The face goes before the node and the links: nothing reaches it after.
   if (face_link_) face_link_->attach(nullptr);
   if (udp_link_) {
-    udp_link_->on_jss_datagram(nullptr);
+    udp_link_->on_jss_packets(nullptr);
     udp_link_->pin_jss_routes_while(nullptr);
   }
   jss_face_.reset();

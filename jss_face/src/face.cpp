@@ -78,10 +78,17 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   // ---- from the network ------------------------------------------------------
 
   void receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing) {
-    ++counters_.datagrams_received;
     auto packets = jss::decode_judp_datagram(datagram);
-    if (!packets) return malformed("AS5669A datagram", packets.error().message());
-    for (const auto& packet : *packets) handle_packet(packet, standing);
+    if (!packets) {
+      ++counters_.datagrams_received;
+      return malformed("AS5669A datagram", packets.error().message());
+    }
+    receive_packets(*packets, standing);
+  }
+
+  void receive_packets(std::span<const jss::JudpPacket> packets, rt::SenderStanding standing) {
+    ++counters_.datagrams_received;
+    for (const auto& packet : packets) handle_packet(packet, standing);
   }
 
   void handle_packet(const jss::JudpPacket& packet, rt::SenderStanding standing) {
@@ -400,6 +407,9 @@ JssFace::~JssFace() = default;
 
 void JssFace::receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing) {
   impl_->receive(datagram, standing);
+}
+void JssFace::receive_packets(std::span<const jss::JudpPacket> packets, rt::SenderStanding standing) {
+  impl_->receive_packets(packets, standing);
 }
 namespace {
 // Reads "a.b.c" (three numbers 0-255, each after a dot) at `at`; the end, or npos.

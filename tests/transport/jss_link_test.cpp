@@ -94,9 +94,9 @@ class JssLink : public ::testing::Test {
       ra.push_back({p.header, framing, standing});
     });
     if (with_handler)
-      link->on_jss_datagram([this](std::span<const std::uint8_t> datagram, rt::SenderStanding standing) {
-        jss.push_back({{datagram.begin(), datagram.end()}, standing});
-        if (reply) reply(datagram);
+      link->on_jss_packets([this](const Inbound& inbound, rt::SenderStanding standing) {
+        jss.push_back({{inbound.bytes.begin(), inbound.bytes.end()}, standing});
+        if (reply) reply(inbound.bytes);
       });
     link->start();
   }
@@ -266,8 +266,8 @@ TEST(JssLinks, UnknownIdsGoToTheJssGroupAndOwnDatagramsAreNotTakenBack) {
     auto link = UdpLink::open(io, runtime, runtime, options,
                               [&](rt::LogLevel, const std::string& line) { logs.push_back(line); });
     if (link)
-      (*link)->on_jss_datagram([&received](std::span<const std::uint8_t> d, rt::SenderStanding) {
-        received.emplace_back(d.begin(), d.end());
+      (*link)->on_jss_packets([&received](const Inbound& inbound, rt::SenderStanding) {
+        received.emplace_back(inbound.bytes.begin(), inbound.bytes.end());
       });
     return link;
   };

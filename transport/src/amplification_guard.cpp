@@ -140,6 +140,11 @@ bool AmplificationGuard::received_jss(const Ipv4Endpoint& from, std::size_t size
   return header.ack_nak == jss::JudpAckNak::ack && answers(*state, header.sequence);
 }
 
+bool AmplificationGuard::received(const Ipv4Endpoint& from, const Inbound& inbound) {
+  if (inbound.framing == Framing::as5669a) return received_jss(from, inbound.bytes.size(), inbound.jss.front().header);
+  return received(from, inbound.bytes.size(), inbound.ra.header.source, inbound.ra.header);
+}
+
 AmplificationGuard::Verdict AmplificationGuard::offer(const Ipv4Endpoint& to, Framing framing,
                                                       std::span<const std::uint8_t> packet, rt::TimePoint now) {
   const auto it = endpoints_.find(to);

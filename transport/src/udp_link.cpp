@@ -40,24 +40,6 @@ std::array<std::uint64_t, 2> challenge_key(const UdpLinkOptions& options) {
   return key;
 }
 
-// Stops (Shutdown, Standby, Set Emergency): they act from an endpoint whose
-// replies are withheld too. Stopping is safe: the platform is commanded to
-// stop, and a stop's ACK that cannot be sent costs nothing.
-bool is_stop(std::uint16_t code) { return code == 0x0002 || code == 0x0003 || code == 0x0006; }
-
-// A message that acts on the node and may be answered (ACK, Confirm Control):
-// the command class (0x0000-0x1FFF, in RA and AS5669A alike). An ACK or NAK
-// answers one of ours and acts on nothing.
-bool is_command(std::uint16_t code) { return code < 0x2000; }
-
-// The message ID of an AS5669A transport message (the first two bytes of its contents; an ACK has none).
-std::optional<std::uint16_t> jss_message_id(const jss::JudpPacket& packet) {
-  if (packet.header.ack_nak == jss::JudpAckNak::ack || packet.header.ack_nak == jss::JudpAckNak::nak ||
-      packet.contents.size() < 2)
-    return std::nullopt;
-  return static_cast<std::uint16_t>(packet.contents[0] | (packet.contents[1] << 8));
-}
-
 // The JSS guard's key: another key, so its challenge numbers are not the RA guard's.
 std::array<std::uint64_t, 2> jss_challenge_key(std::array<std::uint64_t, 2> key) {
   return {key[0] ^ 0x4a53532d6a756470ULL, key[1] ^ 0x415335363639410aULL};
@@ -282,42 +264,64 @@ void UdpLink::drop(DropReason reason, const Ipv4Endpoint& from) {
   drop(reason, from, [] { return std::string(); });
 }
 
+std::pair<std::uint16_t, std::uint8_t> UdpLink::self_in(IdSpace space) const {
+  if (space == IdSpace::jss) return {jss_self().subsystem, jss_self().node};
+  return {options_.subsystem, options_.node};
+}
+
+UdpLink::DeliveryCounters UdpLink::delivery_counters(IdSpace space) {
+  if (space == IdSpace::jss)
+    return {counters_.jss.datagrams_delivered, counters_.jss.delivered_unrecorded, counters_.jss.delivered_observer};
+  return {counters_.packets_delivered, counters_.delivered_unrecorded, counters_.delivered_observer};
+}
+
 void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
   ++counters_.datagrams_received;
   if (!allowed(from.address)) return drop(DropReason::not_allowed, from);
   if (!options_.bind.is_any() && from == options_.bind) return count_drop(DropReason::from_self);
-  if (!datagram.empty() && datagram[0] == jss::kAs5669aVersion) return on_jss(from, datagram);
-  auto unframed = unframe(datagram);
-  if (!unframed) return drop(drop_reason(unframed.error()), from, [&] { return unframed.error().message(); });
-  const Header& header = unframed->packet.header;
-  if (header.source.subsystem == options_.subsystem && header.source.node == options_.node) {
+  if (!datagram.empty() && datagram[0] == jss::kAs5669aVersion) {
+    ++counters_.jss.datagrams_received;
+    if (!jss_handler_) return drop(DropReason::jss_off, from);
+  }
+  const auto inbound = decode_datagram(datagram);
+  if (!inbound)
+    return drop(drop_reason(datagram, inbound.error()), from, [&] { return inbound.error().message(); });
+  const Inbound& in = *inbound;
+  const IdSpace space = in.id_space();
+  const bool jss = space == IdSpace::jss;
+  const auto [self_subsystem, self_node] = self_in(space);
+  if (in.subsystem == self_subsystem && in.node == self_node) {
     // Our own broadcast looped back comes from our port; anything else with
     // our ID is a misconfigured peer, which the operator must hear about.
     const bool ours = from.port == local_port_ && (options_.bind.is_any() || from.address == options_.bind.address);
     if (ours) return count_drop(DropReason::from_self);
-    return drop(DropReason::from_self, from,
-                [&] { return "another node uses this node's ID " + header.source.to_string(); });
+    return drop(DropReason::from_self, from, [&] {
+      return (jss ? "another JSS node uses this node's JSS ID " : "another node uses this node's ID ") +
+             in.source_text();
+    });
   }
   // Nothing is learnt from, nor delivered for, a source that cannot answer.
-  if (!header.source.is_valid() || header.source.is_broadcast())
-    return drop(DropReason::invalid_source, from, [&] { return "source " + header.source.to_string(); });
+  if (!in.one_sender)
+    return drop(DropReason::invalid_source, from, [&] { return (jss ? "JSS source " : "source ") + in.source_text(); });
   // Safety (issue 42): a JSS client's alias is the face's alone. An RA
   // datagram naming one as its source is a forgery (or a peer configured
   // into the alias subsystem): dropped from any host, before any route is
   // learnt, so it never reaches the node as that JSS operator.
-  if (options_.alias_subsystem != 0 && header.source.subsystem == options_.alias_subsystem)
+  if (!jss && options_.alias_subsystem != 0 && in.subsystem == options_.alias_subsystem)
     return drop(DropReason::alias_source, from, [&] {
-      return "source " + header.source.to_string() + " is in the JSS clients' alias subsystem " +
+      return "source " + in.source_text() + " is in the JSS clients' alias subsystem " +
              std::to_string(options_.alias_subsystem) + "; only the JSS face speaks for it";
     });
-  const Learnt learnt =
-      routes_.learn(header.source.subsystem, header.source.node, from, unframed->framing, clock_.now());
-  auto node = [&] { return std::to_string(header.source.subsystem) + "." + std::to_string(header.source.node); };
+  RouteTable& routes = routes_of(space);
+  const Learnt learnt = routes.learn(in.subsystem, in.node, from, in.framing, clock_.now());
+  auto who = [&] {
+    return (jss ? "JSS " : "node ") + std::to_string(in.subsystem) + "." + std::to_string(in.node);
+  };
   if (learnt == Learnt::relayed_copy) return count_drop(DropReason::relayed_copy);
   if (learnt == Learnt::claim_refused) {
     return drop(DropReason::route_claim, from, [&] {
-      const auto route = routes_.route(header.source.subsystem, header.source.node);
-      return "node " + node() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
+      const auto route = routes.route(in.subsystem, in.node);
+      return who() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
              "; spoofed, or two peers with one ID";
     });
   }
@@ -326,157 +330,81 @@ void UdpLink::on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t
     // configured one: worth a line, not a warning. A flood of forged sources
     // is a few lines and a count.
     repeated_lines_.write({"new and moved routes", kNewRouteLinesPerWindow}, rt::LogLevel::info, [&] {
-      return "node " + node() + (learnt == Learnt::moved ? " moved to " : " at ") + to_string(from) + " (" +
-             std::string(to_string(unframed->framing)) + ")";
+      return who() + (learnt == Learnt::moved ? " moved to " : " at ") + to_string(from) + " (" +
+             std::string(to_string(in.framing)) + ")";
     });
   }
-  if (options_.verify_endpoints) {
-    // A new learnt endpoint starts unverified (static peers are verified from
-    // the start); one without a route too, since (255, ...) broadcasts reach it.
-    if (!guard_.tracks(from)) {
-      const auto peer = routes_.peers().find(from);
-      if (peer != routes_.peers().end() && !peer->second.is_static) guard_.track(from);
-    }
-    if (guard_.unverified(from)) {
-      const bool answered = guard_.received(from, datagram.size(), header.source, header);
-      if (answered) {
-        // The challenge's answer is the link's: the endpoint receives at its address, so what was held goes.
-        for (const auto& held : guard_.release(from)) send_to(from, held.framing, held.packet);
-        sync_amplification_counters();
-        return;
-      }
-      send_challenge(from, unframed->framing);  // its budget grew: a challenge may fit now
-      // Safety (issue 43): never a command acted on for an endpoint whose
-      // replies are withheld. The guarantee is kept here, at entry: a command
-      // from an unverified endpoint is delivered only once its reply's bytes
-      // are set aside (admit_command); a Request Control whose Confirm could
-      // not be sent is not granted, since it never reaches the component.
-      // Stops always act (is_stop), their ACK's bytes set aside if there are any.
-      const bool answer = header.ack_nak == AckNak::ack || header.ack_nak == AckNak::nak;
-      if (!answer && is_command(header.command_code)) {
-        if (is_stop(header.command_code)) {
-          guard_.reserve_reply(from, clock_.now());
-        } else if (!guard_.admit_command(from, unframed->framing, clock_.now())) {
-          send_challenge(from, unframed->framing);  // answering it lets its next command through
-          sync_amplification_counters();
-          return refuse_command(from, header.command_code, guard_);
-        }
-      }
-      sync_amplification_counters();
-    }
+  if (options_.verify_endpoints && !passes_verification(from, in)) return;
+  const DeliveryCounters delivered = delivery_counters(space);
+  const rt::SenderStanding standing = standing_of(from, learnt, delivered, who);
+  ++delivered.delivered;
+  if (jss) return jss_handler_(in, standing);
+  if (options_.relay) relay(from, in.ra.header, datagram.last(kHeaderSize + in.ra.payload.size()));
+  if (handler_) handler_(in.ra, in.framing, standing);
+}
+
+bool UdpLink::passes_verification(const Ipv4Endpoint& from, const Inbound& in) {
+  const IdSpace space = in.id_space();
+  AmplificationGuard& guard = guard_of(space);
+  // A new learnt endpoint starts unverified (static peers are verified from
+  // the start); one without a route too, since (255, ...) broadcasts reach it.
+  if (!guard.tracks(from)) {
+    const RouteTable& routes = routes_of(space);
+    const auto peer = routes.peers().find(from);
+    if (peer != routes.peers().end() && !peer->second.is_static) guard.track(from);
   }
-  const rt::SenderStanding standing =
-      standing_of(from, learnt, counters_.delivered_unrecorded, counters_.delivered_observer, node);
-  if (options_.relay) relay(from, header, datagram.last(kHeaderSize + unframed->packet.payload.size()));
-  ++counters_.packets_delivered;
-  if (handler_) handler_(unframed->packet, unframed->framing, standing);
+  if (!guard.unverified(from)) return true;
+  if (guard.received(from, in)) {
+    // The challenge's answer is the link's, not the node's: the endpoint
+    // receives at its address, so what was held goes.
+    for (const auto& held : guard.release(from)) send_to(from, held.framing, held.packet);
+    sync_amplification_counters();
+    return false;
+  }
+  // Its budget grew: a challenge may fit now. A JSS endpoint is challenged
+  // at once, before its first reply (a JSS client may not send again for a
+  // half timeout: amplification_guard.hpp).
+  send_challenge(from, in.framing, /*at_first_contact=*/space == IdSpace::jss);
+  // Safety (issue 43): never a command acted on for an endpoint whose
+  // replies are withheld. The guarantee is kept here, at entry, for both
+  // dialects: a datagram carrying a command is delivered only once its
+  // reply's bytes are set aside (admit_command); a Request Control whose
+  // Confirm could not be sent is not granted, since it never reaches the
+  // component. Stops always act (nobody packs a stop with other commands),
+  // their ACK's bytes set aside if there are any.
+  if (in.carries_stop) {
+    guard.reserve_reply(from, clock_.now());
+  } else if (in.carries_command && !guard.admit_command(from, in.framing, clock_.now())) {
+    send_challenge(from, in.framing);  // answering it lets its next command through
+    sync_amplification_counters();
+    refuse_command(from, in.command_code, guard);
+    return false;
+  }
+  sync_amplification_counters();
+  return true;
 }
 
 template <class Who>
-rt::SenderStanding UdpLink::standing_of(const Ipv4Endpoint& from, Learnt learnt, std::uint64_t& unrecorded,
-                                        std::uint64_t& observer, Who who) {
+rt::SenderStanding UdpLink::standing_of(const Ipv4Endpoint& from, Learnt learnt, DeliveryCounters counters, Who who) {
   if (learnt == Learnt::rejected) {
-    ++unrecorded;
+    ++counters.unrecorded;
     repeated_lines_.write("senders not recorded", rt::LogLevel::warn, [&] {
-      return "node " + who() + " at " + to_string(from) +
+      return who() + " at " + to_string(from) +
              " not recorded (route table full, or its host's endpoints all hold state): delivered as unrecorded [" +
-             std::to_string(unrecorded) + " so far]";
+             std::to_string(counters.unrecorded) + " so far]";
     });
     return rt::SenderStanding::unrecorded;
   }
   if (!may_control(from.address)) {
-    ++observer;
+    ++counters.observer;
     return rt::SenderStanding::observer;
   }
   return rt::SenderStanding::trusted;
 }
 
-void UdpLink::on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
-  ++counters_.jss.datagrams_received;
-  if (!jss_handler_) return drop(DropReason::jss_off, from);
-  auto packets = jss::decode_judp_datagram(datagram);
-  if (!packets) return drop(DropReason::jss_malformed, from, [&] { return packets.error().message(); });
-  if (packets->empty()) return drop(DropReason::jss_malformed, from, [] { return std::string("no transport message"); });
-  // One sender per datagram: every message in it must name the same source
-  // (nobody packs several; a mix would let one claim ride on another's route).
-  const jss::JssId source = packets->front().header.source;
-  for (const auto& packet : *packets)
-    if (packet.header.source != source)
-      return drop(DropReason::jss_malformed, from, [&] {
-        return "messages from " + source.to_string() + " and " + packet.header.source.to_string() + " in one datagram";
-      });
-  const jss::JssId self = jss_self();
-  if (source.subsystem == self.subsystem && source.node == self.node) {
-    const bool ours = from.port == local_port_ && (options_.bind.is_any() || from.address == options_.bind.address);
-    if (ours) return count_drop(DropReason::from_self);
-    return drop(DropReason::from_self, from,
-                [&] { return "another JSS node uses this node's JSS ID " + source.to_string(); });
-  }
-  if (!source.is_valid() || source.is_broadcast())
-    return drop(DropReason::invalid_source, from, [&] { return "JSS source " + source.to_string(); });
-  const Learnt learnt = jss_routes_.learn(source.subsystem, source.node, from, Framing::as5669a, clock_.now());
-  auto node = [&] { return "JSS " + std::to_string(source.subsystem) + "." + std::to_string(source.node); };
-  if (learnt == Learnt::relayed_copy) return count_drop(DropReason::relayed_copy);
-  if (learnt == Learnt::claim_refused) {
-    return drop(DropReason::route_claim, from, [&] {
-      const auto route = jss_routes_.route(source.subsystem, source.node);
-      return node() + " is at " + (route ? to_string(route->endpoint) : std::string("?")) +
-             "; spoofed, or two peers with one ID";
-    });
-  }
-  if (learnt == Learnt::new_route || learnt == Learnt::moved) {
-    repeated_lines_.write({"new and moved routes", kNewRouteLinesPerWindow}, rt::LogLevel::info, [&] {
-      return node() + (learnt == Learnt::moved ? " moved to " : " at ") + to_string(from) + " (as5669a)";
-    });
-  }
-  if (options_.verify_endpoints) {
-    if (!jss_guard_.tracks(from)) {
-      const auto peer = jss_routes_.peers().find(from);
-      if (peer != jss_routes_.peers().end() && !peer->second.is_static) jss_guard_.track(from);
-    }
-    if (jss_guard_.unverified(from)) {
-      const bool answered = jss_guard_.received_jss(from, datagram.size(), packets->front().header);
-      if (answered) {
-        // The ACK of the link's challenge is the link's: not the face's.
-        for (const auto& held : jss_guard_.release(from)) send_to(from, held.framing, held.packet);
-        sync_amplification_counters();
-        return;
-      }
-      // Challenged at once, before its first reply (amplification_guard.hpp:
-      // a JSS client may not send again for a half timeout), or again when
-      // something is held and its budget grew.
-      if (const auto challenge = jss_guard_.challenge_jss(from, jss_self(), clock_.now(), /*at_first_contact=*/true))
-        send_to(from, Framing::as5669a, *challenge);
-      // Safety (issue 43), as for RA above: a datagram carrying a command is
-      // delivered only if its reply can be sent, or if it carries a stop
-      // (stopping is safe; nobody packs a stop with other commands).
-      bool commands = false, stop = false;
-      std::uint16_t code = 0;
-      for (const auto& packet : *packets) {
-        const auto id = jss_message_id(packet);
-        if (!id || !is_command(*id)) continue;
-        (is_stop(*id) ? stop : commands) = true;
-        if (!is_stop(*id)) code = *id;
-      }
-      if (stop) {
-        jss_guard_.reserve_reply(from, clock_.now());
-      } else if (commands && !jss_guard_.admit_command(from, Framing::as5669a, clock_.now())) {
-        send_challenge(from, Framing::as5669a);  // answering it lets its next command through
-        sync_amplification_counters();
-        return refuse_command(from, code, jss_guard_);
-      }
-      sync_amplification_counters();
-    }
-  }
-  const rt::SenderStanding standing =
-      standing_of(from, learnt, counters_.jss.delivered_unrecorded, counters_.jss.delivered_observer, node);
-  ++counters_.jss.datagrams_delivered;
-  jss_handler_(datagram, standing);
-}
-
-void UdpLink::send_challenge(const Ipv4Endpoint& to, Framing framing) {
+void UdpLink::send_challenge(const Ipv4Endpoint& to, Framing framing, bool at_first_contact) {
   if (framing == Framing::as5669a) {
-    if (const auto challenge = jss_guard_.challenge_jss(to, jss_self(), clock_.now()))
+    if (const auto challenge = jss_guard_.challenge_jss(to, jss_self(), clock_.now(), at_first_contact))
       send_to(to, framing, *challenge);
     return;
   }
@@ -489,7 +417,7 @@ void UdpLink::send_challenge(const Ipv4Endpoint& to, Framing framing) {
 
 void UdpLink::send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet) {
   if (!options_.verify_endpoints) return send_to(to, framing, packet);
-  AmplificationGuard& guard = guard_for(framing);
+  AmplificationGuard& guard = guard_of(id_space_of(framing));
   const auto verdict = guard.offer(to, framing, packet, clock_.now());
   if (verdict == AmplificationGuard::Verdict::send) {
     send_to(to, framing, packet);

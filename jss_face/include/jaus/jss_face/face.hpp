@@ -25,6 +25,7 @@
 #include "jaus/base/log.hpp"
 #include "jaus/core/header.hpp"
 #include "jaus/jss/jss_id.hpp"
+#include "jaus/jss/judp.hpp"
 #include "jaus/jss_face/translator.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/runtime/sender_standing.hpp"
@@ -94,8 +95,12 @@ class JssFace {
   // by its alias; jausd passes the node's log lines through this.
   std::string name_clients_in(const std::string& line) const;
 
-  // One AS5669A datagram (first byte 0x02) from the network, with what the
+  // One AS5669A datagram from the network, as the transport decoded it (its
+  // transport messages, one sender's: UdpLink::on_jss_packets), with what the
   // transport knows of its sender.
+  void receive_packets(std::span<const jss::JudpPacket> packets, rt::SenderStanding standing);
+  // The same from its bytes (first byte 0x02): decoded here. For captures
+  // and tests that hand the face datagrams without a transport.
   void receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing);
   // Whether an RA destination is a JSS client's alias (FaceLink asks).
   bool owns(const Address& ra_destination) const;

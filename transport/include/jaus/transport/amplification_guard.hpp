@@ -71,6 +71,7 @@
 #include "jaus/core/header.hpp"
 #include "jaus/jss/judp.hpp"
 #include "jaus/transport/framing.hpp"
+#include "jaus/transport/inbound.hpp"
 #include "jaus/transport/ipv4.hpp"
 
 namespace jaus::transport {
@@ -143,6 +144,8 @@ class AmplificationGuard {
   // The same for an AS5669A datagram whose (first) transport message has
   // `header`: an ACK (flag 3) with the challenge's sequence number answers.
   bool received_jss(const Ipv4Endpoint& from, std::size_t size, const jss::JudpHeader& header);
+  // Either of the above, as the datagram's framing says (the link's one receive path).
+  bool received(const Ipv4Endpoint& from, const Inbound& inbound);
 
   enum class Verdict : std::uint8_t { send, held, dropped };
   // Before sending `packet` (header and payload) framed in `framing` to

@@ -31,12 +31,15 @@
 // until it answers a challenge; a command from one is delivered only if its
 // reply can be sent (amplification_guard.hpp, on_datagram).
 //
-// SAE JAUS (docs/jss.md, "Transport: one port, three framings"): datagrams whose first byte is 0x02 are AS5669A.
-// With a JSS handler set (on_jss_datagram: the node's JSS face), each is
-// checked (jss::decode_judp_datagram), its host filtered by `allow`, its
-// standing decided as above, the endpoint of its source JssId learnt in a
-// second route table (same bounds and claim rules, 16-bit subsystems), and
-// the whole datagram handed to the handler. transmit_jss() sends the face's
+// SAE JAUS (docs/jss.md, "Transport: one port, three framings"): datagrams
+// whose first byte is 0x02 are AS5669A. Every datagram takes one receive
+// path (on_datagram): decoded once by its framing's codec (inbound.hpp), its
+// host filtered by `allow`, its source checked, its route learnt in the table
+// of its ID space (RA, or JSS with 16-bit subsystems: same bounds and claim
+// rules), its endpoint verified by that space's guard, its standing decided
+// as above; then an RA message goes to the node (on_packet) and an AS5669A
+// datagram's decoded messages to the JSS handler (on_jss_packets: the node's
+// JSS face), which never parses the bytes again. transmit_jss() sends the face's
 // datagrams by JssId: to the learnt endpoint (through the amplification guard;
 // a JSS endpoint is challenged with an AS5669A Query Heartbeat Pulse, ACK
 // requested), else to `jss_multicast` and the static peers. Without a
@@ -65,6 +68,7 @@
 #include "jaus/runtime/sender_standing.hpp"
 #include "jaus/transport/amplification_guard.hpp"
 #include "jaus/transport/framing.hpp"
+#include "jaus/transport/inbound.hpp"
 #include "jaus/transport/ipv4.hpp"
 #include "jaus/transport/peer.hpp"
 #include "jaus/transport/route_table.hpp"
@@ -166,9 +170,10 @@ class UdpLink final : public node::Link {
   // payload (a view into the datagram, valid during the call), framing and
   // what the link knows of its sender (see above).
   using PacketHandler = std::function<void(const PacketView& packet, Framing framing, rt::SenderStanding standing)>;
-  // A received AS5669A datagram (checked: it decodes), a view valid during the
-  // call, with what the link knows of its sender.
-  using JssDatagramHandler = std::function<void(std::span<const std::uint8_t> datagram, rt::SenderStanding standing)>;
+  // A received AS5669A datagram, decoded (inbound.jss: its transport
+  // messages, one sender's; views valid during the call), with what the link
+  // knows of its sender.
+  using JssPacketHandler = std::function<void(const Inbound& inbound, rt::SenderStanding standing)>;
 
   // Opens and binds the sockets. A failure is one readable line, e.g.
   // "127.0.0.1:3794 is already in use".
@@ -188,7 +193,7 @@ class UdpLink final : public node::Link {
     routes_.pin_while(std::move(holds_state));
   }
   // Where AS5669A datagrams go (the JSS face); unset: they are dropped.
-  void on_jss_datagram(JssDatagramHandler handler) { jss_handler_ = std::move(handler); }
+  void on_jss_packets(JssPacketHandler handler) { jss_handler_ = std::move(handler); }
   // Whether a JSS node (subsystem, node) holds state here (its alias holds
   // control, an emergency, ...): its JSS route is pinned as RA ones are.
   void pin_jss_routes_while(std::function<bool(std::uint16_t subsystem, std::uint8_t node)> holds_state) {
@@ -234,8 +239,23 @@ class UdpLink final : public node::Link {
           rt::LogFn log);
   Expected<void> bind_sockets();
   void receive_next(Socket& socket);
+  // The one receive path, for every framing (see above).
   void on_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
-  void on_jss(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
+  // verify_endpoints: whether a datagram from `from` goes on to the node. Not
+  // if it answers our challenge (it is the link's) or carries a command whose
+  // reply could not be sent (amplification_guard.hpp).
+  bool passes_verification(const Ipv4Endpoint& from, const Inbound& inbound);
+  // Per ID space: where its senders' routes live, who verifies their
+  // endpoints, our own node's ID in it, and its delivery counters.
+  RouteTable& routes_of(IdSpace space) { return space == IdSpace::jss ? jss_routes_ : routes_; }
+  AmplificationGuard& guard_of(IdSpace space) { return space == IdSpace::jss ? jss_guard_ : guard_; }
+  std::pair<std::uint16_t, std::uint8_t> self_in(IdSpace space) const;
+  struct DeliveryCounters {
+    std::uint64_t& delivered;
+    std::uint64_t& unrecorded;
+    std::uint64_t& observer;
+  };
+  DeliveryCounters delivery_counters(IdSpace space);
   // The group of `group`: joined on the main socket, or a socket of its own.
   Expected<void> join_group(const Ipv4Endpoint& group);
   jss::JssId jss_self() const;
@@ -253,18 +273,17 @@ class UdpLink final : public node::Link {
   // counted; `who` names it, built only for a line that is written.
   // (Defined and used in udp_link.cpp only.)
   template <class Who>
-  rt::SenderStanding standing_of(const Ipv4Endpoint& from, Learnt learnt, std::uint64_t& unrecorded,
-                                 std::uint64_t& observer, Who who);
+  rt::SenderStanding standing_of(const Ipv4Endpoint& from, Learnt learnt, DeliveryCounters counters, Who who);
   // send_to, through the amplification guard when verify_endpoints is on:
   // what goes to learnt endpoints the routes chose.
   void send_routed(const Ipv4Endpoint& to, Framing framing, std::span<const std::uint8_t> packet);
-  void send_challenge(const Ipv4Endpoint& to, Framing framing);
+  // A challenge to `to`, if one is due. `at_first_contact`: due also when
+  // nothing is held yet (JSS endpoints, amplification_guard.hpp).
+  void send_challenge(const Ipv4Endpoint& to, Framing framing, bool at_first_contact = false);
   // A command from an unverified endpoint not delivered (its reply could not be sent): a line, limited.
   void refuse_command(const Ipv4Endpoint& from, std::uint16_t code, const AmplificationGuard& guard);
   // A line for each endpoint whose held replies expired, limited.
   void report_expired(const std::vector<AmplificationGuard::Expired>& expired, const AmplificationGuard& guard);
-  // The guard of an endpoint speaking `framing` (one per dialect).
-  AmplificationGuard& guard_for(Framing framing) { return framing == Framing::as5669a ? jss_guard_ : guard_; }
   void sync_amplification_counters();
   // A message for a node of another subsystem whose route we know, from a
   // node heard directly at `from`: sent on, in the framing that node speaks.
@@ -288,7 +307,7 @@ class UdpLink final : public node::Link {
   RouteTable jss_routes_;
   AmplificationGuard jss_guard_;
   PacketHandler handler_;
-  JssDatagramHandler jss_handler_;
+  JssPacketHandler jss_handler_;
   UdpLinkCounters counters_;
   rt::TimerId expiry_timer_ = rt::kNoTimer;
   // Lines a flood repeats: per drop reason, and new routes (10 per window).
