@@ -1,13 +1,12 @@
 #include "jaus/ocu/jss_session.hpp"
 
 #include <algorithm>
-#include <deque>
 #include <random>
 
 #include "jaus/ocu/names.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/transport/asio_runtime.hpp"
-#include "jss_socket.hpp"
+#include "jaus/transport/udp_link.hpp"
 #include "run_loop.hpp"
 
 namespace jaus::ocu {
@@ -57,11 +56,13 @@ struct JssSession::Impl {
   std::uint16_t send(const jss::JssId& to, std::span<const std::uint8_t> contents, jss::JudpPriority priority,
                      bool ack_requested, std::vector<std::uint8_t>* first_datagram);
   void send_ack(const jss::JudpHeader& received);
-  void receive(std::span<const std::uint8_t> datagram, std::optional<transport::Ipv4Endpoint> from);
+  void receive(std::span<const std::uint8_t> datagram);
+  void receive_packets(std::span<const jss::JudpPacket> packets);
   void handle(const jss::JudpPacket& packet);
   void answer_builtin(const JssReceived& message);
   void deliver(const JssReceived& message);
-  void learn(const jss::JssId& id, const transport::Ipv4Endpoint& endpoint);
+  // On UDP the link drops what does not decode (counted there): counters() adds it.
+  void sync_link_counters();
   ArrivalResult must_arrive(JssSession& session, const jss::JssId& to, std::span<const std::uint8_t> contents,
                             jss::JudpPriority priority, MustArrivePolicy policy, bool through_stop);
 
@@ -70,7 +71,9 @@ struct JssSession::Impl {
   std::unique_ptr<boost::asio::io_context> owned_io;
   boost::asio::io_context* io = nullptr;
   std::unique_ptr<transport::AsioRuntime> runtime;
-  std::unique_ptr<detail::JssSocket> socket;
+  // The node's own transport (transport::UdpLink): it decodes each datagram
+  // once, learns where each JSS node is and routes by JSS ID, as jausd's does.
+  std::unique_ptr<transport::UdpLink> link;
   // Attached.
   JssEnvironment environment;
   rt::Clock* clock = nullptr;
@@ -78,9 +81,10 @@ struct JssSession::Impl {
   std::unique_ptr<rt::RepeatedLines> repeated;
 
   JssSessionCounters counters;
+  std::uint64_t decoded_here = 0;    // datagrams this session decoded (attached), and of those
+  std::uint64_t malformed_here = 0;  // the ones that did not decode
+  std::uint64_t delivered_by_link = 0;
   std::uint16_t next_sequence = 0;
-  std::map<jss::JssId, transport::Ipv4Endpoint> endpoints;
-  std::deque<jss::JssId> endpoint_order;  // oldest first: the bound's victim
   jss::LargeMessageReassembler reassembler;
   ListenerId last_id = 0;
   std::map<ListenerId, Listener> listeners;
@@ -89,19 +93,10 @@ struct JssSession::Impl {
 
 void JssSession::Impl::transmit(const jss::JssId& to, std::span<const std::uint8_t> datagram) {
   ++counters.datagrams_sent;
-  if (!socket) {
-    environment.transmit(to, datagram);
-    return;
-  }
-  if (!to.is_broadcast()) {
-    if (const auto it = endpoints.find(to); it != endpoints.end()) {
-      socket->send_to(it->second, datagram);
-      return;
-    }
-  }
-  // A broadcast, or an ID not heard from yet: every listed peer and the group.
-  for (const auto& peer : options.to) socket->send_to(peer, datagram);
-  if (options.multicast && socket->has_multicast()) socket->send_to(*options.multicast, datagram);
+  // On UDP: to where `to`'s node was heard; a broadcast, or an ID not heard
+  // from yet, to every listed peer and the group.
+  if (link) return link->transmit_jss(to, datagram);
+  environment.transmit(to, datagram);
 }
 
 std::uint16_t JssSession::Impl::send(const jss::JssId& to, std::span<const std::uint8_t> contents,
@@ -144,33 +139,34 @@ void JssSession::Impl::send_ack(const jss::JudpHeader& received) {
   ++counters.acks_sent;
 }
 
-void JssSession::Impl::learn(const jss::JssId& id, const transport::Ipv4Endpoint& endpoint) {
-  if (!id.is_valid() || id.is_broadcast()) return;
-  const auto [it, inserted] = endpoints.insert_or_assign(id, endpoint);
-  if (!inserted) return;
-  endpoint_order.push_back(id);
-  while (endpoint_order.size() > std::max<std::size_t>(options.max_learnt_endpoints, 1)) {
-    endpoints.erase(endpoint_order.front());
-    endpoint_order.pop_front();
-  }
-}
-
-void JssSession::Impl::receive(std::span<const std::uint8_t> datagram, std::optional<transport::Ipv4Endpoint> from) {
-  ++counters.datagrams_received;
+void JssSession::Impl::receive(std::span<const std::uint8_t> datagram) {
+  ++decoded_here;
   auto packets = jss::decode_judp_datagram(datagram);
   if (!packets) {
-    ++counters.malformed;
+    ++malformed_here;
+    sync_link_counters();
     repeated->write(rt::Repeated{"jss session: malformed datagram"}, rt::LogLevel::warn, [&] {
-      return "JSS: dropped a datagram of " + std::to_string(datagram.size()) + " bytes" +
-             (from ? " from " + to_string(*from) : std::string{}) + ": " + packets.error().message();
+      return "JSS: dropped a datagram of " + std::to_string(datagram.size()) + " bytes: " + packets.error().message();
     });
     return;
   }
-  for (const auto& packet : *packets) {
+  receive_packets(*packets);
+}
+
+void JssSession::Impl::receive_packets(std::span<const jss::JudpPacket> packets) {
+  if (link) ++delivered_by_link;
+  sync_link_counters();
+  for (const auto& packet : packets) {
     if (packet.header.source == options.self) continue;  // our own broadcast, looped back by the group
-    if (from) learn(packet.header.source, *from);
     handle(packet);
   }
+}
+
+void JssSession::Impl::sync_link_counters() {
+  const std::uint64_t link_malformed =
+      link ? link->counters().dropped_for(transport::DropReason::jss_malformed) : 0;
+  counters.malformed = malformed_here + link_malformed;
+  counters.datagrams_received = decoded_here + delivered_by_link + link_malformed;
 }
 
 void JssSession::Impl::handle(const jss::JudpPacket& packet) {
@@ -274,14 +270,21 @@ Expected<std::unique_ptr<JssSession>> JssSession::open(JssSessionOptions options
   impl->clock = impl->runtime.get();
   impl->scheduler = impl->runtime.get();
   impl->repeated = std::make_unique<rt::RepeatedLines>(*impl->clock, *impl->scheduler, impl->options.log);
+  transport::UdpLinkOptions link_options;
+  link_options.bind = impl->options.bind;
+  link_options.jss_self = impl->options.self;
+  link_options.jss_multicast = impl->options.multicast;
+  for (const auto& peer : impl->options.to) link_options.peers.push_back({peer, transport::Framing::as5669a});
+  link_options.routes.max_entries = std::max<std::size_t>(impl->options.max_learnt_endpoints, 1);
+  // A client starts its conversations: no endpoint is challenged (as an RA OCU session's link).
+  link_options.verify_endpoints = false;
+  auto link = transport::UdpLink::open(*io, *impl->clock, *impl->scheduler, std::move(link_options), impl->options.log);
+  if (!link) return unexpected(link.error());
+  impl->link = std::move(*link);
   Impl* raw = impl.get();
-  auto socket =
-      detail::JssSocket::open(*io, raw->options.bind, raw->options.multicast, raw->options.log,
-                              [raw](const transport::Ipv4Endpoint& from, std::span<const std::uint8_t> datagram) {
-                                raw->receive(datagram, from);
-                              });
-  if (!socket) return unexpected(socket.error());
-  impl->socket = std::move(*socket);
+  impl->link->on_jss_packets(
+      [raw](const transport::Inbound& inbound, rt::SenderStanding) { raw->receive_packets(inbound.jss); });
+  impl->link->start();
   return std::unique_ptr<JssSession>(new JssSession(std::move(impl)));
 }
 
@@ -299,7 +302,7 @@ Expected<std::unique_ptr<JssSession>> JssSession::attach(JssSessionOptions optio
   impl->repeated = std::make_unique<rt::RepeatedLines>(*impl->clock, *impl->scheduler, impl->options.log);
   Impl* raw = impl.get();
   std::unique_ptr<JssSession> session(new JssSession(std::move(impl)));
-  raw->environment.connect([raw](std::span<const std::uint8_t> datagram) { raw->receive(datagram, std::nullopt); });
+  raw->environment.connect([raw](std::span<const std::uint8_t> datagram) { raw->receive(datagram); });
   return session;
 }
 
@@ -307,18 +310,20 @@ const jss::JssId& JssSession::self() const { return impl_->options.self; }
 const JssSessionOptions& JssSession::options() const { return impl_->options; }
 rt::Clock& JssSession::clock() { return *impl_->clock; }
 rt::Scheduler& JssSession::scheduler() { return *impl_->scheduler; }
-const JssSessionCounters& JssSession::counters() const { return impl_->counters; }
-bool JssSession::on_udp() const { return impl_->socket != nullptr; }
+const JssSessionCounters& JssSession::counters() const {
+  impl_->sync_link_counters();  // what the link dropped since the last datagram
+  return impl_->counters;
+}
+bool JssSession::on_udp() const { return impl_->link != nullptr; }
 
 std::optional<transport::Ipv4Endpoint> JssSession::endpoint_of(const jss::JssId& id) const {
-  const auto it = impl_->endpoints.find(id);
-  if (it == impl_->endpoints.end()) return std::nullopt;
-  return it->second;
+  if (!impl_->link) return std::nullopt;
+  const auto route = impl_->link->jss_routes().route(id.subsystem, id.node);
+  if (!route) return std::nullopt;
+  return route->endpoint;
 }
 
-void JssSession::receive_datagram(std::span<const std::uint8_t> datagram, std::optional<transport::Ipv4Endpoint> from) {
-  impl_->receive(datagram, from);
-}
+void JssSession::receive_datagram(std::span<const std::uint8_t> datagram) { impl_->receive(datagram); }
 
 std::uint16_t JssSession::send_contents(const jss::JssId& to, std::span<const std::uint8_t> contents,
                                         jss::JudpPriority priority, bool ack_requested) {

@@ -1,5 +1,7 @@
 // A SAE JAUS (JSS) operator unit as a library: one JSS endpoint of its own
-// on a UDP socket speaking AS5669A (docs/jss.md, "The bytes on the wire"), with what a JSS client
+// speaking AS5669A (docs/jss.md, "The bytes on the wire") on the node's UDP
+// transport (transport::UdpLink: one receive path, routes learnt per JSS
+// node, the multicast group, static peers), with what a JSS client
 // needs to drive a JSS vehicle: sequence numbers, ACK answers to
 // ACK-requested messages, large message reassembly, requests resent until
 // answered, commands resent until ACKed, and listeners for what arrives
@@ -75,7 +77,9 @@ struct JssSessionOptions {
   std::size_t max_packet_contents = jss::kDefaultMaxPacketContents;
   // Large messages received: bounded in number, bytes and time (dropped ones are counted).
   jss::ReassemblyLimits reassembly;
-  std::size_t max_learnt_endpoints = 1024;  // JSS IDs whose endpoint is remembered (the oldest goes)
+  // JSS nodes whose endpoint is remembered (the transport's route table:
+  // newcomers beyond it are not recorded, silent ones forgotten after 30 s).
+  std::size_t max_learnt_endpoints = 1024;
   rt::LogFn log;
 };
 
@@ -133,7 +137,7 @@ class JssSession {
   rt::Scheduler& scheduler();
   const JssSessionCounters& counters() const;
   bool on_udp() const;
-  // The endpoint `id` was last heard from (UDP only).
+  // The endpoint `id`'s node was last heard from (UDP only).
   std::optional<transport::Ipv4Endpoint> endpoint_of(const jss::JssId& id) const;
 
   // Sends contents (message ID + body) to `to`, split into a large message
@@ -201,9 +205,8 @@ class JssSession {
   void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
   bool interrupted() const { return interrupted_.load(std::memory_order_relaxed); }
 
-  // An attached session's environment hands datagrams here (open() wires its socket itself).
-  void receive_datagram(std::span<const std::uint8_t> datagram,
-                        std::optional<transport::Ipv4Endpoint> from = std::nullopt);
+  // An attached session's environment hands datagrams here (open() wires its link itself).
+  void receive_datagram(std::span<const std::uint8_t> datagram);
 
  private:
   struct Impl;
