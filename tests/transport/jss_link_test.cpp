@@ -157,6 +157,27 @@ TEST_F(JssLink, TheThreeFramingsShareOneSocket) {
   EXPECT_EQ(link->jss_routes().route(kClient.subsystem, kClient.node)->endpoint, endpoint_of(peer));
 }
 
+TEST_F(JssLink, ADatagramLargerThanAnyRaOneArrivesWhole) {
+  // A JSS node may pack up to 64 KiB into one datagram (JRM cuts at 4 KiB,
+  // others need not); an RA datagram that large is still dropped as oversized.
+  auto& peer = peer_socket();
+  const udp::endpoint to(asio::ip::address_v4(kLoopback1), link->local_endpoint().port);
+  std::vector<std::uint8_t> contents = {0x02, 0x22};  // Query Heartbeat Pulse, then padding
+  contents.resize(7000, 0x5A);
+  const auto big = jss_datagram(kClient, kSelf, contents);
+  ASSERT_GT(big.size(), kMaxDatagramSize);
+  peer.send_to(asio::buffer(big), to);
+  const std::vector<std::uint8_t> ra_big(kMaxDatagramSize + 100, 0x4A);
+  peer.send_to(asio::buffer(ra_big), to);
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while ((jss.empty() || link->counters().dropped_for(DropReason::oversized) == 0) &&
+         std::chrono::steady_clock::now() < deadline)
+    io.run_for(5ms);
+  ASSERT_EQ(jss.size(), 1u);
+  EXPECT_EQ(jss[0].datagram, big);
+  EXPECT_EQ(link->counters().dropped_for(DropReason::oversized), 1u);
+}
+
 TEST_F(JssLink, AMalformedDatagramIsCountedWithItsReasonAndNotDelivered) {
   const Ipv4Endpoint from{kLoopback2, 4000};
   auto bad = query_identification(kClient);

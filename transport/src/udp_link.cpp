@@ -57,9 +57,11 @@ struct UdpLink::Socket {
   udp::endpoint sender;
   // The one outstanding receive's operation (and one being freed) lives here.
   std::shared_ptr<detail::HandlerMemory> receive_memory = std::make_shared<detail::HandlerMemory>(2, 512);
-  // One byte more than any JAUS datagram, so a larger one shows as oversized
-  // instead of being silently cut to a plausible length.
-  std::array<std::uint8_t, kMaxDatagramSize + 1> buffer{};
+  // As large as a UDP datagram can be: an AS5669A datagram may carry up to
+  // 64 KiB of transport messages, and an RA datagram larger than any JAUS
+  // one (kMaxDatagramSize) arrives whole, so its decoder drops it as
+  // oversized instead of it being cut to a plausible length.
+  std::array<std::uint8_t, 65536> buffer{};
 };
 
 UdpLink::UdpLink(asio::io_context& io, rt::Clock& clock, rt::Scheduler& scheduler, UdpLinkOptions options,
