@@ -1,9 +1,10 @@
-// The loop both profiles' runners share (runner.cpp for RA, jss_runner.cpp
-// for JSS): the cases --only and --skip leave, in order; a case is failed as
-// interrupted once the session is, skipped with its reason when it does not
-// apply, else run by `run_case(test_case, result)` (which fills the
+// What both profiles' runners share (runner.cpp for RA, jss_runner.cpp for
+// JSS). The loop: the cases --only and --skip leave, in order; a case is
+// failed as interrupted once the session is, skipped with its reason when it
+// does not apply, else run by `run_case(test_case, result)` (which fills the
 // outcome, the time it took and the exchange); each result is heard as soon
-// as its case ends.
+// as its case ends. The recorder: what the component under test sends the
+// runner (or its second OCU or client), in the case's exchange.
 #pragma once
 
 #include <string>
@@ -14,6 +15,35 @@
 #include "jaus/conform/runner.hpp"
 
 namespace jaus::conform::detail {
+
+inline const Address& source_of(const ocu::Received& r) { return r.header.source; }
+inline const jss::JssId& source_of(const ocu::JssReceived& r) { return r.source(); }
+
+// A message received from the component, as the report shows it: a JSS one
+// with its message ID as the code and the body after it as the payload.
+inline Exchanged received_record(const ocu::Received& r, rt::Duration at, bool second) {
+  return Exchanged{false, r.header, r.payload, at, second};
+}
+inline Exchanged received_record(const ocu::JssReceived& r, rt::Duration at, bool second) {
+  Exchanged e;
+  e.header.command_code = r.message_id();
+  if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
+  e.at = at;
+  e.second = second;
+  e.jss_peer = r.source();
+  return e;
+}
+
+// Records into `exchange` what `listening` (the runner's session, or its
+// second OCU or client) hears from `component`, timed on `clock` since
+// `started`. The listener's id, for unlisten().
+template <class Session, class Peer>
+auto record_from(Session& listening, const Peer& component, rt::Clock& clock, rt::TimePoint started,
+                 std::vector<Exchanged>& exchange, bool second = false) {
+  return listening.listen([&clock, &exchange, component, started, second](const auto& r) {
+    if (source_of(r) == component) exchange.push_back(received_record(r, clock.now() - started, second));
+  });
+}
 
 // What a report says of a case: its id, title and reference.
 inline const ConformanceCase& describe(const ConformanceCase& test_case) { return test_case; }

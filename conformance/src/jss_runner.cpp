@@ -29,16 +29,8 @@ Expected<ocu::JssSession*> JssCaseContext::second() {
   auto opened = open_client(second_jss_client_id(session.self()));
   if (!opened) return unexpected(make_error(opened.error().code, "a second client: " + opened.error().message()));
   second_client = *opened;
-  second_recorder = second_client->listen([this](const ocu::JssReceived& r) {
-    if (r.source() != target()) return;
-    Exchanged e;
-    e.header.command_code = r.message_id();
-    if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
-    e.at = session.clock().now() - started;
-    e.second = true;
-    e.jss_peer = r.source();
-    exchange.push_back(std::move(e));
-  });
+  second_recorder =
+      detail::record_from(*second_client, target(), session.clock(), started, exchange, /*second=*/true);
   // One round trip first: a node verifies a new endpoint (the amplification
   // guard's challenge) before it sends it more than replies, and a case's
   // first exchange may be a Reject Control it must hear.
@@ -91,15 +83,8 @@ std::vector<CaseResult> run_jss_cases(ocu::JssSession& session, const JssCompone
     JssCaseContext context{session, component, options.reply_timeout, {}, session.clock().now(), open_client};
     context.node_components = &node_components;
     // What the component sends the runner during the case, for the report.
-    const auto recorder = session.listen([&](const ocu::JssReceived& r) {
-      if (r.source() != component.id) return;
-      Exchanged e;
-      e.header.command_code = r.message_id();
-      if (r.contents.size() > 2) e.payload.assign(r.contents.begin() + 2, r.contents.end());
-      e.at = session.clock().now() - context.started;
-      e.jss_peer = r.source();
-      context.exchange.push_back(std::move(e));
-    });
+    const auto recorder =
+        detail::record_from(session, component.id, session.clock(), context.started, context.exchange);
     result.outcome = test_case.run(context);
     session.unlisten(recorder);
     result.took = session.clock().now() - context.started;

@@ -74,10 +74,8 @@ Expected<ocu::OcuSession*> CaseContext::second() {
   if (!opened) return unexpected(make_error(opened.error().code, "a second OCU: " + opened.error().message()));
   auto second = std::make_shared<SecondOcu>();
   second->session = std::move(*opened);
-  second->recorder = second->session->listen([this](const ocu::Received& r) {
-    if (r.header.source == target())
-      exchange.push_back(Exchanged{false, r.header, r.payload, session.clock().now() - started, true});
-  });
+  second->recorder =
+      detail::record_from(*second->session, target(), session.clock(), started, exchange, /*second=*/true);
   second_ocu = std::move(second);
   // One round trip first, as for a JSS client (JssCaseContext::second): a node
   // that verifies endpoints (jausd's transport.verify_endpoints) holds what
@@ -187,10 +185,8 @@ std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnder
   const auto run_case = [&](const ConformanceCase& test_case, CaseResult& result) {
     CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now(), ocus};
     // What the component sends the runner during the case, for the report.
-    const auto recorder = session.listen([&](const ocu::Received& r) {
-      if (r.header.source == component.address)
-        context.exchange.push_back(Exchanged{false, r.header, r.payload, session.clock().now() - context.started});
-    });
+    const auto recorder =
+        detail::record_from(session, component.address, session.clock(), context.started, context.exchange);
     result.outcome = test_case.run(context);
     session.unlisten(recorder);
     result.took = session.clock().now() - context.started;
