@@ -7,7 +7,7 @@
 
 #include "list_manager_elements.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 namespace list_elements_test {
 
 ListElement element(std::uint16_t uid, std::uint16_t previous, std::uint16_t next) {
@@ -108,4 +108,4 @@ TEST(JssListElements, SettingAnExistingUidMovesIt) {
 }
 
 }  // namespace list_elements_test
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

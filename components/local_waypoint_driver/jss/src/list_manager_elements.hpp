@@ -21,7 +21,7 @@
 
 #include "jaus/base/expected.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 
 // Reject Element Request response codes.
 enum class ElementReject : std::uint8_t {
@@ -81,4 +81,4 @@ class ListElements {
   Store elements_;
 };
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss
