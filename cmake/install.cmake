@@ -17,15 +17,28 @@ include(CMakePackageConfigHelpers)
 get_property(jaus_component_folders GLOBAL PROPERTY JAUS_COMPONENT_FOLDERS)
 list(TRANSFORM jaus_component_folders PREPEND jaus_ OUTPUT_VARIABLE jaus_component_libraries)
 list(TRANSFORM jaus_component_folders PREPEND components/ OUTPUT_VARIABLE jaus_component_include_dirs)
+# The kinds' JSS libraries (jaus_jss_translators(), components/CMakeLists.txt):
+# library jaus_<folder>_jss, headers in components/<folder>/jss/include.
+get_property(jaus_component_jss_folders GLOBAL PROPERTY JAUS_COMPONENT_JSS_FOLDERS)
+get_property(jaus_jss_translator_entries GLOBAL PROPERTY JAUS_JSS_TRANSLATORS)
+set(jaus_component_jss_libraries "")
+foreach(entry IN LISTS jaus_jss_translator_entries)
+  string(REPLACE "|" ";" parts "${entry}")
+  list(GET parts 0 library)
+  list(APPEND jaus_component_jss_libraries ${library})
+endforeach()
+list(REMOVE_DUPLICATES jaus_component_jss_libraries)
+list(REMOVE_DUPLICATES jaus_component_jss_folders)
 
 # The libraries of docs/architecture.md, in dependency order.
 set(JAUS_EXPORTED_LIBRARIES
-    jaus_base jaus_core jaus_runtime ${jaus_component_libraries} jaus_jss_face
+    jaus_base jaus_core jaus_runtime ${jaus_component_libraries} jaus_jss_face ${jaus_component_jss_libraries}
     jaus_transport jaus_clearpath jaus_clearpath_sim jaus_clearpath_asio jaus_bridge
     jaus_model_platform jaus_clearpath_platform jaus_host jaus_ocu jaus_conform)
 
 # The folders whose include/ holds public headers (all under jaus/, no two alike).
-set(JAUS_PUBLIC_INCLUDE_DIRS core runtime jss_face transport host ocu conformance clearpath bridge ${jaus_component_include_dirs})
+set(JAUS_PUBLIC_INCLUDE_DIRS core runtime jss_face transport host ocu conformance clearpath bridge ${jaus_component_include_dirs}
+    ${jaus_component_jss_folders})
 
 # jaus::plugin_api: what a component plugin compiles against (the headers,
 # C++20, the header-only libraries they include) and nothing it links: jausd

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "jaus/host/jss_translators.hpp"
+
 namespace jaus::host {
 
 namespace {
@@ -130,7 +132,9 @@ void NodeHost::make_node(node::Link& link) {
 }
 
 void NodeHost::make_jss_face(jss_face::JssFace::DatagramSender send) {
-  jss_face_ = std::make_unique<jss_face::JssFace>(config_.jss, *node_, std::move(send), log_);
+  // The face's services beyond the core: every kind's (host never names one).
+  jss_face_ =
+      std::make_unique<jss_face::JssFace>(config_.jss, builtin_jss_translators(), *node_, std::move(send), log_);
   face_link_->attach(jss_face_.get());
 }
 

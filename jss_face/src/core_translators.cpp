@@ -3,8 +3,6 @@
 // component lists both services.
 #include "core_translators.hpp"
 
-#include "builtin_translators.hpp"
-
 namespace jaus::jss_face {
 namespace {
 

@@ -12,6 +12,7 @@
 #include "jaus/jss/contents.hpp"
 #include "jaus/jss_face/face.hpp"
 #include "jaus/jss_face/translator.hpp"
+#include "jaus/jss_face/translator_kit.hpp"
 #include "jaus/wire/message.hpp"
 
 namespace jaus::jss_face {
@@ -24,37 +25,11 @@ std::unique_ptr<ServiceTranslator> make_management_translator();
 
 inline ServiceUri core_service(const char* name) { return ServiceUri{std::string("urn:jaus:jss:core:") + name, 1, 1}; }
 
-// The JSS message M a client sent; nullopt (counted and logged as
-// malformed) when its body is not M's.
-template <class M>
-std::optional<M> decode_jss(const JssInbound& m, FacePort& port) {
-  auto decoded = jss::decode_body<M>(m.body);
-  if (!decoded) {
-    port.malformed(std::string(M::name) + " from " + m.origin.client.to_string(), decoded.error().message());
-    return std::nullopt;
-  }
-  return std::move(*decoded);
-}
-
-// Sends a JSS message from our component (a value out of its field's range
-// is our bug: logged, never sent).
-template <class M>
-void reply_jss(FacePort& port, const ReplyTo& to, const jss::JssId& from, const M& message) {
-  auto contents = jss::try_encode_contents(message);
-  if (!contents) {
-    port.log(rt::LogLevel::error, std::string(M::name) + " to " + to.client.to_string() +
-                                      " not encoded: " + contents.error().message());
-    return;
-  }
-  port.reply(to, from, *contents);
-}
-
-// The RA message M a component sent to a client's alias (nullopt: not M's layout).
-template <class M>
-std::optional<M> decode_ra(const RaOutbound& m) {
-  auto decoded = wire::decode_payload<M>(m.payload);
-  if (!decoded) return std::nullopt;
-  return std::move(*decoded);
-}
+// Transport and Events (listed on every component; the face itself does the
+// transport and runs the events), Access Control, Management, Liveness,
+// Discovery, in the order they are asked: the first translator whose
+// from_jss()/from_ra() returns true wins. A kind's own services come after
+// them (JssFace's constructor).
+Translators core_translators(const FaceConfig& config);
 
 }  // namespace jaus::jss_face

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "aliases.hpp"
-#include "builtin_translators.hpp"
+#include "core_translators.hpp"
 #include "face_text.hpp"
 #include "face_events.hpp"
 #include "id_map.hpp"
@@ -55,7 +55,8 @@ std::string hex16(std::uint16_t v) { return hex_id(v); }
 }  // namespace
 
 struct JssFace::Impl final : FacePort, EventEngine::Host {
-  Impl(FaceConfig cfg, node::Node& n, DatagramSender sender, rt::LogFn log_fn)
+  Impl(FaceConfig cfg, const std::vector<TranslatorFactory>& services, node::Node& n, DatagramSender sender,
+       rt::LogFn log_fn)
       : config_(std::move(cfg)),
         node_(n),
         env_(n.environment()),
@@ -66,8 +67,11 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
         events_(config_, env_.clock, env_.scheduler, *this, log_),
         lines_(env_.clock, env_.scheduler,
                [this](rt::LogLevel level, const std::string& text) { log(level, text); }) {
+    // The core services first, then the kinds' in the order given.
     for (auto& t : core_translators(config_)) translators_.push_back(std::move(t));
-    for (auto& t : mobility_translators(config_)) translators_.push_back(std::move(t));
+    for (TranslatorFactory make : services)
+      if (make != nullptr)
+        for (auto& t : make(config_)) translators_.push_back(std::move(t));
     schedule_housekeeping();
   }
 
@@ -401,8 +405,9 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   JssFace::ClientLocator locate_;
 };
 
-JssFace::JssFace(FaceConfig config, node::Node& node, DatagramSender send, rt::LogFn log)
-    : impl_(std::make_unique<Impl>(std::move(config), node, std::move(send), std::move(log))) {}
+JssFace::JssFace(FaceConfig config, const std::vector<TranslatorFactory>& services, node::Node& node,
+                 DatagramSender send, rt::LogFn log)
+    : impl_(std::make_unique<Impl>(std::move(config), services, node, std::move(send), std::move(log))) {}
 JssFace::~JssFace() = default;
 
 void JssFace::receive(std::span<const std::uint8_t> datagram, rt::SenderStanding standing) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "jaus/base/virtual_time.hpp"
+#include "jaus/host/jss_translators.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/jss/judp.hpp"
 #include "jaus/jss/large_message.hpp"
@@ -48,8 +49,9 @@ class JssFaceHost {
     if (!attached) throw std::runtime_error(attached.error().message());
     host_ = std::move(*attached);
     link_.deliver_to(host_->node());
+    // The kinds' JSS services, as a node host hands them to its face.
     face_ = std::make_unique<jss_face::JssFace>(
-        std::move(config), host_->node(),
+        std::move(config), host::builtin_jss_translators(), host_->node(),
         [this](const jss::JssId&, std::span<const std::uint8_t> datagram) { from_face(datagram); },
         [this](rt::LogLevel, const std::string& line) { log_.push_back(line); });
     face_link_.attach(face_.get());

@@ -1,5 +1,6 @@
 // The list manager's element store (list_manager_elements.hpp): the rules of
-// M10 ListManager.xml and the Reject Element Request code of each broken one;
+// the JSS List Manager service (docs/jss.md, "List Manager and Local Waypoint
+// List Driver") and the Reject Element Request code of each broken one;
 // a rejected request leaves the list as it was.
 #include <gtest/gtest.h>
 
@@ -7,7 +8,7 @@
 
 #include "list_manager_elements.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 namespace list_elements_test {
 
 ListElement element(std::uint16_t uid, std::uint16_t previous, std::uint16_t next) {
@@ -108,4 +109,4 @@ TEST(JssListElements, SettingAnExistingUidMovesIt) {
 }
 
 }  // namespace list_elements_test
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

@@ -4,18 +4,21 @@
 
 #include <vector>
 
+#include "jaus/components_jss/local_waypoint_driver_jss.hpp"
+#include "jaus/components_jss/primitive_driver_jss.hpp"
 #include "jaus/jss/all.hpp"
+#include "jaus/jss_face/scaling.hpp"
+#include "jaus/jss_face/translator_kit.hpp"
 #include "jaus/messages/all.hpp"
-#include "mobility_translators.hpp"
-#include "mobility_translators_common.hpp"
-#include "scaling.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 namespace scaling_test {
+
+namespace scaling = jss_face::scaling;
 
 using Bytes = std::vector<std::uint8_t>;
 
-Bytes ra_payload(const auto& message) { return *mobility::encode_ra(message); }
+Bytes ra_payload(const auto& message) { return *jss_face::kit::encode_ra(message); }
 
 TEST(JssScaling, WrenchEffortExampleRescalesToRaSigned) {
   jss::msg::SetWrenchEffort jss{};
@@ -133,4 +136,4 @@ TEST(JssScaling, AnRaReportSentAsItIsIsRescaledInJss) {
 }
 
 }  // namespace scaling_test
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

@@ -1,5 +1,6 @@
-// The JSS face of a node: SAE JAUS (AS5669A transport, AS5710 core, AS6009
-// mobility) spoken by the same components that speak RA 3.x. Sans-I/O: the
+// The JSS face of a node: SAE JAUS (AS5669A transport, AS5710 core, and the
+// services the component kinds translate, components/<name>/jss/) spoken by
+// the same components that speak RA 3.x. Sans-I/O: the
 // transport hands it AS5669A datagrams and sends what it returns; the node's
 // link hands it what the components send to JSS clients (FaceLink).
 //
@@ -8,8 +9,9 @@
 // slot 1-254 per JSS client node, channel 1 for the client's own messages and
 // 2.. for its events' queries. So the RA component's controller, authority
 // rule, emergency latch, controller timeout and liveness apply to JSS
-// clients exactly as to RA ones; the face keeps only what RA has no state for
-// (events, registered services, the list manager's elements) and translates.
+// clients exactly as to RA ones; the face and the translators keep only what
+// RA has no state for (events, registered services, a service's own tables)
+// and translate.
 // Each of our RA components is a JSS component (IDs: FaceConfig).
 #pragma once
 
@@ -21,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "jaus/base/log.hpp"
 #include "jaus/core/header.hpp"
@@ -77,8 +80,12 @@ class JssFace {
   // endpoint, else the JSS multicast group).
   using DatagramSender = std::function<void(const jss::JssId& to, std::span<const std::uint8_t> datagram)>;
 
-  // `node` outlives the face; its clock and scheduler are the face's.
-  JssFace(FaceConfig config, node::Node& node, DatagramSender send, rt::LogFn log = {});
+  // `node` outlives the face; its clock and scheduler are the face's. The
+  // face runs the core services itself; `services` are the rest, the
+  // component kinds' (translator.hpp), asked in this order after the core's
+  // (a node host passes host::builtin_jss_translators()).
+  JssFace(FaceConfig config, const std::vector<TranslatorFactory>& services, node::Node& node, DatagramSender send,
+          rt::LogFn log = {});
   ~JssFace();
   JssFace(const JssFace&) = delete;
   JssFace& operator=(const JssFace&) = delete;

@@ -7,16 +7,22 @@
 // component's, one arbitration for both dialects. A translator turns the JSS
 // messages of its services into RA messages to the component (send_ra) and
 // the component's RA replies to the alias back into JSS (reply); what the RA
-// has no message for (discovery's service URIs, event tables, the list
-// manager's elements) it keeps and answers itself, with reply().
+// has no message for (discovery's service URIs, event tables, a list's
+// elements) it keeps and answers itself, with reply().
 //
 // ReplyTo names where an answer goes: the client, or one of its events. The
 // event engine asks a query through the same from_jss() with origin.event_id
 // set, so every query a translator answers can also be an event's; reply()
 // wraps the report in Event for it.
+//
+// The face itself runs the core services (core v1.1); every other service is
+// a component kind's, in its folder (components/<name>/jss/), written with the
+// helpers of translator_kit.hpp, report_translator.hpp and scaling.hpp, and
+// handed to the face as a TranslatorFactory (JssFace's constructor).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -67,7 +73,7 @@ struct RaOutbound {
 
 // A service as discovery reports it (docs/jss.md, "What is supported").
 struct ServiceUri {
-  std::string uri;  // "urn:jaus:jss:mobility:PrimitiveDriver"
+  std::string uri;  // "urn:jaus:jss:core:AccessControl"
   std::uint8_t major = 1;
   std::uint8_t minor = 0;
   bool operator==(const ServiceUri&) const = default;
@@ -94,8 +100,8 @@ class FacePort {
   virtual const FaceConfig& config() const = 0;
   virtual rt::Clock& clock() = 0;
   virtual rt::Scheduler& scheduler() = 0;
-  // The node, for state the RA has no message for (the waypoint driver's
-  // active waypoint): read it, never command through it.
+  // The node, for state the RA has no message for (a component's state
+  // no RA report carries): read it, never command through it.
   virtual node::Node& node() = 0;
   virtual void log(rt::LogLevel level, const std::string& text) = 0;
   // The services every registered translator lists for a component with
@@ -125,7 +131,7 @@ class FacePort {
 class ServiceTranslator {
  public:
   virtual ~ServiceTranslator() = default;
-  virtual std::string_view name() const = 0;  // "primitive driver", for logs
+  virtual std::string_view name() const = 0;  // "access control", for logs
   // The services it adds to a component with this RA component ID (empty:
   // none), for Report Services / Report Service List.
   virtual std::vector<ServiceUri> services(std::uint8_t ra_component_id) const = 0;
@@ -141,5 +147,12 @@ class ServiceTranslator {
   // `client` names a client node: component 255 (every component of it).
   virtual void forget(const jss::JssId& client) { (void)client; }
 };
+
+// A component kind's JSS services: its translators, in the order the face
+// asks them (the first whose from_jss()/from_ra() returns true wins).
+using Translators = std::vector<std::unique_ptr<ServiceTranslator>>;
+// What a kind hands the face: its translators for a face with this
+// configuration (called once, when the face is made).
+using TranslatorFactory = Translators (*)(const FaceConfig& config);
 
 }  // namespace jaus::jss_face

@@ -1,4 +1,4 @@
-// Local Waypoint Driver 1.0 on the RA local waypoint driver (46), docs/jss.md
+// Local Waypoint Driver 1.0 on the RA local waypoint driver, docs/jss.md
 // "Local Waypoint Driver (one waypoint)" (state and loading: waypoint_driver_state.hpp):
 //   Set Local Waypoint (controller, any state): kept as set (tolerances
 //     included, RA has none) and loaded as a one-waypoint RA list (number 0:
@@ -12,13 +12,16 @@
 // The list driver's Travel Speed and Local Waypoint queries are these too.
 #include <memory>
 
+#include "jaus/core/component_ids.hpp"
+#include "jaus/jss_face/translator_kit.hpp"
 #include "jaus/wire/describe.hpp"
-#include "mobility_translators.hpp"
 #include "waypoint_driver_state.hpp"
 #include "waypoint_translator.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 namespace {
+
+using namespace jss_face;
 
 class LocalWaypointDriverTranslator final : public ServiceTranslator {
  public:
@@ -51,7 +54,7 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
       case jss::msg::QueryTravelSpeed::code: {
         jss::msg::ReportTravelSpeed report{};
         report.speed_mps = drivers_->travel_speed(port, m.ra_component);
-        mobility::reply_jss(port, m.origin, m.our_component, report);
+        kit::reply_jss(port, m.origin, m.our_component, report);
         WaypointDrivers::heard(port, m, log_);
         return true;
       }
@@ -64,9 +67,9 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
 
  private:
   void set_waypoint(const JssInbound& m, FacePort& port) {
-    auto set = mobility::decode_jss_body<jss::msg::SetLocalWaypoint>(m.body);
-    if (!set) return mobility::log_malformed(port, m, jss::msg::SetLocalWaypoint::name, set.error());
-    if (!mobility::client_controls(port, m)) return refused(m, port, "Set Local Waypoint", "it does not control it");
+    auto set = kit::decode_jss_body<jss::msg::SetLocalWaypoint>(m.body);
+    if (!set) return kit::log_malformed(port, m, jss::msg::SetLocalWaypoint::name, set.error());
+    if (!kit::client_controls(port, m)) return refused(m, port, "Set Local Waypoint", "it does not control it");
     auto& s = drivers_->state(m.ra_component);
     s.loaded = WaypointDriverState::Loaded::single_waypoint;
     s.waypoint = *set;
@@ -77,20 +80,20 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
   }
 
   void query_waypoint(const JssInbound& m, FacePort& port) {
-    auto query = mobility::decode_jss_body<jss::msg::QueryLocalWaypoint>(m.body);
-    if (!query) return mobility::log_malformed(port, m, jss::msg::QueryLocalWaypoint::name, query.error());
+    auto query = kit::decode_jss_body<jss::msg::QueryLocalWaypoint>(m.body);
+    if (!query) return kit::log_malformed(port, m, jss::msg::QueryLocalWaypoint::name, query.error());
     auto waypoint = drivers_->current_waypoint(port, m.ra_component);
     if (!waypoint) return;  // answered only when a waypoint exists
     jss::msg::ReportLocalWaypoint report{};
     static_cast<jss::msg::SetLocalWaypoint::body_type&>(report) = *waypoint;
     wire::mask_presence(static_cast<jss::msg::SetLocalWaypoint::body_type&>(report), query->presence_vector);
-    mobility::reply_jss(port, m.origin, m.our_component, report);
+    kit::reply_jss(port, m.origin, m.our_component, report);
   }
 
   void set_speed(const JssInbound& m, FacePort& port) {
-    auto set = mobility::decode_jss_body<jss::msg::SetTravelSpeed>(m.body);
-    if (!set) return mobility::log_malformed(port, m, jss::msg::SetTravelSpeed::name, set.error());
-    if (!mobility::client_controls(port, m)) return refused(m, port, "Set Travel Speed", "it does not control it");
+    auto set = kit::decode_jss_body<jss::msg::SetTravelSpeed>(m.body);
+    if (!set) return kit::log_malformed(port, m, jss::msg::SetTravelSpeed::name, set.error());
+    if (!kit::client_controls(port, m)) return refused(m, port, "Set Travel Speed", "it does not control it");
     if (!WaypointDrivers::ready(port, m.ra_component))
       return refused(m, port, "Set Travel Speed", "the driver is not Ready");
     const auto* d = WaypointDrivers::driver(port, m.ra_component);
@@ -102,12 +105,12 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
 
   void refused(const JssInbound& m, FacePort& port, std::string_view what, std::string_view why) {
     log_.repeated(port, "waypoint commands not executed", rt::LogLevel::info, [&] {
-      return std::string(what) + " from " + mobility::who(m, port) + " not executed: " + std::string(why);
+      return std::string(what) + " from " + kit::who(m, port) + " not executed: " + std::string(why);
     });
   }
 
   std::shared_ptr<WaypointDrivers> drivers_;
-  mobility::TranslatorLog log_;
+  kit::TranslatorLog log_;
 };
 
 }  // namespace
@@ -116,4 +119,4 @@ std::unique_ptr<ServiceTranslator> make_local_waypoint_driver_translator(std::sh
   return std::make_unique<LocalWaypointDriverTranslator>(std::move(drivers));
 }
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

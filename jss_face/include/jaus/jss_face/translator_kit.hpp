@@ -1,6 +1,9 @@
-// What the mobility translators share (docs/jss.md, "Mobility services"): encoding and
-// decoding on both sides, reading an RA component in process (never
-// commanding through it), and a rate-limited log for what remote input repeats.
+// The translator kit: what service translators share (translator.hpp;
+// docs/jss.md, "The translator kit"): decoding and encoding on both sides,
+// reading an RA component in process (never commanding through it), and a
+// rate-limited log for what remote input repeats. The face's core services
+// use it, and so does every component kind's JSS library
+// (components/<name>/jss/).
 #pragma once
 
 #include <array>
@@ -9,11 +12,13 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "jaus/base/expected.hpp"
 #include "jaus/core/header.hpp"
 #include "jaus/jss/all.hpp"
+#include "jaus/jss/contents.hpp"
 #include "jaus/jss_face/face.hpp"
 #include "jaus/jss_face/translator.hpp"
 #include "jaus/messages/all.hpp"
@@ -21,9 +26,44 @@
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/wire/message.hpp"
 
-#include "core_translators.hpp"
+namespace jaus::jss_face {
 
-namespace jaus::jss_face::mobility {
+// The JSS message M a client sent; nullopt (counted and logged as
+// malformed) when its body is not M's.
+template <class M>
+std::optional<M> decode_jss(const JssInbound& m, FacePort& port) {
+  auto decoded = jss::decode_body<M>(m.body);
+  if (!decoded) {
+    port.malformed(std::string(M::name) + " from " + m.origin.client.to_string(), decoded.error().message());
+    return std::nullopt;
+  }
+  return std::move(*decoded);
+}
+
+// Sends a JSS message from our component (a value out of its field's range
+// is our bug: logged, never sent).
+template <class M>
+void reply_jss(FacePort& port, const ReplyTo& to, const jss::JssId& from, const M& message) {
+  auto contents = jss::try_encode_contents(message);
+  if (!contents) {
+    port.log(rt::LogLevel::error, std::string(M::name) + " to " + to.client.to_string() +
+                                      " not encoded: " + contents.error().message());
+    return;
+  }
+  port.reply(to, from, *contents);
+}
+
+// The RA message M a component sent to a client's alias (nullopt: not M's layout).
+template <class M>
+std::optional<M> decode_ra(const RaOutbound& m) {
+  auto decoded = wire::decode_payload<M>(m.payload);
+  if (!decoded) return std::nullopt;
+  return std::move(*decoded);
+}
+
+}  // namespace jaus::jss_face
+
+namespace jaus::jss_face::kit {
 
 // An RA message's payload (no header).
 template <class M>
@@ -86,7 +126,7 @@ void send_ra(FacePort& port, const JssInbound& from, const M& message, Translato
   port.send_ra(from.origin, from.ra_component, M::code, *payload, from.standing);
 }
 
-// reply_jss (a JSS message from our component) is the core translators' one.
+// reply_jss (a JSS message from our component), as above.
 using jaus::jss_face::reply_jss;
 
 // A JSS body that did not decode: the face counts and logs it; never acted on.
@@ -100,8 +140,8 @@ inline const rt::Component* ra_component(FacePort& port, const Address& address)
 }
 
 // Whether the client that sent `m` controls the RA component (its alias is
-// the controller): what the JSS list manager asks before it changes a list
-// the RA has no message for.
+// the controller): what a translator asks before it changes state the RA
+// has no message for.
 inline bool client_controls(FacePort& port, const Address& ra, const jss::JssId& client) {
   const rt::Component* component = ra_component(port, ra);
   if (component == nullptr) return false;
@@ -113,4 +153,4 @@ inline bool client_controls(FacePort& port, const JssInbound& m) {
   return client_controls(port, m.ra_component, m.origin.client);
 }
 
-}  // namespace jaus::jss_face::mobility
+}  // namespace jaus::jss_face::kit

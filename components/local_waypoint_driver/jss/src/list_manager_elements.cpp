@@ -2,7 +2,7 @@
 
 #include <set>
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 namespace {
 
 Unexpected<ElementRejection> reject(ElementReject code, std::string why) {
@@ -158,4 +158,4 @@ std::vector<const ListElement*> ListElements::from(std::uint16_t start) const {
   return route;
 }
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

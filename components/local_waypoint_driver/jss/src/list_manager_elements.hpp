@@ -3,7 +3,7 @@
 // no list manager. Sans-I/O: requests in, a confirmation or the Reject
 // Element Request code out; a rejected request leaves the list unchanged.
 //
-// Rules (M10 ListManager.xml): UIDs 0 and 65535 are reserved; exactly one
+// Rules (the JSS List Manager service's, docs/jss.md): UIDs 0 and 65535 are reserved; exactly one
 // head (previous 0); at most one tail (next 0), none when the list is
 // circular (the tail's next is the head, whose previous stays 0); every link
 // names an element of the list or 0, no element links to itself, and walking
@@ -21,7 +21,7 @@
 
 #include "jaus/base/expected.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 
 // Reject Element Request response codes.
 enum class ElementReject : std::uint8_t {
@@ -81,4 +81,4 @@ class ListElements {
   Store elements_;
 };
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

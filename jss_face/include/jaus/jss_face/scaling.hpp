@@ -1,8 +1,9 @@
 // Where JSS and RA 3.x scale the same quantity differently (docs/jss.md,
-// "Scaling"). Every scaled field is a double in engineering units on both sides
-// (the codecs decode and encode), so the face only has to keep each value
-// inside the range of the side it goes to, and give JSS's symmetric ranges
-// the exact zero they lack: JSS's unsigned encoding of [-a, a] has no integer
+// "Scaling"; part of the translator kit, translator_kit.hpp). Every scaled
+// field is a double in engineering units on both sides (the codecs decode
+// and encode), so a translator only has to keep each value inside the range
+// of the side it goes to, and give JSS's symmetric ranges the exact zero
+// they lack: JSS's unsigned encoding of [-a, a] has no integer
 // for 0 (0 % effort is 32767.5; JTS truncates to 32767, we round to 32768),
 // so a value within one JSS step of 0 is 0 when it goes to RA.
 #pragma once
@@ -11,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
-
 
 namespace jaus::jss_face::scaling {
 

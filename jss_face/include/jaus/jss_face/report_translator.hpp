@@ -1,10 +1,11 @@
-// A mobility service whose query and report are the RA component's own
-// (docs/jss.md, "Primitive Driver", "Sensors"): one description read in each
-// dialect, so the JSS query goes to the RA component as it came (the same
-// presence vector) and the RA report goes back to the JSS client as it is;
-// every scaled field is a double, so encoding in JSS rescales it, and the
-// JSS encoder clamps to JSS's range (every RA report range lies within
-// JSS's). Commands of the service, if any, are the derived class's.
+// A JSS service whose query and report are the RA component's own (part of
+// the translator kit, translator_kit.hpp; docs/jss.md, "The translator
+// kit"): one description read in each dialect, so the JSS query goes to the
+// RA component as it came (the same presence vector) and the RA report goes
+// back to the JSS client as it is; every scaled field is a double, so
+// encoding in JSS rescales it, and the JSS encoder clamps to JSS's range
+// (every RA report range lies within JSS's). Commands of the service, if
+// any, are the derived class's.
 #pragma once
 
 #include <string>
@@ -12,9 +13,9 @@
 #include <utility>
 #include <vector>
 
-#include "mobility_translators_common.hpp"
+#include "jaus/jss_face/translator_kit.hpp"
 
-namespace jaus::jss_face::mobility {
+namespace jaus::jss_face::kit {
 
 template <class Query, class Report>
 class ReportTranslator : public ServiceTranslator {
@@ -71,4 +72,4 @@ class ReportTranslator : public ServiceTranslator {
   TranslatorLog log_;
 };
 
-}  // namespace jaus::jss_face::mobility
+}  // namespace jaus::jss_face::kit

@@ -1,4 +1,4 @@
-// What the face keeps per RA local waypoint driver (46) for its JSS services
+// What the face keeps per RA local waypoint driver for its JSS services
 // (Local Waypoint Driver, List Manager, Local Waypoint List Driver: one JSS
 // component, one access control), docs/jss.md "Mobility services", and how it loads the
 // RA driver. RA has no list manager, no tolerances, no active element report
@@ -26,10 +26,10 @@
 #include <vector>
 
 #include "jaus/components/local_waypoint_driver.hpp"
+#include "jaus/jss_face/translator_kit.hpp"
 #include "list_manager_elements.hpp"
-#include "mobility_translators_common.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 
 // Elements kept per driver: the RA waypoint driver's default max_waypoints.
 inline constexpr std::size_t kMaxListElements = 1000;
@@ -44,7 +44,7 @@ struct WaypointDriverState {
   std::optional<jss::msg::SetLocalWaypoint> waypoint;  // the single waypoint as set
   std::vector<std::uint16_t> route_uids;  // the element UID of each RA waypoint number
   double speed_mps = 0;                   // JSS travel speed; 0 outside Ready
-  std::optional<ReplyTo> speed_by;        // the client that set it
+  std::optional<jss_face::ReplyTo> speed_by;  // the client that set it
   rt::SenderStanding speed_standing = rt::SenderStanding::trusted;
   std::uint64_t expected_route_starts = 0;  // the RA driver's routes_started after our last start
 };
@@ -60,23 +60,25 @@ class WaypointDrivers {
   // one per local component the face delivers messages for).
   WaypointDriverState& state(const Address& ra_driver);
   // The RA driver, read in process (nullptr: not a local waypoint driver).
-  static const components::LocalWaypointDriver* driver(FacePort& port, const Address& ra_driver);
-  static bool ready(FacePort& port, const Address& ra_driver);
+  static const components::LocalWaypointDriver* driver(jss_face::FacePort& port, const Address& ra_driver);
+  static bool ready(jss_face::FacePort& port, const Address& ra_driver);
 
   // Loads `waypoints` as RA waypoints 0..n-1 and the travel speed, as the
   // client that sent `m`; `start`: then Standby + Resume (the driver is Ready).
-  void load(FacePort& port, const JssInbound& m, std::span<const jss::msg::SetLocalWaypoint> waypoints,
-            double speed_mps, bool start, mobility::TranslatorLog& log);
+  void load(jss_face::FacePort& port, const jss_face::JssInbound& m,
+            std::span<const jss::msg::SetLocalWaypoint> waypoints, double speed_mps, bool start,
+            jss_face::kit::TranslatorLog& log);
   // Changes the travel speed only.
-  void set_speed(FacePort& port, const JssInbound& m, double speed_mps, mobility::TranslatorLog& log);
+  void set_speed(jss_face::FacePort& port, const jss_face::JssInbound& m, double speed_mps,
+                 jss_face::kit::TranslatorLog& log);
 
   // The element UID the RA driver executes; 0 when nothing does (no list of
   // ours loaded, route finished, driver not Ready).
-  std::uint16_t active_element(FacePort& port, const Address& ra_driver);
+  std::uint16_t active_element(jss_face::FacePort& port, const Address& ra_driver);
   // The waypoint driven to (or last set): Report Local Waypoint's answer.
-  std::optional<jss::msg::SetLocalWaypoint> current_waypoint(FacePort& port, const Address& ra_driver);
+  std::optional<jss::msg::SetLocalWaypoint> current_waypoint(jss_face::FacePort& port, const Address& ra_driver);
   // JSS travel speed: 0 unless the driver is Ready.
-  double travel_speed(FacePort& port, const Address& ra_driver);
+  double travel_speed(jss_face::FacePort& port, const Address& ra_driver);
 
   // A message the face answers itself (list manager, active element, travel
   // speed, local waypoint) reaches no RA component, yet RA counts any
@@ -85,19 +87,19 @@ class WaypointDrivers {
   // from its alias, whose answer the waypoint translator drops. A client
   // that polls the list driver keeps control as one polling a pose sensor
   // does. Nothing for other senders or for events' queries.
-  static void heard(FacePort& port, const JssInbound& m, mobility::TranslatorLog& log);
+  static void heard(jss_face::FacePort& port, const jss_face::JssInbound& m, jss_face::kit::TranslatorLog& log);
   // That query's answer (RA Report Travel Speed from the driver to an alias).
-  static bool is_heard_answer(const RaOutbound& m);
+  static bool is_heard_answer(const jss_face::RaOutbound& m);
 
  private:
-  void watch(FacePort& port);
+  void watch(jss_face::FacePort& port);
   void check_left_ready();
-  bool left_ready(FacePort& port, const Address& ra_driver, const WaypointDriverState& s);
+  bool left_ready(jss_face::FacePort& port, const Address& ra_driver, const WaypointDriverState& s);
 
   std::map<Address, WaypointDriverState> states_;
-  FacePort* port_ = nullptr;  // the face's, for the check's timer
+  jss_face::FacePort* port_ = nullptr;  // the face's, for the check's timer
   rt::Scheduler* scheduler_ = nullptr;
   rt::TimerId timer_ = rt::kNoTimer;
 };
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

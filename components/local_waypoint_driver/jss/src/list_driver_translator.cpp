@@ -1,5 +1,5 @@
 // List Manager 1.0 and Local Waypoint List Driver 1.0 on the RA local
-// waypoint driver (46), docs/jss.md "List Manager and Local Waypoint List Driver"; the element store:
+// waypoint driver, docs/jss.md "List Manager and Local Waypoint List Driver"; the element store:
 // list_manager_elements.hpp, loading the RA driver: waypoint_driver_state.hpp.
 //   Set / Delete Element (controller, any state): Confirm Element Request,
 //     or Reject Element Request with the code of the first broken rule (the
@@ -16,13 +16,16 @@
 #include <memory>
 #include <vector>
 
+#include "jaus/core/component_ids.hpp"
+#include "jaus/jss_face/translator_kit.hpp"
 #include "list_manager_elements.hpp"
-#include "mobility_translators.hpp"
 #include "waypoint_driver_state.hpp"
 #include "waypoint_translator.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 namespace {
+
+using namespace jss_face;
 
 class ListDriverTranslator final : public ServiceTranslator {
  public:
@@ -71,9 +74,9 @@ class ListDriverTranslator final : public ServiceTranslator {
         delete_elements(m, port);
         return;
       case jss::msg::QueryElement::code: {
-        auto query = mobility::decode_jss_body<jss::msg::QueryElement>(m.body);
+        auto query = kit::decode_jss_body<jss::msg::QueryElement>(m.body);
         if (!query) {
-          mobility::log_malformed(port, m, jss::msg::QueryElement::name, query.error());
+          kit::log_malformed(port, m, jss::msg::QueryElement::name, query.error());
           return;
         }
         const ListElement* e = elements.find(query->element_uid);
@@ -84,19 +87,19 @@ class ListDriverTranslator final : public ServiceTranslator {
         report.next_uid = e->next_uid;
         report.format = e->format;
         report.element_data = e->data;
-        mobility::reply_jss(port, m.origin, m.our_component, report);
+        kit::reply_jss(port, m.origin, m.our_component, report);
         return;
       }
       case jss::msg::QueryElementList::code: {
         jss::msg::ReportElementList report{};
         report.element_uids = elements.in_order();
-        mobility::reply_jss(port, m.origin, m.our_component, report);
+        kit::reply_jss(port, m.origin, m.our_component, report);
         return;
       }
       case jss::msg::QueryElementCount::code: {
         jss::msg::ReportElementCount report{};
         report.element_count = static_cast<std::uint16_t>(elements.size());
-        mobility::reply_jss(port, m.origin, m.our_component, report);
+        kit::reply_jss(port, m.origin, m.our_component, report);
         return;
       }
       case jss::msg::ExecuteList::code:
@@ -105,7 +108,7 @@ class ListDriverTranslator final : public ServiceTranslator {
       case jss::msg::QueryActiveElement::code: {
         jss::msg::ReportActiveElement report{};
         report.element_uid = drivers_->active_element(port, m.ra_component);
-        mobility::reply_jss(port, m.origin, m.our_component, report);
+        kit::reply_jss(port, m.origin, m.our_component, report);
         return;
       }
       default:
@@ -114,9 +117,9 @@ class ListDriverTranslator final : public ServiceTranslator {
   }
 
   void set_elements(const JssInbound& m, FacePort& port) {
-    auto set = mobility::decode_jss_body<jss::msg::SetElement>(m.body);
-    if (!set) return mobility::log_malformed(port, m, jss::msg::SetElement::name, set.error());
-    if (!mobility::client_controls(port, m)) return ignored(m, port, "Set Element", "it does not control it");
+    auto set = kit::decode_jss_body<jss::msg::SetElement>(m.body);
+    if (!set) return kit::log_malformed(port, m, jss::msg::SetElement::name, set.error());
+    if (!kit::client_controls(port, m)) return ignored(m, port, "Set Element", "it does not control it");
     std::vector<ListElement> elements;
     elements.reserve(set->elements.size());
     for (const auto& record : set->elements) {
@@ -133,22 +136,22 @@ class ListDriverTranslator final : public ServiceTranslator {
     }
     auto applied = drivers_->state(m.ra_component).elements.set(elements);
     if (!applied) return reject(m, port, set->request_id, applied.error());
-    mobility::reply_jss(port, m.origin, m.our_component, jss::msg::ConfirmElementRequest{{set->request_id}});
+    kit::reply_jss(port, m.origin, m.our_component, jss::msg::ConfirmElementRequest{{set->request_id}});
   }
 
   void delete_elements(const JssInbound& m, FacePort& port) {
-    auto del = mobility::decode_jss_body<jss::msg::DeleteElement>(m.body);
-    if (!del) return mobility::log_malformed(port, m, jss::msg::DeleteElement::name, del.error());
-    if (!mobility::client_controls(port, m)) return ignored(m, port, "Delete Element", "it does not control it");
+    auto del = kit::decode_jss_body<jss::msg::DeleteElement>(m.body);
+    if (!del) return kit::log_malformed(port, m, jss::msg::DeleteElement::name, del.error());
+    if (!kit::client_controls(port, m)) return ignored(m, port, "Delete Element", "it does not control it");
     auto removed = drivers_->state(m.ra_component).elements.remove(del->element_uids);
     if (!removed) return reject(m, port, del->request_id, removed.error());
-    mobility::reply_jss(port, m.origin, m.our_component, jss::msg::ConfirmElementRequest{{del->request_id}});
+    kit::reply_jss(port, m.origin, m.our_component, jss::msg::ConfirmElementRequest{{del->request_id}});
   }
 
   void execute(const JssInbound& m, FacePort& port) {
-    auto run = mobility::decode_jss_body<jss::msg::ExecuteList>(m.body);
-    if (!run) return mobility::log_malformed(port, m, jss::msg::ExecuteList::name, run.error());
-    if (!mobility::client_controls(port, m)) return ignored(m, port, "Execute List", "it does not control it");
+    auto run = kit::decode_jss_body<jss::msg::ExecuteList>(m.body);
+    if (!run) return kit::log_malformed(port, m, jss::msg::ExecuteList::name, run.error());
+    if (!kit::client_controls(port, m)) return ignored(m, port, "Execute List", "it does not control it");
     if (!WaypointDrivers::ready(port, m.ra_component))
       return ignored(m, port, "Execute List", "the driver is not Ready");
     if (!run->element_uid) return drivers_->set_speed(port, m, run->speed_mps, log_);
@@ -170,23 +173,23 @@ class ListDriverTranslator final : public ServiceTranslator {
 
   void reject(const JssInbound& m, FacePort& port, std::uint8_t request_id, const ElementRejection& why) {
     log_.repeated(port, "element requests rejected", rt::LogLevel::info, [&] {
-      return "element request " + std::to_string(request_id) + " from " + mobility::who(m) + " rejected (code " +
+      return "element request " + std::to_string(request_id) + " from " + kit::who(m) + " rejected (code " +
              std::to_string(static_cast<int>(why.code)) + "): " + why.why;
     });
     jss::msg::RejectElementRequest reply{};
     reply.request_id = request_id;
     reply.response_code = static_cast<std::uint8_t>(why.code);
-    mobility::reply_jss(port, m.origin, m.our_component, reply);
+    kit::reply_jss(port, m.origin, m.our_component, reply);
   }
 
   void ignored(const JssInbound& m, FacePort& port, std::string_view what, std::string_view why) {
     log_.repeated(port, "list commands not executed", rt::LogLevel::info, [&] {
-      return std::string(what) + " from " + mobility::who(m, port) + " not executed: " + std::string(why);
+      return std::string(what) + " from " + kit::who(m, port) + " not executed: " + std::string(why);
     });
   }
 
   std::shared_ptr<WaypointDrivers> drivers_;
-  mobility::TranslatorLog log_;
+  kit::TranslatorLog log_;
 };
 
 }  // namespace
@@ -195,4 +198,4 @@ std::unique_ptr<ServiceTranslator> make_list_driver_translator(std::shared_ptr<W
   return std::make_unique<ListDriverTranslator>(std::move(drivers));
 }
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

@@ -1,9 +1,12 @@
 #include "waypoint_driver_state.hpp"
 
-#include "mobility_translators.hpp"
-#include "scaling.hpp"
+#include "jaus/components_jss/local_waypoint_driver_jss.hpp"
+#include "jaus/core/component_ids.hpp"
+#include "jaus/jss_face/scaling.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
+
+using namespace jss_face;
 
 msg::SetLocalWaypoint local_waypoint_to_ra(const jss::msg::SetLocalWaypoint& jss, std::uint16_t number) {
   // One body, read in each dialect: the RA side gets the list position as
@@ -38,18 +41,18 @@ bool WaypointDrivers::ready(FacePort& port, const Address& ra_driver) {
 }
 
 void WaypointDrivers::load(FacePort& port, const JssInbound& m, std::span<const jss::msg::SetLocalWaypoint> waypoints,
-                           double speed_mps, bool start, mobility::TranslatorLog& log) {
+                           double speed_mps, bool start, kit::TranslatorLog& log) {
   auto& s = state(m.ra_component);
   // Standby first: a list and a speed above zero given to a Ready RA driver
   // start it on their own (its RA start rule 2), and a route of the old list
   // would run until the Standby. Loaded in Standby, only the Resume starts.
-  if (start) mobility::send_ra(port, m, msg::Standby{}, log);
+  if (start) kit::send_ra(port, m, msg::Standby{}, log);
   for (std::size_t i = 0; i < waypoints.size(); ++i)
-    mobility::send_ra(port, m, local_waypoint_to_ra(waypoints[i], static_cast<std::uint16_t>(i)), log);
-  mobility::send_ra(port, m, msg::SetTravelSpeed{{scaling::travel_speed_to_ra(speed_mps)}}, log);
+    kit::send_ra(port, m, local_waypoint_to_ra(waypoints[i], static_cast<std::uint16_t>(i)), log);
+  kit::send_ra(port, m, msg::SetTravelSpeed{{scaling::travel_speed_to_ra(speed_mps)}}, log);
   if (start) {
     if (const auto* d = driver(port, m.ra_component)) s.expected_route_starts = d->waypoint_counters().routes_started + 1;
-    mobility::send_ra(port, m, msg::Resume{}, log);
+    kit::send_ra(port, m, msg::Resume{}, log);
   }
   s.speed_mps = start ? scaling::travel_speed_to_jss(speed_mps) : 0.0;
   s.speed_by = m.origin;
@@ -57,9 +60,9 @@ void WaypointDrivers::load(FacePort& port, const JssInbound& m, std::span<const 
   if (s.speed_mps > 0) watch(port);
 }
 
-void WaypointDrivers::set_speed(FacePort& port, const JssInbound& m, double speed_mps, mobility::TranslatorLog& log) {
+void WaypointDrivers::set_speed(FacePort& port, const JssInbound& m, double speed_mps, kit::TranslatorLog& log) {
   auto& s = state(m.ra_component);
-  mobility::send_ra(port, m, msg::SetTravelSpeed{{scaling::travel_speed_to_ra(speed_mps)}}, log);
+  kit::send_ra(port, m, msg::SetTravelSpeed{{scaling::travel_speed_to_ra(speed_mps)}}, log);
   s.speed_mps = scaling::travel_speed_to_jss(speed_mps);
   s.speed_by = m.origin;
   s.speed_standing = m.standing;
@@ -103,9 +106,9 @@ double WaypointDrivers::travel_speed(FacePort& port, const Address& ra_driver) {
   return s.speed_mps;
 }
 
-void WaypointDrivers::heard(FacePort& port, const JssInbound& m, mobility::TranslatorLog& log) {
-  if (m.origin.event_id || !mobility::client_controls(port, m)) return;
-  mobility::send_ra(port, m, msg::QueryTravelSpeed{}, log);
+void WaypointDrivers::heard(FacePort& port, const JssInbound& m, kit::TranslatorLog& log) {
+  if (m.origin.event_id || !kit::client_controls(port, m)) return;
+  kit::send_ra(port, m, msg::QueryTravelSpeed{}, log);
 }
 
 bool WaypointDrivers::is_heard_answer(const RaOutbound& m) {
@@ -140,12 +143,12 @@ void WaypointDrivers::check_left_ready() {
     }
     s.speed_mps = 0;
     // The RA driver keeps its speed through Standby and Resume; JSS does not.
-    if (s.speed_by && mobility::client_controls(*port_, address, s.speed_by->client)) {
-      auto payload = mobility::encode_ra(msg::SetTravelSpeed{{0.0}});
+    if (s.speed_by && kit::client_controls(*port_, address, s.speed_by->client)) {
+      auto payload = kit::encode_ra(msg::SetTravelSpeed{{0.0}});
       if (payload) port_->send_ra(*s.speed_by, address, msg::SetTravelSpeed::code, *payload, s.speed_standing);
     }
   }
   if (any_speed) watch(*port_);
 }
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

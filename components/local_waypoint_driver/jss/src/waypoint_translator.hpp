@@ -7,11 +7,12 @@
 
 #include "jaus/jss_face/translator.hpp"
 
-namespace jaus::jss_face {
+namespace jaus::components_jss {
 
 class WaypointDrivers;
 
-std::unique_ptr<ServiceTranslator> make_local_waypoint_driver_translator(std::shared_ptr<WaypointDrivers> drivers);
-std::unique_ptr<ServiceTranslator> make_list_driver_translator(std::shared_ptr<WaypointDrivers> drivers);
+std::unique_ptr<jss_face::ServiceTranslator> make_local_waypoint_driver_translator(
+    std::shared_ptr<WaypointDrivers> drivers);
+std::unique_ptr<jss_face::ServiceTranslator> make_list_driver_translator(std::shared_ptr<WaypointDrivers> drivers);
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss

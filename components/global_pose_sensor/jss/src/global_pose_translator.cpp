@@ -1,17 +1,21 @@
-// Global Pose Sensor 1.0 on the RA global pose sensor (38), docs/jss.md "Sensors":
+// Global Pose Sensor 1.0 on the RA global pose sensor, docs/jss.md "Sensors":
 // the query and report are RA's, read in the JSS dialect (rescaled). Set Global Pose
 // and the Geomagnetic Property messages are not supported: RA has no message
 // for either, and a correction kept in the face would make JSS and RA clients
 // of one vehicle see two positions; they are left to the face's unsupported
 // count and logged with why (JSS has no "not supported" reply for commands).
-#include "mobility_translators.hpp"
-#include "mobility_translators_report.hpp"
+#include "jaus/components_jss/global_pose_sensor_jss.hpp"
 
-namespace jaus::jss_face {
+#include "jaus/core/component_ids.hpp"
+#include "jaus/jss_face/report_translator.hpp"
+
+namespace jaus::components_jss {
 namespace {
 
+using namespace jss_face;
+
 class GlobalPoseTranslator final
-    : public mobility::ReportTranslator<jss::msg::QueryGlobalPose, jss::msg::ReportGlobalPose> {
+    : public kit::ReportTranslator<jss::msg::QueryGlobalPose, jss::msg::ReportGlobalPose> {
  public:
   GlobalPoseTranslator()
       : ReportTranslator("global pose sensor", component_id::kGlobalPoseSensor,
@@ -24,7 +28,7 @@ class GlobalPoseTranslator final
                              m.message_id == jss::msg::QueryGeomagneticProperty::code;
     if (set_pose || geomagnetic)
       log().repeated(port, "global pose settings not supported", rt::LogLevel::warn, [&] {
-        return std::string(set_pose ? "Set Global Pose" : "Geomagnetic Property") + " from " + mobility::who(m) +
+        return std::string(set_pose ? "Set Global Pose" : "Geomagnetic Property") + " from " + kit::who(m) +
                " not supported (the RA global pose sensor has no such setting)";
       });
     return false;
@@ -33,6 +37,10 @@ class GlobalPoseTranslator final
 
 }  // namespace
 
-std::unique_ptr<ServiceTranslator> make_global_pose_translator() { return std::make_unique<GlobalPoseTranslator>(); }
+jss_face::Translators global_pose_sensor_translators(const jss_face::FaceConfig&) {
+  jss_face::Translators translators;
+  translators.push_back(std::make_unique<GlobalPoseTranslator>());
+  return translators;
+}
 
-}  // namespace jaus::jss_face
+}  // namespace jaus::components_jss
