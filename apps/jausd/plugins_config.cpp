@@ -41,6 +41,9 @@ std::vector<std::string> plugin_summaries(const JausdConfig& config) {
     if (!plugin.kinds.empty()) line += "component kinds " + join(plugin.kinds);
     if (!plugin.kinds.empty() && !plugin.platform_kinds.empty()) line += "; ";
     if (!plugin.platform_kinds.empty()) line += "platform kinds " + join(plugin.platform_kinds);
+    if (!plugin.jss_services.empty())
+      line += std::string(plugin.kinds.empty() && plugin.platform_kinds.empty() ? "" : "; ") + "JSS services " +
+              join(plugin.jss_services);
     lines.push_back(std::move(line));
   }
   return lines;

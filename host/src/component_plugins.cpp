@@ -12,8 +12,11 @@
 
 #include "jaus/base/version.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/jss_plugin.hpp"
+#include "jaus/host/jss_translators.hpp"
 #include "jaus/host/platform_kinds.hpp"
 #include "jaus/host/platform_plugin.hpp"
+#include "jaus/jss_face/face.hpp"  // FaceConfig: a plugin's factories are tried with the defaults
 #include "jaus/runtime/component_plugin.hpp"
 
 namespace jaus::host {
@@ -24,6 +27,7 @@ struct PluginRegistry {
   std::vector<LoadedPlugin> plugins;
   std::map<std::string, std::string, std::less<>> kind_owner;           // kind -> "plugin 'name' (path)"
   std::map<std::string, std::string, std::less<>> platform_kind_owner;  // platform kind -> the same
+  std::vector<jss_face::TranslatorFactory> jss_translators;              // the JSS plugins', in load order
 };
 
 PluginRegistry& registry() {
@@ -194,9 +198,62 @@ Expected<std::vector<PlatformKind>> listed_platform_kinds(const std::filesystem:
   return kinds;
 }
 
+// A JSS entry point's description, checked as a component one's.
+Expected<const JssPluginInfo*> checked_jss_info(const std::filesystem::path& path, void* symbol) {
+  const auto entry = reinterpret_cast<JssPluginEntry>(symbol);
+  const JssPluginInfo* info = entry();
+  if (!info) return unexpected(plugin_error(path, std::string(kJssPluginSymbol) + " returned nothing"));
+  if (info->abi != kJssPluginAbi)
+    return unexpected(plugin_error(path, "JSS plugin ABI " + std::to_string(info->abi) + ", this jausd loads ABI " +
+                                             std::to_string(kJssPluginAbi) + ": rebuild the plugin against this jaus"));
+  const std::string name = text_or(info->name, "(unnamed)");
+  if (auto built = check_build(path, name, info->jaus_version, info->toolchain); !built)
+    return unexpected(built.error());
+  if (!info->name || !*info->name) return unexpected(plugin_error(path, "the plugin has no name"));
+  if (!info->services) return unexpected(plugin_error(path, "plugin '" + name + "' has no JSS services function"));
+  return info;
+}
+
+// The translator factories a JSS plugin brings, each tried once (with the
+// default face settings) before any is added: a factory that throws or makes
+// nothing is refused now, not when a JSS face is made. `names`: each
+// translator's name, for the plugin's summary.
+Expected<std::vector<jss_face::TranslatorFactory>> listed_jss_services(const std::filesystem::path& path,
+                                                                       const JssPluginInfo& info,
+                                                                       std::vector<std::string>& names) {
+  const std::string name = info.name;
+  std::vector<jss_face::TranslatorFactory> factories;
+  try {
+    factories = info.services();
+    for (const auto factory : factories) {
+      if (factory == nullptr) return unexpected(plugin_error(path, "plugin '" + name + "' lists an empty JSS factory"));
+      const jss_face::Translators made = factory(jss_face::FaceConfig{});
+      if (made.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' has a JSS factory that makes nothing"));
+      for (const auto& translator : made) {
+        if (!translator) return unexpected(plugin_error(path, "plugin '" + name + "' made an empty JSS translator"));
+        names.emplace_back(translator->name());
+      }
+    }
+  } catch (...) {
+    return unexpected(
+        plugin_error(path, "plugin '" + name + "' listing its JSS services " + what_of(std::current_exception())));
+  }
+  if (factories.empty()) return unexpected(plugin_error(path, "plugin '" + name + "' brings no JSS service"));
+  return factories;
+}
+
 }  // namespace
 
 const std::vector<LoadedPlugin>& loaded_component_plugins() { return registry().plugins; }
+
+std::vector<jss_face::TranslatorFactory> plugin_jss_translators() { return registry().jss_translators; }
+
+std::vector<jss_face::TranslatorFactory> jss_translators() {
+  auto all = builtin_jss_translators();
+  const auto& plugins = registry().jss_translators;
+  all.insert(all.end(), plugins.begin(), plugins.end());
+  return all;
+}
 
 Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& requested) {
   std::error_code ec;
@@ -217,16 +274,20 @@ Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& reques
     if (why.starts_with(path.string() + ": ")) why.erase(0, path.string().size() + 2);
     return unexpected(plugin_error(path, "cannot load the plugin: " + why));
   }
-  // A plugin writes either entry point, or both.
+  // A plugin writes any of the entry points, or several.
   dlerror();
   void* platform_symbol = dlsym(handle, kPlatformPluginSymbol);
   dlerror();
+  void* jss_symbol = dlsym(handle, kJssPluginSymbol);
+  dlerror();
   const bool has_components = dlsym(handle, rt::kComponentPluginSymbol) != nullptr;
-  if (!has_components && !platform_symbol)
+  if (!has_components && !platform_symbol && !jss_symbol)
     return unexpected(plugin_error(path, "not a jaus component plugin: no " + std::string(rt::kComponentPluginSymbol) +
                                              " symbol (write JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp), "
                                              "nor a platform plugin: no " + std::string(kPlatformPluginSymbol) +
-                                             " symbol (JAUS_PLATFORM_PLUGIN, jaus/host/platform_plugin.hpp)"));
+                                             " symbol (JAUS_PLATFORM_PLUGIN, jaus/host/platform_plugin.hpp), "
+                                             "nor a JSS plugin: no " + std::string(kJssPluginSymbol) +
+                                             " symbol (JAUS_JSS_PLUGIN, jaus/host/jss_plugin.hpp)"));
   std::string name;
   std::vector<ComponentKind> kinds;
   if (has_components) {
@@ -249,6 +310,16 @@ Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& reques
     if (!listed) return unexpected(listed.error());
     platforms = std::move(*listed);
   }
+  std::vector<jss_face::TranslatorFactory> jss_services;
+  std::vector<std::string> jss_service_names;
+  if (jss_symbol) {
+    const auto info = checked_jss_info(path, jss_symbol);
+    if (!info) return unexpected(info.error());
+    if (name.empty()) name = (*info)->name;
+    auto listed = listed_jss_services(path, **info, jss_service_names);
+    if (!listed) return unexpected(listed.error());
+    jss_services = std::move(*listed);
+  }
   const std::string who = "plugin '" + name + "' (" + path.string() + ")";
 
   // Every kind is checked before any is added: a plugin loads whole or not at all.
@@ -267,7 +338,7 @@ Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& reques
     if (!kind.make)
       return unexpected(plugin_error(path, "plugin '" + name + "' kind '" + kind_name + "' cannot make components"));
   }
-  LoadedPlugin loaded{path, name, {}, {}};
+  LoadedPlugin loaded{path, name, {}, {}, {}};
   // Undoes what this load added (a kind the list then refuses).
   const auto undo = [&] {
     for (const auto& done : loaded.kinds) {
@@ -300,6 +371,9 @@ Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& reques
     loaded.platform_kinds.push_back(kind_name);
     r.platform_kind_owner.emplace(kind_name, who);
   }
+  // Last: nothing can refuse the plugin any more, so no undo is needed.
+  r.jss_translators.insert(r.jss_translators.end(), jss_services.begin(), jss_services.end());
+  loaded.jss_services = std::move(jss_service_names);
   r.plugins.push_back(loaded);
   return loaded;
 }

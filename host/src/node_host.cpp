@@ -134,7 +134,7 @@ void NodeHost::make_node(node::Link& link) {
 void NodeHost::make_jss_face(jss_face::JssFace::DatagramSender send) {
   // The face's services beyond the core: every kind's (host never names one).
   jss_face_ =
-      std::make_unique<jss_face::JssFace>(config_.jss, builtin_jss_translators(), *node_, std::move(send), log_);
+      std::make_unique<jss_face::JssFace>(config_.jss, jss_translators(), *node_, std::move(send), log_);
   face_link_->attach(jss_face_.get());
 }
 

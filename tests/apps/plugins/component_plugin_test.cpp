@@ -12,6 +12,11 @@
 #include "jaus/host/component_kinds.hpp"
 #include "jaus/host/component_options.hpp"
 #include "jaus/host/component_plugins.hpp"
+#include "jaus/host/jss_translators.hpp"
+#include "jaus/jss/contents.hpp"
+#include "jaus/jss/judp.hpp"
+#include "jaus/jss/messages/mobility.hpp"
+#include "jaus/jss_face/face.hpp"
 #include "jaus/messages/platform_messages.hpp"
 #include "jaus/testing/memory_link.hpp"
 #include "jaus/testing/virtual_time.hpp"
@@ -51,7 +56,8 @@ TEST(ComponentPlugins, ALibraryWithoutTheEntryPointIsNotAPlugin) {
             std::string(NO_ENTRY_PLUGIN) + ": not a jaus component plugin: no jaus_component_plugin symbol (write "
                                            "JAUS_COMPONENT_PLUGIN, jaus/runtime/component_plugin.hpp), nor a platform "
                                            "plugin: no jaus_platform_plugin symbol (JAUS_PLATFORM_PLUGIN, "
-                                           "jaus/host/platform_plugin.hpp)");
+                                           "jaus/host/platform_plugin.hpp), nor a JSS plugin: no jaus_jss_plugin symbol "
+                                           "(JAUS_JSS_PLUGIN, jaus/host/jss_plugin.hpp)");
 }
 
 TEST(ComponentPlugins, AnUndefinedSymbolIsRefusedWhenOpened) {
@@ -114,7 +120,7 @@ TEST(ComponentPlugins, APluginKindIsConfiguredCheckedAndHosted) {
   ASSERT_EQ(config->plugins.size(), 1u);
   EXPECT_EQ(jausd::plugin_summaries(*config),
             std::vector<std::string>{"plugin 'test_odometer' (" + std::string(TEST_ODOMETER_PLUGIN) +
-                                     "): component kinds plugin_odometer"});
+                                     "): component kinds plugin_odometer; JSS services plugin odometer"});
   // Text from memory names no folder: its plugin list is refused, nothing loaded.
   const auto from_memory = jausd::load_config_string(head + "      speed_mps: 2.5\n", "memory.yaml");
   ASSERT_FALSE(from_memory);
@@ -144,6 +150,61 @@ TEST(ComponentPlugins, APluginKindIsConfiguredCheckedAndHosted) {
   ASSERT_TRUE(jaus::testing::run_until(time, [&] { return op.report.has_value(); }, std::chrono::seconds(1)));
   ASSERT_TRUE(op.report->velocity_x_mps);
   EXPECT_NEAR(*op.report->velocity_x_mps, 2.5, 0.01);
+}
+
+TEST(JssPlugins, APluginKindsJssServiceComesWithItAndAnswersAJssClient) {
+  const auto loaded = load_component_plugin(TEST_ODOMETER_PLUGIN);
+  ASSERT_TRUE(loaded) << loaded.error().message();
+  EXPECT_EQ(loaded->jss_services, std::vector<std::string>{"plugin odometer"});
+  // The face is handed the built-in kinds' services, then the plugin's.
+  const auto services = jaus::host::jss_translators();
+  EXPECT_EQ(services.size(), jaus::host::builtin_jss_translators().size() + 1);
+  EXPECT_EQ(jaus::host::plugin_jss_translators().size(), 1u);
+
+  const fs::path folder = fs::path(TEST_ODOMETER_PLUGIN).parent_path();
+  const auto config = jausd::load_config_string(
+      "plugins: [libtest_odometer.so]\ncomponents:\n  - kind: node_manager\n  - kind: plugin_odometer\n    options:\n"
+      "      speed_mps: 3.5\n",
+      "test.yaml", folder);
+  ASSERT_TRUE(config) << config.error().message();
+
+  // The kind on node 1.1 behind a JSS face made as a node host makes it.
+  jaus::rt::VirtualTime time;
+  jaus::testing::MemoryNetwork network(time, time);
+  auto& link = network.attach(1, 1);
+  jaus::jss_face::FaceLink face_link(link);
+  jaus::node::Node robot(jaus::node::NodeConfig{}, time, time, face_link);
+  link.deliver_to(robot);
+  auto made = jaus::host::make_component(config->components.at(1), jaus::host::ComponentSettings{}, robot);
+  ASSERT_TRUE(made) << made.error().message();
+  robot.add(std::move(*made));
+  std::vector<std::vector<std::uint8_t>> sent;
+  jaus::jss_face::JssFace face({}, services, robot, [&](const jaus::jss::JssId&, std::span<const std::uint8_t> d) {
+    sent.emplace_back(d.begin(), d.end());
+  });
+  face_link.attach(&face);
+
+  // A JSS client asks JSS component 1.1.42 (the plugin kind's RA ID) for its velocity.
+  jaus::jss::JudpHeader query;
+  query.source = jaus::jss::JssId{42, 1, 1};
+  query.destination = jaus::jss::JssId{1, 1, 42};
+  const auto contents = jaus::jss::encode_contents(jaus::jss::msg::QueryVelocityState{{0x0001}});
+  face.receive(jaus::jss::make_judp_datagram(query, contents), jaus::rt::SenderStanding::trusted);
+  std::optional<jaus::jss::msg::ReportVelocityState> report;
+  const auto heard = [&] {
+    for (const auto& datagram : sent) {
+      const auto packets = jaus::jss::decode_judp_datagram(datagram);
+      if (!packets) continue;
+      for (const auto& packet : *packets)
+        if (jaus::jss::message_id_of(packet.contents) == jaus::jss::msg::ReportVelocityState::code)
+          if (auto r = jaus::jss::decode_contents<jaus::jss::msg::ReportVelocityState>(packet.contents)) report = *r;
+    }
+    return report.has_value();
+  };
+  ASSERT_TRUE(jaus::testing::run_until(time, heard, std::chrono::seconds(1)));
+  ASSERT_TRUE(report->velocity_x_mps);
+  EXPECT_NEAR(*report->velocity_x_mps, 3.5, 0.01);
+  face_link.attach(nullptr);
 }
 
 TEST(PlatformPlugins, APlatformPluginOfAnotherAbiIsRefusedOnItsFirstField) {

@@ -1,9 +1,16 @@
 // A working plugin: kind `plugin_odometer` (option speed_mps 0..10) answers
-// Query Velocity State with the configured speed.
+// Query Velocity State with the configured speed; its JSS service (Velocity
+// State Sensor, the translator kit's report translator) comes with it, so a
+// JSS client asks it too. Kind and service in one file: what a kind owns.
+#include "jaus/host/jss_plugin.hpp"
+#include "jaus/jss/messages/mobility.hpp"
+#include "jaus/jss_face/report_translator.hpp"
 #include "jaus/messages/platform_messages.hpp"
 #include "jaus/runtime/component_plugin.hpp"
 
 namespace {
+
+constexpr std::uint8_t kOdometerId = 42;
 
 class PluginOdometer final : public jaus::rt::Component {
  public:
@@ -25,7 +32,7 @@ jaus::Expected<double> speed(const jaus::rt::KindOptions& options) {
 std::vector<jaus::rt::ComponentKind> kinds() {
   return {jaus::rt::ComponentKind{
       .name = "plugin_odometer",
-      .default_id = 42,
+      .default_id = kOdometerId,
       .options = {"speed_mps"},
       .needs = {},
       .moves_hardware = false,
@@ -38,6 +45,19 @@ std::vector<jaus::rt::ComponentKind> kinds() {
       }}};
 }
 
+jaus::jss_face::Translators odometer_translators(const jaus::jss_face::FaceConfig&) {
+  using Translator =
+      jaus::jss_face::kit::ReportTranslator<jaus::jss::msg::QueryVelocityState, jaus::jss::msg::ReportVelocityState>;
+  jaus::jss_face::Translators translators;
+  translators.push_back(std::make_unique<Translator>(
+      "plugin odometer", kOdometerId,
+      std::vector<jaus::jss_face::ServiceUri>{{"urn:jaus:jss:mobility:VelocityStateSensor", 1, 0}}));
+  return translators;
+}
+
+std::vector<jaus::jss_face::TranslatorFactory> jss_services() { return {&odometer_translators}; }
+
 }  // namespace
 
 JAUS_COMPONENT_PLUGIN("test_odometer", kinds)
+JAUS_JSS_PLUGIN("test_odometer", jss_services)

@@ -26,10 +26,12 @@ struct LoadedPlugin {
   std::string name;                // the plugin's own name
   std::vector<std::string> kinds;  // the component kinds it added, in its order
   std::vector<std::string> platform_kinds;  // the platform kinds it added (jaus/host/platform_plugin.hpp)
+  std::vector<std::string> jss_services;    // the names of the JSS translators it added (jaus/host/jss_plugin.hpp)
 };
 
-// Opens the plugin at `path` and adds its kinds: component kinds, platform
-// kinds (platform_kinds.hpp), or both, each entry point checked alike. Loading the same file again
+// Opens the plugin at `path` and adds what it brings: component kinds,
+// platform kinds (platform_kinds.hpp), JSS services (jss_translators.hpp), or
+// several, each entry point checked alike. Loading the same file again
 // (the same canonical path) adds nothing and returns what the first load did.
 Expected<LoadedPlugin> load_component_plugin(const std::filesystem::path& path);
 

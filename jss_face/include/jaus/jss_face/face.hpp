@@ -83,7 +83,7 @@ class JssFace {
   // `node` outlives the face; its clock and scheduler are the face's. The
   // face runs the core services itself; `services` are the rest, the
   // component kinds' (translator.hpp), asked in this order after the core's
-  // (a node host passes host::builtin_jss_translators()).
+  // (a node host passes host::jss_translators(): the built-in kinds', then its plugins').
   JssFace(FaceConfig config, const std::vector<TranslatorFactory>& services, node::Node& node, DatagramSender send,
           rt::LogFn log = {});
   ~JssFace();
