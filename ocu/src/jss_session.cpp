@@ -7,6 +7,7 @@
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
+#include "repeat_broadcast.hpp"
 #include "run_loop.hpp"
 
 namespace jaus::ocu {
@@ -347,25 +348,17 @@ ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssI
   Impl& impl = *this;
   ArrivalResult result;
   const auto started = session.clock().now();
-  const auto period = std::max<rt::Duration>(policy.retransmit_after, 1ms);
-  const std::uint32_t most = std::max<std::uint32_t>(policy.max_transmissions, 1);
+  policy.retransmit_after = std::max<rt::Duration>(policy.retransmit_after, 1ms);
+  policy.max_transmissions = std::max<std::uint32_t>(policy.max_transmissions, 1);
+  const auto period = policy.retransmit_after;
+  const std::uint32_t most = policy.max_transmissions;
   if (contents.size() > std::max<std::size_t>(impl.options.max_packet_contents, 3)) return result;
   auto run = [&](const std::function<bool()>& done) {
     return through_stop ? session.run_cleanup_until(done, period) : session.run_until(done, period);
   };
-  if (to.is_broadcast()) {  // nobody could confirm for everyone: sent `most` times
-    for (std::uint32_t i = 0; i < most; ++i) {
-      impl.send(to, contents, priority, false, nullptr);
-      ++result.transmissions;
-      if (i + 1 < most) run([] { return false; });
-      if (session.interrupted() && !through_stop) {
-        result.outcome = Arrival::interrupted;
-        break;
-      }
-    }
-    result.elapsed = session.clock().now() - started;
-    return result;
-  }
+  if (to.is_broadcast())  // nobody could confirm for everyone: sent `most` times
+    return detail::repeat_broadcast(session, policy, through_stop,
+                                    [&] { impl.send(to, contents, priority, false, nullptr); });
   std::vector<std::uint8_t> datagram;
   AckWait wait;
   wait.to = to;

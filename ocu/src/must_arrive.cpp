@@ -4,6 +4,8 @@
 #include <memory>
 #include <optional>
 
+#include "repeat_broadcast.hpp"
+
 namespace jaus::ocu {
 
 namespace {
@@ -39,26 +41,6 @@ bool run(OcuSession& session, const std::function<bool()>& done, jaus::rt::Durat
   return through_stop ? session.run_cleanup_until(done, limit) : session.run_until(done, limit);
 }
 
-// A broadcast: repeated, never acknowledged (must_arrive.hpp says why).
-ArrivalResult repeat_broadcast(OcuSession& session, jaus::Header header, std::span<const std::uint8_t> payload,
-                               const MustArrivePolicy& policy, bool through_stop) {
-  ArrivalResult result;
-  const auto start = session.clock().now();
-  for (std::uint32_t i = 0; i < policy.max_transmissions; ++i) {
-    if (i > 0) {
-      run(session, [] { return false; }, policy.retransmit_after, through_stop);
-      if (!through_stop && session.interrupted()) {
-        result.outcome = Arrival::interrupted;
-        break;
-      }
-    }
-    session.send_raw(header, payload);
-    ++result.transmissions;
-  }
-  result.elapsed = session.clock().now() - start;
-  return result;
-}
-
 ArrivalResult send(OcuSession& session, const jaus::Address& to, jaus::Header header,
                    std::span<const std::uint8_t> payload, MustArrivePolicy policy, bool through_stop) {
   policy = sane(policy);
@@ -68,7 +50,7 @@ ArrivalResult send(OcuSession& session, const jaus::Address& to, jaus::Header he
   header.data_size = static_cast<std::uint16_t>(payload.size());
   if (to.is_broadcast()) {
     header.ack_nak = jaus::AckNak::none;
-    return repeat_broadcast(session, header, payload, policy, through_stop);
+    return detail::repeat_broadcast(session, policy, through_stop, [&] { session.send_raw(header, payload); });
   }
   // The node may call back after we return (interrupted): the state is shared.
   auto pending = std::make_shared<Pending>();

@@ -107,6 +107,19 @@ TEST_F(JssOcuTest, ACommandToNobodyIsUnacknowledgedAfterItsTransmissions) {
   EXPECT_EQ(arrival.elapsed, 500ms);
 }
 
+TEST_F(JssOcuTest, ABroadcastIsRepeatedAndNeverAcknowledgedAsInRa) {
+  // The same rule as an RA session's (MustArriveTest.ABroadcastIsRepeatedAndNeverAcknowledged):
+  // sent max_transmissions times, retransmit_after apart, no ACK asked.
+  msg::SetEmergency stop;
+  stop.emergency_code = 1;
+  const auto arrival = session->send_must_arrive(jss::JssId{1, 1, jss::JssId::kAll}, stop,
+                                                 jss::JudpPriority::safety_critical, ocu::MustArrivePolicy{50ms, 4});
+  EXPECT_EQ(arrival.outcome, ocu::Arrival::unacknowledged);
+  EXPECT_EQ(arrival.transmissions, 4u);
+  EXPECT_EQ(arrival.elapsed, 150ms);
+  EXPECT_TRUE(testing::run_until(time, [&] { return ra_driver().state() == rt::PrimaryStatus::emergency; }, 1s));
+}
+
 TEST_F(JssOcuTest, AControlHoldKeepsControlPastTheTimeoutAndReleases) {
   ocu::JssControlHold::Options options;
   options.authority = 5;
