@@ -9,6 +9,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "jaus/conform/jss_case.hpp"
@@ -48,6 +49,19 @@ auto record_from(Session& listening, const Peer& component, rt::Clock& clock, rt
 // What a report says of a case: its id, title and reference.
 inline const ConformanceCase& describe(const ConformanceCase& test_case) { return test_case; }
 inline const ConformanceCase& describe(const JssConformanceCase& test_case) { return test_case.describe; }
+
+// Runs one case in `context` (a CaseContext or JssCaseContext, its clock
+// started) and fills `result`: the outcome, the time it took and what was
+// exchanged, with what `component` sent the runner meanwhile recorded.
+template <class Session, class Context, class Peer, class Case>
+void run_recorded(Session& session, Context& context, const Peer& component, const Case& test_case,
+                  CaseResult& result) {
+  const auto recorder = record_from(session, component, session.clock(), context.started, context.exchange);
+  result.outcome = test_case.run(context);
+  session.unlisten(recorder);
+  result.took = session.clock().now() - context.started;
+  result.exchange = std::move(context.exchange);
+}
 
 template <class Session, class Case, class Component, class RunCase>
 std::vector<CaseResult> run_each_case(Session& session, const std::vector<const Case*>& cases,

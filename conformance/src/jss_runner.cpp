@@ -82,13 +82,7 @@ std::vector<CaseResult> run_jss_cases(ocu::JssSession& session, const JssCompone
   const auto run_case = [&](const JssConformanceCase& test_case, CaseResult& result) {
     JssCaseContext context{session, component, options.reply_timeout, {}, session.clock().now(), open_client};
     context.node_components = &node_components;
-    // What the component sends the runner during the case, for the report.
-    const auto recorder =
-        detail::record_from(session, component.id, session.clock(), context.started, context.exchange);
-    result.outcome = test_case.run(context);
-    session.unlisten(recorder);
-    result.took = session.clock().now() - context.started;
-    result.exchange = std::move(context.exchange);
+    detail::run_recorded(session, context, component.id, test_case, result);
   };
   return detail::run_each_case(session, cases, component, blank, options, on_result, run_case);
 }

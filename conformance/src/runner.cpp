@@ -184,13 +184,7 @@ std::vector<CaseResult> run_cases(ocu::OcuSession& session, const ComponentUnder
   const CaseResult blank{nullptr, component.address, component.name, {}, {}, {}};
   const auto run_case = [&](const ConformanceCase& test_case, CaseResult& result) {
     CaseContext context{session, component, options.profile, options.reply_timeout, {}, session.clock().now(), ocus};
-    // What the component sends the runner during the case, for the report.
-    const auto recorder =
-        detail::record_from(session, component.address, session.clock(), context.started, context.exchange);
-    result.outcome = test_case.run(context);
-    session.unlisten(recorder);
-    result.took = session.clock().now() - context.started;
-    result.exchange = std::move(context.exchange);
+    detail::run_recorded(session, context, component.address, test_case, result);
   };
   return detail::run_each_case(session, cases, component, blank, options, on_result, run_case);
 }

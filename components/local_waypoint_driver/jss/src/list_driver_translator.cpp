@@ -18,14 +18,13 @@
 
 #include "jaus/core/component_ids.hpp"
 #include "jaus/jss_face/translator_kit.hpp"
+#include "kit_names.hpp"
 #include "list_manager_elements.hpp"
 #include "waypoint_driver_state.hpp"
 #include "waypoint_translator.hpp"
 
 namespace jaus::components_jss {
 namespace {
-
-using namespace jss_face;
 
 class ListDriverTranslator final : public ServiceTranslator {
  public:

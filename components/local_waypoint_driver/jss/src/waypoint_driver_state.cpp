@@ -3,10 +3,10 @@
 #include "jaus/components_jss/local_waypoint_driver_jss.hpp"
 #include "jaus/core/component_ids.hpp"
 #include "jaus/jss_face/scaling.hpp"
+#include "kit_names.hpp"
 
 namespace jaus::components_jss {
 
-using namespace jss_face;
 
 msg::SetLocalWaypoint local_waypoint_to_ra(const jss::msg::SetLocalWaypoint& jss, std::uint16_t number) {
   // One body, read in each dialect: the RA side gets the list position as

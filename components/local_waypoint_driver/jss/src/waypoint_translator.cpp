@@ -15,13 +15,12 @@
 #include "jaus/core/component_ids.hpp"
 #include "jaus/jss_face/translator_kit.hpp"
 #include "jaus/wire/describe.hpp"
+#include "kit_names.hpp"
 #include "waypoint_driver_state.hpp"
 #include "waypoint_translator.hpp"
 
 namespace jaus::components_jss {
 namespace {
-
-using namespace jss_face;
 
 class LocalWaypointDriverTranslator final : public ServiceTranslator {
  public:
