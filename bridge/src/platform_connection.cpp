@@ -6,11 +6,13 @@ PlatformConnection::PlatformConnection(clearpath::Client& client, const rt::Cloc
     : client_(client), clock_(clock), log_(log ? std::move(log) : rt::silent_log()) {
   client_.on_data([this](const clearpath::Envelope& e) { data(e); });
   client_.on_state([this](clearpath::ConnectionState s) { state(s); });
+  client_.on_problem([this](const Error& error) { problem(error); });
 }
 
 PlatformConnection::~PlatformConnection() {
   client_.on_data({});
   client_.on_state({});
+  client_.on_problem({});
 }
 
 void PlatformConnection::on_data(std::uint16_t data_type, DataHandler handler) {
@@ -40,6 +42,14 @@ void PlatformConnection::state(clearpath::ConnectionState s) {
     }
     set_alive(false);
   }
+}
+
+// Bad input from the platform: never acted on (the client drops it and counts
+// it), said in the log with where and why.
+void PlatformConnection::problem(const Error& error) {
+  std::string note;
+  if (problem_lines_.admit(clock_.now(), note))
+    log_(rt::LogLevel::warn, "Clearpath platform: input passed over: " + error.message() + note);
 }
 
 void PlatformConnection::set_alive(bool alive) {

@@ -1,6 +1,7 @@
 #include "jaus/clearpath/client_core.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace jaus::clearpath {
 
@@ -417,7 +418,10 @@ void ClientCore::rerequest_due_subscriptions(rt::TimePoint now) {
 void ClientCore::on_bytes(std::span<const std::uint8_t> bytes, rt::TimePoint now) {
   parser_.feed(bytes);
   while (auto event = parser_.poll()) {
-    if (const auto* frame = std::get_if<Frame>(&*event)) handle_frame(*frame, now);
+    if (const auto* frame = std::get_if<Frame>(&*event))
+      handle_frame(*frame, now);
+    else if (on_problem_)
+      on_problem_(std::get<RejectedBytes>(*event).to_error());
   }
 }
 
@@ -427,6 +431,13 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
   auto envelope = decode(frame, Direction::from_platform);
   if (!envelope) {
     ++counters_.decode_errors;  // e.g. a type the document lacks: ignore it, never fail
+    if (on_problem_) {
+      Error error = envelope.error();
+      char type[40];
+      std::snprintf(type, sizeof type, "frame of type 0x%04X: ", frame.header.type);
+      error.detail = type + error.detail;
+      on_problem_(error);
+    }
     return;
   }
   const auto* ack = envelope->message.get_if<Ack>();

@@ -6,38 +6,46 @@
 
 namespace jaus::clearpath {
 
-std::string_view to_string(ParseErrorKind kind) {
-  switch (kind) {
-    case ParseErrorKind::garbage: return "garbage before start byte";
-    case ParseErrorKind::bad_length: return "bad length";
-    case ParseErrorKind::oversize: return "oversize frame";
-    case ParseErrorKind::missing_stx: return "missing STX";
-    case ParseErrorKind::bad_crc: return "bad CRC";
-    case ParseErrorKind::truncated: return "truncated frame";
+std::string_view to_string(RejectReason reason) {
+  switch (reason) {
+    case RejectReason::garbage: return "garbage before start byte";
+    case RejectReason::bad_length: return "bad length";
+    case RejectReason::oversize: return "oversize frame";
+    case RejectReason::missing_stx: return "missing STX";
+    case RejectReason::bad_crc: return "bad CRC";
+    case RejectReason::truncated: return "truncated frame";
   }
   return "unknown";
 }
 
-std::string ParseError::message() const {
-  std::string out = std::string(to_string(kind)) + " at stream offset " + std::to_string(stream_offset);
+Error RejectedBytes::to_error() const {
+  Error error{ErrorCode::bad_frame, static_cast<std::size_t>(stream_offset), {}, std::string(to_string(reason))};
   char buf[96];
-  switch (kind) {
-    case ParseErrorKind::garbage:
-      out += " (" + std::to_string(length) + " bytes skipped)";
+  switch (reason) {
+    case RejectReason::garbage:
+      error.detail += ", " + std::to_string(length) + " bytes skipped";
       break;
-    case ParseErrorKind::bad_crc:
-      std::snprintf(buf, sizeof buf, " (type 0x%04X, expected 0x%04X, got 0x%04X)", header ? header->type : 0,
+    case RejectReason::bad_length:
+      error.field = "length";
+      break;
+    case RejectReason::missing_stx:
+      error.field = "stx";
+      break;
+    case RejectReason::bad_crc:
+      error.field = "crc";
+      std::snprintf(buf, sizeof buf, ", type 0x%04X, expected 0x%04X, got 0x%04X", header ? header->type : 0,
                     expected_crc, received_crc);
-      out += buf;
+      error.detail += buf;
       break;
-    case ParseErrorKind::oversize:
-    case ParseErrorKind::truncated:
-      out += " (announced " + std::to_string(length) + " bytes)";
+    case RejectReason::oversize:
+      error.field = "length";
+      error.detail += ", announced " + std::to_string(length) + " bytes";
       break;
-    default:
+    case RejectReason::truncated:
+      error.detail += ", announced " + std::to_string(length) + " bytes";
       break;
   }
-  return out;
+  return error;
 }
 
 FrameParser::FrameParser(std::size_t max_frame_size) : max_frame_size_(max_frame_size) {}
@@ -66,19 +74,19 @@ void FrameParser::consume(std::size_t n) {
 FrameParser::Candidate FrameParser::check_candidate(std::size_t at, ParseEvent* out) {
   const auto bytes = std::span<const std::uint8_t>(buffer_).subspan(at);
   const auto inspection = inspect_frame(bytes, max_frame_size_);
-  const auto error = [&](ParseErrorKind kind, std::size_t length) {
-    if (out != nullptr) *out = ParseError{kind, start_offset_ + (at - start_), length, std::nullopt};
+  const auto reject = [&](RejectReason reason, std::size_t length) {
+    if (out != nullptr) *out = RejectedBytes{reason, start_offset_ + (at - start_), length, std::nullopt};
     return Candidate::invalid;
   };
   switch (inspection.check) {
     case FrameCheck::need_more: return Candidate::need_more;
-    case FrameCheck::bad_length: return error(ParseErrorKind::bad_length, 0);
-    case FrameCheck::oversize: return error(ParseErrorKind::oversize, inspection.size);
-    case FrameCheck::missing_stx: return error(ParseErrorKind::missing_stx, inspection.size);
+    case FrameCheck::bad_length: return reject(RejectReason::bad_length, 0);
+    case FrameCheck::oversize: return reject(RejectReason::oversize, inspection.size);
+    case FrameCheck::missing_stx: return reject(RejectReason::missing_stx, inspection.size);
     case FrameCheck::bad_crc:
       if (out != nullptr) {
         // The header was intact: a platform can answer it with a "bad checksum" ACK.
-        ParseError e{ParseErrorKind::bad_crc, start_offset_ + (at - start_), inspection.size, inspection.header};
+        RejectedBytes e{RejectReason::bad_crc, start_offset_ + (at - start_), inspection.size, inspection.header};
         e.expected_crc = inspection.expected_crc;
         e.received_crc = inspection.received_crc;
         *out = e;
@@ -103,7 +111,7 @@ std::optional<ParseEvent> FrameParser::poll() {
   if (*first != kStartOfHeader) {
     const auto soh = std::find(first, buffer_.end(), kStartOfHeader);
     const auto skipped = static_cast<std::size_t>(soh - first);
-    ParseError e{ParseErrorKind::garbage, start_offset_, skipped, std::nullopt};
+    RejectedBytes e{RejectReason::garbage, start_offset_, skipped, std::nullopt};
     counters_.garbage_bytes += skipped;
     consume(skipped);
     return e;
@@ -118,11 +126,11 @@ std::optional<ParseEvent> FrameParser::poll() {
       return event;
     }
     case Candidate::invalid: {
-      switch (std::get<ParseError>(event).kind) {
-        case ParseErrorKind::bad_length: ++counters_.bad_length; break;
-        case ParseErrorKind::oversize: ++counters_.oversize; break;
-        case ParseErrorKind::missing_stx: ++counters_.missing_stx; break;
-        case ParseErrorKind::bad_crc: ++counters_.bad_crc; break;
+      switch (std::get<RejectedBytes>(event).reason) {
+        case RejectReason::bad_length: ++counters_.bad_length; break;
+        case RejectReason::oversize: ++counters_.oversize; break;
+        case RejectReason::missing_stx: ++counters_.missing_stx; break;
+        case RejectReason::bad_crc: ++counters_.bad_crc; break;
         default: break;
       }
       consume(1);  // resynchronise at the byte after the 0xAA that failed
@@ -136,7 +144,7 @@ std::optional<ParseEvent> FrameParser::poll() {
   for (std::size_t at = start_ + 1; at < buffer_.size(); ++at) {
     if (buffer_[at] != kStartOfHeader || !complete_frame_at(at)) continue;
     const std::size_t announced = buffer_.size() - start_ >= 2 ? std::size_t{buffer_[start_ + kLengthOffset]} + kLeadBytes : 0;
-    ParseError e{ParseErrorKind::truncated, start_offset_, announced, std::nullopt};
+    RejectedBytes e{RejectReason::truncated, start_offset_, announced, std::nullopt};
     ++counters_.truncated;
     consume(at - start_);
     return e;

@@ -16,11 +16,11 @@ std::vector<std::uint8_t> frame_of(const cp::AnyMessage& m, std::uint32_t ts, st
   return *cp::encode(cp::Envelope{{0, ts, 0, type}, m});
 }
 
-std::vector<cp::Frame> drain(cp::FrameParser& parser, std::vector<cp::ParseError>* errors = nullptr) {
+std::vector<cp::Frame> drain(cp::FrameParser& parser, std::vector<cp::RejectedBytes>* errors = nullptr) {
   std::vector<cp::Frame> frames;
   while (auto event = parser.poll()) {
     if (auto* f = std::get_if<cp::Frame>(&*event)) frames.push_back(std::move(*f));
-    else if (errors != nullptr) errors->push_back(std::get<cp::ParseError>(*event));
+    else if (errors != nullptr) errors->push_back(std::get<cp::RejectedBytes>(*event));
   }
   return frames;
 }
@@ -107,18 +107,21 @@ TEST(ClearpathParser, BadCrcIsCountedAndReportsTheHeader) {
   cp::FrameParser parser;
   parser.feed(bad);
   parser.feed(good);
-  std::vector<cp::ParseError> errors;
+  std::vector<cp::RejectedBytes> errors;
   const auto frames = drain(parser, &errors);
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].header.type, 0x0210);
   ASSERT_FALSE(errors.empty());
-  EXPECT_EQ(errors[0].kind, cp::ParseErrorKind::bad_crc);
+  EXPECT_EQ(errors[0].reason, cp::RejectReason::bad_crc);
   ASSERT_TRUE(errors[0].header);
   EXPECT_EQ(errors[0].header->type, 0x0204);
   EXPECT_EQ(errors[0].header->timestamp, 77u);
   EXPECT_EQ(errors[0].stream_offset, 0u);
   EXPECT_EQ(parser.counters().bad_crc, 1u);
-  EXPECT_NE(errors[0].message().find("bad CRC at stream offset 0"), std::string::npos);
+  const auto error = errors[0].to_error();
+  EXPECT_EQ(error.code, jaus::ErrorCode::bad_frame);
+  EXPECT_EQ(error.field, "crc");
+  EXPECT_EQ(error.message().rfind("offset 0, field 'crc': bad frame (bad CRC, type 0x0204", 0), 0u) << error.message();
 }
 
 TEST(ClearpathParser, TruncatedFrameDoesNotHoldBackTheNextOne) {
@@ -129,7 +132,7 @@ TEST(ClearpathParser, TruncatedFrameDoesNotHoldBackTheNextOne) {
   cp::FrameParser parser;
   parser.feed(std::span(first).first(20));
   parser.feed(second);
-  std::vector<cp::ParseError> errors;
+  std::vector<cp::RejectedBytes> errors;
   const auto frames = drain(parser, &errors);
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].header.timestamp, 2u);

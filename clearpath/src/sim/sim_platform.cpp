@@ -115,14 +115,15 @@ std::vector<std::uint8_t> SimPlatform::receive(std::span<const std::uint8_t> byt
       handle(*frame, now, out);
       continue;
     }
-    const auto& error = std::get<ParseError>(*event);
-    if (error.kind == ParseErrorKind::garbage) continue;
+    const auto& rejected = std::get<RejectedBytes>(*event);
+    if (rejected.reason == RejectReason::garbage) continue;
     ++counters_.parse_errors;
     // The header survived, only the CRC failed: tell the host to resend.
-    if (error.kind == ParseErrorKind::bad_crc && error.header && (error.header->flags & kFlagSuppressAck) == 0 &&
-        kind_of(error.header->type) != MessageKind::data && kind_of(error.header->type) != MessageKind::unassigned) {
+    if (rejected.reason == RejectReason::bad_crc && rejected.header && (rejected.header->flags & kFlagSuppressAck) == 0 &&
+        kind_of(rejected.header->type) != MessageKind::data &&
+        kind_of(rejected.header->type) != MessageKind::unassigned) {
       ++counters_.refused;
-      append(out, error.header->type, error.header->timestamp, Ack{kAckBadChecksum});
+      append(out, rejected.header->type, rejected.header->timestamp, Ack{kAckBadChecksum});
     }
   }
   return out;

@@ -7,6 +7,10 @@
 // up (a UDP socket is "connected" with nobody behind it). The client marks
 // the link down after ClientConfig::data_silence without data, so a backend
 // that subscribes to something always learns of a silent platform.
+//
+// Input the client passes over (a frame with a bad CRC, one that does not
+// decode) is logged here, where and why, a few lines per window and then a
+// count: a noisy serial line is a handful of lines, not thousands.
 #pragma once
 
 #include <cstdint>
@@ -18,15 +22,18 @@
 #include "jaus/base/log.hpp"
 #include "jaus/base/time.hpp"
 #include "jaus/clearpath/client.hpp"
+#include "jaus/runtime/repeat_limiter.hpp"
 
 namespace jaus::bridge {
 
 class PlatformConnection {
  public:
+  static constexpr int kProblemLinesPerWindow = 5;
+
   using DataHandler = std::function<void(const clearpath::Envelope&)>;
   using AliveHandler = std::function<void(bool alive)>;
 
-  // Takes over the client's data and state callbacks until destroyed.
+  // Takes over the client's data, state and problem callbacks until destroyed.
   PlatformConnection(clearpath::Client& client, const rt::Clock& clock, rt::LogFn log = {});
   ~PlatformConnection();
   PlatformConnection(const PlatformConnection&) = delete;
@@ -48,10 +55,12 @@ class PlatformConnection {
   void data(const clearpath::Envelope& envelope);
   void state(clearpath::ConnectionState state);
   void set_alive(bool alive);
+  void problem(const Error& error);
 
   clearpath::Client& client_;
   const rt::Clock& clock_;
   rt::LogFn log_;
+  rt::RepeatLimiter problem_lines_{rt::kRepeatedLogWindow, kProblemLinesPerWindow};
   std::map<std::uint16_t, std::vector<DataHandler>> data_handlers_;
   std::vector<AliveHandler> alive_handlers_;
   bool alive_ = false;

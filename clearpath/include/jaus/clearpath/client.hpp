@@ -38,6 +38,9 @@ class Client {
   virtual void on_data(ClientCore::DataCallback callback) = 0;
   // Every change of the connection's state.
   virtual void on_state(ClientCore::StateCallback callback) = 0;
+  // Every piece of input passed over (a bad CRC, a frame that does not
+  // decode), saying where and why (ClientCore::on_problem).
+  virtual void on_problem(ClientCore::ProblemCallback callback) = 0;
 
   virtual ConnectionState state() const = 0;
   virtual const ClientCounters& counters() const = 0;

@@ -105,6 +105,7 @@ class ClientCore {
   using CommandCallback = std::function<void(const CommandOutcome&)>;
   using DataCallback = std::function<void(const Envelope&)>;
   using StateCallback = std::function<void(ConnectionState)>;
+  using ProblemCallback = std::function<void(const Error&)>;
 
   explicit ClientCore(ClientConfig config = {});
 
@@ -173,6 +174,11 @@ class ClientCore {
   void on_data(DataCallback callback) { on_data_ = std::move(callback); }
   // Every change of state() (down, connecting, connected, retrying).
   void on_state(StateCallback callback) { on_state_ = std::move(callback); }
+  // Every piece of input passed over, saying where and why: bytes the parser
+  // rejected (bad CRC, bad length, garbage, ...; parser_counters()) and frames
+  // that do not decode (ClientCounters::decode_errors). Never acted on; for
+  // the owner's log.
+  void on_problem(ProblemCallback callback) { on_problem_ = std::move(callback); }
 
   ConnectionState state() const { return state_; }
   const ClientCounters& counters() const { return counters_; }
@@ -265,6 +271,7 @@ class ClientCore {
   std::chrono::milliseconds backoff_;
   DataCallback on_data_;
   StateCallback on_state_;
+  ProblemCallback on_problem_;
   ClientCounters counters_;
 };
 

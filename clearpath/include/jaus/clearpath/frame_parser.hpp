@@ -12,11 +12,13 @@
 #include <variant>
 #include <vector>
 
+#include "jaus/base/error.hpp"
 #include "jaus/clearpath/frame.hpp"
 
 namespace jaus::clearpath {
 
-enum class ParseErrorKind {
+// Why the parser passed over bytes.
+enum class RejectReason {
   garbage,      // bytes before a start-of-header (counted once per run)
   bad_length,   // LEN and ~LEN disagree, or LEN < 11
   oversize,     // LEN announces a frame larger than the configured limit
@@ -25,18 +27,26 @@ enum class ParseErrorKind {
   truncated,    // a candidate frame cut short by the start of a complete frame
 };
 
-std::string_view to_string(ParseErrorKind kind);
+std::string_view to_string(RejectReason reason);
 
-struct ParseError {
-  ParseErrorKind kind{};
+// A parser event, not a failure of the parser: bytes of the stream it passed
+// over, where and why, with what a platform needs to answer a damaged frame.
+// to_error() is the project's one error for it, for logs and callers that
+// report errors.
+struct RejectedBytes {
+  RejectReason reason{};
   std::uint64_t stream_offset = 0;  // where in the byte stream the candidate started
   std::size_t length = 0;           // bytes dropped (garbage) or the announced frame size
   // Set for bad_crc: the header was intact, so a platform can answer the
   // (type, timestamp) with a "bad checksum" ACK.
   std::optional<FrameHeader> header;
-  std::string message() const;  // "bad CRC at stream offset 42 (type 0x0204, expected 0x1234, got 0x4321)"
   std::uint16_t expected_crc = 0;
   std::uint16_t received_crc = 0;
+
+  // ErrorCode::bad_frame at the stream offset, the field that failed ("crc",
+  // "length", "stx") and the details: "offset 42, field 'crc': bad frame
+  // (bad CRC, type 0x0204, expected 0x1234, got 0x4321)".
+  Error to_error() const;
 };
 
 struct ParserCounters {
@@ -51,14 +61,14 @@ struct ParserCounters {
   std::uint64_t errors() const { return bad_length + oversize + missing_stx + bad_crc + truncated; }
 };
 
-using ParseEvent = std::variant<Frame, ParseError>;
+using ParseEvent = std::variant<Frame, RejectedBytes>;
 
 class FrameParser {
  public:
   explicit FrameParser(std::size_t max_frame_size = kMaxFrameSize);
 
   void feed(std::span<const std::uint8_t> bytes);
-  // Next frame or error, or nullopt when more bytes are needed.
+  // Next frame or rejected bytes, or nullopt when more bytes are needed.
   std::optional<ParseEvent> poll();
   // Bytes buffered but not yet resolved.
   std::size_t pending() const { return buffer_.size() - start_; }

@@ -63,6 +63,7 @@ class ClearpathLink final : public Client {
   void stop_setpoint(AnyMessage stop) override;
   void on_data(ClientCore::DataCallback callback) override { core_.on_data(std::move(callback)); }
   void on_state(ClientCore::StateCallback callback) override { core_.on_state(std::move(callback)); }
+  void on_problem(ClientCore::ProblemCallback callback) override { core_.on_problem(std::move(callback)); }
   ConnectionState state() const override { return core_.state(); }
   const ClientCounters& counters() const override { return core_.counters(); }
   const std::string& down_reason() const override { return core_.down_reason(); }
