@@ -42,9 +42,8 @@ struct Options {
 
 // What every component is asked first (its identification, its services):
 // one that does not answer fails this and is tested no further.
-const jaus::conform::ConformanceCase kAnswers{"runner.answers", "answers Query Identification (component)",
-                                              "docs/wire-format.md: Typical OCU sequence", nullptr,
-                                              nullptr};
+const jaus::conform::CaseDescription kAnswers{"runner.answers", "answers Query Identification (component)",
+                                              "docs/wire-format.md: Typical OCU sequence"};
 
 int bad_usage(const std::string& what) {
   std::cerr << "jaus-conform: " << what << " (--help for usage)\n";

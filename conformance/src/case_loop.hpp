@@ -46,10 +46,6 @@ auto record_from(Session& listening, const Peer& component, rt::Clock& clock, rt
   });
 }
 
-// What a report says of a case: its id, title and reference.
-inline const ConformanceCase& describe(const ConformanceCase& test_case) { return test_case; }
-inline const ConformanceCase& describe(const JssConformanceCase& test_case) { return test_case.describe; }
-
 // Runs one case in `context` (a CaseContext or JssCaseContext, its clock
 // started) and fills `result`: the outcome, the time it took and what was
 // exchanged, with what `component` sent the runner meanwhile recorded.
@@ -69,12 +65,11 @@ std::vector<CaseResult> run_each_case(Session& session, const std::vector<const 
                                       const ResultListener& on_result, RunCase run_case) {
   std::vector<CaseResult> results;
   for (const Case* test_case : cases) {
-    const ConformanceCase& described = describe(*test_case);
-    const std::string_view id = described.id;
+    const std::string_view id = test_case->id;
     if (!options.only.empty() && id.find(options.only) == std::string_view::npos) continue;
     if (!options.skip.empty() && id.find(options.skip) != std::string_view::npos) continue;
     CaseResult result = blank;
-    result.test_case = &described;
+    result.test_case = test_case;
     if (session.interrupted()) {
       result.outcome = {Verdict::fail, "interrupted before it ran"};
     } else if (std::string why = test_case->not_applicable ? test_case->not_applicable(component) : std::string();

@@ -40,18 +40,9 @@ class AccessControlTranslator final : public ServiceTranslator {
     return {core_service("AccessControl")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
-    if (ra_id == component_id::kNodeManager) return false;
-    switch (message_id) {
-      case jss_msg::SetAuthority::code:
-      case jss_msg::RequestControl::code:
-      case jss_msg::ReleaseControl::code:
-      case jss_msg::QueryAuthority::code:
-      case jss_msg::QueryTimeout::code:
-      case jss_msg::QueryControl::code:
-        return true;
-      default:
-        return false;
-    }
+    return ra_id != component_id::kNodeManager &&
+           is_one_of<jss_msg::SetAuthority, jss_msg::RequestControl, jss_msg::ReleaseControl, jss_msg::QueryAuthority,
+                     jss_msg::QueryTimeout, jss_msg::QueryControl>(message_id);
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {

@@ -37,17 +37,9 @@ class DiscoveryTranslator final : public ServiceTranslator {
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
     if (message_id == jss_msg::QueryIdentification::code) return true;
-    if (ra_id != component_id::kNodeManager) return false;
-    switch (message_id) {
-      case jss_msg::RegisterServices::code:
-      case jss_msg::QueryConfiguration::code:
-      case jss_msg::QuerySubsystemList::code:
-      case jss_msg::QueryServices::code:
-      case jss_msg::QueryServiceList::code:
-        return true;
-      default:
-        return false;
-    }
+    return ra_id == component_id::kNodeManager &&
+           is_one_of<jss_msg::RegisterServices, jss_msg::QueryConfiguration, jss_msg::QuerySubsystemList,
+                     jss_msg::QueryServices, jss_msg::QueryServiceList>(message_id);
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {

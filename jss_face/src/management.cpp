@@ -31,20 +31,9 @@ class ManagementTranslator final : public ServiceTranslator {
     return {core_service("Management")};
   }
   bool handles(std::uint16_t message_id, std::uint8_t ra_id) const override {
-    if (ra_id == component_id::kNodeManager) return false;
-    switch (message_id) {
-      case jss_msg::Shutdown::code:
-      case jss_msg::Standby::code:
-      case jss_msg::Resume::code:
-      case jss_msg::Reset::code:
-      case jss_msg::SetEmergency::code:
-      case jss_msg::ClearEmergency::code:
-      case jss_msg::QueryStatus::code:
-      case jss_msg::ReportStatus::code:
-        return true;
-      default:
-        return false;
-    }
+    return ra_id != component_id::kNodeManager &&
+           is_one_of<jss_msg::Shutdown, jss_msg::Standby, jss_msg::Resume, jss_msg::Reset, jss_msg::SetEmergency,
+                     jss_msg::ClearEmergency, jss_msg::QueryStatus, jss_msg::ReportStatus>(message_id);
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {

@@ -12,6 +12,7 @@
 namespace jaus::components_jss {
 
 using jss_face::FacePort;
+using jss_face::is_one_of;
 using jss_face::JssInbound;
 using jss_face::RaOutbound;
 using jss_face::reply_jss;

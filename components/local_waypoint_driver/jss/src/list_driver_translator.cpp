@@ -37,19 +37,9 @@ class ListDriverTranslator final : public ServiceTranslator {
             ServiceUri{"urn:jaus:jss:mobility:LocalWaypointListDriver", 1, 0}};
   }
   bool handles(std::uint16_t id, std::uint8_t ra_component_id) const override {
-    if (ra_component_id != component_id::kLocalWaypointDriver) return false;
-    switch (id) {
-      case jss::msg::SetElement::code:
-      case jss::msg::DeleteElement::code:
-      case jss::msg::QueryElement::code:
-      case jss::msg::QueryElementList::code:
-      case jss::msg::QueryElementCount::code:
-      case jss::msg::ExecuteList::code:
-      case jss::msg::QueryActiveElement::code:
-        return true;
-      default:
-        return false;
-    }
+    return ra_component_id == component_id::kLocalWaypointDriver &&
+           is_one_of<jss::msg::SetElement, jss::msg::DeleteElement, jss::msg::QueryElement, jss::msg::QueryElementList,
+                     jss::msg::QueryElementCount, jss::msg::ExecuteList, jss::msg::QueryActiveElement>(id);
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {

@@ -33,8 +33,8 @@ class LocalWaypointDriverTranslator final : public ServiceTranslator {
   }
   bool handles(std::uint16_t id, std::uint8_t ra_component_id) const override {
     return ra_component_id == component_id::kLocalWaypointDriver &&
-           (id == jss::msg::SetLocalWaypoint::code || id == jss::msg::QueryLocalWaypoint::code ||
-            id == jss::msg::SetTravelSpeed::code || id == jss::msg::QueryTravelSpeed::code);
+           is_one_of<jss::msg::SetLocalWaypoint, jss::msg::QueryLocalWaypoint, jss::msg::SetTravelSpeed,
+                     jss::msg::QueryTravelSpeed>(id);
   }
 
   bool from_jss(const JssInbound& m, FacePort& port) override {

@@ -102,15 +102,26 @@ struct CaseContext {
   Expected<void> silence_second();
 };
 
-struct ConformanceCase {
+// What a report says of a case: its id, title and where the rule is written.
+struct CaseDescription {
   std::string_view id;         // stable, for reports and --only: "core.identification"
   std::string_view title;      // what the RA requires, in one line
   std::string_view reference;  // where it says so: "Part 3 3.2.3 Query Identification", "docs/wire-format.md: Liveness"
+};
+
+// One case, of either profile: RA cases run on an OCU session against a
+// component known by its address (ConformanceCase), JSS cases on a JSS
+// session against one known by its JSS ID and services (JssConformanceCase,
+// jss_case.hpp). The runner loop, the recorder and the reports are the same.
+template <class Component, class Context>
+struct Case : CaseDescription {
   // Why the case does not apply to a component (it is then skipped with that
   // reason); empty when it applies. Null: applies to every component.
-  std::function<std::string(const ComponentUnderTest&)> not_applicable;
-  std::function<CaseOutcome(CaseContext&)> run;
+  std::function<std::string(const Component&)> not_applicable;
+  std::function<CaseOutcome(Context&)> run;
 };
+
+using ConformanceCase = Case<ComponentUnderTest, CaseContext>;
 
 // The suites, each in its own file (src/<suite>_cases.cpp).
 std::span<const ConformanceCase> core_cases();                // every component: core queries and states

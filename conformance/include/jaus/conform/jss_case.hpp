@@ -65,11 +65,7 @@ struct JssCaseContext {
   ~JssCaseContext();
 };
 
-struct JssConformanceCase {
-  ConformanceCase describe;  // id, title, reference (its not_applicable and run are unused)
-  std::function<std::string(const JssComponentUnderTest&)> not_applicable;
-  std::function<CaseOutcome(JssCaseContext&)> run;
-};
+using JssConformanceCase = Case<JssComponentUnderTest, JssCaseContext>;
 
 // The suites (src/jss_<suite>_cases.cpp).
 std::span<const JssConformanceCase> jss_core_cases();      // discovery, access control, management, liveness, events

@@ -32,7 +32,7 @@ struct CaseResult;
 using ResultListener = std::function<void(const CaseResult&)>;
 
 struct CaseResult {
-  const ConformanceCase* test_case = nullptr;
+  const CaseDescription* test_case = nullptr;
   Address component;
   std::string component_name;
   CaseOutcome outcome;

@@ -28,6 +28,13 @@
 
 namespace jaus::jss_face {
 
+// Whether a JSS message ID is one of Ms' (a translator's handles(): the
+// messages it takes, listed once as types).
+template <class... Ms>
+constexpr bool is_one_of(std::uint16_t message_id) {
+  return ((message_id == Ms::code) || ...);
+}
+
 // The JSS message M a client sent; nullopt (counted and logged as
 // malformed) when its body is not M's.
 template <class M>

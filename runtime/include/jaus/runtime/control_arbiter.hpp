@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "jaus/core/address.hpp"
@@ -21,6 +22,11 @@ struct Controller {
   Address address;
   std::uint8_t authority = 0;
 };
+
+// "1.1.40.1 (authority 5)", for logs.
+inline std::string to_string(const Controller& c) {
+  return c.address.to_string() + " (authority " + std::to_string(c.authority) + ")";
+}
 
 class ControlArbiter {
  public:
