@@ -44,11 +44,11 @@ double radians(double deg) { return deg * std::numbers::pi / 180.0; }
 
 void ArmPanel::follow(const jaus::Address& a, std::string_view /*view*/) {
   session().send(a, jaus::msg::QueryManipulatorSpecifications{});
-  subscribe<jaus::msg::ReportJointPositions>(a, 0,
-                                             [this, a](const jaus::Header&, const jaus::msg::ReportJointPositions& j) {
-                                               arms_[a].positions_rad_or_m = j.positions_rad;
-                                               publish(a);
-                                             });
+  const auto on_joints = [this, a](const jaus::Header&, const jaus::msg::ReportJointPositions& j) {
+    arms_[a].positions_rad_or_m = j.positions_rad;
+    publish(a);
+  };
+  subscribe<jaus::msg::ReportJointPositions>(a, 0, on_joints);
 }
 
 void ArmPanel::received(const jaus::ocu::Received& r) {
