@@ -1,10 +1,8 @@
 #include "jaus/console/console_protocol.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "jaus/core/component_ids.hpp"
 
 namespace jaus::console {
 
@@ -176,21 +174,11 @@ std::string_view to_string(EventLevel level) {
   return "info";
 }
 
-// The RA 3.x component IDs by kind ("primitive_driver": 33), from the one
-// table: the page picks its default targets by them and names no ID itself.
-json component_ids_json() {
-  json ids = json::object();
-  for (const auto& named : jaus::component_id::kNames) {
-    std::string kind(named.name);
-    std::replace(kind.begin(), kind.end(), ' ', '_');
-    ids[kind] = named.id;
-  }
-  return ids;
-}
-
 json to_json(const WelcomeFrame& f) {
-  return {{"type", "welcome"},         {"self", address_text(f.self)}, {"page", f.page},
-          {"version", f.version},      {"deadman_ms", f.deadman_ms},  {"component_ids", component_ids_json()}};
+  json views = json::object();  // JSON's keys are text: {"33": ["drive", "emergency"], ...}
+  for (const auto& [id, names] : f.views) views[std::to_string(id)] = names;
+  return {{"type", "welcome"},    {"self", address_text(f.self)}, {"page", f.page},
+          {"version", f.version}, {"deadman_ms", f.deadman_ms},  {"views", std::move(views)}};
 }
 
 json to_json(const TreeFrame& f) {

@@ -3,9 +3,10 @@
 "use strict";
 
 (() => {
-  // JAUS component IDs (RA 3.x) by kind ("primitive_driver": 33), as the
-  // server's welcome gives them: the page picks its default targets by them.
-  const KIND = {};
+  // What is shown of a component, by its ID ({"33": ["drive", "emergency"], ...}),
+  // as the server's welcome gives them from the kinds it knows: the page
+  // picks its default targets by view and names no kind and no ID.
+  const VIEWS = {};
   const DRIVE_PERIOD_MS = 50;      // the protocol: drive frames every 50 ms while held
   const TRACK_POINTS = 3000;       // the map's track, oldest dropped first
   const LOG_ENTRIES = 400;
@@ -13,6 +14,7 @@
 
   const $ = (id) => document.getElementById(id);
   const componentId = (address) => Number(String(address).split(".")[2]);
+  const showsAny = (address, views) => views.some((v) => (VIEWS[componentId(address)] || []).includes(v));
 
   // Everything the page knows; window.jausConsole exposes it to tests and to curious operators.
   const state = {
@@ -105,7 +107,7 @@
   // ---------------------------------------------------------------- incoming
   const handlers = {
     welcome(m) {
-      Object.assign(KIND, m.component_ids || {});
+      Object.assign(VIEWS, m.views || {});
       state.self = m.self;
       state.page = m.page ?? null;
       if (m.deadman_ms) state.deadmanMs = m.deadman_ms;
@@ -244,14 +246,14 @@
     root.append(top);
   }
 
-  // Fills each target selector with the components of its kinds, keeping the
-  // operator's choice, else the first of the preferred kind.
+  // Fills each target selector with the components that show its views,
+  // keeping the operator's choice, else the first one.
   function refreshTargets() {
     const all = [...state.components.values()];
-    const fill = (id, kinds, allowAll) => {
+    const fill = (id, views, allowAll) => {
       const select = $(id);
       const previous = select.value;
-      const options = kinds ? all.filter((c) => kinds.includes(componentId(c.address))) : all;
+      const options = views ? all.filter((c) => showsAny(c.address, views)) : all;
       select.textContent = "";
       if (allowAll) select.append(new Option("all (every component)", "all"));
       for (const c of options) select.append(new Option(`${c.address} ${c.name || ""}`, c.address));
@@ -259,18 +261,19 @@
       else if (options.length) select.value = options[0].address;
     };
     fill("control-target", null);
-    const driver = all.find((c) => componentId(c.address) === KIND.primitive_driver);
+    const driver = all.find((c) => showsAny(c.address, ["drive"]));
     if (driver && !$("control-target").dataset.touched && $("control-target").value !== driver.address)
       $("control-target").value = driver.address;
-    fill("drive-target", [KIND.primitive_driver]);
-    fill("pose-source", [KIND.local_pose_sensor, KIND.global_pose_sensor]);
-    fill("camera-target", [KIND.visual_sensor]);
-    fill("arm-target", [KIND.primitive_manipulator]);
-    fill("waypoint-target", [KIND.local_waypoint_driver]);
-    // The emergency button stops the vehicle: its driver unless the operator chose otherwise.
+    fill("drive-target", ["drive"]);
+    fill("pose-source", ["local_pose", "global_pose"]);
+    fill("camera-target", ["camera"]);
+    fill("arm-target", ["arm"]);
+    fill("waypoint-target", ["waypoints"]);
+    // The emergency button stops the vehicle (its driver) unless the operator chose otherwise.
     const emergencyTarget = $("emergency-target");
-    fill("emergency-target", [KIND.primitive_driver], true);
-    if (!emergencyTarget.dataset.touched && driver) emergencyTarget.value = driver.address;
+    fill("emergency-target", ["emergency"], true);
+    const stops = all.find((c) => showsAny(c.address, ["emergency"]));
+    if (!emergencyTarget.dataset.touched && stops) emergencyTarget.value = stops.address;
   }
 
   function selectDefault(id, value) {

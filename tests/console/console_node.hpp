@@ -32,13 +32,16 @@ struct SentEffort {
 
 class ConsoleNode {
  public:
-  ConsoleNode() : network_(time_, time_), vehicle_link_(network_.attach(1, 1)), console_link_(network_.attach(254, 1)) {
+  // `more`: components of the vehicle beyond these.
+  explicit ConsoleNode(std::vector<host::ComponentSpec> more = {})
+      : network_(time_, time_), vehicle_link_(network_.attach(1, 1)), console_link_(network_.attach(254, 1)) {
     DriveNodeOptions options;
     options.drivers = {"local_waypoint_driver"};
     auto config = drive_node_config(options);
     config.components.push_back(host::ComponentSpec{"velocity_state_sensor", 42, 1, 0, "", {}, 0, {}});
     config.components.push_back(host::ComponentSpec{"visual_sensor", 37, 1, 0, "", {}, 0, {}});
     config.components.push_back(host::ComponentSpec{"primitive_manipulator", 49, 1, 0, "", {}, 0, {}});
+    for (auto& spec : more) config.components.push_back(std::move(spec));
     components::CameraConfig camera;
     camera.id = 1;
     camera.pan = {-1.0, 1.0, 0.5};  // rad, rad/s

@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include "jaus/console/console_protocol.hpp"
-#include "jaus/core/component_ids.hpp"
 
 namespace jaus::console {
 namespace {
@@ -105,14 +104,11 @@ TEST(ConsoleProtocol, RefusesMalformedFramesWithTheReason) {
 
 TEST(ConsoleProtocol, FormatsEveryServerFrame) {
   const Address self{254, 7, 40, 1};
-  auto welcome = json::parse(format_frame(WelcomeFrame{self, 3, "0.1.0", 250}));
-  // The RA's component IDs by kind, the page's only source of them.
-  const json ids = welcome["component_ids"];
-  EXPECT_EQ(ids["primitive_driver"], 33);
-  EXPECT_EQ(ids["local_waypoint_driver"], 46);
-  EXPECT_EQ(ids["primitive_manipulator"], 49);
-  EXPECT_EQ(ids.size(), jaus::component_id::kNames.size());
-  welcome.erase("component_ids");
+  auto welcome =
+      json::parse(format_frame(WelcomeFrame{self, 3, "0.1.0", 250, {{33, {"drive", "emergency"}}, {200, {"camera"}}}}));
+  // The views by component ID (keys are text in JSON), the page's only way to pick its targets.
+  EXPECT_EQ(welcome["views"], json({{"33", {"drive", "emergency"}}, {"200", {"camera"}}}));
+  welcome.erase("views");
   EXPECT_EQ(welcome,
             json({{"type", "welcome"}, {"self", "254.7.40.1"}, {"page", 3}, {"version", "0.1.0"}, {"deadman_ms", 250}}));
   TreeFrame tree{{TreeSubsystem{1, "robot", {TreeNode{1, "vehicle", {TreeComponent{kDriver, "pd", "ready", self, 5}}}}}}};

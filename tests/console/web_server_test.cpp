@@ -14,7 +14,7 @@
 #include <mutex>
 #include <thread>
 
-#include "jaus/console/operator_console.hpp"  // kEveryPage
+#include "jaus/console/panels/panel.hpp"  // kEveryPage
 #include "jaus/console/web_assets.hpp"
 #include "jaus/console/web_server.hpp"
 

@@ -24,6 +24,7 @@ const rt::ComponentKind& global_pose_sensor_kind() {
       .moves_hardware = false,
       .one_per_node = false,
       .default_node_authority = std::uint8_t{0},  // in the default node
+      .operator_views = {rt::operator_view::kGlobalPose},
       .check = rt::check_by(global_pose_sensor_options),
       .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
         const auto pose = k.need<PoseSource>();

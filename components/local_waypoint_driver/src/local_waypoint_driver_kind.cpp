@@ -10,7 +10,7 @@ namespace jaus::components {
 const rt::ComponentKind& local_waypoint_driver_kind() {
   static const rt::ComponentKind kind = mobility_driver_kind<LocalWaypointDriver>(
       "local_waypoint_driver", component_id::kLocalWaypointDriver, waypoint_driver_option_keys(),
-      waypoint_driver_options, DriverFrame::local);
+      waypoint_driver_options, DriverFrame::local, {rt::operator_view::kWaypoints});
   return kind;
 }
 

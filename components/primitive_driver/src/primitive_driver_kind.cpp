@@ -28,6 +28,7 @@ const rt::ComponentKind& primitive_driver_kind() {
       .moves_hardware = true,
       .one_per_node = false,
       .default_node_authority = std::uint8_t{0},  // in the default node
+      .operator_views = {rt::operator_view::kDrive, rt::operator_view::kEmergency},
       .check = rt::check_by(primitive_driver_options),
       .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
         const auto drive = k.need<Drive>();

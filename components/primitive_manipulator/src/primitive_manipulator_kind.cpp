@@ -25,6 +25,7 @@ const rt::ComponentKind& primitive_manipulator_kind() {
       .moves_hardware = true,
       .one_per_node = false,
       .default_node_authority = std::uint8_t{0},  // in the default node
+      .operator_views = {rt::operator_view::kArm},
       .check = rt::check_by(primitive_manipulator_options),
       .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
         const auto arm = k.need<ManipulatorArm>();

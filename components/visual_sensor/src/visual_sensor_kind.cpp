@@ -28,6 +28,7 @@ const rt::ComponentKind& visual_sensor_kind() {
       .moves_hardware = true,  // the cameras' mounts
       .one_per_node = false,
       .default_node_authority = std::uint8_t{0},  // in the default node
+      .operator_views = {rt::operator_view::kCamera},
       .check = rt::check_by(visual_sensor_options),
       .make = [](const rt::KindContext& k) -> Expected<std::unique_ptr<rt::Component>> {
         const auto cameras = k.need<Cameras>();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -94,6 +95,9 @@ struct WelcomeFrame {
   PageId page = 0;  // the page's own ID (what `driving.by` says)
   std::string version;
   int deadman_ms = 250;
+  // The operator views by component ID (kind_views.hpp): the page picks its
+  // default targets by them and names no kind and no ID itself.
+  std::map<std::uint8_t, std::vector<std::string>> views;
 };
 
 struct TreeComponent {

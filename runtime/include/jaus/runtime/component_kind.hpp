@@ -1,6 +1,7 @@
 // A component kind describes itself: its name as a configuration writes it,
 // its RA 3.x component ID, the options it accepts and how it checks them, the
-// hardware it needs (by interface) and how to make one. Each
+// hardware it needs (by interface), what an operator unit shows for it and
+// how to make one. Each
 // components/<name>/ exports its kind (jaus/components/<name>_kind.hpp); the
 // node host walks the list of kinds and never names one
 // (jaus/host/component_kinds.hpp). Header only: every component can use it.
@@ -96,6 +97,21 @@ struct KindContext {
   }
 };
 
+// What an operator unit (jaus-console) shows for a component: the views a
+// kind lists (ComponentKind::operator_views). The console follows a
+// component, and the page picks its default targets, by the views of the
+// component's ID, never by the ID itself.
+namespace operator_view {
+inline constexpr std::string_view kDrive = "drive";          // hold-to-drive (Set Wrench Effort); control's default
+inline constexpr std::string_view kEmergency = "emergency";  // the emergency button's default target
+inline constexpr std::string_view kLocalPose = "local_pose";  // Report Local Pose: the map
+inline constexpr std::string_view kGlobalPose = "global_pose";  // Report Global Pose: its node's latitude/longitude
+inline constexpr std::string_view kVelocity = "velocity";    // Report Velocity State
+inline constexpr std::string_view kCamera = "camera";        // Report Image, Set Camera Pose
+inline constexpr std::string_view kArm = "arm";              // joints: specifications, positions, Set Joint Positions
+inline constexpr std::string_view kWaypoints = "waypoints";  // Set Local Waypoint, Set Travel Speed
+}  // namespace operator_view
+
 struct ComponentKind {
   std::string_view name;        // as written in a configuration ("primitive_driver")
   std::uint8_t default_id = 0;  // its RA 3.x component ID
@@ -114,6 +130,9 @@ struct ComponentKind {
   // default_id, instance 1, named as the kind, with this authority; nullopt:
   // the default node has none.
   std::optional<std::uint8_t> default_node_authority = std::nullopt;
+  // What an operator unit shows for a component at default_id (operator_view
+  // names); empty: it is listed, nothing of it is followed.
+  std::vector<std::string_view> operator_views = {};
   // The first problem with the options, or with the authority they bound
   // (Error::field names the key, or "authority"), or nothing; nothing is
   // built. Empty: the kind has no options to check.

@@ -17,11 +17,12 @@ namespace jaus::components {
 enum class DriverFrame : std::uint8_t { any, local };
 
 // Driver: constructible from (ComponentConfig, Environment, PoseSource&, Options);
-// read_options: Expected<Options>(const rt::KindOptions&).
+// read_options: Expected<Options>(const rt::KindOptions&); operator_views:
+// what an operator unit shows for it (rt::operator_view).
 template <class Driver, class ReadOptions>
 rt::ComponentKind mobility_driver_kind(std::string_view name, std::uint8_t id,
                                        std::vector<std::string_view> option_keys, ReadOptions read_options,
-                                       DriverFrame frame) {
+                                       DriverFrame frame, std::vector<std::string_view> operator_views = {}) {
   return rt::ComponentKind{
       .name = name,
       .default_id = id,
@@ -32,6 +33,7 @@ rt::ComponentKind mobility_driver_kind(std::string_view name, std::uint8_t id,
       // In the default node with authority 1: below an operator's, who takes
       // the primitive driver over at once.
       .default_node_authority = std::uint8_t{1},
+      .operator_views = std::move(operator_views),
       // The options, and the authority under their ceiling: `jausd --check-config`
       // refuses what make() would (operators always win).
       .check = [read_options](const rt::KindOptions& k) -> Expected<void> {
