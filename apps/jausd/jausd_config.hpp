@@ -144,8 +144,8 @@ struct JausdConfig {
   std::string state_directory;
   JssConfig jss;
 
-  // node_manager 1.1, communicator 35.1, primitive_driver 33.1, global_pose_sensor 38.1,
-  // velocity_state_sensor 42.1, visual_sensor 37.1, primitive_manipulator 49.1
+  // Every built-in kind that says it is in the default node
+  // (ComponentKind::default_node_authority), each at its own ID, instance 1.
   static std::vector<ComponentSpec> default_components();
   // Two cameras (front pan-tilt-zoom, rear fixed) and a six-joint arm.
   static jaus::components::VisualSensorConfig default_cameras();
