@@ -133,14 +133,35 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
       });
     } else if (single) {
       deliver(h, packet.contents, standing, reached);
-    } else if (auto whole = reassembler_.add(packet, now); !whole) {
-      malformed("large message packet from " + h.source.to_string(), whole.error().message());
-    } else if (whole->has_value()) {
-      ++counters_.large_messages_received;
-      const jss::WholeMessage message = std::move(**whole);
-      deliver(message.header, message.contents, standing, reached);
+    } else {
+      assemble(packet, now, standing, reached);
     }
     if (h.ack_nak == jss::JudpAckNak::ack_requested && !h.destination.is_broadcast()) send_ack(h);
+  }
+
+  // A piece of a large message, in any order (the one assembler: jaus/core/large_message_assembler.hpp).
+  void assemble(const jss::JudpPacket& packet, rt::TimePoint now, rt::SenderStanding standing,
+                const std::vector<OurComponent>& reached) {
+    for (const auto& discarded : assembler_.expire(now))
+      lines_.write("large JSS messages discarded", rt::LogLevel::warn, [&] {
+        return "large message from " + discarded.key.source.to_string() + " to " +
+               discarded.key.destination.to_string() + " discarded: " + std::string(to_string(discarded.reason));
+      });
+    const jss::JudpHeader& h = packet.header;
+    auto assembled = assembler_.feed(h, packet.contents, now);
+    if (assembled.issue == AssemblyIssue::duplicate) {
+      ++counters_.duplicates;  // a piece held already, or of a message delivered: harmless
+      lines_.write("JSS copies not acted on", rt::LogLevel::debug, [&] {
+        return "large message packet from " + describe_client(h.source) + " to " + h.destination.to_string() +
+               ", sequence number " + std::to_string(h.sequence) + ": a copy of one held or delivered; not taken again";
+      });
+    } else if (assembled.status == AssemblyStatus::dropped) {
+      malformed("large message packet from " + h.source.to_string(),
+                std::string(to_string(assembled.issue)) + " (sequence number " + std::to_string(h.sequence) + ")");
+    } else if (assembled.status == AssemblyStatus::complete) {
+      ++counters_.large_messages_received;
+      deliver(assembled.message->header, assembled.message->payload, standing, reached);
+    }
   }
 
   void deliver(const jss::JudpHeader& h, std::span<const std::uint8_t> contents, rt::SenderStanding standing,
@@ -392,7 +413,7 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
   AliasTable aliases_;
   Translators translators_;
   EventEngine events_;
-  jss::LargeMessageReassembler reassembler_;
+  jss::JssLargeMessageAssembler assembler_;
   // Per destination; the bound as the RA node's (a destination least
   // recently sent to starts again at 0 when used again).
   node::BasicSequenceCounters<jss::JssId> sequences_{{.max_streams = 4096}};
@@ -486,5 +507,6 @@ std::optional<jss::JssId> JssFace::jss_id_of(const Address& ra_component) const 
 }
 const FaceConfig& JssFace::config() const { return impl_->config_; }
 const FaceCounters& JssFace::counters() const { return impl_->counters_; }
+const AssemblyCounters& JssFace::large_message_counters() const { return impl_->assembler_.counters(); }
 
 }  // namespace jaus::jss_face

@@ -49,7 +49,7 @@ struct JssSession::Impl {
     bool refused = false;
   };
 
-  explicit Impl(JssSessionOptions o) : options(std::move(o)), reassembler(options.reassembly) {
+  explicit Impl(JssSessionOptions o) : options(std::move(o)), assembler(options.reassembly) {
     if (!options.log) options.log = rt::silent_log();
   }
 
@@ -60,6 +60,7 @@ struct JssSession::Impl {
   void receive(std::span<const std::uint8_t> datagram);
   void receive_packets(std::span<const jss::JudpPacket> packets);
   void handle(const jss::JudpPacket& packet);
+  std::optional<JssReceived> assemble(const jss::JudpPacket& packet);
   void answer_builtin(const JssReceived& message);
   void deliver(const JssReceived& message);
   // On UDP the link drops what does not decode (counted there): counters() adds it.
@@ -86,7 +87,7 @@ struct JssSession::Impl {
   std::uint64_t malformed_here = 0;  // the ones that did not decode
   std::uint64_t delivered_by_link = 0;
   std::uint16_t next_sequence = 0;
-  jss::LargeMessageReassembler reassembler;
+  jss::JssLargeMessageAssembler assembler;
   ListenerId last_id = 0;
   std::map<ListenerId, Listener> listeners;
   std::vector<AckWait*> ack_waits;
@@ -190,15 +191,8 @@ void JssSession::Impl::handle(const jss::JudpPacket& packet) {
   std::optional<JssReceived> message;
   if (h.data_flag == jss::JudpDataFlag::single) {
     message = JssReceived{h, {packet.contents.begin(), packet.contents.end()}};
-  } else if (auto whole = reassembler.add(packet, clock->now()); !whole) {
-    ++counters.large_messages_dropped;
-    repeated->write(rt::Repeated{"jss session: large message packet dropped"}, rt::LogLevel::warn, [&] {
-      return "JSS: dropped a large message packet from " + h.source.to_string() + " (sequence " +
-             std::to_string(h.sequence) + "): " + whole.error().message();
-    });
-  } else if (*whole) {
-    ++counters.large_messages_received;
-    message = JssReceived{(*whole)->header, std::move((*whole)->contents)};
+  } else {
+    message = assemble(packet);
   }
   if (message) {
     answer_builtin(*message);
@@ -206,6 +200,30 @@ void JssSession::Impl::handle(const jss::JudpPacket& packet) {
   }
   // After it was handled, as JSS nodes do (one ACK per packet that asks).
   if (h.ack_nak == jss::JudpAckNak::ack_requested && !h.destination.is_broadcast()) send_ack(h);
+}
+
+// A piece of a large message, in any order: the whole message once its last piece is in.
+std::optional<JssReceived> JssSession::Impl::assemble(const jss::JudpPacket& packet) {
+  const rt::TimePoint now = clock->now();
+  for (const auto& discarded : assembler.expire(now)) {
+    ++counters.large_messages_dropped;
+    repeated->write(rt::Repeated{"jss session: large message discarded"}, rt::LogLevel::warn, [&] {
+      return "JSS: a large message from " + discarded.key.source.to_string() + " discarded: " +
+             std::string(to_string(discarded.reason));
+    });
+  }
+  const jss::JudpHeader& h = packet.header;
+  auto assembled = assembler.feed(h, packet.contents, now);
+  if (assembled.status == AssemblyStatus::dropped) {
+    ++counters.large_messages_dropped;
+    repeated->write(rt::Repeated{"jss session: large message packet dropped"}, rt::LogLevel::warn, [&] {
+      return "JSS: dropped a large message packet from " + h.source.to_string() + " (sequence " +
+             std::to_string(h.sequence) + "): " + std::string(to_string(assembled.issue));
+    });
+  }
+  if (assembled.status != AssemblyStatus::complete) return std::nullopt;
+  ++counters.large_messages_received;
+  return JssReceived{assembled.message->header, std::move(assembled.message->payload)};
 }
 
 void JssSession::Impl::answer_builtin(const JssReceived& message) {

@@ -28,11 +28,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check_contents(bytes);
   auto packets = jaus::jss::decode_judp_datagram(bytes);
   if (!packets) return 0;
-  jaus::jss::LargeMessageReassembler reassembler(jaus::jss::ReassemblyLimits{.max_sets = 2, .max_set_bytes = 4096});
+  jaus::jss::JssLargeMessageAssembler assembler(jaus::AssemblyLimits{.max_message_size = 4096, .max_sets = 2});
   for (const auto& packet : *packets) {
-    auto whole = reassembler.add(packet, jaus::rt::TimePoint{});
-    if (whole && *whole) check_contents((*whole)->contents);
-    if (reassembler.bytes_in_progress() > 2 * 4096) std::abort();
+    auto assembled = assembler.feed(packet.header, packet.contents, jaus::rt::TimePoint{});
+    if (assembled.message) check_contents(assembled.message->payload);
+    if (assembler.buffered_bytes() > 2 * 4096) std::abort();
   }
   if (auto json = jaus::jss::datagram_to_json(bytes); json) {
     for (const auto& packet : (*json)["packets"])

@@ -104,13 +104,16 @@ class JssFaceHost {
         acks_.push_back(p.header);
         continue;
       }
-      auto whole = reassembler_.add(p, time_.now());
-      if (!whole) {
-        ADD_FAILURE() << "a packet of the face's large message does not fit: " << whole.error().message();
+      auto assembled = assembler_.feed(p.header, p.contents, time_.now());
+      if (assembled.status == AssemblyStatus::dropped) {
+        ADD_FAILURE() << "a packet of the face's large message does not fit: " << to_string(assembled.issue);
         continue;
       }
-      if (!whole->has_value()) continue;
-      received_.push_back(Received{(*whole)->header, std::move((*whole)->contents)});
+      if (assembled.status == AssemblyStatus::pending) continue;
+      if (assembled.status == AssemblyStatus::single)
+        received_.push_back(Received{p.header, {p.contents.begin(), p.contents.end()}});
+      else
+        received_.push_back(Received{assembled.message->header, std::move(assembled.message->payload)});
       if (received_.size() > 4096) received_.pop_front();  // bounded: a test reads what it waits for
     }
   }
@@ -121,7 +124,7 @@ class JssFaceHost {
   jss_face::FaceLink face_link_;
   std::unique_ptr<host::NodeHost> host_;
   std::unique_ptr<jss_face::JssFace> face_;
-  jss::LargeMessageReassembler reassembler_;
+  jss::JssLargeMessageAssembler assembler_;
   std::deque<Received> received_;
   std::vector<jss::JudpHeader> acks_;
   std::size_t datagrams_ = 0;

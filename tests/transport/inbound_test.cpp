@@ -109,6 +109,18 @@ TEST(Inbound, ALaterPieceOfAJssMessageIsTakenForACommand) {
   EXPECT_FALSE(first->carries_command);  // the first piece names its message: a report
 }
 
+TEST(Inbound, AFirstPieceNamingACommandIsTakenForOne) {
+  // Pieces are put together in any order (the one assembler): a first piece
+  // arriving last completes its message, which it names.
+  const auto first = decode_datagram(
+      jss::make_judp_datagram(jss_header({42, 1, 1}, jss::JudpAckNak::none, jss::JudpDataFlag::first),
+                              contents_of(0x0405)));  // Set Wrench Effort
+  ASSERT_TRUE(first) << first.error().message();
+  EXPECT_TRUE(first->carries_command);
+  EXPECT_EQ(first->command_code, 0x0405);
+  EXPECT_FALSE(first->carries_stop);
+}
+
 TEST(Inbound, ASourceOfNoOneSenderIsMarked) {
   const auto ra = decode_datagram(ra_datagram(Framing::opc, 0x2002, Address{2, 255, 200, 1}));
   ASSERT_TRUE(ra);

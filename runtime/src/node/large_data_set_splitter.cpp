@@ -4,11 +4,24 @@
 #include <cstring>
 #include <string>
 
+#include "jaus/core/large_message_pieces.hpp"
+
 namespace jaus::node {
+namespace {
+
+DataFlag ra_data_flag_of(PieceRole role) {
+  switch (role) {
+    case PieceRole::first: return DataFlag::first;
+    case PieceRole::middle: return DataFlag::middle;
+    case PieceRole::last: return DataFlag::last;
+    default: return DataFlag::single;
+  }
+}
+
+}  // namespace
 
 std::size_t LargeDataSetSplitter::packets_needed(std::size_t payload_size) {
-  if (payload_size <= kMaxPayloadSize) return 1;
-  return (payload_size + kMaxPayloadSize - 1) / kMaxPayloadSize;
+  return pieces_needed(payload_size, kMaxPayloadSize);
 }
 
 Expected<LargeDataSetSplitter, Error> LargeDataSetSplitter::create(const Header& header,
@@ -27,19 +40,12 @@ Expected<LargeDataSetSplitter, Error> LargeDataSetSplitter::create(const Header&
 PacketView LargeDataSetSplitter::packet(std::size_t index) const {
   PacketView view{header_, {}};
   if (index >= count_) return view;  // out of range: an empty view rather than a read past the end
-  const std::size_t offset = index * kMaxPayloadSize;
-  view.payload = payload_.subspan(offset, std::min(kMaxPayloadSize, payload_.size() - offset));
+  const PieceSlice slice = piece_of(payload_.size(), kMaxPayloadSize, count_, index);
+  view.payload = payload_.subspan(slice.offset, slice.size);
   Header& h = view.header;
   h.data_size = static_cast<std::uint16_t>(view.payload.size());
   h.sequence = static_cast<std::uint16_t>(header_.sequence + index);  // wraps after 65535
-  if (count_ == 1)
-    h.data_flag = DataFlag::single;
-  else if (index == 0)
-    h.data_flag = DataFlag::first;
-  else if (index + 1 == count_)
-    h.data_flag = DataFlag::last;
-  else
-    h.data_flag = DataFlag::middle;
+  h.data_flag = ra_data_flag_of(slice.role);
   return view;
 }
 

@@ -220,7 +220,7 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
     return;
   }
   auto assembled = assembler_.feed(h, packet.payload, now);
-  const LargeDataSetKey set_key{s, h.command_code};
+  const auto set_key = RaLargeDataSets::key_of(h);
   switch (assembled.status) {
     case AssemblyStatus::single:
       enqueue(Inbound{h, copy_payload(packet.payload), Address{}, standing});
@@ -230,7 +230,7 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
         standing = rt::least_of(standing, it->second);
         set_standings_.erase(it);
       }
-      enqueue(Inbound{assembled.message->first_header, std::move(assembled.message->payload), Address{}, standing});
+      enqueue(Inbound{assembled.message->header, std::move(assembled.message->payload), Address{}, standing});
       return;
     }
     case AssemblyStatus::pending:
@@ -504,7 +504,7 @@ void Node::housekeeping() {
   for (const auto& discarded : assembler_.expire(now)) {
     set_standings_.erase(discarded.key);
     lines_.write("large data sets discarded", rt::LogLevel::warn, [&] {
-      return "large data set 0x" + wire::detail::hex_u32(discarded.key.command_code) + " from " +
+      return "large data set 0x" + wire::detail::hex_u32(discarded.key.message) + " from " +
              discarded.key.source.to_string() + " discarded: " + std::string(to_string(discarded.reason));
     });
   }

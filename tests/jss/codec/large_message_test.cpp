@@ -1,9 +1,12 @@
 // Large JSS messages (docs/jss.md, "The bytes on the wire"): split into first/middle/last packets
-// with consecutive sequence numbers, put back together per source; every
-// bound has its rule and its counter.
+// with consecutive sequence numbers, put back together per source and
+// destination by the one assembler (jaus/core/large_message_assembler.hpp), in
+// any order, a copy of a piece taken once; every bound has its rule and its counter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <numeric>
 
 #include "jaus/jss/large_message.hpp"
 
@@ -39,6 +42,12 @@ std::vector<JudpPacket> packets_of(const std::vector<std::vector<std::uint8_t>>&
   return out;
 }
 
+using Assembled = JssLargeMessageAssembler::Result;
+
+Assembled feed(JssLargeMessageAssembler& assembler, const JudpPacket& packet, rt::TimePoint now = {}) {
+  return assembler.feed(packet.header, packet.contents, now);
+}
+
 TEST(JssLargeMessage, SplitFlagsAndSequenceNumbers) {
   const auto contents = contents_of(3500);
   const auto datagrams = make_judp_datagrams(header_from({42, 1, 1}, 65534), contents, 1400);
@@ -72,104 +81,184 @@ TEST(JssLargeMessage, ReassemblesPerSourceEvenInterleaved) {
   const auto db = make_judp_datagrams(header_from({43, 1, 1}, 100), b, 1000);
   const auto pa = packets_of(*da);
   const auto pb = packets_of(*db);
-  LargeMessageReassembler r;
-  const rt::TimePoint t{};
-  std::optional<WholeMessage> whole_a, whole_b;
+  JssLargeMessageAssembler r;
+  std::optional<AssembledMessage<JudpHeader>> whole_a, whole_b;
   for (std::size_t i = 0; i < 3; ++i) {
-    auto got = r.add(pa[i], t);
-    ASSERT_TRUE(got) << got.error().message();
-    if (*got) whole_a = std::move(**got);
+    auto got = feed(r, pa[i]);
+    ASSERT_NE(got.status, AssemblyStatus::dropped) << to_string(got.issue);
+    if (got.message) whole_a = std::move(got.message);
     if (i < pb.size()) {
-      auto other = r.add(pb[i], t);
-      ASSERT_TRUE(other) << other.error().message();
-      if (*other) whole_b = std::move(**other);
+      auto other = feed(r, pb[i]);
+      ASSERT_NE(other.status, AssemblyStatus::dropped) << to_string(other.issue);
+      if (other.message) whole_b = std::move(other.message);
     }
   }
   ASSERT_TRUE(whole_a && whole_b);
-  EXPECT_EQ(whole_a->contents, a);
-  EXPECT_EQ(whole_b->contents, b);
+  EXPECT_EQ(whole_a->payload, a);
+  EXPECT_EQ(whole_b->payload, b);
   EXPECT_EQ(whole_a->header.source, (JssId{42, 1, 1}));
   EXPECT_EQ(whole_a->header.sequence, 100);
   EXPECT_EQ(whole_a->header.data_flag, JudpDataFlag::single);
   EXPECT_EQ(r.counters().completed, 2u);
   EXPECT_EQ(r.sets_in_progress(), 0u);
-  EXPECT_EQ(r.bytes_in_progress(), 0u);
+  EXPECT_EQ(r.buffered_bytes(), 0u);
 }
 
-TEST(JssLargeMessage, GapsStraysAndTimeouts) {
+TEST(JssLargeMessage, ASinglePacketIsWholeAtOnce) {
+  const auto d = make_judp_datagrams(header_from({42, 1, 1}, 7), contents_of(20), 1400);
+  JssLargeMessageAssembler r;
+  const auto single = feed(r, packets_of(*d)[0]);
+  EXPECT_EQ(single.status, AssemblyStatus::single);
+  EXPECT_FALSE(single.message);  // the caller uses the packet as it is: nothing copied
+  EXPECT_EQ(r.counters().singles, 1u);
+  EXPECT_EQ(r.sets_in_progress(), 0u);
+}
+
+// As RA peers have always been taken: every arrival order, with a copy of one
+// piece anywhere in it (a retransmission), gives the message once.
+TEST(JssLargeMessage, OutOfOrderWithARetransmittedPieceIsPutTogetherOnce) {
+  const auto contents = contents_of(3500);
+  const auto d = make_judp_datagrams(header_from({42, 1, 1}, 65534), contents, 1000);  // 4 pieces, wrapping
+  const auto pieces = packets_of(*d);
+  ASSERT_EQ(pieces.size(), 4u);
+  std::vector<std::size_t> order(pieces.size());
+  std::iota(order.begin(), order.end(), 0);
+  int orders = 0;
+  do {
+    for (std::size_t copied = 0; copied < pieces.size(); ++copied) {
+      JssLargeMessageAssembler r;
+      std::vector<std::size_t> arrivals = order;
+      arrivals.insert(arrivals.begin() + static_cast<std::ptrdiff_t>(1 + copied % 3), copied);
+      int whole = 0;
+      for (const std::size_t i : arrivals) {
+        auto got = feed(r, pieces[i]);
+        if (got.status != AssemblyStatus::complete) continue;
+        ++whole;
+        EXPECT_EQ(got.message->payload, contents);
+        EXPECT_EQ(got.message->header.sequence, 65534);
+        EXPECT_EQ(got.message->header.data_flag, JudpDataFlag::single);
+      }
+      // The copy that comes after completion is a late duplicate: never a second message.
+      EXPECT_EQ(feed(r, pieces[copied]).issue, AssemblyIssue::duplicate);
+      EXPECT_EQ(whole, 1);
+      EXPECT_EQ(r.counters().completed, 1u);
+      EXPECT_EQ(r.counters().duplicates, 2u);
+      EXPECT_EQ(r.buffered_bytes(), 0u);
+    }
+    ++orders;
+  } while (std::next_permutation(order.begin(), order.end()));
+  EXPECT_EQ(orders, 24);
+}
+
+TEST(JssLargeMessage, ConsecutiveMessagesOfOneSenderEachCompleteInAnyOrder) {
+  const auto a = contents_of(2500, 0x4B03);
+  const auto b = contents_of(2500, 0x4B04);
+  const auto da = make_judp_datagrams(header_from({42, 1, 1}, 10), a, 1000);  // 10..12
+  const auto db = make_judp_datagrams(header_from({42, 1, 1}, 13), b, 1000);  // 13..15
+  const auto pa = packets_of(*da);
+  const auto pb = packets_of(*db);
+  JssLargeMessageAssembler r;
+  EXPECT_EQ(feed(r, pa[2]).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(r, pa[0]).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(r, pa[1]).message->payload, a);
+  EXPECT_EQ(feed(r, pb[1]).status, AssemblyStatus::pending);  // past the first message's range: the next one
+  EXPECT_EQ(feed(r, pb[2]).status, AssemblyStatus::pending);
+  const auto whole_b = feed(r, pb[0]);
+  ASSERT_EQ(whole_b.status, AssemblyStatus::complete);
+  EXPECT_EQ(whole_b.message->payload, b);
+  EXPECT_EQ(message_id_of(whole_b.message->payload), 0x4B04);
+  EXPECT_EQ(r.counters().completed, 2u);
+}
+
+TEST(JssLargeMessage, GapsAndTimeouts) {
   const auto packets_data = make_judp_datagrams(header_from({42, 1, 1}, 10), contents_of(3000), 1000);
   const auto p = packets_of(*packets_data);
   const rt::TimePoint t{};
   {
-    LargeMessageReassembler r;
-    ASSERT_TRUE(r.add(p[0], t));
-    const auto gap = r.add(p[2], t);  // the middle one was lost
-    ASSERT_FALSE(gap);
-    EXPECT_EQ(gap.error().code, ErrorCode::malformed);
-    EXPECT_EQ(r.counters().stray, 1u);
+    JssLargeMessageAssembler r;
+    EXPECT_EQ(feed(r, p[0], t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, p[2], t).status, AssemblyStatus::pending);  // the middle one is late, or lost
     EXPECT_EQ(r.sets_in_progress(), 1u);
-  }
-  {
-    LargeMessageReassembler r(ReassemblyLimits{.timeout = 2s});
-    ASSERT_TRUE(r.add(p[0], t));
-    ASSERT_TRUE(r.add(p[1], t + 1s));
-    const auto late = r.add(p[2], t + 3s + 1ms);  // 2 s after the middle one
-    ASSERT_FALSE(late);
+    EXPECT_EQ(r.counters().completed, 0u);
+    // Lost: the set times out, counted and reported.
+    EXPECT_TRUE(r.expire(t + 1s).empty());
+    const auto expired = r.expire(t + 2s);
+    ASSERT_EQ(expired.size(), 1u);
+    EXPECT_EQ(expired[0].key, (JssLargeMessageAssembler::Key{{42, 1, 1}, {1, 1, 1}, 0}));
+    EXPECT_EQ(expired[0].reason, AssemblyIssue::timed_out);
+    EXPECT_EQ(expired[0].pieces, 2u);
     EXPECT_EQ(r.counters().timed_out, 1u);
-    EXPECT_EQ(r.counters().stray, 1u);
-    EXPECT_EQ(r.bytes_in_progress(), 0u);
+    EXPECT_EQ(r.buffered_bytes(), 0u);
   }
   {
-    LargeMessageReassembler r;
+    JssLargeMessageAssembler r(AssemblyLimits{.timeout = 2s});
+    EXPECT_EQ(feed(r, p[0], t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, p[1], t + 1s).status, AssemblyStatus::pending);
+    const auto late = feed(r, p[2], t + 3s + 1ms);  // 2 s after the middle one: the set is gone
+    EXPECT_EQ(late.status, AssemblyStatus::pending);  // and the late piece starts another, never completed
+    EXPECT_EQ(r.counters().timed_out, 1u);
+    EXPECT_EQ(r.counters().completed, 0u);
+    EXPECT_EQ(r.buffered_bytes(), p[2].contents.size());
+  }
+  {
+    JssLargeMessageAssembler r;
     JudpPacket tiny = p[0];
     tiny.contents = tiny.contents.first(1);
-    EXPECT_FALSE(r.add(tiny, t));
+    EXPECT_EQ(feed(r, tiny, t).issue, AssemblyIssue::bad_first);
     EXPECT_EQ(r.counters().bad_first, 1u);
+    EXPECT_EQ(r.sets_in_progress(), 0u);
   }
 }
 
 TEST(JssLargeMessage, BoundsHaveRules) {
   const rt::TimePoint t{};
-  // Bytes per message.
+  // Bytes per message: the set goes, and the rest of its pieces with it.
   {
-    LargeMessageReassembler r(ReassemblyLimits{.max_set_bytes = 2500});
-    const auto d = make_judp_datagrams(header_from({42, 1, 1}, 0), contents_of(3000), 1000);
+    JssLargeMessageAssembler r(AssemblyLimits{.max_message_size = 2500});
+    const auto d = make_judp_datagrams(header_from({42, 1, 1}, 0), contents_of(4000), 1000);
     const auto p = packets_of(*d);
-    ASSERT_TRUE(r.add(p[0], t));
-    ASSERT_TRUE(r.add(p[1], t));
-    EXPECT_EQ(r.add(p[2], t).error().code, ErrorCode::payload_too_large);
+    EXPECT_EQ(feed(r, p[0], t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, p[1], t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, p[2], t).issue, AssemblyIssue::too_large);
+    EXPECT_EQ(feed(r, p[3], t).issue, AssemblyIssue::rest_of_discarded_set);
     EXPECT_EQ(r.counters().too_large, 1u);
+    EXPECT_EQ(r.counters().stray, 1u);
     EXPECT_EQ(r.sets_in_progress(), 0u);
+    EXPECT_EQ(r.buffered_bytes(), 0u);
   }
   // Sets in progress: the source's own oldest goes first; then other sources are refused.
   {
-    LargeMessageReassembler r(ReassemblyLimits{.max_sets = 3, .max_sets_per_source = 2});
+    JssLargeMessageAssembler r(AssemblyLimits{.max_sets = 3, .max_sets_per_source = 2});
     std::vector<std::vector<std::vector<std::uint8_t>>> keep;
-    auto first_from = [&](JssId source, std::uint16_t sequence) {
-      keep.push_back(*make_judp_datagrams(header_from(source, sequence), contents_of(3000), 1000));
+    auto first_from = [&](JssId source, std::uint8_t to_component) {
+      JudpHeader h = header_from(source, 0);
+      h.destination.component = to_component;
+      keep.push_back(*make_judp_datagrams(h, contents_of(3000), 1000));
       return packets_of(keep.back())[0];
     };
-    ASSERT_TRUE(r.add(first_from({42, 1, 1}, 0), t));
-    ASSERT_TRUE(r.add(first_from({42, 1, 1}, 10), t));
-    ASSERT_TRUE(r.add(first_from({42, 1, 1}, 20), t));  // supersedes sequence 0
+    EXPECT_EQ(feed(r, first_from({42, 1, 1}, 1), t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, first_from({42, 1, 1}, 2), t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, first_from({42, 1, 1}, 3), t).status, AssemblyStatus::pending);  // discards the one to 1
     EXPECT_EQ(r.counters().superseded, 1u);
     EXPECT_EQ(r.sets_in_progress(), 2u);
-    ASSERT_TRUE(r.add(first_from({43, 1, 1}, 0), t));
-    const auto refused = r.add(first_from({44, 1, 1}, 0), t);
-    ASSERT_FALSE(refused);
-    EXPECT_EQ(refused.error().code, ErrorCode::refused);
+    EXPECT_EQ(feed(r, first_from({43, 1, 1}, 1), t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, first_from({44, 1, 1}, 1), t).issue, AssemblyIssue::refused);
     EXPECT_EQ(r.counters().refused, 1u);
     EXPECT_EQ(r.sets_in_progress(), 3u);
+    // Stale sets make room.
+    EXPECT_EQ(feed(r, first_from({44, 1, 1}, 1), t + 5s).status, AssemblyStatus::pending);
+    EXPECT_EQ(r.counters().timed_out, 3u);
   }
   // Total bytes.
   {
-    LargeMessageReassembler r(ReassemblyLimits{.max_total_bytes = 1500});
+    JssLargeMessageAssembler r(AssemblyLimits{.max_total_bytes = 1500});
     std::vector<std::vector<std::vector<std::uint8_t>>> keep;
     keep.push_back(*make_judp_datagrams(header_from({42, 1, 1}, 0), contents_of(3000), 1000));
     keep.push_back(*make_judp_datagrams(header_from({43, 1, 1}, 0), contents_of(3000), 1000));
-    ASSERT_TRUE(r.add(packets_of(keep[0])[0], t));
-    EXPECT_EQ(r.add(packets_of(keep[1])[0], t).error().code, ErrorCode::payload_too_large);
-    EXPECT_LE(r.bytes_in_progress(), 1500u);
+    EXPECT_EQ(feed(r, packets_of(keep[0])[0], t).status, AssemblyStatus::pending);
+    EXPECT_EQ(feed(r, packets_of(keep[1])[0], t).issue, AssemblyIssue::too_large);
+    EXPECT_EQ(r.counters().too_large, 1u);
+    EXPECT_LE(r.buffered_bytes(), 1500u);
   }
 }
 

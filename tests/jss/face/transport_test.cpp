@@ -166,6 +166,21 @@ TEST(JssFaceTransport, ARestartDoesNotLetALateCopyAct) {
   EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::standby);
 }
 
+// The datagrams of a Register Services from client A to the node manager,
+// 200 bytes of contents each (several), numbered from `sequence`.
+std::vector<std::vector<std::uint8_t>> registration_pieces(std::uint16_t sequence) {
+  msg::RegisterServices registration;
+  for (int i = 0; i < 40; ++i) registration.services.push_back({"urn:example:service:" + std::to_string(i), 1, 0});
+  jss::JudpHeader h;
+  h.source = kClientA;
+  h.destination = kNodeManager;
+  h.sequence = sequence;
+  auto datagrams = jss::make_judp_datagrams(h, jss::encode_contents(registration), 200);
+  EXPECT_TRUE(datagrams.has_value());
+  EXPECT_GT(datagrams->size(), 3u);
+  return datagrams ? std::move(*datagrams) : std::vector<std::vector<std::uint8_t>>{};
+}
+
 TEST(JssFaceTransport, LargeMessagesBothWays) {
   jss_face::FaceConfig config;
   config.max_packet_contents = 64;  // Report Services is several packets
@@ -177,24 +192,55 @@ TEST(JssFaceTransport, LargeMessagesBothWays) {
   EXPECT_EQ(node.counters().large_messages_sent, 1u);
 
   // In: a Register Services over several packets.
-  msg::RegisterServices registration;
-  for (int i = 0; i < 40; ++i) registration.services.push_back({"urn:example:service:" + std::to_string(i), 1, 0});
-  jss::JudpHeader h;
-  h.source = kClientA;
-  h.destination = kNodeManager;
-  h.sequence = 500;
-  const auto datagrams = jss::make_judp_datagrams(h, jss::encode_contents(registration), 200);
-  ASSERT_TRUE(datagrams.has_value());
-  ASSERT_GT(datagrams->size(), 2u);
-  for (const auto& d : *datagrams) node.receive(d);
+  for (const auto& d : registration_pieces(500)) node.receive(d);
   EXPECT_EQ(node.counters().large_messages_received, 1u);
   EXPECT_EQ(node.counters().malformed, 0u);
   EXPECT_EQ(node.counters().unsupported, 0u);
 
-  // A middle packet with no first: malformed, dropped.
-  h.sequence = 900;
-  node.receive(jss::make_judp_datagrams(h, jss::encode_contents(registration), 200)->at(1));
+  // A middle packet with no first is held for its first (pieces come in any
+  // order), never acted on; a second last piece contradicts its set: dropped.
+  const auto later = registration_pieces(900);
+  ASSERT_GT(later.size(), 1u);
+  node.receive(later[1]);
+  EXPECT_EQ(node.counters().large_messages_received, 1u);
+  EXPECT_EQ(node.counters().malformed, 0u);
+  EXPECT_EQ(node.face().large_message_counters().completed, 1u);
+  jss::JudpHeader stray;
+  stray.source = kClientA;
+  stray.destination = kNodeManager;
+  stray.data_flag = jss::JudpDataFlag::last;
+  stray.sequence = 910;
+  node.receive(jss::make_judp_datagram(stray, std::vector<std::uint8_t>{1, 2, 3}));
+  EXPECT_EQ(node.counters().malformed, 0u);
+  stray.sequence = 911;
+  node.receive(jss::make_judp_datagram(stray, std::vector<std::uint8_t>{1, 2, 3}));
   EXPECT_EQ(node.counters().malformed, 1u);
+  EXPECT_EQ(node.face().large_message_counters().stray, 1u);
+}
+
+// JSS peers are taken as RA peers are: the pieces of a large message in any
+// order, a copied piece taken once; and a stop between them acts at once.
+TEST(JssFaceTransport, ALargeMessageIsTakenInAnyOrderOnceAndAStopNeverWaitsForIt) {
+  FaceNode node;
+  const auto pieces = registration_pieces(500);
+  ASSERT_GT(pieces.size(), 3u);
+  node.receive(pieces.back());
+  node.send(kClientA, kDriver, msg::SetEmergency{{1}});
+  node.run_for(50ms);
+  EXPECT_EQ(node.driver().state(), rt::PrimaryStatus::emergency);  // the set still incomplete
+  for (std::size_t i = pieces.size() - 2; i >= 1; --i) node.receive(pieces[i]);
+  node.receive(pieces[1]);  // a copy (no ACK asked: past the duplicate filter)
+  EXPECT_EQ(node.counters().large_messages_received, 0u);
+  node.receive(pieces.front());  // the first piece, last
+  EXPECT_EQ(node.counters().large_messages_received, 1u);
+  node.receive(pieces.front());  // a late copy
+  node.run_for(50ms);
+  EXPECT_EQ(node.counters().large_messages_received, 1u);
+  EXPECT_EQ(node.counters().malformed, 0u);
+  EXPECT_EQ(node.counters().unsupported, 0u);
+  EXPECT_EQ(node.face().large_message_counters().completed, 1u);
+  EXPECT_EQ(node.face().large_message_counters().duplicates, 2u);
+  EXPECT_EQ(node.counters().duplicates, 2u);
 }
 
 TEST(JssFaceTransport, MalformedInputIsCountedLoggedAndNeverActedOn) {

@@ -27,6 +27,7 @@
 
 #include "jaus/base/log.hpp"
 #include "jaus/core/header.hpp"
+#include "jaus/core/large_message_assembler.hpp"
 #include "jaus/jss/jss_id.hpp"
 #include "jaus/jss/judp.hpp"
 #include "jaus/jss_face/translator.hpp"
@@ -131,6 +132,8 @@ class JssFace {
   std::optional<jss::JssId> jss_id_of(const Address& ra_component) const;
   const FaceConfig& config() const;
   const FaceCounters& counters() const;
+  // Of the large messages received (the one assembler's: jaus/core/large_message_assembler.hpp).
+  const AssemblyCounters& large_message_counters() const;
 
  private:
   struct Impl;

@@ -75,8 +75,9 @@ struct JssSessionOptions {
   std::optional<std::uint16_t> first_sequence;
   // Larger contents go as a large message (first/middle/last packets).
   std::size_t max_packet_contents = jss::kDefaultMaxPacketContents;
-  // Large messages received: bounded in number, bytes and time (dropped ones are counted).
-  jss::ReassemblyLimits reassembly;
+  // Large messages received, put together in any order: bounded in number,
+  // bytes and time (dropped ones are counted).
+  AssemblyLimits reassembly = jss::JudpLargeMessages::kDefaultLimits;
   // JSS nodes whose endpoint is remembered (the transport's route table:
   // newcomers beyond it are not recorded, silent ones forgotten after 30 s).
   std::size_t max_learnt_endpoints = 1024;

@@ -16,11 +16,12 @@
 #include "jaus/base/error.hpp"
 #include "jaus/base/expected.hpp"
 #include "jaus/core/header.hpp"
+#include "jaus/core/large_message_pieces.hpp"
 
 namespace jaus::node {
 
 // Sequence numbers are 16 bits; more packets would reuse a number in one set.
-inline constexpr std::size_t kMaxPacketsPerSet = 65535;
+inline constexpr std::size_t kMaxPacketsPerSet = kMaxPiecesPerMessage;
 
 class LargeDataSetSplitter {
  public:

@@ -30,9 +30,9 @@
 #include <span>
 #include <vector>
 
+#include "jaus/core/large_data_sets.hpp"
 #include "jaus/node/ack_tracker.hpp"
 #include "jaus/node/duplicate_filter.hpp"
-#include "jaus/node/large_data_set_assembler.hpp"
 #include "jaus/node/liveness_table.hpp"
 #include "jaus/node/priority_queue.hpp"
 #include "jaus/node/sequence_counters.hpp"
@@ -58,7 +58,7 @@ struct NodeConfig {
   std::uint8_t node = 1;
   wire::Dialect dialect = wire::Dialect::ra;  // how payloads from peers are read
   std::size_t inbound_queue_capacity = 1024;
-  LargeDataSetAssembler::Options large_data_sets;
+  AssemblyLimits large_data_sets = RaLargeDataSets::kDefaultLimits;
   AckTracker::Options acks;
   DuplicateFilter::Options duplicates;
   LivenessTable::Options liveness;
@@ -156,7 +156,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   const NodeConfig& config() const { return config_; }
   const NodeCounters& counters() const { return counters_; }
   const LivenessTable& liveness() const { return liveness_; }
-  const LargeDataSetAssembler& assembler() const { return assembler_; }
+  const RaLargeMessageAssembler& assembler() const { return assembler_; }
   const AckTracker& acks() const { return acks_; }
   const DuplicateFilter& duplicates() const { return duplicates_; }
 
@@ -211,13 +211,13 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   bool drain_posted_ = false;
   std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);  // expires with the node
   rt::TimerId housekeeping_timer_ = rt::kNoTimer;
-  LargeDataSetAssembler assembler_;
+  RaLargeMessageAssembler assembler_;
   // The least standing of the packets held so far of sets in progress, for
   // sets not all trusted (a set is as trusted as its least trusted packet).
   // Bounded: cleared when no set is in progress; beyond kMaxSetStandings the
   // completing packet's standing is all that counts.
   static constexpr std::size_t kMaxSetStandings = 64;
-  std::map<LargeDataSetKey, rt::SenderStanding> set_standings_;
+  std::map<RaLargeMessageAssembler::Key, rt::SenderStanding> set_standings_;
   AckTracker acks_;
   DuplicateFilter duplicates_;
   std::map<AckKey, AckCallback> ack_callbacks_;  // of send_acknowledged messages still pending

@@ -1,4 +1,4 @@
-#include "jaus/node/large_data_set_assembler.hpp"
+#include "jaus/core/large_data_sets.hpp"
 
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ std::vector<Packet> split(const Header& header, const std::vector<std::uint8_t>&
   return packets;
 }
 
-AssemblyResult feed(LargeDataSetAssembler& assembler, const Packet& packet, rt::TimePoint now = {}) {
+RaLargeMessageAssembler::Result feed(RaLargeMessageAssembler& assembler, const Packet& packet, rt::TimePoint now = {}) {
   return assembler.feed(packet.header, packet.payload, now);
 }
 
@@ -47,7 +47,7 @@ class LargeDataSetRoundTrip : public ::testing::TestWithParam<std::size_t> {};
 TEST_P(LargeDataSetRoundTrip, SplitThenReassembleGivesThePayloadBack) {
   const auto payload = patterned_payload(GetParam());
   const auto packets = split(image_header(40), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   for (std::size_t i = 0; i + 1 < packets.size(); ++i)
     EXPECT_EQ(feed(assembler, packets[i]).status, AssemblyStatus::pending) << i;
   const auto last = feed(assembler, packets.back());
@@ -59,7 +59,7 @@ TEST_P(LargeDataSetRoundTrip, SplitThenReassembleGivesThePayloadBack) {
   ASSERT_EQ(last.status, AssemblyStatus::complete);
   ASSERT_TRUE(last.message);
   EXPECT_EQ(last.message->payload, payload);
-  EXPECT_EQ(last.message->first_header, packets.front().header);
+  EXPECT_EQ(last.message->header, packets.front().header);
   EXPECT_EQ(assembler.sets_in_progress(), 0u);
   EXPECT_EQ(assembler.buffered_bytes(), 0u);
   EXPECT_EQ(assembler.counters().completed, 1u);
@@ -72,7 +72,7 @@ INSTANTIATE_TEST_SUITE_P(Sizes, LargeDataSetRoundTrip,
 // Feeds `packets` in the order given by `order`; expects completion on the last one only.
 void expect_completes_in_order(const std::vector<Packet>& packets, const std::vector<std::size_t>& order,
                                const std::vector<std::uint8_t>& payload) {
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto result = feed(assembler, packets[order[i]]);
     if (i + 1 < order.size()) {
@@ -80,12 +80,12 @@ void expect_completes_in_order(const std::vector<Packet>& packets, const std::ve
     } else {
       ASSERT_EQ(result.status, AssemblyStatus::complete);
       EXPECT_EQ(result.message->payload, payload);
-      EXPECT_EQ(result.message->first_header.data_flag, DataFlag::first);
+      EXPECT_EQ(result.message->header.data_flag, DataFlag::first);
     }
   }
 }
 
-TEST(LargeDataSetAssembler, EveryArrivalOrderOfAFourPacketSet) {
+TEST(RaLargeMessageAssembler, EveryArrivalOrderOfAFourPacketSet) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize + 17);
   const auto packets = split(image_header(1000), payload);
   ASSERT_EQ(packets.size(), 4u);
@@ -99,7 +99,7 @@ TEST(LargeDataSetAssembler, EveryArrivalOrderOfAFourPacketSet) {
   EXPECT_EQ(permutations, 24);
 }
 
-TEST(LargeDataSetAssembler, EveryArrivalOrderAcrossTheSequenceWrap) {
+TEST(RaLargeMessageAssembler, EveryArrivalOrderAcrossTheSequenceWrap) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize + 17);
   const auto packets = split(image_header(65534), payload);  // 65534, 65535, 0, 1
   ASSERT_EQ(packets[2].header.sequence, 0);
@@ -110,10 +110,10 @@ TEST(LargeDataSetAssembler, EveryArrivalOrderAcrossTheSequenceWrap) {
   } while (std::next_permutation(order.begin(), order.end()));
 }
 
-TEST(LargeDataSetAssembler, DuplicatesAreIgnoredAndCounted) {
+TEST(RaLargeMessageAssembler, DuplicatesAreIgnoredAndCounted) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize);
   const auto packets = split(image_header(5), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   EXPECT_EQ(feed(assembler, packets[0]).status, AssemblyStatus::pending);
   auto duplicate_first = feed(assembler, packets[0]);
   EXPECT_EQ(duplicate_first.status, AssemblyStatus::dropped);
@@ -136,8 +136,8 @@ TEST(LargeDataSetAssembler, DuplicatesAreIgnoredAndCounted) {
   EXPECT_EQ(assembler.sets_in_progress(), 1u);
 }
 
-TEST(LargeDataSetAssembler, SendersThatNumberEverySetFromZero) {
-  LargeDataSetAssembler assembler;
+TEST(RaLargeMessageAssembler, SendersThatNumberEverySetFromZero) {
+  RaLargeMessageAssembler assembler;
   for (std::uint8_t image = 0; image < 4; ++image) {
     SCOPED_TRACE(static_cast<int>(image));
     // Images 2 and 3 are identical, as a still scene or a test pattern gives.
@@ -152,11 +152,11 @@ TEST(LargeDataSetAssembler, SendersThatNumberEverySetFromZero) {
   EXPECT_EQ(assembler.counters().completed, 4u);
 }
 
-TEST(LargeDataSetAssembler, AFirstPacketWithItsNumberHeldByOtherBytesStartsANewMessage) {
+TEST(RaLargeMessageAssembler, AFirstPacketWithItsNumberHeldByOtherBytesStartsANewMessage) {
   const auto unfinished = split(image_header(0), patterned_payload(4 * kMaxPayloadSize, 1));
   const auto payload = patterned_payload(3 * kMaxPayloadSize, 2);
   const auto next = split(image_header(0), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, unfinished[0]);
   feed(assembler, unfinished[1]);
   EXPECT_EQ(feed(assembler, next[0]).issue, AssemblyIssue::superseded);
@@ -166,7 +166,7 @@ TEST(LargeDataSetAssembler, AFirstPacketWithItsNumberHeldByOtherBytesStartsANewM
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, PacketsOfTwoMessagesWithTheSameNumbersAreNeverMixed) {
+TEST(RaLargeMessageAssembler, PacketsOfTwoMessagesWithTheSameNumbersAreNeverMixed) {
   // The older message lost its last packet, the newer one its first; both
   // are numbered from 0. Nothing may complete from a mix of the two.
   const auto older = split(image_header(0), patterned_payload(6 * kMaxPayloadSize, 1));
@@ -174,7 +174,7 @@ TEST(LargeDataSetAssembler, PacketsOfTwoMessagesWithTheSameNumbersAreNeverMixed)
   const auto newer = split(image_header(0), payload);
   for (const std::size_t newer_first_arrival : {std::size_t{1}, std::size_t{3}}) {
     SCOPED_TRACE(newer_first_arrival);
-    LargeDataSetAssembler assembler;
+    RaLargeMessageAssembler assembler;
     for (std::size_t i = 0; i < 5; ++i) feed(assembler, older[i]);
     // 1 is a middle packet of both; 3 is the newer one's last and the older one's middle.
     const auto conflict = feed(assembler, newer[newer_first_arrival]);
@@ -189,10 +189,10 @@ TEST(LargeDataSetAssembler, PacketsOfTwoMessagesWithTheSameNumbersAreNeverMixed)
   }
 }
 
-TEST(LargeDataSetAssembler, DuplicateMiddleBeforeCompletion) {
+TEST(RaLargeMessageAssembler, DuplicateMiddleBeforeCompletion) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize);
   const auto packets = split(image_header(5), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, packets[1]);
   EXPECT_EQ(feed(assembler, packets[1]).issue, AssemblyIssue::duplicate);
   feed(assembler, packets[0]);
@@ -201,10 +201,10 @@ TEST(LargeDataSetAssembler, DuplicateMiddleBeforeCompletion) {
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, ARetransmittedPacketReplacesTheOneWithItsNumber) {
+TEST(RaLargeMessageAssembler, ARetransmittedPacketReplacesTheOneWithItsNumber) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize);
   const auto packets = split(image_header(300), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   Packet corrupted = packets[1];
   std::fill(corrupted.payload.begin(), corrupted.payload.end(), 0xEE);
   feed(assembler, packets[0]);
@@ -218,10 +218,10 @@ TEST(LargeDataSetAssembler, ARetransmittedPacketReplacesTheOneWithItsNumber) {
   EXPECT_EQ(assembler.counters().replaced, 1u);
 }
 
-TEST(LargeDataSetAssembler, ARetransmissionFillsAGap) {
+TEST(RaLargeMessageAssembler, ARetransmissionFillsAGap) {
   const auto payload = patterned_payload(4 * kMaxPayloadSize);
   const auto packets = split(image_header(300), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, packets[0]);
   feed(assembler, packets[1]);
   feed(assembler, packets[3]);
@@ -230,10 +230,10 @@ TEST(LargeDataSetAssembler, ARetransmissionFillsAGap) {
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, ARetransmittedLastPacketBeforeItsOriginalOnlyLacksItsRole) {
+TEST(RaLargeMessageAssembler, ARetransmittedLastPacketBeforeItsOriginalOnlyLacksItsRole) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize);
   const auto packets = split(image_header(300), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, packets[0]);
   feed(assembler, retransmission_of(packets[2]));
   feed(assembler, packets[1]);
@@ -242,20 +242,20 @@ TEST(LargeDataSetAssembler, ARetransmittedLastPacketBeforeItsOriginalOnlyLacksIt
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, ARetransmissionWithoutASetIsDropped) {
+TEST(RaLargeMessageAssembler, ARetransmissionWithoutASetIsDropped) {
   const auto packets = split(image_header(0), patterned_payload(2 * kMaxPayloadSize));
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   const auto result = feed(assembler, retransmission_of(packets[1]));
   EXPECT_EQ(result.status, AssemblyStatus::dropped);
   EXPECT_EQ(result.issue, AssemblyIssue::unmatched_retransmission);
-  EXPECT_EQ(assembler.counters().unmatched_retransmissions, 1u);
+  EXPECT_EQ(assembler.counters().stray, 1u);
   EXPECT_EQ(assembler.sets_in_progress(), 0u);
 }
 
-TEST(LargeDataSetAssembler, AnIncompleteSetTimesOutUnderVirtualTime) {
+TEST(RaLargeMessageAssembler, AnIncompleteSetTimesOutUnderVirtualTime) {
   rt::VirtualTime time;
   const auto packets = split(image_header(77), patterned_payload(4 * kMaxPayloadSize));
-  LargeDataSetAssembler assembler;  // default timeout: 5 s
+  RaLargeMessageAssembler assembler;  // default timeout: 5 s
   feed(assembler, packets[0], time.now());
   time.advance(2s);
   feed(assembler, packets[1], time.now());
@@ -269,9 +269,9 @@ TEST(LargeDataSetAssembler, AnIncompleteSetTimesOutUnderVirtualTime) {
   time.advance(1ms);
   const auto expired = assembler.expire(time.now());
   ASSERT_EQ(expired.size(), 1u);
-  EXPECT_EQ(expired[0].key, (LargeDataSetKey{packets[0].header.source, 0x4807}));
+  EXPECT_EQ(expired[0].key, (RaLargeMessageAssembler::Key{packets[0].header.source, packets[0].header.destination, 0x4807}));
   EXPECT_EQ(expired[0].reason, AssemblyIssue::timed_out);
-  EXPECT_EQ(expired[0].packets, 3u);
+  EXPECT_EQ(expired[0].pieces, 3u);
   EXPECT_EQ(expired[0].bytes, 3 * kMaxPayloadSize);
   EXPECT_EQ(assembler.counters().timed_out, 1u);
   EXPECT_EQ(assembler.sets_in_progress(), 0u);
@@ -284,12 +284,12 @@ TEST(LargeDataSetAssembler, AnIncompleteSetTimesOutUnderVirtualTime) {
   EXPECT_EQ(assembler.sets_in_progress(), 1u);
 }
 
-TEST(LargeDataSetAssembler, AStaleSetIsDiscardedWhenItsKeyIsSeenAgain) {
+TEST(RaLargeMessageAssembler, AStaleSetIsDiscardedWhenItsKeyIsSeenAgain) {
   rt::VirtualTime time;
   const auto payload = patterned_payload(2 * kMaxPayloadSize);
   const auto old_packets = split(image_header(10), payload);
   const auto new_packets = split(image_header(12), payload);
-  LargeDataSetAssembler assembler({.timeout = 1s});
+  RaLargeMessageAssembler assembler({.timeout = 1s});
   feed(assembler, old_packets[0], time.now());
   time.advance(1s);
   EXPECT_EQ(feed(assembler, new_packets[0], time.now()).issue, AssemblyIssue::none);  // not "superseded"
@@ -297,19 +297,19 @@ TEST(LargeDataSetAssembler, AStaleSetIsDiscardedWhenItsKeyIsSeenAgain) {
   EXPECT_EQ(feed(assembler, new_packets[1], time.now()).status, AssemblyStatus::complete);
 }
 
-TEST(LargeDataSetAssembler, AnOversizeSetIsDiscardedWithItsRest) {
+TEST(RaLargeMessageAssembler, AnOversizeSetIsDiscardedWithItsRest) {
   const auto packets = split(image_header(0), patterned_payload(4 * kMaxPayloadSize));
-  LargeDataSetAssembler assembler({.max_message_size = 2 * kMaxPayloadSize + 100});
+  RaLargeMessageAssembler assembler({.max_message_size = 2 * kMaxPayloadSize + 100});
   EXPECT_EQ(feed(assembler, packets[0]).status, AssemblyStatus::pending);
   EXPECT_EQ(feed(assembler, packets[1]).status, AssemblyStatus::pending);
   const auto over = feed(assembler, packets[2]);
   EXPECT_EQ(over.status, AssemblyStatus::dropped);
-  EXPECT_EQ(over.issue, AssemblyIssue::oversize);
+  EXPECT_EQ(over.issue, AssemblyIssue::too_large);
   EXPECT_EQ(assembler.buffered_bytes(), 0u);
   EXPECT_EQ(assembler.sets_in_progress(), 0u);
   EXPECT_EQ(feed(assembler, packets[3]).issue, AssemblyIssue::rest_of_discarded_set);
-  EXPECT_EQ(assembler.counters().oversize, 1u);
-  EXPECT_EQ(assembler.counters().rest_of_discarded_sets, 1u);
+  EXPECT_EQ(assembler.counters().too_large, 1u);
+  EXPECT_EQ(assembler.counters().stray, 1u);
 
   // The sender's next message, within the limit, goes through.
   const auto payload = patterned_payload(2 * kMaxPayloadSize);
@@ -320,9 +320,9 @@ TEST(LargeDataSetAssembler, AnOversizeSetIsDiscardedWithItsRest) {
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, PacketsPerSetAreBounded) {
+TEST(RaLargeMessageAssembler, PacketsPerSetAreBounded) {
   const auto packets = split(image_header(0), patterned_payload(5 * kMaxPayloadSize + 40));  // 6 packets
-  LargeDataSetAssembler assembler({.max_packets_per_set = 3});
+  RaLargeMessageAssembler assembler({.max_pieces_per_set = 3});
   feed(assembler, packets[0]);
   feed(assembler, packets[1]);
   feed(assembler, packets[2]);
@@ -330,30 +330,30 @@ TEST(LargeDataSetAssembler, PacketsPerSetAreBounded) {
   EXPECT_EQ(feed(assembler, packets[3]).issue, AssemblyIssue::inconsistent);
 
   // Without it, the fourth packet held outgrows the set.
-  LargeDataSetAssembler headless({.max_packets_per_set = 3});
+  RaLargeMessageAssembler headless({.max_pieces_per_set = 3});
   feed(headless, packets[1]);
   feed(headless, packets[2]);
   feed(headless, packets[3]);
-  EXPECT_EQ(feed(headless, packets[4]).issue, AssemblyIssue::oversize);
+  EXPECT_EQ(feed(headless, packets[4]).issue, AssemblyIssue::too_large);
   EXPECT_EQ(feed(headless, packets[5]).issue, AssemblyIssue::rest_of_discarded_set);
-  EXPECT_EQ(headless.counters().oversize, 1u);
+  EXPECT_EQ(headless.counters().too_large, 1u);
   EXPECT_EQ(headless.buffered_bytes(), 0u);
 }
 
-TEST(LargeDataSetAssembler, ARetransmissionThatOutgrowsTheLimitDiscardsTheSet) {
+TEST(RaLargeMessageAssembler, ARetransmissionThatOutgrowsTheLimitDiscardsTheSet) {
   const auto packets = split(image_header(0), patterned_payload(2 * kMaxPayloadSize + 10));
-  LargeDataSetAssembler assembler({.max_message_size = kMaxPayloadSize + 5});
+  RaLargeMessageAssembler assembler({.max_message_size = kMaxPayloadSize + 5});
   Packet short_first = packets[0];
   short_first.payload.resize(100);
   short_first.header.data_size = 100;
   feed(assembler, short_first);
   feed(assembler, packets[2]);  // 110 bytes held, the middle one missing
-  EXPECT_EQ(feed(assembler, retransmission_of(packets[0])).issue, AssemblyIssue::oversize);  // would be 4090
+  EXPECT_EQ(feed(assembler, retransmission_of(packets[0])).issue, AssemblyIssue::too_large);  // would be 4090
   EXPECT_EQ(assembler.buffered_bytes(), 0u);
 }
 
-TEST(LargeDataSetAssembler, ConcurrentSetsAreBounded) {
-  LargeDataSetAssembler assembler({.max_concurrent_sets = 2});
+TEST(RaLargeMessageAssembler, ConcurrentSetsAreBounded) {
+  RaLargeMessageAssembler assembler({.max_sets = 2});
   const auto payload = patterned_payload(2 * kMaxPayloadSize);
   const auto a = split(image_header(0, Address{1, 1, 37, 1}), payload);
   const auto b = split(image_header(0, Address{1, 1, 37, 2}), payload);
@@ -362,16 +362,16 @@ TEST(LargeDataSetAssembler, ConcurrentSetsAreBounded) {
   feed(assembler, b[0]);
   const auto refused = feed(assembler, c[0]);
   EXPECT_EQ(refused.status, AssemblyStatus::dropped);
-  EXPECT_EQ(refused.issue, AssemblyIssue::too_many_sets);
-  EXPECT_EQ(assembler.counters().too_many_sets, 1u);
+  EXPECT_EQ(refused.issue, AssemblyIssue::refused);
+  EXPECT_EQ(assembler.counters().refused, 1u);
   // Finishing one makes room.
   EXPECT_EQ(feed(assembler, a[1]).status, AssemblyStatus::complete);
   EXPECT_EQ(feed(assembler, c[0]).status, AssemblyStatus::pending);
   EXPECT_EQ(feed(assembler, c[1]).status, AssemblyStatus::complete);
 }
 
-TEST(LargeDataSetAssembler, CompletedSetsAreRememberedWithinBounds) {
-  LargeDataSetAssembler assembler({.max_concurrent_sets = 2});
+TEST(RaLargeMessageAssembler, CompletedSetsAreRememberedWithinBounds) {
+  RaLargeMessageAssembler assembler({.max_sets = 2});
   const auto payload = patterned_payload(3 * kMaxPayloadSize);
   std::vector<std::vector<Packet>> sets;
   for (std::uint8_t instance = 1; instance <= 10; ++instance) {
@@ -381,31 +381,31 @@ TEST(LargeDataSetAssembler, CompletedSetsAreRememberedWithinBounds) {
   EXPECT_EQ(assembler.counters().completed, 10u);
   // The most recent sets are remembered: their late copies are duplicates.
   EXPECT_EQ(feed(assembler, sets[9][1]).issue, AssemblyIssue::duplicate);
-  // The oldest were forgotten (at most 2 x max_concurrent_sets entries): a late copy opens a set.
+  // The oldest were forgotten (at most 2 x max_sets entries): a late copy opens a set.
   EXPECT_EQ(feed(assembler, sets[0][1]).status, AssemblyStatus::pending);
   EXPECT_EQ(assembler.sets_in_progress(), 1u);
 }
 
-TEST(LargeDataSetAssembler, StaleSetsMakeRoomForNewOnes) {
+TEST(RaLargeMessageAssembler, StaleSetsMakeRoomForNewOnes) {
   rt::VirtualTime time;
-  LargeDataSetAssembler assembler({.max_concurrent_sets = 1, .timeout = 5s});
+  RaLargeMessageAssembler assembler({.max_sets = 1, .timeout = 5s});
   const auto payload = patterned_payload(2 * kMaxPayloadSize);
   const auto a = split(image_header(0, Address{1, 1, 37, 1}), payload);
   const auto b = split(image_header(0, Address{1, 1, 37, 2}), payload);
   feed(assembler, a[0], time.now());
-  EXPECT_EQ(feed(assembler, b[0], time.now()).issue, AssemblyIssue::too_many_sets);
+  EXPECT_EQ(feed(assembler, b[0], time.now()).issue, AssemblyIssue::refused);
   time.advance(5s);
   EXPECT_EQ(feed(assembler, b[0], time.now()).status, AssemblyStatus::pending);
   EXPECT_EQ(assembler.counters().timed_out, 1u);
 }
 
-TEST(LargeDataSetAssembler, InterleavedSetsFromTwoSources) {
+TEST(RaLargeMessageAssembler, InterleavedSetsFromTwoSources) {
   const auto payload_a = patterned_payload(3 * kMaxPayloadSize, 1);
   const auto payload_b = patterned_payload(3 * kMaxPayloadSize - 5, 2);
   // Same command code and the same sequence numbers: only the source tells them apart.
   const auto a = split(image_header(20, Address{1, 1, 37, 1}), payload_a);
   const auto b = split(image_header(20, Address{3, 2, 37, 1}), payload_b);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, a[0]);
   feed(assembler, b[2]);
   feed(assembler, b[0]);
@@ -417,18 +417,18 @@ TEST(LargeDataSetAssembler, InterleavedSetsFromTwoSources) {
   ASSERT_EQ(done_b.status, AssemblyStatus::complete);
   EXPECT_EQ(done_a.message->payload, payload_a);
   EXPECT_EQ(done_b.message->payload, payload_b);
-  EXPECT_EQ(done_a.message->first_header.source, (Address{1, 1, 37, 1}));
-  EXPECT_EQ(done_b.message->first_header.source, (Address{3, 2, 37, 1}));
+  EXPECT_EQ(done_a.message->header.source, (Address{1, 1, 37, 1}));
+  EXPECT_EQ(done_b.message->header.source, (Address{3, 2, 37, 1}));
 }
 
-TEST(LargeDataSetAssembler, InterleavedCommandCodesFromOneSource) {
+TEST(RaLargeMessageAssembler, InterleavedCommandCodesFromOneSource) {
   const auto image = patterned_payload(2 * kMaxPayloadSize + 1, 3);
   const auto map = patterned_payload(2 * kMaxPayloadSize + 2, 4);
   Header map_header = image_header(50);
   map_header.command_code = 0x4A21;
   const auto image_packets = split(image_header(47), image);  // numbers 47-49, then the map's 50-52
   const auto map_packets = split(map_header, map);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, image_packets[0]);
   feed(assembler, map_packets[0]);
   feed(assembler, map_packets[1]);
@@ -441,15 +441,15 @@ TEST(LargeDataSetAssembler, InterleavedCommandCodesFromOneSource) {
   ASSERT_EQ(done_map.status, AssemblyStatus::complete);
   EXPECT_EQ(done_image.message->payload, image);
   EXPECT_EQ(done_map.message->payload, map);
-  EXPECT_EQ(done_map.message->first_header.command_code, 0x4A21);
+  EXPECT_EQ(done_map.message->header.command_code, 0x4A21);
   EXPECT_EQ(assembler.counters().singles, 1u);
 }
 
-TEST(LargeDataSetAssembler, ANewFirstPacketSupersedesAnUnfinishedSet) {
+TEST(RaLargeMessageAssembler, ANewFirstPacketSupersedesAnUnfinishedSet) {
   const auto abandoned = split(image_header(0), patterned_payload(3 * kMaxPayloadSize, 5));
   const auto payload = patterned_payload(2 * kMaxPayloadSize, 6);
   const auto next = split(image_header(3), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   feed(assembler, abandoned[0]);
   feed(assembler, abandoned[1]);
   const auto started = feed(assembler, next[0]);
@@ -461,21 +461,21 @@ TEST(LargeDataSetAssembler, ANewFirstPacketSupersedesAnUnfinishedSet) {
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, StrayPacketsOutsideTheSetAreDroppedAsInconsistent) {
+TEST(RaLargeMessageAssembler, StrayPacketsOutsideTheSetAreDroppedAsInconsistent) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize);
   const auto packets = split(image_header(100), payload);
-  LargeDataSetAssembler assembler;
+  RaLargeMessageAssembler assembler;
   Packet stray = packets[1];
   stray.header.sequence = 90;  // before the first packet: cannot belong to this set
   feed(assembler, stray);
   feed(assembler, packets[1]);
   feed(assembler, packets[0]);  // now 90 is known to lie outside: dropped
-  EXPECT_EQ(assembler.counters().inconsistent, 1u);
+  EXPECT_EQ(assembler.counters().stray, 1u);
   Packet second_last = packets[2];
   second_last.header.sequence = 101;
   feed(assembler, packets[2]);
   EXPECT_EQ(feed(assembler, second_last).issue, AssemblyIssue::duplicate);  // 101 already held
-  assembler = LargeDataSetAssembler{};
+  assembler = RaLargeMessageAssembler{};
   feed(assembler, packets[0]);
   feed(assembler, packets[2]);
   Packet another_last = packets[2];
@@ -489,8 +489,8 @@ TEST(LargeDataSetAssembler, StrayPacketsOutsideTheSetAreDroppedAsInconsistent) {
   EXPECT_EQ(done.message->payload, payload);
 }
 
-TEST(LargeDataSetAssembler, APacketWhoseSizeDisagreesIsDropped) {
-  LargeDataSetAssembler assembler;
+TEST(RaLargeMessageAssembler, APacketWhoseSizeDisagreesIsDropped) {
+  RaLargeMessageAssembler assembler;
   Header header = image_header(0);
   header.data_flag = DataFlag::first;
   header.data_size = 10;
@@ -505,7 +505,7 @@ TEST(LargeDataSetAssembler, APacketWhoseSizeDisagreesIsDropped) {
   EXPECT_EQ(assembler.sets_in_progress(), 0u);
 }
 
-TEST(LargeDataSetAssembler, ShuffledArrivalWithDuplicatesAndRetransmissionsAcrossTheWrap) {
+TEST(RaLargeMessageAssembler, ShuffledArrivalWithDuplicatesAndRetransmissionsAcrossTheWrap) {
   const auto payload = patterned_payload(20 * kMaxPayloadSize - 7);
   const auto packets = split(image_header(65530), payload);
   ASSERT_EQ(packets.size(), 20u);
@@ -516,7 +516,7 @@ TEST(LargeDataSetAssembler, ShuffledArrivalWithDuplicatesAndRetransmissionsAcros
     for (int i = 0; i < 10; ++i) arrivals.push_back(packets[rng() % packets.size()]);
     for (int i = 0; i < 5; ++i) arrivals.push_back(retransmission_of(packets[rng() % packets.size()]));
     std::shuffle(arrivals.begin(), arrivals.end(), rng);
-    LargeDataSetAssembler assembler;
+    RaLargeMessageAssembler assembler;
     int completions = 0;
     for (const Packet& packet : arrivals) {
       auto result = feed(assembler, packet);
@@ -531,10 +531,10 @@ TEST(LargeDataSetAssembler, ShuffledArrivalWithDuplicatesAndRetransmissionsAcros
   }
 }
 
-TEST(LargeDataSetAssembler, RandomPacketsNeverBreakTheLimits) {
-  const LargeDataSetAssembler::Options options{
-      .max_message_size = 20000, .max_packets_per_set = 16, .max_concurrent_sets = 4, .timeout = 1s};
-  LargeDataSetAssembler assembler(options);
+TEST(RaLargeMessageAssembler, RandomPacketsNeverBreakTheLimits) {
+  const AssemblyLimits options{
+      .max_message_size = 20000, .max_pieces_per_set = 16, .max_sets = 4, .timeout = 1s};
+  RaLargeMessageAssembler assembler(options);
   std::mt19937 rng(20260101);
   const std::array flags{DataFlag::single, DataFlag::first, DataFlag::middle, DataFlag::middle,
                          DataFlag::retransmitted, DataFlag::last};
@@ -556,8 +556,9 @@ TEST(LargeDataSetAssembler, RandomPacketsNeverBreakTheLimits) {
       ASSERT_TRUE(result.message);
       EXPECT_LE(result.message->payload.size(), options.max_message_size);
     }
-    ASSERT_LE(assembler.sets_in_progress(), options.max_concurrent_sets);
-    ASSERT_LE(assembler.buffered_bytes(), options.max_concurrent_sets * options.max_message_size);
+    ASSERT_LE(assembler.sets_in_progress(), options.max_sets);
+    ASSERT_LE(assembler.buffered_bytes(), options.max_sets * options.max_message_size);
+    ASSERT_LE(assembler.buffered_bytes(), options.max_total_bytes);
     now += std::chrono::milliseconds(rng() % 40);
     if (i % 100 == 0) assembler.expire(now);
   }
@@ -569,9 +570,9 @@ TEST(LargeDataSetAssembler, RandomPacketsNeverBreakTheLimits) {
   EXPECT_EQ(assembler.buffered_bytes(), 0u);
 }
 
-TEST(LargeDataSetAssembler, IssuesHaveNames) {
-  EXPECT_EQ(to_string(AssemblyIssue::timed_out), "large data set incomplete at timeout, discarded");
-  EXPECT_EQ(to_string(AssemblyIssue::duplicate), "duplicate packet");
+TEST(RaLargeMessageAssembler, IssuesHaveNames) {
+  EXPECT_EQ(to_string(AssemblyIssue::timed_out), "large message incomplete at timeout, discarded");
+  EXPECT_EQ(to_string(AssemblyIssue::duplicate), "duplicate piece");
 }
 
 }  // namespace
