@@ -626,7 +626,7 @@ std::string unless_events_and_management(const JssComponentUnderTest& c) {
 JssConformanceCase core_case(std::string_view id, std::string_view title, std::string_view reference,
                         std::function<std::string(const JssComponentUnderTest&)> not_applicable,
                         std::function<CaseOutcome(JssCaseContext&)> run) {
-  return JssConformanceCase{{id, title, reference}, std::move(not_applicable), std::move(run)};
+  return JssConformanceCase{id, title, reference, std::move(not_applicable), std::move(run)};
 }
 
 }  // namespace

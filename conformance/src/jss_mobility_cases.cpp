@@ -420,7 +420,7 @@ CaseOutcome list_driver_execute(JssCaseContext& c) {
 
 JssConformanceCase mobility_case(std::string_view id, std::string_view title, std::string_view reference,
                         std::string_view service, std::function<CaseOutcome(JssCaseContext&)> run) {
-  return JssConformanceCase{{id, title, reference},
+  return JssConformanceCase{id, title, reference,
                             [service](const JssComponentUnderTest& c) { return unless_has(c, service); },
                             std::move(run)};
 }

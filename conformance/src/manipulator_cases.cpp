@@ -285,8 +285,8 @@ std::string held_through(CaseContext& c, StopPath path, std::string& not_judged)
     not_judged = "Set Joint Velocities did not move joint 1 in 0.2 s: nothing to stop";
     return {};
   }
-  if (auto why = along.stop()) {
-    not_judged = *why;
+  if (auto stopped = along.stop(); !stopped) {
+    not_judged = stopped.error().message();
     return {};
   }
   const std::string stop = path_text(path);
@@ -295,7 +295,7 @@ std::string held_through(CaseContext& c, StopPath path, std::string& not_judged)
   c.session.run_for(kWatchTime);
   auto still_held = positions(c);
   auto speeds = velocities(c);
-  const auto way_back_error = along.come_back();
+  const auto way_back = along.come_back();
   c.session.run_for(kWatchTime);
   auto resumed = positions(c);
   if (!held) return "after " + stop + ", " + held.error().message();
@@ -307,8 +307,8 @@ std::string held_through(CaseContext& c, StopPath path, std::string& not_judged)
     if (std::fabs((*speeds)[j]) > kStillTolerance)
       return "after " + stop + ", Report Joint Velocities gives joint " + std::to_string(j + 1) + " " +
              value_text((*speeds)[j]);
-  if (way_back_error) {
-    not_judged = "held; the way back: " + *way_back_error;
+  if (!way_back) {
+    not_judged = "held; the way back: " + way_back.error().message();
     return {};
   }
   if (!resumed) return "after " + way_back_text(path) + ", " + resumed.error().message();

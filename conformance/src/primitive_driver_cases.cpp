@@ -175,8 +175,8 @@ StopObserved through(CaseContext& c, StopPath path) {
     return seen;
   }
   seen.driving = *driving;
-  if (auto why = along.stop()) {
-    seen.skip = *why;
+  if (auto stopped_along = along.stop(); !stopped_along) {
+    seen.skip = stopped_along.error().message();
     return seen;
   }
   auto stopped = reported_forward_effort(c);
@@ -185,8 +185,8 @@ StopObserved through(CaseContext& c, StopPath path) {
     return seen;
   }
   seen.stopped = *stopped;
-  if (auto why = along.come_back()) {
-    seen.skip = *why;
+  if (auto came_back = along.come_back(); !came_back) {
+    seen.skip = came_back.error().message();
     return seen;
   }
   auto back = reported_forward_effort(c);

@@ -9,6 +9,11 @@ namespace {
 constexpr rt::Duration kInitialiseLimit = std::chrono::seconds(5);
 constexpr rt::Duration kStatusPollPeriod = std::chrono::milliseconds(100);
 
+// Why a stop or the way back could not be made (the path is then not judged).
+Expected<void> not_made(std::string why, ErrorCode code = ErrorCode::refused) {
+  return unexpected(make_error(code, std::move(why)));
+}
+
 }  // namespace
 
 std::string path_text(StopPath path) {
@@ -68,7 +73,7 @@ StopAlong::StopAlong(CaseContext& c, StopPath path) : c_(c), path_(path) {
   if (!control_->granted()) why_not_ = "control not granted (" + control_->why() + ")";
 }
 
-std::optional<std::string> StopAlong::stop() {
+Expected<void> StopAlong::stop() {
   switch (path_) {
     case StopPath::standby:
       send(c_, msg::Standby{});
@@ -79,7 +84,7 @@ std::optional<std::string> StopAlong::stop() {
     case StopPath::reset: {
       send(c_, msg::Reset{});
       auto state = state_after_initialising(c_);
-      if (!state) return "after Reset, " + state.error().message();
+      if (!state) return not_made("after Reset, " + state.error().message(), state.error().code);
       break;
     }
     case StopPath::release:
@@ -87,44 +92,44 @@ std::optional<std::string> StopAlong::stop() {
       break;
     case StopPath::takeover: {
       auto second = c_.second();
-      if (!second) return second.error().message();
+      if (!second) return unexpected(second.error());
       taken_over_by_.emplace(c_, static_cast<std::uint8_t>(authority_ + 1), **second);
       if (!taken_over_by_->granted())
-        return "the second OCU's authority " + std::to_string(authority_ + 1) + " was not granted (" +
-               taken_over_by_->why() + ")";
+        return not_made("the second OCU's authority " + std::to_string(authority_ + 1) + " was not granted (" +
+                        taken_over_by_->why() + ")");
       break;
     }
   }
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> StopAlong::come_back() {
+Expected<void> StopAlong::come_back() {
   switch (path_) {
     case StopPath::standby:
       send(c_, msg::Resume{});
-      return std::nullopt;
+      return {};
     case StopPath::emergency:
       send(c_, msg::ClearEmergency{{1}}, priority::kSafetyCritical);  // never left set
       // The RA 3.3 implementation's Clear Emergency always goes to Standby
       // (docs/wire-format.md, "Interoperability").
       if (c_.profile == Profile::openjaus) send(c_, msg::Resume{});
-      return std::nullopt;
+      return {};
     case StopPath::reset: {
       // Control may or may not outlive a re-initialisation (Part 3 does not
       // say): asked again, a controller keeps it.
-      if (!control_->ask_again()) return "control not granted after Reset (" + control_->why() + ")";
+      if (!control_->ask_again()) return not_made("control not granted after Reset (" + control_->why() + ")");
       auto state = primary_status(c_);
-      if (!state) return "after Reset, " + state.error().message();
+      if (!state) return not_made("after Reset, " + state.error().message(), state.error().code);
       if (*state == msg::PrimaryStatus::standby) send(c_, msg::Resume{});
-      return std::nullopt;
+      return {};
     }
     case StopPath::release:
     case StopPath::takeover:
       taken_over_by_.reset();  // the second OCU releases what it took
-      if (!control_->ask_again()) return "control not granted again (" + control_->why() + ")";
-      return std::nullopt;
+      if (!control_->ask_again()) return not_made("control not granted again (" + control_->why() + ")");
+      return {};
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace jaus::conform::detail

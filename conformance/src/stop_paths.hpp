@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "jaus/base/expected.hpp"
 #include "state_support.hpp"
 
 namespace jaus::conform::detail {
@@ -41,10 +42,10 @@ class StopAlong {
   const std::string& why_not() const { return why_not_; }
   // Stops the component along the path. An error says why the stop could
   // not be made (the path then cannot be judged).
-  std::optional<std::string> stop();
+  Expected<void> stop();
   // Takes the way back, with no new command. An error says why it could
   // not be taken.
-  std::optional<std::string> come_back();
+  Expected<void> come_back();
 
  private:
   CaseContext& c_;

@@ -101,8 +101,13 @@ Expected<Header, Error> header_from_json(const nlohmann::ordered_json& j) {
   return h;
 }
 
-Expected<std::uint16_t, Error> code_from_json(const nlohmann::ordered_json& message) {
-  if (const auto it = message.find("code"); it != message.end()) {
+}  // namespace
+
+namespace detail {
+Expected<std::uint16_t, Error> message_code_from_json(const Json& message, std::string_view key, wire::Dialect set) {
+  const bool jss = set == wire::Dialect::jss;
+  const std::string field(key);
+  if (const auto it = message.find(field); it != message.end()) {
     if (it->is_number_unsigned() && it->get<std::uint64_t>() <= 0xFFFF) return static_cast<std::uint16_t>(it->get<std::uint64_t>());
     if (it->is_string()) {
       const std::string text = it->get<std::string>();
@@ -112,18 +117,17 @@ Expected<std::uint16_t, Error> code_from_json(const nlohmann::ordered_json& mess
           value <= 0xFFFF)
         return static_cast<std::uint16_t>(value);
     }
-    return unexpected(json_error("code", "expected a command code such as \"0x4402\""));
+    return unexpected(json_error(field, std::string("expected ") + (jss ? "a message ID" : "a command code") +
+                                            " such as \"0x4402\""));
   }
   if (const auto it = message.find("name"); it != message.end() && it->is_string()) {
-    if (const auto* info = find_message(wire::Dialect::ra, it->get<std::string>())) return info->code;
-    return unexpected(json_error("name", "no message named '" + it->get<std::string>() + "'"));
+    if (const auto* info = find_message(set, it->get<std::string>())) return info->code;
+    return unexpected(
+        json_error("name", std::string("no ") + (jss ? "JSS " : "") + "message named '" + it->get<std::string>() + "'"));
   }
-  return unexpected(json_error("code", "'code' or 'name' is required"));
+  return unexpected(json_error(field, "'" + field + "' or 'name' is required"));
 }
 
-}  // namespace
-
-namespace detail {
 std::string code_text(std::uint16_t code) {
   char text[8];
   std::snprintf(text, sizeof text, "0x%04X", code);
@@ -224,7 +228,7 @@ Expected<Bytes, Error> message_from_json(const nlohmann::ordered_json& message, 
   for (const auto& [key, value] : message.items())
     if (key != "code" && key != "name" && key != "header" && key != "fields")
       return unexpected(json_error({}, "unknown key '" + key + "'"));
-  auto code = code_from_json(message);
+  auto code = detail::message_code_from_json(message, "code", wire::Dialect::ra);
   if (!code) return unexpected(code.error());
   const MessageInfo* info = find_message(wire::Dialect::ra, *code);
   if (!info) return unexpected(Error{ErrorCode::unknown_message, 0, "code", code_text(*code)});

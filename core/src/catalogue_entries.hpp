@@ -20,6 +20,11 @@ using Json = nlohmann::ordered_json;
 // header, after JSS's 2-byte message ID.
 constexpr std::size_t body_offset(wire::Dialect set) { return set == wire::Dialect::jss ? 2 : kHeaderSize; }
 
+// A message's code from its JSON form, for both sets: `key` ("code" in RA,
+// "id" in JSS) as a number or hex text ("0x4402"), else its `name` in
+// `set`'s catalogue. Errors are ErrorCode::json naming the field.
+Expected<std::uint16_t, Error> message_code_from_json(const Json& message, std::string_view key, wire::Dialect set);
+
 // The dialect a body of `Set` is read and written in when `asked` is asked:
 // a JSS body always in JSS's, an RA body in openjaus where asked, else RA's.
 constexpr wire::Dialect dialect_for(wire::Dialect set, wire::Dialect asked) {

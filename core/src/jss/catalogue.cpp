@@ -40,26 +40,6 @@ Unexpected<Error> json_error(std::string_view field, std::string detail) {
   return unexpected(Error{ErrorCode::json, 0, std::string(field), std::move(detail)});
 }
 
-Expected<std::uint16_t> id_from_json(const Json& message) {
-  if (const auto it = message.find("id"); it != message.end()) {
-    if (it->is_number_unsigned() && it->get<std::uint64_t>() <= 0xFFFF) return static_cast<std::uint16_t>(it->get<std::uint64_t>());
-    if (it->is_string()) {
-      const std::string text = it->get<std::string>();
-      unsigned value = 0;
-      int consumed = 0;
-      if (std::sscanf(text.c_str(), "%x%n", &value, &consumed) == 1 && consumed == static_cast<int>(text.size()) &&
-          value <= 0xFFFF)
-        return static_cast<std::uint16_t>(value);
-    }
-    return json_error("id", "expected a message ID such as \"0x4402\"");
-  }
-  if (const auto it = message.find("name"); it != message.end() && it->is_string()) {
-    if (const auto* info = msg::find_message(kJss, it->get<std::string>())) return info->code;
-    return json_error("name", "no JSS message named '" + it->get<std::string>() + "'");
-  }
-  return json_error("id", "'id' or 'name' is required");
-}
-
 constexpr std::string_view kPriorityNames[] = {"low", "normal", "high", "safety_critical"};
 constexpr std::string_view kBroadcastNames[] = {"none", "local", "global"};
 constexpr std::string_view kAckNakNames[] = {"none", "ack_requested", "nak", "ack"};
@@ -98,7 +78,7 @@ Expected<Bytes> contents_from_json(const Json& message) {
   if (!message.is_object()) return json_error({}, "expected a JSON object");
   for (const auto& [key, value] : message.items())
     if (key != "id" && key != "name" && key != "fields") return json_error({}, "unknown key '" + key + "'");
-  auto id = id_from_json(message);
+  auto id = msg::detail::message_code_from_json(message, "id", kJss);
   if (!id) return unexpected(id.error());
   const MessageInfo* info = msg::find_message(kJss, *id);
   if (info == nullptr) return unexpected(Error{ErrorCode::unknown_message, 0, "id", id_text(*id)});

@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "jaus/core/address.hpp"
@@ -115,10 +116,20 @@ struct CaseDescription {
 // jss_case.hpp). The runner loop, the recorder and the reports are the same.
 template <class Component, class Context>
 struct Case : CaseDescription {
+  using NotApplicable = std::function<std::string(const Component&)>;
+  using Run = std::function<CaseOutcome(Context&)>;
+  // (A constructor, not an aggregate: the suites' lists stay flat,
+  // {"id", "title", "reference", not_applicable, run}.)
+  Case(std::string_view case_id, std::string_view case_title, std::string_view case_reference,
+       NotApplicable applies_unless, Run check)
+      : CaseDescription{case_id, case_title, case_reference},
+        not_applicable(std::move(applies_unless)),
+        run(std::move(check)) {}
+
   // Why the case does not apply to a component (it is then skipped with that
   // reason); empty when it applies. Null: applies to every component.
-  std::function<std::string(const Component&)> not_applicable;
-  std::function<CaseOutcome(Context&)> run;
+  NotApplicable not_applicable;
+  Run run;
 };
 
 using ConformanceCase = Case<ComponentUnderTest, CaseContext>;
