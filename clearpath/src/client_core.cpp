@@ -434,8 +434,8 @@ void ClientCore::handle_frame(const Frame& frame, rt::TimePoint now) {
     if (on_problem_) {
       Error error = envelope.error();
       char type[40];
-      std::snprintf(type, sizeof type, "frame of type 0x%04X: ", frame.header.type);
-      error.detail = type + error.detail;
+      std::snprintf(type, sizeof type, "frame of type 0x%04X", frame.header.type);
+      error.detail = error.detail.empty() ? std::string(type) : type + (": " + error.detail);
       on_problem_(error);
     }
     return;
