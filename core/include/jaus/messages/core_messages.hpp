@@ -94,13 +94,18 @@ inline constexpr auto kControlResponse =
                                  {control_response::kNotSupported, "not_supported"},
                                  {control_response::kNotAccepted, "not_accepted"}});
 
-struct ResponseCodeBody {
+// A body that is one response code, named by `Codes`: Confirm Component
+// Control's here, and JSS's Confirm Control and Reject Control, each with its
+// own names for the codes (jaus/jss/messages/core.hpp).
+template <const auto& Codes>
+struct ResponseCodeOf {
   std::uint8_t response_code = 0;
-  bool operator==(const ResponseCodeBody&) const = default;
+  bool operator==(const ResponseCodeOf&) const = default;
   static constexpr auto describe() {
-    return std::make_tuple(wire::field("response_code", &ResponseCodeBody::response_code, kControlResponse));
+    return std::make_tuple(wire::field("response_code", &ResponseCodeOf::response_code, Codes));
   }
 };
+using ResponseCodeBody = ResponseCodeOf<kControlResponse>;
 
 struct TimeBody {
   std::optional<TimeStamp> time;

@@ -4,7 +4,9 @@
 // bias lo, rounded; checked against that page's examples in
 // tests/jss/codec). Where a JSS body is byte for byte an RA body (empty
 // bodies, authority, emergency code, time, a query's presence vector), the RA
-// body is reused: its codec is already compiled in jaus_core.
+// body is reused: its codec is already compiled in jaus_core. A message whose
+// code, name and body are the RA's is the RA's message type itself (a
+// using-declaration, e.g. jss::msg::SetEmergency is msg::SetEmergency).
 #pragma once
 
 #include <cstdint>

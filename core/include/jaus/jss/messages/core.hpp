@@ -3,6 +3,7 @@
 #pragma once
 
 #include "jaus/jss/messages/common.hpp"
+#include "jaus/messages/communications_messages.hpp"
 
 namespace jaus::jss::msg {
 
@@ -25,21 +26,8 @@ inline constexpr std::uint8_t kNotAvailable = 1;
 inline constexpr auto kRejectControlCode = wire::enum_of<std::uint8_t>(
     {{reject_control::kControlReleased, "control_released"}, {reject_control::kNotAvailable, "not_available"}});
 
-struct ConfirmControlBody {
-  std::uint8_t response_code = confirm_control::kControlAccepted;
-  bool operator==(const ConfirmControlBody&) const = default;
-  static constexpr auto describe() {
-    return std::make_tuple(wire::field("response_code", &ConfirmControlBody::response_code, kConfirmControlCode));
-  }
-};
-
-struct RejectControlBody {
-  std::uint8_t response_code = reject_control::kControlReleased;
-  bool operator==(const RejectControlBody&) const = default;
-  static constexpr auto describe() {
-    return std::make_tuple(wire::field("response_code", &RejectControlBody::response_code, kRejectControlCode));
-  }
-};
+using ConfirmControlBody = jaus::msg::ResponseCodeOf<kConfirmControlCode>;
+using RejectControlBody = jaus::msg::ResponseCodeOf<kRejectControlCode>;
 
 // Report Control: the controlling client (0.0.0 when not controlled) and its authority.
 struct ReportControlBody {
@@ -88,23 +76,23 @@ using ReportTimeout = Message<0x4003, "Report Timeout", TimeoutBody>;
 using ReportControl = Message<0x400D, "Report Control", ReportControlBody>;
 
 // Management.
-using Shutdown = Message<0x0002, "Shutdown", Empty>;
-using Standby = Message<0x0003, "Standby", Empty>;
-using Resume = Message<0x0004, "Resume", Empty>;
-using Reset = Message<0x0005, "Reset", Empty>;
-using SetEmergency = Message<0x0006, "Set Emergency", EmergencyBody>;
-using ClearEmergency = Message<0x0007, "Clear Emergency", EmergencyBody>;
+using jaus::msg::Shutdown;
+using jaus::msg::Standby;
+using jaus::msg::Resume;
+using jaus::msg::Reset;
+using jaus::msg::SetEmergency;
+using jaus::msg::ClearEmergency;
 using QueryStatus = Message<0x2002, "Query Status", Empty>;
 using ReportStatus = Message<0x4002, "Report Status", StatusBody>;
 
 // Time.
-using SetTime = Message<0x0011, "Set Time", TimeBody>;
+using jaus::msg::SetTime;
 using QueryTime = Message<0x2011, "Query Time", QueryPresence8Body>;
-using ReportTime = Message<0x4011, "Report Time", TimeBody>;
+using jaus::msg::ReportTime;
 
 // Liveness.
-using QueryHeartbeatPulse = Message<0x2202, "Query Heartbeat Pulse", Empty>;
-using ReportHeartbeatPulse = Message<0x4202, "Report Heartbeat Pulse", Empty>;
+using jaus::msg::QueryHeartbeatPulse;
+using jaus::msg::ReportHeartbeatPulse;
 
 using AccessControlMessages = TypeList<SetAuthority, RequestControl, ReleaseControl, ConfirmControl, RejectControl,
                                        QueryAuthority, QueryTimeout, QueryControl, ReportAuthority, ReportTimeout,

@@ -225,9 +225,9 @@ struct ReportServiceListBody {
 };
 
 using RegisterServices = Message<0x0B00, "Register Services", RegisterServicesBody>;
-using QueryIdentification = Message<0x2B00, "Query Identification", QueryIdentificationBody>;
-using QueryConfiguration = Message<0x2B01, "Query Configuration", QueryConfigurationBody>;
-using QuerySubsystemList = Message<0x2B02, "Query Subsystem List", Empty>;
+using jaus::msg::QueryIdentification;
+using jaus::msg::QueryConfiguration;
+using jaus::msg::QuerySubsystemList;
 using QueryServices = Message<0x2B03, "Query Services", QueryServicesBody>;
 using QueryServiceList = Message<0x2B04, "Query Service List", QueryServiceListBody>;
 using ReportIdentification = Message<0x4B00, "Report Identification", ReportIdentificationBody>;

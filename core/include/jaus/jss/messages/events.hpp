@@ -184,14 +184,14 @@ struct CommandEventBody {
 
 using CreateEvent = Message<0x01F0, "Create Event", CreateEventBody>;
 using UpdateEvent = Message<0x01F1, "Update Event", UpdateEventBody>;
-using CancelEvent = Message<0x01F2, "Cancel Event", CancelEventBody>;
-using ConfirmEventRequest = Message<0x01F3, "Confirm Event Request", ConfirmEventRequestBody>;
+using jaus::msg::CancelEvent;
+using jaus::msg::ConfirmEventRequest;
 using RejectEventRequest = Message<0x01F4, "Reject Event Request", RejectEventRequestBody>;
 using CreateCommandEvent = Message<0x01F6, "Create Command Event", CreateCommandEventBody>;
 using QueryEvents = Message<0x21F0, "Query Events", QueryEventsBody>;
 using QueryEventTimeout = Message<0x21F2, "Query Event Timeout", Empty>;
 using ReportEvents = Message<0x41F0, "Report Events", ReportEventsBody>;
-using Event = Message<0x41F1, "Event", EventBody>;
+using jaus::msg::Event;
 using ReportEventTimeout = Message<0x41F2, "Report Event Timeout", EventTimeoutBody>;
 using CommandEvent = Message<0x41F6, "Command Event", CommandEventBody>;
 

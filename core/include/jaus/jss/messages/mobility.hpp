@@ -31,20 +31,20 @@ struct GeomagneticPropertyBody {
 };
 
 // Primitive Driver.
-using SetWrenchEffort = Message<0x0405, "Set Wrench Effort", WrenchEffortBody>;
+using jaus::msg::SetWrenchEffort;
 using QueryWrenchEffort = Message<0x2405, "Query Wrench Effort", QueryPresence16Body>;
-using ReportWrenchEffort = Message<0x4405, "Report Wrench Effort", WrenchEffortBody>;
+using jaus::msg::ReportWrenchEffort;
 // Velocity State Sensor.
 using QueryVelocityState = Message<0x2404, "Query Velocity State", QueryPresence16Body>;
-using ReportVelocityState = Message<0x4404, "Report Velocity State", VelocityStateBody>;
+using jaus::msg::ReportVelocityState;
 // Local Pose Sensor.
 using SetLocalPose = Message<0x0403, "Set Local Pose", LocalPoseBody>;
 using QueryLocalPose = Message<0x2403, "Query Local Pose", QueryPresence16Body>;
-using ReportLocalPose = Message<0x4403, "Report Local Pose", LocalPoseBody>;
+using jaus::msg::ReportLocalPose;
 // Global Pose Sensor.
 using SetGlobalPose = Message<0x0402, "Set Global Pose", GlobalPoseBody>;
 using QueryGlobalPose = Message<0x2402, "Query Global Pose", QueryPresence16Body>;
-using ReportGlobalPose = Message<0x4402, "Report Global Pose", GlobalPoseBody>;
+using jaus::msg::ReportGlobalPose;
 using SetGeomagneticProperty = Message<0x0412, "Set Geomagnetic Property", GeomagneticPropertyBody>;
 using QueryGeomagneticProperty = Message<0x2412, "Query Geomagnetic Property", Empty>;
 using ReportGeomagneticProperty = Message<0x4412, "Report Geomagnetic Property", GeomagneticPropertyBody>;

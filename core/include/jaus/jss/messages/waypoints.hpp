@@ -150,12 +150,12 @@ struct ExecuteListBody {
 };
 
 // Local Waypoint Driver.
-using SetTravelSpeed = Message<0x040A, "Set Travel Speed", TravelSpeedBody>;
-using SetLocalWaypoint = Message<0x040D, "Set Local Waypoint", LocalWaypointBody>;
-using QueryTravelSpeed = Message<0x240A, "Query Travel Speed", Empty>;
+using jaus::msg::SetTravelSpeed;
+using jaus::msg::SetLocalWaypoint;
+using jaus::msg::QueryTravelSpeed;
 using QueryLocalWaypoint = Message<0x240D, "Query Local Waypoint", QueryPresence8Body>;
-using ReportTravelSpeed = Message<0x440A, "Report Travel Speed", TravelSpeedBody>;
-using ReportLocalWaypoint = Message<0x440D, "Report Local Waypoint", LocalWaypointBody>;
+using jaus::msg::ReportTravelSpeed;
+using jaus::msg::ReportLocalWaypoint;
 // List Manager.
 using SetElement = Message<0x041A, "Set Element", SetElementBody>;
 using DeleteElement = Message<0x041B, "Delete Element", DeleteElementBody>;
