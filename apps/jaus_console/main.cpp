@@ -1,8 +1,8 @@
 // jaus-console: the operator console in a browser (docs/console.md). An OCU
 // with its own JAUS ID (an ocu::OcuSession on UDP) that serves the page and
 // its WebSocket (jaus_console's WebServer) on 127.0.0.1:8080 by default, on
-// one io_context. Thin: options, logging, signals; the console itself is
-// jaus_console. SIGINT/SIGTERM: zero effort where driving, control released,
+// one io_context. Thin: options, logging, signals, plugins; the console
+// itself is jaus_console. SIGINT/SIGTERM: zero effort where driving, control released,
 // pages closed, then exit.
 #include <utility>  // Boost 1.74's Asio headers need it first
 
@@ -15,6 +15,7 @@
 #include "jaus/base/version.hpp"
 #include "jaus/console/operator_console.hpp"
 #include "jaus/console/web_server.hpp"
+#include "jaus/host/component_plugins.hpp"
 #include "jaus/ocu/operator_identity.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/ipv4.hpp"
@@ -32,8 +33,15 @@ struct Options {
   std::string as;
   int authority = 0;
   std::string token;
+  std::vector<std::string> plugins;
   int verbosity = 0;
 };
+
+std::string join(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
 
 int bad_usage(const std::string& what) {
   std::cerr << "jaus-console: " << what << " (--help for usage)\n";
@@ -78,6 +86,10 @@ int main(int argc, char** argv) {
                  "the token pages must give (?token=); with --listen beyond loopback and no --token, one is "
                  "generated and printed")
       ->type_name("TEXT");
+  app.add_option("--plugin", o.plugins,
+                 "a component plugin (.so), as listed under jausd's `plugins:`: the console then knows its kinds and "
+                 "shows what each says an operator unit shows of it (repeat for several)")
+      ->type_name("PATH");
   app.add_flag("-v,--verbose", o.verbosity, "log more: -v the console's events, -vv the runtime's debug lines");
   CLI11_PARSE(app, argc, argv);
 
@@ -104,6 +116,14 @@ int main(int argc, char** argv) {
       return bad_usage("--as: '" + o.as + "' is not an OCU address S.N.C.I (1..254 each, component not 1)");
   }
   if (o.authority < 0 || o.authority > 255) return bad_usage("--authority: 0..255");
+  // Before the console looks any kind up (the kinds' operator views, kind_views.hpp).
+  for (const auto& path : o.plugins) {
+    auto plugin = jaus::host::load_component_plugin(path);
+    if (!plugin) return bad_usage("--plugin: " + plugin.error().message());
+    std::cout << "jaus-console: plugin '" << plugin->name << "' (" << plugin->path.string() << "): "
+              << (plugin->kinds.empty() ? std::string("no component kinds") : "component kinds " + join(plugin->kinds))
+              << std::endl;
+  }
   // The user's kept ID, as jausctl's (an emergency set here is cleared by
   // `jausctl emergency ... clear`); refused while another process acts as
   // it (the console takes control: IdUse::holds). Locked

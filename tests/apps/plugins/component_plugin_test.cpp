@@ -146,7 +146,7 @@ TEST(ComponentPlugins, APluginKindIsConfiguredCheckedAndHosted) {
   operator_config.name = "operator";
   operator_config.address = {1, 2, 40, 1};
   auto& op = station.add_as(std::make_unique<Operator>(operator_config, station.environment()));
-  op.ask({1, 1, 42, 1});
+  op.ask({1, 1, 150, 1});
   ASSERT_TRUE(jaus::testing::run_until(time, [&] { return op.report.has_value(); }, std::chrono::seconds(1)));
   ASSERT_TRUE(op.report->velocity_x_mps);
   EXPECT_NEAR(*op.report->velocity_x_mps, 2.5, 0.01);
@@ -184,10 +184,10 @@ TEST(JssPlugins, APluginKindsJssServiceComesWithItAndAnswersAJssClient) {
   });
   face_link.attach(&face);
 
-  // A JSS client asks JSS component 1.1.42 (the plugin kind's RA ID) for its velocity.
+  // A JSS client asks JSS component 1.1.150 (the plugin kind's RA ID) for its velocity.
   jaus::jss::JudpHeader query;
   query.source = jaus::jss::JssId{42, 1, 1};
-  query.destination = jaus::jss::JssId{1, 1, 42};
+  query.destination = jaus::jss::JssId{1, 1, 150};
   const auto contents = jaus::jss::encode_contents(jaus::jss::msg::QueryVelocityState{{0x0001}});
   face.receive(jaus::jss::make_judp_datagram(query, contents), jaus::rt::SenderStanding::trusted);
   std::optional<jaus::jss::msg::ReportVelocityState> report;

@@ -1,7 +1,9 @@
-// A working plugin: kind `plugin_odometer` (option speed_mps 0..10) answers
-// Query Velocity State with the configured speed; its JSS service (Velocity
-// State Sensor, the translator kit's report translator) comes with it, so a
-// JSS client asks it too. Kind and service in one file: what a kind owns.
+// A working plugin: kind `plugin_odometer` (option speed_mps 0..10, ID 150,
+// one no built-in kind has) answers Query Velocity State with the configured
+// speed; its JSS service (Velocity State Sensor, the translator kit's report
+// translator) comes with it, so a JSS client asks it too, and it tells an
+// operator unit to show its velocity (jaus-console --plugin). Kind, service
+// and view in one file: what a kind owns.
 #include "jaus/host/jss_plugin.hpp"
 #include "jaus/jss/messages/mobility.hpp"
 #include "jaus/jss_face/report_translator.hpp"
@@ -10,7 +12,7 @@
 
 namespace {
 
-constexpr std::uint8_t kOdometerId = 42;
+constexpr std::uint8_t kOdometerId = 150;
 
 class PluginOdometer final : public jaus::rt::Component {
  public:
@@ -37,6 +39,7 @@ std::vector<jaus::rt::ComponentKind> kinds() {
       .needs = {},
       .moves_hardware = false,
       .one_per_node = false,
+      .operator_views = {jaus::rt::operator_view::kVelocity},
       .check = jaus::rt::check_by(speed),
       .make = [](const jaus::rt::KindContext& k) -> jaus::Expected<std::unique_ptr<jaus::rt::Component>> {
         const auto s = speed(k.options);
