@@ -17,9 +17,6 @@
 
 namespace jaus::conform::detail {
 
-inline const Address& source_of(const ocu::Received& r) { return r.header.source; }
-inline const jss::JssId& source_of(const ocu::JssReceived& r) { return r.source(); }
-
 // A message received from the component, as the report shows it: a JSS one
 // with its message ID as the code and the body after it as the payload.
 inline Exchanged received_record(const ocu::Received& r, rt::Duration at, bool second) {
@@ -42,7 +39,7 @@ template <class Session, class Peer>
 auto record_from(Session& listening, const Peer& component, rt::Clock& clock, rt::TimePoint started,
                  std::vector<Exchanged>& exchange, bool second = false) {
   return listening.listen([&clock, &exchange, component, started, second](const auto& r) {
-    if (source_of(r) == component) exchange.push_back(received_record(r, clock.now() - started, second));
+    if (r.source() == component) exchange.push_back(received_record(r, clock.now() - started, second));
   });
 }
 

@@ -144,7 +144,7 @@ void JssControlHold::refresh() {
     confirmed_ = false;
   }
   // Unconfirmed: again after a resend period (never past the next refresh).
-  const auto next = confirmed_ ? next_refresh_ : std::min(next_refresh_, now + kJssQueryResendPeriod);
+  const auto next = confirmed_ ? next_refresh_ : std::min(next_refresh_, now + kQueryResendPeriod);
   refresh_timer_ = session_.scheduler().call_at(next, [this] {
     refresh_timer_ = rt::kNoTimer;
     refresh();
@@ -177,14 +177,10 @@ Expected<void> JssControlHold::release(rt::Duration timeout) {
   const auto id = session_.listen([&](const JssReceived& m) {
     if (m.source() == component_ && m.message_id() == jss_msg::RejectControl::code) released = true;
   });
-  const auto deadline = session_.clock().now() + std::min(timeout, JssSession::kLongestCleanup);
-  while (!released && session_.clock().now() < deadline) {
-    session_.send_contents(component_, contents);
-    session_.run_cleanup_until([&] { return released; },
-                               std::min<rt::Duration>(kJssQueryResendPeriod, deadline - session_.clock().now()));
-  }
+  session_.resend_until([&] { session_.send_contents(component_, contents); }, [&] { return released; },
+                        std::min(timeout, JssSession::kLongestCleanup), kQueryResendPeriod, /*through_stop=*/true);
   session_.unlisten(id);
-  if (!released) return unexpected(no_jss_reply_error(component_, timeout));
+  if (!released) return unexpected(no_reply_error(component_, timeout));
   return {};
 }
 

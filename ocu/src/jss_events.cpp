@@ -90,21 +90,12 @@ Expected<JssEvent::Answer> JssEvent::request(const std::vector<std::uint8_t>& co
                                              bool through_stop) {
   pending_request_ = request_id;
   answer_.reset();
-  const auto deadline = session_.clock().now() + options_.request_timeout;
-  for (;;) {
-    session_.send_contents(provider_, contents);
-    const auto now = session_.clock().now();
-    if (now >= deadline) break;
-    const auto slice = std::min<rt::Duration>(kJssQueryResendPeriod, deadline - now);
-    if (through_stop ? session_.run_cleanup_until([&] { return answer_.has_value(); }, slice)
-                     : session_.run_until([&] { return answer_.has_value(); }, slice))
-      break;
-    if ((session_.interrupted() && !through_stop) || session_.clock().now() >= deadline) break;
-  }
+  session_.resend_until([&] { session_.send_contents(provider_, contents); }, [&] { return answer_.has_value(); },
+                        options_.request_timeout, kQueryResendPeriod, through_stop);
   pending_request_.reset();
   if (answer_) return *answer_;
   if (session_.interrupted() && !through_stop) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
-  return unexpected(no_jss_reply_error(provider_, options_.request_timeout));
+  return unexpected(no_reply_error(provider_, options_.request_timeout));
 }
 
 void JssEvent::heard(const JssReceived& m) {

@@ -8,7 +8,6 @@
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
 #include "repeat_broadcast.hpp"
-#include "run_loop.hpp"
 
 namespace jaus::ocu {
 
@@ -35,10 +34,6 @@ jss::JudpBroadcast broadcast_of(const jss::JssId& to) {
 }
 
 }  // namespace
-
-Error no_jss_reply_error(const jss::JssId& from, rt::Duration timeout) {
-  return make_error(ErrorCode::timeout, "no reply from " + from.to_string() + " within " + seconds_text(timeout));
-}
 
 struct JssSession::Impl {
   // A must-arrive send waiting for its ACK.
@@ -69,6 +64,7 @@ struct JssSession::Impl {
                             jss::JudpPriority priority, MustArrivePolicy policy, bool through_stop);
 
   JssSessionOptions options;
+  JssSession* owner = nullptr;  // whose listeners hear what arrives
   // On UDP.
   std::unique_ptr<boost::asio::io_context> owned_io;
   boost::asio::io_context* io = nullptr;
@@ -88,8 +84,6 @@ struct JssSession::Impl {
   std::uint64_t delivered_by_link = 0;
   std::uint16_t next_sequence = 0;
   jss::JssLargeMessageAssembler assembler;
-  ListenerId last_id = 0;
-  std::map<ListenerId, Listener> listeners;
   std::vector<AckWait*> ack_waits;
 };
 
@@ -248,14 +242,13 @@ void JssSession::Impl::answer_builtin(const JssReceived& message) {
 
 void JssSession::Impl::deliver(const JssReceived& message) {
   ++counters.messages_received;
-  // Listeners may unlisten themselves (or others) while called: walk the ids.
-  std::vector<ListenerId> ids;
-  for (const auto& [id, l] : listeners) ids.push_back(id);
-  for (const auto id : ids)
-    if (const auto it = listeners.find(id); it != listeners.end()) it->second(message);
+  owner->deliver(message);
 }
 
-JssSession::JssSession(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+JssSession::JssSession(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {
+  impl_->owner = this;
+  run_on(*impl_->clock, *impl_->scheduler, impl_->io, impl_->environment.wait);
+}
 
 JssSession::~JssSession() {
   if (impl_->environment.connect) impl_->environment.connect({});
@@ -301,10 +294,11 @@ Expected<std::unique_ptr<JssSession>> JssSession::open(JssSessionOptions options
   if (!link) return unexpected(link.error());
   impl->link = std::move(*link);
   Impl* raw = impl.get();
-  impl->link->on_jss_packets(
+  raw->link->on_jss_packets(
       [raw](const transport::Inbound& inbound, rt::SenderStanding) { raw->receive_packets(inbound.jss); });
-  impl->link->start();
-  return std::unique_ptr<JssSession>(new JssSession(std::move(impl)));
+  std::unique_ptr<JssSession> session(new JssSession(std::move(impl)));
+  raw->link->start();  // what arrives has a session to go to
+  return session;
 }
 
 Expected<std::unique_ptr<JssSession>> JssSession::attach(JssSessionOptions options, JssEnvironment environment) {
@@ -327,13 +321,10 @@ Expected<std::unique_ptr<JssSession>> JssSession::attach(JssSessionOptions optio
 
 const jss::JssId& JssSession::self() const { return impl_->options.self; }
 const JssSessionOptions& JssSession::options() const { return impl_->options; }
-rt::Clock& JssSession::clock() { return *impl_->clock; }
-rt::Scheduler& JssSession::scheduler() { return *impl_->scheduler; }
 const JssSessionCounters& JssSession::counters() const {
   impl_->sync_link_counters();  // what the link dropped since the last datagram
   return impl_->counters;
 }
-bool JssSession::on_udp() const { return impl_->link != nullptr; }
 
 std::optional<transport::Ipv4Endpoint> JssSession::endpoint_of(const jss::JssId& id) const {
   if (!impl_->link) return std::nullopt;
@@ -399,61 +390,10 @@ ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssI
   return result;
 }
 
-JssSession::ListenerId JssSession::listen(Listener listener) {
-  impl_->listeners.emplace(++impl_->last_id, std::move(listener));
-  return impl_->last_id;
-}
-
-void JssSession::unlisten(ListenerId id) { impl_->listeners.erase(id); }
-
-Expected<JssReceived> JssSession::await_reply(const jss::JssId& from, std::vector<std::uint16_t> ids,
-                                              rt::Duration timeout) {
-  std::optional<JssReceived> reply;
-  const ListenerId id = listen([&](const JssReceived& r) {
-    if (reply || !from.matches(r.source())) return;
-    if (!ids.empty() && std::find(ids.begin(), ids.end(), r.message_id()) == ids.end()) return;
-    reply = r;
-  });
-  run_until([&] { return reply.has_value(); }, timeout);
-  unlisten(id);
-  if (reply) return std::move(*reply);
-  if (interrupted()) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
-  return unexpected(no_jss_reply_error(from, timeout));
-}
-
 Expected<JssReceived> JssSession::request_contents(const jss::JssId& to, std::span<const std::uint8_t> query,
                                                    std::vector<std::uint16_t> reply_ids, rt::Duration timeout,
                                                    rt::Duration resend_every) {
-  std::optional<JssReceived> reply;
-  const ListenerId id = listen([&](const JssReceived& r) {
-    if (reply || !to.matches(r.source())) return;
-    if (!reply_ids.empty() && std::find(reply_ids.begin(), reply_ids.end(), r.message_id()) == reply_ids.end()) return;
-    reply = r;
-  });
-  const auto period = std::max<rt::Duration>(resend_every, 1ms);
-  const auto deadline = clock().now() + timeout;
-  send_contents(to, query);
-  for (;;) {
-    const auto now = clock().now();
-    if (now >= deadline) break;
-    if (run_until([&] { return reply.has_value(); }, std::min(period, deadline - now))) break;
-    if (interrupted() || clock().now() >= deadline) break;
-    send_contents(to, query);  // the query or its reply was lost (a second reply is ignored)
-  }
-  unlisten(id);
-  if (reply) return std::move(*reply);
-  if (interrupted()) return unexpected(make_error(ErrorCode::interrupted, "interrupted"));
-  return unexpected(no_jss_reply_error(to, timeout));
-}
-
-bool JssSession::run_until(const std::function<bool()>& done, rt::Duration limit) {
-  return detail::run_session({clock(), impl_->io, impl_->environment.wait, [this] { return interrupted(); }}, done,
-                             limit, false);
-}
-
-bool JssSession::run_cleanup_until(const std::function<bool()>& done, rt::Duration limit) {
-  return detail::run_session({clock(), impl_->io, impl_->environment.wait, [this] { return interrupted(); }}, done,
-                             std::min(limit, kLongestCleanup), true);
+  return await_reply_resending(to, std::move(reply_ids), timeout, [&] { send_contents(to, query); }, resend_every);
 }
 
 }  // namespace jaus::ocu

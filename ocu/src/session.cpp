@@ -6,7 +6,6 @@
 #include "jaus/components/node_manager.hpp"
 #include "jaus/host/node_host.hpp"
 #include "jaus/ocu/names.hpp"
-#include "run_loop.hpp"
 
 namespace jaus::ocu {
 
@@ -29,10 +28,6 @@ jaus::components::NodeManagerConfig ocu_identity() {
 
 }  // namespace
 
-jaus::Error no_reply_error(const jaus::Address& from, jaus::rt::Duration timeout) {
-  return jaus::make_error(jaus::ErrorCode::timeout, "no reply from " + from.to_string() + " within " + seconds_text(timeout));
-}
-
 OcuSession::OcuSession(SessionOptions options) : options_(std::move(options)) {
   if (!options_.log) options_.log = jaus::rt::silent_log();
 }
@@ -53,7 +48,6 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
     s->owned_io_ = std::make_unique<boost::asio::io_context>();
     io = s->owned_io_.get();
   }
-  s->io_ = io;
   const SessionOptions& o = s->options_;
 
   jaus::host::HostConfig config;
@@ -74,13 +68,12 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   config.link.broadcast_to_unheard_peers = true;  // a stop to S.255.255.255 reaches a vehicle not heard yet
   config.settings.identity = ocu_identity();
   config.components = {jaus::host::ComponentSpec{"node_manager", kNodeManagerComponent, 1, 0, "jausctl node manager", {}, 0, {}}};
-  auto host = jaus::host::NodeHost::open(std::move(config), *s->io_, o.log);
+  auto host = jaus::host::NodeHost::open(std::move(config), *io, o.log);
   if (!host) return unexpected(host.error());
   s->host_ = std::move(*host);
   s->host_->watch([session = s.get()](const jaus::PacketView& packet) { session->observe(packet); });
   s->node_ = &s->host_->node();
-  s->clock_ = &s->host_->clock();
-  s->scheduler_ = &s->host_->scheduler();
+  s->run_on(s->host_->clock(), s->host_->scheduler(), io, {});
   s->add_ocu_component();
   return s;
 }
@@ -100,8 +93,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::attach(SessionOptions op
   SessionEnvironment& env = s->environment_;
   s->own_node_ = std::make_unique<jaus::node::Node>(node_config, *env.clock, *env.scheduler, *env.link, o.log);
   s->node_ = s->own_node_.get();
-  s->clock_ = env.clock;
-  s->scheduler_ = env.scheduler;
+  s->run_on(*env.clock, *env.scheduler, nullptr, env.wait);
   jaus::rt::ComponentConfig manager;
   manager.name = "jausctl node manager";
   manager.address = jaus::Address{o.self.subsystem, o.self.node, kNodeManagerComponent, 1};
@@ -151,19 +143,10 @@ void OcuSession::send_raw(jaus::Header header, std::span<const std::uint8_t> pay
   node_->send(header, payload);
 }
 
-OcuSession::ListenerId OcuSession::listen(Listener listener) {
-  listeners_.emplace(++last_id_, std::move(listener));
-  return last_id_;
-}
-
 OcuSession::ListenerId OcuSession::watch(Watcher watcher) {
-  watchers_.emplace(++last_id_, std::move(watcher));
-  return last_id_;
-}
-
-void OcuSession::unlisten(ListenerId id) {
-  listeners_.erase(id);
-  watchers_.erase(id);
+  const ListenerId id = next_listener_id();
+  watchers_.emplace(id, std::move(watcher));
+  return id;
 }
 
 void OcuSession::observe(const jaus::PacketView& packet) {
@@ -182,42 +165,6 @@ void OcuSession::observe(const jaus::PacketView& packet) {
   if (h.data_flag == jaus::DataFlag::single && !ack_or_nak && h.destination.matches(options_.self) &&
       component_->consumes(h.command_code))
     deliver(Received{h, {packet.payload.begin(), packet.payload.end()}});
-}
-
-void OcuSession::deliver(const Received& message) {
-  std::vector<ListenerId> ids;
-  for (const auto& [id, l] : listeners_) ids.push_back(id);
-  for (const auto id : ids)
-    if (const auto it = listeners_.find(id); it != listeners_.end()) it->second(message);
-}
-
-bool OcuSession::run_until(const std::function<bool()>& done, jaus::rt::Duration limit) {
-  return run(done, limit, false);
-}
-
-bool OcuSession::run_cleanup_until(const std::function<bool()>& done, jaus::rt::Duration limit) {
-  return run(done, std::min(limit, kLongestCleanup), true);
-}
-
-bool OcuSession::run(const std::function<bool()>& done, jaus::rt::Duration limit, bool through_stop) {
-  return detail::run_session({clock(), io_, environment_.wait, [this] { return interrupted(); }}, done, limit,
-                             through_stop);
-}
-
-jaus::Expected<Received> OcuSession::await_reply(const jaus::Address& from,
-                                                              std::vector<std::uint16_t> codes,
-                                                              jaus::rt::Duration timeout) {
-  std::optional<Received> reply;
-  const ListenerId id = listen([&](const Received& r) {
-    if (reply || !from.matches(r.header.source)) return;
-    if (!codes.empty() && std::find(codes.begin(), codes.end(), r.header.command_code) == codes.end()) return;
-    reply = r;
-  });
-  run_until([&] { return reply.has_value(); }, timeout);
-  unlisten(id);
-  if (reply) return std::move(*reply);
-  if (interrupted()) return unexpected(jaus::make_error(jaus::ErrorCode::interrupted, "interrupted"));
-  return unexpected(no_reply_error(from, timeout));
 }
 
 }  // namespace jaus::ocu

@@ -10,7 +10,9 @@
 //
 // Two ways to open one, as OcuSession: open() on UDP on an io_context
 // (jausctl, jaus-conform); attach() on an injected clock, scheduler and
-// datagram path (tests: a JssFace on virtual time, no socket).
+// datagram path (tests: a JssFace on virtual time, no socket). Listening,
+// waiting for replies, the run loop and the stop request are SessionCore's
+// (session_core.hpp), as the RA session's.
 //
 // Single-threaded: everything runs on the thread that calls run_until(),
 // but request_stop().
@@ -19,7 +21,6 @@
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -38,6 +39,7 @@
 #include "jaus/jss/judp.hpp"
 #include "jaus/jss/large_message.hpp"
 #include "jaus/ocu/must_arrive.hpp"
+#include "jaus/ocu/session_core.hpp"
 #include "jaus/transport/ipv4.hpp"
 
 namespace jaus::ocu {
@@ -49,8 +51,6 @@ inline constexpr jss::JssId kDefaultJssOcuId{200, 1, 1};
 // to IDs they have not heard from.
 inline constexpr transport::Ipv4Endpoint kJssMulticastGroup{0xEFFF0001, transport::kJausPort};  // 239.255.0.1
 inline constexpr jss::JssId kJssBroadcast{jss::JssId::kAllSubsystems, jss::JssId::kAll, jss::JssId::kAll};
-// A query lost (or its reply) is sent again after this long (as the RA OCU).
-inline constexpr rt::Duration kJssQueryResendPeriod = std::chrono::milliseconds(250);
 inline constexpr rt::Duration kJssDefaultTimeout = std::chrono::seconds(1);
 
 struct JssSessionOptions {
@@ -103,6 +103,7 @@ struct JssReceived {
   std::vector<std::uint8_t> contents;  // u16 message ID, then the body
   std::uint16_t message_id() const { return jss::message_id_of(contents); }
   const jss::JssId& source() const { return header.source; }
+  std::uint16_t code() const { return message_id(); }
 };
 
 struct JssSessionCounters {
@@ -118,10 +119,8 @@ struct JssSessionCounters {
   std::uint64_t large_messages_dropped = 0;  // stray packets, too large, timed out, refused (logged)
 };
 
-class JssSession {
+class JssSession : public SessionCore<JssReceived> {
  public:
-  using Listener = std::function<void(const JssReceived&)>;
-  using ListenerId = std::uint64_t;
 
   // Binds the socket (joins the multicast group). `io` null: its own.
   // Errors (io, invalid_argument) in one line: "0.0.0.0:3794 is already in use".
@@ -129,15 +128,10 @@ class JssSession {
   // Errors: an invalid or broadcast ID, an environment with something missing.
   static Expected<std::unique_ptr<JssSession>> attach(JssSessionOptions options, JssEnvironment environment);
   ~JssSession();
-  JssSession(const JssSession&) = delete;
-  JssSession& operator=(const JssSession&) = delete;
 
   const jss::JssId& self() const;
   const JssSessionOptions& options() const;
-  rt::Clock& clock();
-  rt::Scheduler& scheduler();
   const JssSessionCounters& counters() const;
-  bool on_udp() const;
   // The endpoint `id`'s node was last heard from (UDP only).
   std::optional<transport::Ipv4Endpoint> endpoint_of(const jss::JssId& id) const;
 
@@ -171,40 +165,24 @@ class JssSession {
     return send_contents_must_arrive(to, contents, priority, policy);
   }
 
-  // Every message addressed to us (or to a broadcast ID that matches us),
-  // after the session answered its ACK request.
-  ListenerId listen(Listener listener);
-  void unlisten(ListenerId id);
-
-  // The first message from `from` (wildcards match any ID) with one of
-  // `ids` (any when empty). Errors: timeout ("no reply from 1.1.33 within
-  // 1 s"), interrupted.
-  Expected<JssReceived> await_reply(const jss::JssId& from, std::vector<std::uint16_t> ids, rt::Duration timeout);
+  // listen() hears every message addressed to us (or to a broadcast ID that
+  // matches us), after the session answered its ACK request; await_reply()
+  // the first from an ID (wildcards match any).
   // Sends the query now and every `resend_every` until a reply comes (at most `timeout`).
   Expected<JssReceived> request_contents(const jss::JssId& to, std::span<const std::uint8_t> query,
                                          std::vector<std::uint16_t> reply_ids,
                                          rt::Duration timeout = kJssDefaultTimeout,
-                                         rt::Duration resend_every = kJssQueryResendPeriod);
+                                         rt::Duration resend_every = kQueryResendPeriod);
   // Typed: query<msg::ReportStatus>(to, msg::QueryStatus{}). Errors as
   // request_contents, or the reply's decode error.
   template <class Reply, class Query>
   Expected<Reply> query(const jss::JssId& to, const Query& query, rt::Duration timeout = kJssDefaultTimeout,
-                        rt::Duration resend_every = kJssQueryResendPeriod) {
+                        rt::Duration resend_every = kQueryResendPeriod) {
     const auto contents = jss::encode_contents(query);
     auto reply = request_contents(to, contents, {Reply::code}, timeout, resend_every);
     if (!reply) return unexpected(reply.error());
     return jss::decode_contents<Reply>(reply->contents);
   }
-
-  // As OcuSession: runs until `done()`, `limit` passed or a stop requested.
-  bool run_until(const std::function<bool()>& done, rt::Duration limit);
-  void run_for(rt::Duration limit) {
-    run_until([] { return false; }, limit);
-  }
-  static constexpr rt::Duration kLongestCleanup = std::chrono::seconds(1);
-  bool run_cleanup_until(const std::function<bool()>& done, rt::Duration limit);
-  void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
-  bool interrupted() const { return interrupted_.load(std::memory_order_relaxed); }
 
   // An attached session's environment hands datagrams here (open() wires its link itself).
   void receive_datagram(std::span<const std::uint8_t> datagram);
@@ -213,10 +191,6 @@ class JssSession {
   struct Impl;
   explicit JssSession(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
-  std::atomic<bool> interrupted_ = false;
 };
-
-// timeout: "no reply from 1.1.33 within 1 s"
-Error no_jss_reply_error(const jss::JssId& from, rt::Duration timeout);
 
 }  // namespace jaus::ocu

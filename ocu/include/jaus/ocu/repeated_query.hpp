@@ -2,6 +2,9 @@
 // whole timeout for one reply that may never come (the query or its report
 // lost), it is sent again every `resend_every` until a reply arrives or the
 // timeout is up. One datagram lost costs a resend period, not the command.
+// (SessionCore::await_reply_resending, for a message known at compile time
+// or only at run time.) Errors as await_reply: timeout ("no reply from
+// 1.1.33.1 within 1 s") or interrupted.
 #pragma once
 
 #include <chrono>
@@ -14,26 +17,13 @@
 
 namespace jaus::ocu {
 
-// A query lost on the way (or its reply) is sent again after this long: well
-// above a round trip on a radio link, well below the 1 s default timeout.
-inline constexpr jaus::rt::Duration kQueryResendPeriod = std::chrono::milliseconds(250);
-
-// Calls `send` now and every `resend_every` until a message from `from` (255s
-// match any ID) with one of `codes` (any when empty) arrives, at most
-// `timeout`. Errors as OcuSession::await_reply: timeout ("no reply from
-// 1.1.33.1 within 1 s") or interrupted.
-jaus::Expected<Received> await_reply_resending(OcuSession& session, const jaus::Address& from,
-                                               std::vector<std::uint16_t> codes, jaus::rt::Duration timeout,
-                                               const std::function<void()>& send,
-                                               jaus::rt::Duration resend_every = kQueryResendPeriod);
-
 // A query from the OCU component to `to`, resent until answered.
 template <class M>
 jaus::Expected<Received> request_resending(OcuSession& session, const jaus::Address& to, const M& query,
                                            std::vector<std::uint16_t> reply_codes, jaus::rt::Duration timeout,
                                            jaus::rt::Duration resend_every = kQueryResendPeriod) {
-  return await_reply_resending(session, to, std::move(reply_codes), timeout, [&] { session.send(to, query); },
-                               resend_every);
+  return session.await_reply_resending(to, std::move(reply_codes), timeout, [&] { session.send(to, query); },
+                                       resend_every);
 }
 
 // The same for a query known only at run time (header: code, priority, ...;

@@ -10,13 +10,14 @@
 //
 // Single-threaded like the runtime: everything here runs on the thread that
 // calls run_until(), but request_stop(). Signals are the application's: it
-// handles them and calls request_stop().
+// handles them and calls request_stop(). Listening, waiting for replies, the
+// run loop and the stop request are SessionCore's (session_core.hpp), as
+// the JSS session's.
 #pragma once
 
 #include <utility>  // Boost 1.74's Asio headers need it first
 
 #include <boost/asio/io_context.hpp>
-#include <atomic>
 #include <functional>
 #include <map>
 #include <memory>
@@ -26,6 +27,7 @@
 
 #include "jaus/node/node.hpp"
 #include "jaus/ocu/ocu_component.hpp"
+#include "jaus/ocu/session_core.hpp"
 #include "jaus/transport/framing.hpp"
 #include "jaus/transport/ipv4.hpp"
 
@@ -87,13 +89,13 @@ struct SessionEnvironment {
 struct Received {
   jaus::Header header;
   std::vector<std::uint8_t> payload;
+  const jaus::Address& source() const { return header.source; }
+  std::uint16_t code() const { return header.command_code; }
 };
 
-class OcuSession {
+class OcuSession : public SessionCore<Received> {
  public:
-  using Listener = std::function<void(const Received&)>;
   using Watcher = std::function<void(const jaus::Header&)>;
-  using ListenerId = std::uint64_t;
 
   // Binds the socket (and joins the multicast group) and starts the node.
   // `io` null: the session runs its own.
@@ -107,22 +109,13 @@ class OcuSession {
   static jaus::Expected<std::unique_ptr<OcuSession>> attach(SessionOptions options, SessionEnvironment environment);
   // Shuts the node down in order: subscriptions still open are terminated.
   ~OcuSession();
-  OcuSession(const OcuSession&) = delete;
-  OcuSession& operator=(const OcuSession&) = delete;
 
   const jaus::Address& self() const { return options_.self; }
   const SessionOptions& options() const { return options_; }
   OcuComponent& component() { return *component_; }
   jaus::node::Node& node() { return *node_; }
-  jaus::rt::Clock& clock() { return *clock_; }
-  // Timers on the session's clock (they fire while run_until() runs).
-  jaus::rt::Scheduler& scheduler() { return *scheduler_; }
-  // Whether it was opened on UDP (open()) rather than attached.
-  bool on_udp() const { return io_ != nullptr; }
-  // A session opened on UDP: its link, and what runs it (another session
-  // opened on it runs whenever this one does); null for an attached session.
+  // A session opened on UDP: its link; null for an attached session.
   jaus::transport::UdpLink* udp_link();
-  boost::asio::io_context* io_context() { return io_; }
 
   // Sends from the OCU component; the datagram has left when this returns.
   template <class M>
@@ -132,38 +125,20 @@ class OcuSession {
   // A message known only at run time: source set to the OCU, data size to the payload.
   void send_raw(jaus::Header header, std::span<const std::uint8_t> payload);
 
-  // Messages addressed to the OCU component: reports, confirmations, rejects,
-  // and also those the runtime answers itself (a controlled component's
-  // liveness queries), so callers see everything sent to them.
-  ListenerId listen(Listener listener);
+  // listen(): messages addressed to the OCU component: reports,
+  // confirmations, rejects, and also those the runtime answers itself (a
+  // controlled component's liveness queries), so callers see everything sent
+  // to them. await_reply(): the first from an address (255s match any ID).
   // Every JAUS message heard, whoever it is for (heartbeats go to broadcast
   // addresses the OCU's node does not match).
   ListenerId watch(Watcher watcher);
-  void unlisten(ListenerId id);
+  // A listener's or a watcher's.
+  void unlisten(ListenerId id) {
+    SessionCore::unlisten(id);
+    watchers_.erase(id);
+  }
 
-  // Runs the io_context (or waits in the environment) until `done()`, `limit`
-  // has passed or a stop is requested. True when `done()`.
-  bool run_until(const std::function<bool()>& done, jaus::rt::Duration limit);
-  void run_for(jaus::rt::Duration limit) { run_until([] { return false; }, limit); }
-  // The same after a stop was requested, for clean-up that must be heard
-  // (a Release Component Control retransmitted until ACKed), at most
-  // kLongestCleanup: a Ctrl-C never needs a second one.
-  static constexpr jaus::rt::Duration kLongestCleanup = std::chrono::seconds(1);
-  bool run_cleanup_until(const std::function<bool()>& done, jaus::rt::Duration limit);
-
-  // Interrupts what the session is waiting for, now and later (commands then
-  // clean up: release control, terminate service connections). From any
-  // thread, a signal handler too: a waiting run_until() sees it within 100 ms
-  // on UDP (at once when called from the loop, e.g. by an asio signal_set).
-  void request_stop() { interrupted_.store(true, std::memory_order_relaxed); }
-  void interrupt() { request_stop(); }
-  bool interrupted() const { return interrupted_.load(std::memory_order_relaxed); }
-
-  // The first message from `from` (255s match any ID) with one of `codes`
-  // (any code when empty). Errors: timeout ("no reply from 1.1.33.1 within
-  // 1 s") or interrupted.
-  jaus::Expected<Received> await_reply(const jaus::Address& from, std::vector<std::uint16_t> codes,
-                                       jaus::rt::Duration timeout);
+  // Sends `message` and waits for the first reply from `to` with one of `reply_codes`.
   template <class M>
   jaus::Expected<Received> request(const jaus::Address& to, const M& message,
                                                 std::vector<std::uint16_t> reply_codes, jaus::rt::Duration timeout) {
@@ -177,28 +152,17 @@ class OcuSession {
   void add_ocu_component();
   void receive_packet(std::span<const std::uint8_t> bytes);  // an attached session's link
   void observe(const jaus::PacketView& packet);
-  void deliver(const Received& message);
-  bool run(const std::function<bool()>& done, jaus::rt::Duration limit, bool through_stop);
 
   SessionOptions options_;
-  // On UDP: the io_context (owned_io_ when the caller gave none) and the host.
+  // On UDP: the io_context when the caller gave none, and the host.
   std::unique_ptr<boost::asio::io_context> owned_io_;
-  boost::asio::io_context* io_ = nullptr;
   std::unique_ptr<jaus::host::NodeHost> host_;
   // Attached: the environment and the node (declared after it: gone first).
   SessionEnvironment environment_;
   std::unique_ptr<jaus::node::Node> own_node_;
   jaus::node::Node* node_ = nullptr;
-  jaus::rt::Clock* clock_ = nullptr;
-  jaus::rt::Scheduler* scheduler_ = nullptr;
   OcuComponent* component_ = nullptr;
-  std::atomic<bool> interrupted_ = false;
-  ListenerId last_id_ = 0;
-  std::map<ListenerId, Listener> listeners_;
   std::map<ListenerId, Watcher> watchers_;
 };
-
-// timeout: "no reply from 1.1.33.1 within 1 s"
-jaus::Error no_reply_error(const jaus::Address& from, jaus::rt::Duration timeout);
 
 }  // namespace jaus::ocu
