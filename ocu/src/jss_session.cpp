@@ -7,6 +7,7 @@
 #include "jaus/runtime/repeat_limiter.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
+#include "judp_acks.hpp"
 #include "repeat_broadcast.hpp"
 
 namespace jaus::ocu {
@@ -36,14 +37,6 @@ jss::JudpBroadcast broadcast_of(const jss::JssId& to) {
 }  // namespace
 
 struct JssSession::Impl {
-  // A must-arrive send waiting for its ACK.
-  struct AckWait {
-    jss::JssId to;
-    std::uint16_t sequence = 0;
-    bool acked = false;
-    bool refused = false;
-  };
-
   explicit Impl(JssSessionOptions o) : options(std::move(o)), assembler(options.reassembly) {
     if (!options.log) options.log = rt::silent_log();
   }
@@ -84,7 +77,10 @@ struct JssSession::Impl {
   std::uint64_t delivered_by_link = 0;
   std::uint16_t next_sequence = 0;
   jss::JssLargeMessageAssembler assembler;
-  std::vector<AckWait*> ack_waits;
+  // Must-arrive sends waiting for their ACK, and those settled (ACK, NAK or
+  // given up) until their sender looks.
+  detail::JudpAckTracker acks;
+  std::map<detail::JudpAcks::Key, detail::JudpAckTracker::Resolution> settled;
 };
 
 void JssSession::Impl::transmit(const jss::JssId& to, std::span<const std::uint8_t> datagram) {
@@ -173,13 +169,7 @@ void JssSession::Impl::handle(const jss::JudpPacket& packet) {
   }
   if (h.ack_nak == jss::JudpAckNak::ack || h.ack_nak == jss::JudpAckNak::nak) {
     ++counters.acks_received;
-    for (AckWait* wait : ack_waits)
-      if (wait->to == h.source && wait->sequence == h.sequence) {
-        if (h.ack_nak == jss::JudpAckNak::ack)
-          wait->acked = true;
-        else
-          wait->refused = true;
-      }
+    if (auto resolution = acks.on_reply(h)) settled.insert_or_assign(resolution->key, *resolution);
     return;
   }
   std::optional<JssReceived> message;
@@ -354,39 +344,52 @@ ArrivalResult JssSession::send_contents_must_arrive_through_stop(const jss::JssI
 ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssId& to,
                                             std::span<const std::uint8_t> contents, jss::JudpPriority priority,
                                             MustArrivePolicy policy, bool through_stop) {
-  Impl& impl = *this;
   ArrivalResult result;
-  const auto started = session.clock().now();
+  const auto started = clock->now();
   policy.retransmit_after = std::max<rt::Duration>(policy.retransmit_after, 1ms);
   policy.max_transmissions = std::max<std::uint32_t>(policy.max_transmissions, 1);
-  const auto period = policy.retransmit_after;
-  const std::uint32_t most = policy.max_transmissions;
-  if (contents.size() > std::max<std::size_t>(impl.options.max_packet_contents, 3)) return result;
-  auto run = [&](const std::function<bool()>& done) {
-    return through_stop ? session.run_cleanup_until(done, period) : session.run_until(done, period);
-  };
+  if (contents.size() > std::max<std::size_t>(options.max_packet_contents, 3)) return result;
   if (to.is_broadcast())  // nobody could confirm for everyone: sent `most` times
     return detail::repeat_broadcast(session, policy, through_stop,
-                                    [&] { impl.send(to, contents, priority, false, nullptr); });
+                                    [&] { send(to, contents, priority, false, nullptr); });
   std::vector<std::uint8_t> datagram;
-  AckWait wait;
-  wait.to = to;
-  wait.sequence = impl.send(to, contents, priority, true, &datagram);
+  jss::JudpHeader sent;
+  sent.ack_nak = jss::JudpAckNak::ack_requested;
+  sent.source = options.self;
+  sent.destination = to;
+  sent.sequence = send(to, contents, priority, true, &datagram);
   result.transmissions = 1;
-  impl.ack_waits.push_back(&wait);
-  for (;;) {
-    if (run([&] { return wait.acked || wait.refused; })) break;
-    if (session.interrupted() && !through_stop) break;
-    if (result.transmissions >= most) break;
-    impl.transmit(to, datagram);  // the same packet: a receiver that already acted drops it as a duplicate
-    ++result.transmissions;
+  const detail::JudpAcks::Key key = detail::JudpAcks::key_of_sent(sent);
+  // The datagram is kept whole: a retransmission is the same packet, the same sequence number.
+  if (acks.track(sent, datagram, started, node::AckPolicy{policy.retransmit_after, policy.max_transmissions}) !=
+      node::TrackResult::tracked) {
+    result.elapsed = clock->now() - started;
+    return result;  // sent once, nothing to wait on (a sequence number still pending after a wrap)
   }
-  impl.ack_waits.erase(std::find(impl.ack_waits.begin(), impl.ack_waits.end(), &wait));
-  result.elapsed = session.clock().now() - started;
-  result.outcome = wait.acked                               ? Arrival::acknowledged
-                   : wait.refused                           ? Arrival::refused
-                   : session.interrupted() && !through_stop ? Arrival::interrupted
-                                                            : Arrival::unacknowledged;
+  const auto done = [&] { return settled.contains(key); };
+  while (!done()) {
+    const auto due = acks.next_deadline();
+    if (!due) break;
+    const auto wait = std::max<rt::Duration>(*due - clock->now(), rt::Duration::zero());
+    if (through_stop ? session.run_cleanup_until(done, wait) : session.run_until(done, wait)) break;
+    if (session.interrupted() && !through_stop) break;
+    // A receiver that already acted on it drops a retransmission as a duplicate.
+    auto poll = acks.poll(clock->now());
+    for (const auto& again : poll.retransmit) transmit(again.header.destination, again.payload);
+    for (const auto& given_up : poll.failed) settled.insert_or_assign(given_up.key, given_up);
+  }
+  result.elapsed = clock->now() - started;
+  if (const auto it = settled.find(key); it != settled.end()) {
+    result.transmissions = it->second.transmissions;
+    result.outcome = it->second.outcome == node::AckOutcome::acknowledged ? Arrival::acknowledged
+                     : it->second.outcome == node::AckOutcome::refused    ? Arrival::refused
+                                                                          : Arrival::unacknowledged;
+    settled.erase(it);
+    return result;
+  }
+  // Stopped waiting (interrupted, or run through a cleanup's limit): nothing more of it goes out.
+  result.transmissions = acks.forget(key).value_or(result.transmissions);
+  result.outcome = session.interrupted() && !through_stop ? Arrival::interrupted : Arrival::unacknowledged;
   return result;
 }
 

@@ -107,6 +107,23 @@ TEST_F(JssOcuTest, ACommandToNobodyIsUnacknowledgedAfterItsTransmissions) {
   EXPECT_EQ(arrival.elapsed, 500ms);
 }
 
+TEST_F(JssOcuTest, AnInterruptedCommandIsNotSentAgain) {
+  // Stopped while it waits for its ACK (Ctrl-C): interrupted after the
+  // transmissions so far, and no retransmission of it follows (the ACK
+  // tracker forgets it), not even while a clean-up command waits for its own.
+  time.call_at(time.now() + 120ms, [&] { session->request_stop(); });
+  const auto arrival = session->send_must_arrive(jss::JssId{1, 1, 99}, msg::Resume{});
+  EXPECT_EQ(arrival.outcome, ocu::Arrival::interrupted);
+  EXPECT_EQ(arrival.transmissions, 3u) << "at 0, 50 and 100 ms";
+  const auto sent = session->counters().datagrams_sent;
+  const auto contents = jss::encode_contents(msg::Resume{});
+  const auto cleanup = session->send_contents_must_arrive_through_stop(
+      jss::JssId{1, 1, 98}, contents, jss::JudpPriority::normal, ocu::MustArrivePolicy{50ms, 4});
+  EXPECT_EQ(cleanup.outcome, ocu::Arrival::unacknowledged);
+  EXPECT_EQ(cleanup.transmissions, 4u);
+  EXPECT_EQ(session->counters().datagrams_sent, sent + 4) << "only the clean-up's own";
+}
+
 TEST_F(JssOcuTest, ABroadcastIsRepeatedAndNeverAcknowledgedAsInRa) {
   // The same rule as an RA session's (MustArriveTest.ABroadcastIsRepeatedAndNeverAcknowledged):
   // sent max_transmissions times, retransmit_after apart, no ACK asked.

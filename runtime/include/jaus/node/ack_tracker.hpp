@@ -9,8 +9,14 @@
 // that must arrive over a lossy link: every 50 ms, 10 times; issue 32). Retransmissions repeat the packet exactly (same
 // sequence number, which the ACK echoes, and same data flag: a flag of 4
 // would hide which part of a large data set the packet is).
+//
+// One tracker for both dialects: BasicAckTracker<Dialect> knows a dialect's
+// headers through a small description (RaAcks here for RA 3.x; the JSS
+// operator session's for AS5669A), so the policy, the count of
+// transmissions, the settling by an answer and the counters are written once.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -35,6 +41,29 @@ struct AckKey {
 };
 AckKey ack_key_of_sent(const Header& sent);
 
+// RA 3.x's headers as the tracker reads them.
+struct RaAcks {
+  using Header = jaus::Header;
+  using Key = AckKey;
+  static bool asks_ack(const Header& h) { return h.ack_nak == AckNak::ack_requested; }
+  // true: an ACK; false: a NAK; none: neither.
+  static std::optional<bool> answer_of(const Header& h) {
+    if (h.ack_nak == AckNak::ack) return true;
+    if (h.ack_nak == AckNak::nak) return false;
+    return std::nullopt;
+  }
+  static Key key_of_sent(const Header& sent) { return ack_key_of_sent(sent); }
+  // The key of the message an answer answers (its source is our peer).
+  static Key key_of_answer(const Header& answer) {
+    return Key{answer.destination, answer.source, answer.command_code, answer.sequence};
+  }
+  // A message sent to a broadcast address is answered by whoever received it first.
+  static bool settled_by(const Key& pending, const Key& answered) {
+    return pending.peer.is_broadcast() && pending.peer.matches(answered.peer) && pending.local == answered.local &&
+           pending.command_code == answered.command_code && pending.sequence == answered.sequence;
+  }
+};
+
 enum class AckOutcome : std::uint8_t {
   acknowledged,  // the destination answered ACK
   refused,       // the destination answered NAK
@@ -42,8 +71,9 @@ enum class AckOutcome : std::uint8_t {
 };
 std::string_view to_string(AckOutcome outcome);
 
-struct AckResolution {
-  AckKey key;
+template <class Key>
+struct BasicAckResolution {
+  Key key;
   AckOutcome outcome = AckOutcome::acknowledged;
   std::uint32_t transmissions = 0;  // how many times the message went out
 };
@@ -64,15 +94,17 @@ struct AckPolicy {
 };
 
 // A message to send again, exactly as first sent.
-struct Retransmission {
+template <class Header>
+struct BasicRetransmission {
   Header header;
   std::vector<std::uint8_t> payload;
   std::uint32_t transmission = 0;  // 2 for the first retransmission, ...
 };
 
-struct AckPoll {
-  std::vector<Retransmission> retransmit;
-  std::vector<AckResolution> failed;  // outcome exhausted
+template <class Dialect>
+struct BasicAckPoll {
+  std::vector<BasicRetransmission<typename Dialect::Header>> retransmit;
+  std::vector<BasicAckResolution<typename Dialect::Key>> failed;  // outcome exhausted
 };
 
 struct AckCounters {
@@ -85,33 +117,108 @@ struct AckCounters {
   std::uint64_t rejected = 0;           // track() calls refused as already tracked or full
 };
 
-class AckTracker {
+template <class Dialect>
+class BasicAckTracker {
  public:
+  using Header = typename Dialect::Header;
+  using Key = typename Dialect::Key;
+  using Resolution = BasicAckResolution<Key>;
+  using Poll = BasicAckPoll<Dialect>;
+
   struct Options {
     rt::Duration retransmit_after = std::chrono::seconds(1);  // between transmissions, and after the last
     std::uint32_t max_transmissions = 3;                      // first one included (at least 1)
     std::size_t max_pending = 256;                            // messages awaiting an answer
   };
 
-  AckTracker() : AckTracker(Options{}) {}
-  explicit AckTracker(Options options);
+  BasicAckTracker() : BasicAckTracker(Options{}) {}
+  explicit BasicAckTracker(Options options) : options_(options) {
+    options_.max_transmissions = std::max<std::uint32_t>(options_.max_transmissions, 1);
+  }
 
-  // Records a message just sent at `now` (its payload is copied for
+  // Records a message just sent at `now` (its payload, or for a dialect
+  // whose retransmission is a whole datagram that datagram, is copied for
   // retransmission), retransmitted per `policy`, or per the Options when none.
   TrackResult track(const Header& sent, std::span<const std::uint8_t> payload, rt::TimePoint now,
-                    std::optional<AckPolicy> policy = {});
+                    std::optional<AckPolicy> policy = {}) {
+    if (!Dialect::asks_ack(sent)) return TrackResult::not_ack_requested;
+    const Key key = Dialect::key_of_sent(sent);
+    if (pending_.contains(key)) {
+      ++counters_.rejected;
+      return TrackResult::already_tracked;
+    }
+    if (pending_.size() >= options_.max_pending) {
+      ++counters_.rejected;
+      return TrackResult::full;
+    }
+    AckPolicy chosen = policy.value_or(AckPolicy{options_.retransmit_after, options_.max_transmissions});
+    chosen.max_transmissions = std::max<std::uint32_t>(chosen.max_transmissions, 1);
+    pending_.emplace(key, Pending{sent, {payload.begin(), payload.end()}, chosen, 1, now + chosen.retransmit_after});
+    ++counters_.tracked;
+    return TrackResult::tracked;
+  }
 
   // Settles the pending message a received ACK or NAK answers; nothing for
   // other messages and for answers to nothing pending (counted).
-  std::optional<AckResolution> on_reply(const Header& received);
+  std::optional<Resolution> on_reply(const Header& received) {
+    const auto answer = Dialect::answer_of(received);
+    if (!answer) return std::nullopt;
+    const auto it = find_answered(Dialect::key_of_answer(received));
+    if (it == pending_.end()) {
+      ++counters_.unmatched_replies;
+      return std::nullopt;
+    }
+    ++(*answer ? counters_.acknowledged : counters_.refused);
+    Resolution resolution{it->first, *answer ? AckOutcome::acknowledged : AckOutcome::refused,
+                          it->second.transmissions};
+    pending_.erase(it);
+    return resolution;
+  }
+
+  // Stops waiting for a pending message (its sender gave up on it, e.g.
+  // interrupted): nothing more is sent of it. How many times it went out; none when not pending.
+  std::optional<std::uint32_t> forget(const Key& key) {
+    const auto it = pending_.find(key);
+    if (it == pending_.end()) return std::nullopt;
+    const std::uint32_t transmissions = it->second.transmissions;
+    pending_.erase(it);
+    return transmissions;
+  }
 
   // What is due at `now`: messages to send again and messages given up.
-  AckPoll poll(rt::TimePoint now);
+  Poll poll(rt::TimePoint now) {
+    Poll due;
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      Pending& p = it->second;
+      if (now < p.next_due) {
+        ++it;
+        continue;
+      }
+      if (p.transmissions >= p.policy.max_transmissions) {
+        due.failed.push_back({it->first, AckOutcome::exhausted, p.transmissions});
+        ++counters_.exhausted;
+        it = pending_.erase(it);
+        continue;
+      }
+      ++p.transmissions;
+      // From `now`, not from the missed due time: a late poll must not cause a burst.
+      p.next_due = now + p.policy.retransmit_after;
+      due.retransmit.push_back({p.header, p.payload, p.transmissions});
+      ++counters_.retransmissions;
+      ++it;
+    }
+    return due;
+  }
   // When poll() next has something to do.
-  std::optional<rt::TimePoint> next_deadline() const;
+  std::optional<rt::TimePoint> next_deadline() const {
+    std::optional<rt::TimePoint> earliest;
+    for (const auto& [key, p] : pending_)
+      if (!earliest || p.next_due < *earliest) earliest = p.next_due;
+    return earliest;
+  }
 
   std::size_t pending() const { return pending_.size(); }
-  bool is_pending(const AckKey& key) const { return pending_.contains(key); }
+  bool is_pending(const Key& key) const { return pending_.contains(key); }
   const AckCounters& counters() const { return counters_; }
 
  private:
@@ -122,12 +229,24 @@ class AckTracker {
     std::uint32_t transmissions = 1;
     rt::TimePoint next_due{};
   };
-  using PendingMap = std::map<AckKey, Pending>;
-  PendingMap::iterator find_answered(const Header& reply);
+  using PendingMap = std::map<Key, Pending>;
+
+  typename PendingMap::iterator find_answered(const Key& answered) {
+    if (const auto it = pending_.find(answered); it != pending_.end()) return it;
+    return std::find_if(pending_.begin(), pending_.end(),
+                        [&](const auto& entry) { return Dialect::settled_by(entry.first, answered); });
+  }
 
   Options options_;
   PendingMap pending_;
   AckCounters counters_;
 };
+
+// RA 3.x's, the node's (compiled once, in jaus_runtime).
+extern template class BasicAckTracker<RaAcks>;
+using AckTracker = BasicAckTracker<RaAcks>;
+using AckResolution = AckTracker::Resolution;
+using AckPoll = AckTracker::Poll;
+using Retransmission = BasicRetransmission<Header>;
 
 }  // namespace jaus::node
