@@ -36,7 +36,8 @@ LargeMessageAssembler<Dialect>::LargeMessageAssembler(AssemblyLimits limits) : l
 
 template <class Dialect>
 auto LargeMessageAssembler<Dialect>::feed(const Header& header, std::span<const std::uint8_t> payload,
-                                          rt::TimePoint now) -> Result {
+                                          rt::TimePoint now, std::uint8_t doubt) -> Result {
+  piece_doubt_ = doubt;  // taken into its set where the piece is (store, replace, a role filled in)
   const PieceRole role = Dialect::role_of(header);
   if (role == PieceRole::unknown) return drop(AssemblyIssue::bad_packet);
   if (const AssemblyIssue issue = Dialect::check(header, payload); issue != AssemblyIssue::none) return drop(issue);
@@ -150,6 +151,7 @@ auto LargeMessageAssembler<Dialect>::feed_assembling_set(typename Sets::iterator
   }
   if (held_already) {
     // A retransmission of this first or last piece came before it: only its role was missing.
+    set.doubt = std::max(set.doubt, piece_doubt_);
     set.last_activity = now;
     return complete_if_whole(it, now, AssemblyIssue::none);
   }
@@ -167,6 +169,7 @@ auto LargeMessageAssembler<Dialect>::replace(Set& set, std::vector<std::uint8_t>
   total_bytes_ = total_bytes_ - held.size() + payload.size();
   held.assign(payload.begin(), payload.end());
   set.bytes = bytes;
+  set.doubt = std::max(set.doubt, piece_doubt_);
   set.last_activity = now;
   ++counters_.replaced;
   return {AssemblyStatus::pending, AssemblyIssue::replaced, std::nullopt};
@@ -191,6 +194,7 @@ auto LargeMessageAssembler<Dialect>::store(typename Sets::iterator it, std::uint
     return discard_as_too_large(set, now);
   set.pieces[sequence].assign(payload.begin(), payload.end());
   set.bytes += payload.size();
+  set.doubt = std::max(set.doubt, piece_doubt_);
   total_bytes_ += payload.size();
   set.last_activity = now;
   return complete_if_whole(it, now, issue);
@@ -206,7 +210,7 @@ auto LargeMessageAssembler<Dialect>::complete_if_whole(typename Sets::iterator i
   // Pieces outside first..last were dropped when the range became known, so
   // holding `count` pieces means holding every one of them.
   if (set.pieces.size() != count) return {AssemblyStatus::pending, issue, std::nullopt};
-  Message message{Dialect::whole_header(*set.first_header), {}};
+  Message message{Dialect::whole_header(*set.first_header), {}, set.doubt};
   message.payload.reserve(set.bytes);
   for (std::size_t i = 0; i < count; ++i) {
     const auto& piece = set.pieces[static_cast<std::uint16_t>(first + i)];

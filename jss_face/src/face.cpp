@@ -148,7 +148,7 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
                discarded.key.destination.to_string() + " discarded: " + std::string(to_string(discarded.reason));
       });
     const jss::JudpHeader& h = packet.header;
-    auto assembled = assembler_.feed(h, packet.contents, now);
+    auto assembled = assembler_.feed(h, packet.contents, now, rt::doubt_of(standing));
     if (assembled.issue == AssemblyIssue::duplicate) {
       ++counters_.duplicates;  // a piece held already, or of a message delivered: harmless
       lines_.write("JSS copies not acted on", rt::LogLevel::debug, [&] {
@@ -160,7 +160,9 @@ struct JssFace::Impl final : FacePort, EventEngine::Host {
                 std::string(to_string(assembled.issue)) + " (sequence number " + std::to_string(h.sequence) + ")");
     } else if (assembled.status == AssemblyStatus::complete) {
       ++counters_.large_messages_received;
-      deliver(assembled.message->header, assembled.message->payload, standing, reached);
+      // As trusted as its least trusted piece, whichever completed it.
+      deliver(assembled.message->header, assembled.message->payload, rt::standing_of_doubt(assembled.message->doubt),
+              reached);
     }
   }
 

@@ -219,29 +219,18 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
     resolve(*resolution);  // last: the callback may send, or end the node
     return;
   }
-  auto assembled = assembler_.feed(h, packet.payload, now);
-  const auto set_key = RaLargeDataSets::key_of(h);
+  auto assembled = assembler_.feed(h, packet.payload, now, rt::doubt_of(standing));
   switch (assembled.status) {
     case AssemblyStatus::single:
       enqueue(Inbound{h, copy_payload(packet.payload), Address{}, standing});
       return;
     case AssemblyStatus::complete: {
-      if (const auto it = set_standings_.find(set_key); it != set_standings_.end()) {
-        standing = rt::least_of(standing, it->second);
-        set_standings_.erase(it);
-      }
-      enqueue(Inbound{assembled.message->header, std::move(assembled.message->payload), Address{}, standing});
+      // As trusted as its least trusted packet, whichever completed it.
+      const auto least = rt::standing_of_doubt(assembled.message->doubt);
+      enqueue(Inbound{assembled.message->header, std::move(assembled.message->payload), Address{}, least});
       return;
     }
     case AssemblyStatus::pending:
-      // A newer message of the same source and code restarts the set: its standing too.
-      if (assembled.issue == AssemblyIssue::superseded) set_standings_.erase(set_key);
-      if (standing != rt::SenderStanding::trusted) {
-        if (const auto it = set_standings_.find(set_key); it != set_standings_.end())
-          it->second = rt::least_of(it->second, standing);
-        else if (set_standings_.size() < kMaxSetStandings)
-          set_standings_.emplace(set_key, standing);
-      }
       return;
     case AssemblyStatus::dropped:
       lines_.write("large data set packets dropped", rt::LogLevel::warn, [&] {
@@ -502,13 +491,11 @@ void Node::housekeeping() {
   }
   if (subsystem_lost) subsystems_changed();
   for (const auto& discarded : assembler_.expire(now)) {
-    set_standings_.erase(discarded.key);
     lines_.write("large data sets discarded", rt::LogLevel::warn, [&] {
       return "large data set 0x" + wire::detail::hex_u32(discarded.key.message) + " from " +
              discarded.key.source.to_string() + " discarded: " + std::string(to_string(discarded.reason));
     });
   }
-  if (assembler_.sets_in_progress() == 0) set_standings_.clear();  // sets discarded on the way
   schedule_housekeeping();
 }
 

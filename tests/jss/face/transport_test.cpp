@@ -243,6 +243,37 @@ TEST(JssFaceTransport, ALargeMessageIsTakenInAnyOrderOnceAndAStopNeverWaitsForIt
   EXPECT_EQ(node.counters().duplicates, 2u);
 }
 
+// A large message is as trusted as its least trusted piece, whichever piece
+// completes it (as an RA large data set: StandingNodeTest.ALargeDataSetTakes
+// TheLeastStandingOfItsPackets): a Request Control whose first piece came from
+// outside transport.control_from takes no control, though its last piece was trusted.
+TEST(JssFaceTransport, ALargeMessageIsAsTrustedAsItsLeastTrustedPiece) {
+  FaceNode node;
+  jss::JudpHeader h;
+  h.source = kClientA;
+  h.destination = kDriver;
+  h.sequence = 70;
+  // Request Control (message ID, authority) in two pieces: the ID, then the authority.
+  auto pieces = jss::make_judp_datagrams(h, jss::encode_contents(msg::RequestControl{{5}}), 2);
+  ASSERT_TRUE(pieces);
+  ASSERT_EQ(pieces->size(), 2u);
+  node.receive(pieces->front(), rt::SenderStanding::observer);
+  node.receive(pieces->back(), rt::SenderStanding::trusted);
+  ASSERT_TRUE(node.run_until([&] { return node.count(kClientA, msg::ConfirmControl::code) > 0; }));
+  EXPECT_EQ(node.take<msg::ConfirmControl>(kClientA, kDriver)->response_code, msg::confirm_control::kNotAvailable);
+  EXPECT_FALSE(node.driver().control().controller().has_value());
+  EXPECT_EQ(node.counters().large_messages_received, 1u);
+
+  // The same message, every piece trusted: control.
+  h.sequence = 80;
+  pieces = jss::make_judp_datagrams(h, jss::encode_contents(msg::RequestControl{{5}}), 2);
+  ASSERT_TRUE(pieces);
+  for (const auto& piece : *pieces) node.receive(piece, rt::SenderStanding::trusted);
+  ASSERT_TRUE(node.run_until([&] { return node.count(kClientA, msg::ConfirmControl::code) > 0; }));
+  EXPECT_EQ(node.take<msg::ConfirmControl>(kClientA, kDriver)->response_code, msg::confirm_control::kControlAccepted);
+  EXPECT_TRUE(node.driver().control().controller().has_value());
+}
+
 TEST(JssFaceTransport, MalformedInputIsCountedLoggedAndNeverActedOn) {
   FaceNode node;
   const std::vector<std::uint8_t> not_as5669a = {0x01, 0x00, 0x11};

@@ -42,6 +42,38 @@ Packet retransmission_of(Packet packet) {
   return packet;
 }
 
+// Each packet's doubt (the node gives its sender's standing) is kept with its
+// set: the whole set carries the most of its packets', whichever completes it,
+// and a set started anew starts from its new first packet's.
+TEST(RaLargeMessageAssembler, AWholeSetCarriesTheMostDoubtOfItsPackets) {
+  const auto payload = patterned_payload(3 * 4080);
+  const auto packets = split(image_header(40), payload);
+  ASSERT_GE(packets.size(), 3u);
+  RaLargeMessageAssembler assembler;
+  EXPECT_EQ(assembler.feed(packets[1].header, packets[1].payload, {}, 2).status, AssemblyStatus::pending);
+  for (std::size_t i = 2; i < packets.size(); ++i)
+    EXPECT_EQ(assembler.feed(packets[i].header, packets[i].payload, {}, 0).status, AssemblyStatus::pending) << i;
+  const auto whole = assembler.feed(packets[0].header, packets[0].payload, {}, 0);
+  ASSERT_EQ(whole.status, AssemblyStatus::complete);
+  EXPECT_EQ(whole.message->doubt, 2u);
+
+  // A middle packet of doubt 1, then another message (its first packet held
+  // with other bytes): the new set starts from 0, and its own packets count.
+  RaLargeMessageAssembler again;
+  EXPECT_EQ(again.feed(packets[1].header, packets[1].payload, {}, 1).status, AssemblyStatus::pending);
+  Packet other = packets[1];
+  other.payload.front() ^= 0xFF;
+  EXPECT_EQ(again.feed(other.header, other.payload, {}, 0).issue, AssemblyIssue::superseded);
+  for (std::size_t i = 0; i < packets.size(); ++i) {
+    if (i == 1) continue;
+    const auto result = again.feed(packets[i].header, packets[i].payload, {}, 0);
+    if (i + 1 == packets.size()) {
+      ASSERT_EQ(result.status, AssemblyStatus::complete);
+      EXPECT_EQ(result.message->doubt, 0u);
+    }
+  }
+}
+
 class LargeDataSetRoundTrip : public ::testing::TestWithParam<std::size_t> {};
 
 TEST_P(LargeDataSetRoundTrip, SplitThenReassembleGivesThePayloadBack) {

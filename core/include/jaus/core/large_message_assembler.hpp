@@ -17,6 +17,12 @@
 // counted by reason, and feed() says what it did with each piece so the
 // caller can log where and why. A single piece is answered at once and
 // nothing is copied or allocated for it.
+//
+// Each piece may carry a doubt, a number the caller gives it (0: none; the
+// node and the JSS face give a piece its sender's standing,
+// rt::doubt_of): a whole message carries the most of its pieces', so it is
+// trusted only as far as its least trusted piece, whichever piece completes
+// it. A set started anew (superseded) starts from the doubt of its new piece.
 #pragma once
 
 #include <chrono>
@@ -103,6 +109,7 @@ template <class Header>
 struct AssembledMessage {
   Header header;
   std::vector<std::uint8_t> payload;
+  std::uint8_t doubt = 0;  // the most of its pieces'
 };
 
 template <class Header>
@@ -136,9 +143,10 @@ class LargeMessageAssembler {
   LargeMessageAssembler() : LargeMessageAssembler(Dialect::kDefaultLimits) {}
   explicit LargeMessageAssembler(AssemblyLimits limits);
 
-  // Takes one received piece (the payload is copied if kept). Stale sets met
-  // on the way are discarded and counted as timed out.
-  Result feed(const Header& header, std::span<const std::uint8_t> payload, rt::TimePoint now);
+  // Takes one received piece (the payload is copied if kept) with its
+  // doubt. Stale sets met on the way are discarded and counted as timed out.
+  Result feed(const Header& header, std::span<const std::uint8_t> payload, rt::TimePoint now,
+              std::uint8_t doubt = 0);
 
   // Discards the sets that received nothing new for `timeout` up to `now`.
   std::vector<Discarded> expire(rt::TimePoint now);
@@ -162,6 +170,7 @@ class LargeMessageAssembler {
     std::optional<std::uint16_t> last_sequence;
     std::map<std::uint16_t, std::vector<std::uint8_t>> pieces;  // by sequence number
     std::size_t bytes = 0;
+    std::uint8_t doubt = 0;  // the most of the pieces it took
     rt::TimePoint last_activity{};
     std::uint64_t started = 0;  // order of arrival, for the per-source bound
   };
@@ -195,6 +204,7 @@ class LargeMessageAssembler {
   AssemblyCounters counters_;
   std::size_t total_bytes_ = 0;
   std::uint64_t next_started_ = 0;
+  std::uint8_t piece_doubt_ = 0;  // of the piece feed() is taking
 };
 
 }  // namespace jaus

@@ -211,13 +211,9 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   bool drain_posted_ = false;
   std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);  // expires with the node
   rt::TimerId housekeeping_timer_ = rt::kNoTimer;
+  // A whole set is as trusted as its least trusted packet: each packet goes
+  // in with its standing as its doubt (rt::doubt_of).
   RaLargeMessageAssembler assembler_;
-  // The least standing of the packets held so far of sets in progress, for
-  // sets not all trusted (a set is as trusted as its least trusted packet).
-  // Bounded: cleared when no set is in progress; beyond kMaxSetStandings the
-  // completing packet's standing is all that counts.
-  static constexpr std::size_t kMaxSetStandings = 64;
-  std::map<RaLargeMessageAssembler::Key, rt::SenderStanding> set_standings_;
   AckTracker acks_;
   DuplicateFilter duplicates_;
   std::map<AckKey, AckCallback> ack_callbacks_;  // of send_acknowledged messages still pending

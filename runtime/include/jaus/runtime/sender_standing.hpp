@@ -29,6 +29,15 @@ constexpr SenderStanding least_of(SenderStanding a, SenderStanding b) {
   return static_cast<std::uint8_t>(a) > static_cast<std::uint8_t>(b) ? a : b;
 }
 
+// A standing as a number that grows with doubt (trusted 0), and back: what
+// the large-message assembler keeps of each piece, a whole message carrying
+// the most of its pieces' (jaus/core/large_message_assembler.hpp).
+constexpr std::uint8_t doubt_of(SenderStanding standing) { return static_cast<std::uint8_t>(standing); }
+constexpr SenderStanding standing_of_doubt(std::uint8_t doubt) {
+  return doubt >= doubt_of(SenderStanding::unrecorded) ? SenderStanding::unrecorded
+                                                        : static_cast<SenderStanding>(doubt);
+}
+
 constexpr std::string_view to_string(SenderStanding standing) {
   switch (standing) {
     case SenderStanding::trusted: return "trusted";
