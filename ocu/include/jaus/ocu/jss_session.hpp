@@ -165,9 +165,10 @@ class JssSession : public SessionCore<JssReceived> {
     return send_contents_must_arrive(to, contents, priority, policy);
   }
 
-  // listen() hears every message addressed to us (or to a broadcast ID that
-  // matches us), after the session answered its ACK request; await_reply()
-  // the first from an ID (wildcards match any).
+  // (SessionCore's listen() hears every message addressed to us, or to a
+  // broadcast ID that matches us, after the session answered its ACK
+  // request; await_reply() the first from an ID, wildcards matching any.)
+
   // Sends the query now and every `resend_every` until a reply comes (at most `timeout`).
   Expected<JssReceived> request_contents(const jss::JssId& to, std::span<const std::uint8_t> query,
                                          std::vector<std::uint16_t> reply_ids,

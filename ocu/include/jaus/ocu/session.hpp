@@ -125,10 +125,12 @@ class OcuSession : public SessionCore<Received> {
   // A message known only at run time: source set to the OCU, data size to the payload.
   void send_raw(jaus::Header header, std::span<const std::uint8_t> payload);
 
-  // listen(): messages addressed to the OCU component: reports,
-  // confirmations, rejects, and also those the runtime answers itself (a
-  // controlled component's liveness queries), so callers see everything sent
-  // to them. await_reply(): the first from an address (255s match any ID).
+  // (SessionCore's listen() hears the messages addressed to the OCU
+  // component: reports, confirmations, rejects, and also those the runtime
+  // answers itself, a controlled component's liveness queries, so callers see
+  // everything sent to them; await_reply() the first from an address, 255s
+  // matching any ID.)
+
   // Every JAUS message heard, whoever it is for (heartbeats go to broadcast
   // addresses the OCU's node does not match).
   ListenerId watch(Watcher watcher);
