@@ -33,8 +33,9 @@ std::vector<Packet> split(const Header& header, const std::vector<std::uint8_t>&
   return packets;
 }
 
-RaLargeMessageAssembler::Result feed(RaLargeMessageAssembler& assembler, const Packet& packet, rt::TimePoint now = {}) {
-  return assembler.feed(packet.header, packet.payload, now);
+RaLargeMessageAssembler::Result feed(RaLargeMessageAssembler& assembler, const Packet& packet, rt::TimePoint now = {},
+                                     std::uint8_t doubt = 0) {
+  return assembler.feed(packet.header, packet.payload, now, doubt);
 }
 
 Packet retransmission_of(Packet packet) {
@@ -50,23 +51,23 @@ TEST(RaLargeMessageAssembler, AWholeSetCarriesTheMostDoubtOfItsPackets) {
   const auto packets = split(image_header(40), payload);
   ASSERT_GE(packets.size(), 3u);
   RaLargeMessageAssembler assembler;
-  EXPECT_EQ(assembler.feed(packets[1].header, packets[1].payload, {}, 2).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(assembler, packets[1], {}, 2).status, AssemblyStatus::pending);
   for (std::size_t i = 2; i < packets.size(); ++i)
-    EXPECT_EQ(assembler.feed(packets[i].header, packets[i].payload, {}, 0).status, AssemblyStatus::pending) << i;
-  const auto whole = assembler.feed(packets[0].header, packets[0].payload, {}, 0);
+    EXPECT_EQ(feed(assembler, packets[i]).status, AssemblyStatus::pending) << i;
+  const auto whole = feed(assembler, packets[0]);
   ASSERT_EQ(whole.status, AssemblyStatus::complete);
   EXPECT_EQ(whole.message->doubt, 2u);
 
   // A middle packet of doubt 1, then another message (its first packet held
   // with other bytes): the new set starts from 0, and its own packets count.
   RaLargeMessageAssembler again;
-  EXPECT_EQ(again.feed(packets[1].header, packets[1].payload, {}, 1).status, AssemblyStatus::pending);
+  EXPECT_EQ(feed(again, packets[1], {}, 1).status, AssemblyStatus::pending);
   Packet other = packets[1];
   other.payload.front() ^= 0xFF;
-  EXPECT_EQ(again.feed(other.header, other.payload, {}, 0).issue, AssemblyIssue::superseded);
+  EXPECT_EQ(feed(again, other).issue, AssemblyIssue::superseded);
   for (std::size_t i = 0; i < packets.size(); ++i) {
     if (i == 1) continue;
-    const auto result = again.feed(packets[i].header, packets[i].payload, {}, 0);
+    const auto result = feed(again, packets[i]);
     if (i + 1 == packets.size()) {
       ASSERT_EQ(result.status, AssemblyStatus::complete);
       EXPECT_EQ(result.message->doubt, 0u);
