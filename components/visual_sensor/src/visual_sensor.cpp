@@ -25,6 +25,11 @@ constexpr std::uint32_t kCapabilitiesCommandFields = 0x008C;
 // Set Camera Format Options: the image format (bit 1).
 constexpr std::uint32_t kFormatCommandFields = 0x02;
 
+// Images flow in Ready and in Emergency: a stop holds the mounts, not the
+// picture, so the operator sees what the stop left (issue 45). Standby (the
+// operator asked for rest) and every other state pause them.
+bool images_flow(PrimaryStatus state) { return state == PrimaryStatus::ready || state == PrimaryStatus::emergency; }
+
 std::string id_text(std::uint8_t id) { return std::to_string(id); }
 
 // The pipeline keeps capturing, one frame period apart, this long after the
@@ -68,7 +73,7 @@ VisualSensor::VisualSensor(ComponentConfig config, Environment env, Cameras& cam
   handle<SetCameraFormatOptions>(Access::controller, /*ready_only=*/true,
                                  [this](const Header& h, const SetCameraFormatOptions& m) { on_set_format(h, m); });
 
-  // Queries: anyone, in any state; images in Ready only.
+  // Queries: anyone, in any state; images in Ready and Emergency (images_flow).
   handle<QueryCameraCount>(Access::anyone, false, [this](const Header& h, const QueryCameraCount&) {
     send(h.source, ReportCameraCount{{static_cast<std::uint8_t>(cameras_in_use_.size())}});
   });
@@ -94,7 +99,7 @@ VisualSensor::VisualSensor(ComponentConfig config, Environment env, Cameras& cam
                                      wire::mask_presence(report, q.presence_vector);
                                      send(h.source, report);
                                    });
-  handle<QueryImage>(Access::anyone, /*ready_only=*/true, [this](const Header& h, const QueryImage&) { on_query_image(h); });
+  handle<QueryImage>(Access::anyone, /*ready_only=*/false, [this](const Header& h, const QueryImage&) { on_query_image(h); });
 
   // The same reports on service connections, for the selected camera.
   provide<ReportCameraCount>(0, [this] {
@@ -192,7 +197,7 @@ void VisualSensor::provide_images() {
   provide_if<msg::ReportImage>(
       0,
       [this]() -> std::optional<msg::ReportImage> {
-        if (state() != PrimaryStatus::ready) return std::nullopt;  // Standby pauses the stream
+        if (!images_flow(state())) return std::nullopt;  // Standby pauses the stream
         const auto frame = want_frame();
         if (!frame) return std::nullopt;  // nothing captured yet
         ++sensor_counters_.images_sent;
@@ -292,8 +297,8 @@ void VisualSensor::capture_done(const FrameKey& key, std::uint64_t id, Expected<
     frame_ = std::move(report);
     frame_at_ = capture_began_;
     ++sensor_counters_.frames_captured;
-    // The Query Image senders that waited for it (not outside Ready: Standby came meanwhile).
-    if (state() == PrimaryStatus::ready)
+    // The Query Image senders that waited for it (not when Standby came meanwhile).
+    if (images_flow(state()))
       for (const Address& to : waiting) {
         ++sensor_counters_.images_sent;
         send(to, *frame_);
@@ -304,7 +309,7 @@ void VisualSensor::capture_done(const FrameKey& key, std::uint64_t id, Expected<
   if (now - wanted_at_ < kKeepCapturing && next_capture_ == kNoTimer)
     next_capture_ = env().scheduler.call_at(capture_began_ + frame_period(), [this] {
       next_capture_ = kNoTimer;
-      if (env().clock.now() - wanted_at_ < kKeepCapturing && state() == PrimaryStatus::ready && selected_key() == key_)
+      if (env().clock.now() - wanted_at_ < kKeepCapturing && images_flow(state()) && selected_key() == key_)
         request_capture();
     });
 }
@@ -334,6 +339,13 @@ bool VisualSensor::query_allowed(const Address& requester) {
 }
 
 void VisualSensor::on_query_image(const Header& h) {
+  if (!images_flow(state())) {
+    ++sensor_counters_.image_queries_paused;
+    log_repeated("commands not executed outside Ready", LogLevel::warn, [&] {
+      return "Query Image from " + h.source.to_string() + " not answered in " + std::string(to_string(state()));
+    });
+    return;
+  }
   if (!query_allowed(h.source)) {
     ++sensor_counters_.image_queries_limited;
     log_repeated("Query Image beyond its requester's rate ignored", LogLevel::warn, [&] {

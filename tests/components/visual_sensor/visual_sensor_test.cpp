@@ -380,13 +380,18 @@ TEST_F(VisualSensorTest, FormatAndResolutionChosenByTheControllerAreWhatImagesUs
   EXPECT_EQ(decoded->height, 120u);
 }
 
-TEST_F(VisualSensorTest, QueryImageIsAnsweredInReadyOnly) {
+TEST_F(VisualSensorTest, QueryImageIsAnsweredInReadyAndEmergencyNotInStandby) {
   take_control(kOcuA);
   deliver(kOcuA, msg::Standby{});
   EXPECT_FALSE(query_image(kOcuB));
-  EXPECT_EQ(sensor->counters().refused_wrong_state, 1u);
+  EXPECT_EQ(sensor->sensor_counters().image_queries_paused, 1u);
+  EXPECT_TRUE(logged("Query Image from 3.1.40.1 not answered in Standby"));
   deliver(kOcuA, msg::Resume{});
   EXPECT_TRUE(query_image(kOcuB));
+  deliver(kOcuB, msg::SetEmergency{{1}});
+  ASSERT_EQ(sensor->state(), msg::PrimaryStatus::emergency);
+  time.advance(200ms);  // a frame period on: a fresh capture
+  EXPECT_TRUE(query_image(kOcuC)) << "a stop holds the mounts, not the picture";
 }
 
 // Frames streamed to `to` in [from, until).
@@ -453,6 +458,26 @@ TEST_F(VisualSensorTest, StandbyPausesTheStreamAndResumeRestartsItWithoutABacklo
   const auto now_frame = query_image(kOcuC);
   ASSERT_TRUE(now_frame);
   EXPECT_NE(first->data, now_frame->data);
+}
+
+TEST_F(VisualSensorTest, TheStreamGoesOnInEmergencyWhileTheMountsAreHeld) {
+  take_control(kOcuA);
+  deliver(kOcuB, msg::CreateServiceConnection{{msg::ReportImage::code, 10, 0}});
+  pose(kOcuA, 1, 20, std::nullopt, std::nullopt, pose_field::kYAngular);  // pan at 0.2 rad/s
+  time.advance(500ms);
+  deliver(kOcuC, msg::SetEmergency{{1}});
+  const double held = cameras->mount_state(1).pan_rad;
+  const auto stopped = time.now();
+  time.advance(1s);
+  EXPECT_FALSE(cameras->mount_state(1).moving);
+  EXPECT_EQ(cameras->mount_state(1).pan_rad, held);
+  const auto during = frames(outbox, kOcuB, stopped, time.now());
+  EXPECT_GE(during.size(), 9u);
+  EXPECT_LE(during.size(), 11u);
+  // The mounts stay refused until the emergency is cleared.
+  pose(kOcuA, 1, 20, std::nullopt, std::nullopt, pose_field::kYAngular);
+  time.advance(500ms);
+  EXPECT_EQ(cameras->mount_state(1).pan_rad, held);
 }
 
 TEST_F(VisualSensorTest, CameraPoseAndSelectionAlsoStreamOnServiceConnections) {

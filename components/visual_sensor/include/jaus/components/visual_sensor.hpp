@@ -80,6 +80,7 @@ struct VisualSensorCounters {
   std::uint64_t frames_captured = 0;         // captures finished (each shared by every sender of it)
   std::uint64_t captures_refused = 0;        // the worker was full: the newest frame served instead
   std::uint64_t image_queries_limited = 0;   // Query Image beyond its requester's rate, ignored
+  std::uint64_t image_queries_paused = 0;    // Query Image outside Ready and Emergency, ignored
 };
 
 class VisualSensor final : public rt::Component {
