@@ -169,7 +169,7 @@ void JssSession::Impl::handle(const jss::JudpPacket& packet) {
   }
   if (h.ack_nak == jss::JudpAckNak::ack || h.ack_nak == jss::JudpAckNak::nak) {
     ++counters.acks_received;
-    if (auto resolution = acks.on_reply(h)) settled.insert_or_assign(resolution->key, *resolution);
+    if (auto resolution = acks.on_reply(h, clock->now())) settled.insert_or_assign(resolution->key, *resolution);
     return;
   }
   std::optional<JssReceived> message;
@@ -361,8 +361,7 @@ ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssI
   result.transmissions = 1;
   const detail::JudpAcks::Key key = detail::JudpAcks::key_of_sent(sent);
   // The datagram is kept whole: a retransmission is the same packet, the same sequence number.
-  if (acks.track(sent, datagram, started, node::AckPolicy{policy.retransmit_after, policy.max_transmissions}) !=
-      node::TrackResult::tracked) {
+  if (acks.track(sent, datagram, started, policy) != node::TrackResult::tracked) {
     result.elapsed = clock->now() - started;
     return result;  // sent once, nothing to wait on (a sequence number still pending after a wrap)
   }

@@ -21,6 +21,12 @@ struct JudpAcks {
     std::uint16_t sequence = 0;
     auto operator<=>(const Key&) const = default;
   };
+  using Peer = jss::JssId;
+  // The node a message went to: its components share one round trip.
+  static std::optional<Peer> peer_of(const Key& sent) {
+    if (sent.peer.is_broadcast()) return std::nullopt;
+    return Peer{sent.peer.subsystem, sent.peer.node, 0};
+  }
   static bool asks_ack(const Header& h) { return h.ack_nak == jss::JudpAckNak::ack_requested; }
   static std::optional<bool> answer_of(const Header& h) {
     if (h.ack_nak == jss::JudpAckNak::ack) return true;

@@ -56,21 +56,19 @@ ArrivalResult send(OcuSession& session, const jaus::Address& to, jaus::Header he
   auto pending = std::make_shared<Pending>();
   auto& clock = session.clock();
   const auto start = clock.now();
-  session.node().send_acknowledged(
-      header, payload, jaus::node::AckPolicy{policy.retransmit_after, policy.max_transmissions},
-      [pending, &clock](const jaus::node::AckResolution& resolution) {
-        pending->resolution = resolution;
-        pending->resolved_at = clock.now();
-      });
-  const auto limit = policy.retransmit_after * policy.max_transmissions + kResolutionMargin;
-  run(session, [&] { return pending->resolution.has_value(); }, limit, through_stop);
+  const auto key = session.node().send_acknowledged(header, payload, policy,
+                                                    [pending, &clock](const jaus::node::AckResolution& resolution) {
+                                                      pending->resolution = resolution;
+                                                      pending->resolved_at = clock.now();
+                                                    });
+  run(session, [&] { return pending->resolution.has_value(); }, policy.longest_wait() + kResolutionMargin,
+      through_stop);
   ArrivalResult result;
   if (!pending->resolution) {
+    // Stopped waiting (interrupted): nothing more of it goes out, in either dialect.
     result.outcome = session.interrupted() && !through_stop ? Arrival::interrupted : Arrival::unacknowledged;
     result.elapsed = clock.now() - start;
-    // The node's count is known only once it resolves: so far, one per period begun.
-    const auto periods = static_cast<std::uint32_t>(result.elapsed / policy.retransmit_after) + 1;
-    result.transmissions = std::min(periods, policy.max_transmissions);
+    result.transmissions = session.node().forget_acknowledged(key).value_or(1);
     return result;
   }
   result.outcome = arrival_of(pending->resolution->outcome);
@@ -80,6 +78,17 @@ ArrivalResult send(OcuSession& session, const jaus::Address& to, jaus::Header he
 }
 
 }  // namespace
+
+jaus::rt::Duration MustArrivePolicy::longest_wait() const {
+  // Fixed: given up one period after the last transmission.
+  if (timing == jaus::node::RetransmitTiming::fixed) return retransmit_after * max_transmissions;
+  // Measured: by the deadline, or one longest wait after each transmission
+  // (none given: the node's longest, RoundTripOptions::max_timeout).
+  const auto longest = max_retransmit_after > jaus::rt::Duration::zero() ? max_retransmit_after
+                                                                          : jaus::node::RoundTripOptions{}.max_timeout;
+  const auto by_count = longest * max_transmissions;
+  return give_up_after > jaus::rt::Duration::zero() ? std::min(give_up_after, by_count) : by_count;
+}
 
 std::string_view to_string(Arrival arrival) {
   switch (arrival) {

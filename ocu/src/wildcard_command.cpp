@@ -154,9 +154,7 @@ void WildcardCommand::add_member(const jaus::Address& member) {
   // node ACKs once the component has acted on it).
   std::weak_ptr<Answers> answers = answers_;
   session_.node().send_acknowledged(
-      header_to(member), payload_,
-      jaus::node::AckPolicy{policy_.per_member.retransmit_after, policy_.per_member.max_transmissions},
-      [answers, member](const jaus::node::AckResolution& resolution) {
+      header_to(member), payload_, policy_.per_member, [answers, member](const jaus::node::AckResolution& resolution) {
         const auto alive = answers.lock();
         if (!alive) return;  // the command is gone
         const Arrival outcome = resolution.outcome == jaus::node::AckOutcome::acknowledged ? Arrival::acknowledged

@@ -106,7 +106,9 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
   set_message.emergency_code = 1;  // STOP, the only code JSS defines
   jss_msg::ClearEmergency clear_message;
   clear_message.emergency_code = 1;
-  const auto arrival = set ? session.send_must_arrive(target, set_message, jaus::jss::JudpPriority::safety_critical)
+  // A stop keeps trying longer (MustArrivePolicy::emergency()).
+  const auto arrival = set ? session.send_must_arrive(target, set_message, jaus::jss::JudpPriority::safety_critical,
+                                                      jaus::ocu::MustArrivePolicy::emergency())
                            : session.send_must_arrive(target, clear_message);
   const std::string what = set ? "Set Emergency" : "Clear Emergency";
   if (target.is_broadcast()) {

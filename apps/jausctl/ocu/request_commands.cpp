@@ -51,6 +51,10 @@ bool must_arrive(const PreparedMessage& message, jaus::wire::Dialect dialect) {
   return dialect == jaus::wire::Dialect::ra && is_command(message);
 }
 
+// How long a stop to a peer of the openjaus dialect waits for an ACK that
+// may never come before its status is asked.
+constexpr jaus::rt::Duration kOpenJausAckWait = std::chrono::seconds(1);
+
 // A wildcard looks for its members at least this long (--timeout when
 // longer): a vehicle that has just started answers within it.
 constexpr jaus::rt::Duration kWildcardLooksFor = std::chrono::seconds(3);
@@ -182,9 +186,14 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
     return run_wildcard(session, "emergency", what, target, header, std::span(payload).first(*size), timeout, io);
   }
   // Retransmitted until ACKed: the ACK comes once the component has acted on it.
+  // A stop keeps trying longer (MustArrivePolicy::emergency()). A peer of
+  // the openjaus dialect may never ACK: its status is asked after a second.
+  auto policy = set ? jaus::ocu::MustArrivePolicy::emergency() : jaus::ocu::MustArrivePolicy{};
+  if (session.options().dialect == jaus::wire::Dialect::openjaus) policy.give_up_after = kOpenJausAckWait;
   const auto arrival = set ? send_must_arrive(session, target, jaus::msg::SetEmergency{{1}},
-                                              jaus::priority::kSafetyCritical)
-                           : send_must_arrive(session, target, jaus::msg::ClearEmergency{{1}});
+                                              jaus::priority::kSafetyCritical, policy)
+                           : send_must_arrive(session, target, jaus::msg::ClearEmergency{{1}}, jaus::priority::kDefault,
+                                              policy);
   // The common RA 3.3 peer (--dialect openjaus) may ignore ACK requests:
   // there, only its status can tell (the state check below).
   const bool status_must_tell =

@@ -8,8 +8,12 @@ namespace jaus::console {
 
 namespace {
 
-// Set and Clear Emergency: retransmitted every 50 ms up to 10 times until acknowledged.
-constexpr jaus::node::AckPolicy kMustArrive{std::chrono::milliseconds{50}, 10};
+// Set Emergency keeps trying harder than Clear Emergency (jaus/ocu/must_arrive.hpp):
+// both retransmitted at the pace of the measured round trip until acknowledged.
+jaus::node::AckPolicy must_arrive_policy(std::uint16_t code) {
+  return code == jaus::msg::SetEmergency::code ? jaus::ocu::MustArrivePolicy::emergency()
+                                               : jaus::ocu::MustArrivePolicy{};
+}
 
 }  // namespace
 
@@ -61,7 +65,7 @@ void EmergencyPanel::send_must_arrive(const jaus::Address& to, const M& message,
   if (to.is_broadcast()) return send_to_every_member(to, header, std::move(payload), what);
   std::weak_ptr<int> alive = alive_;
   session().node().send_acknowledged(
-      header, payload, kMustArrive, [this, alive, what](const jaus::node::AckResolution& resolution) {
+      header, payload, must_arrive_policy(M::code), [this, alive, what](const jaus::node::AckResolution& resolution) {
         if (alive.expired()) return;
         const bool arrived = resolution.outcome == jaus::node::AckOutcome::acknowledged;
         pages().event(arrived ? EventLevel::info : EventLevel::error,

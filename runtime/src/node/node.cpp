@@ -209,7 +209,7 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
   }
   // ACK and NAK answer our own ACK-requested messages.
   if (h.ack_nak == AckNak::ack || h.ack_nak == AckNak::nak) {
-    const auto resolution = acks_.on_reply(h);
+    const auto resolution = acks_.on_reply(h, now);
     if (!resolution) return;
     if (resolution->outcome != AckOutcome::acknowledged)
       lines_.write("packets to unresolved destinations dropped", rt::LogLevel::warn, [&] {
@@ -396,8 +396,8 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
   }
 }
 
-void Node::send_acknowledged(const Header& given, std::span<const std::uint8_t> payload, AckPolicy policy,
-                             AckCallback on_resolved) {
+AckKey Node::send_acknowledged(const Header& given, std::span<const std::uint8_t> payload, AckPolicy policy,
+                               AckCallback on_resolved) {
   Header h = given;
   h.ack_nak = AckNak::ack_requested;
   if (!h.service_connection) h.sequence = sequences_.take({h.source, h.destination});
@@ -409,13 +409,13 @@ void Node::send_acknowledged(const Header& given, std::span<const std::uint8_t> 
              " not sent: an ACK answers one packet, not a large data set";
     });
     resolve_soon(std::move(on_resolved), {key, AckOutcome::exhausted, 0});
-    return;
+    return key;
   }
   const std::size_t here = is_local(h.destination) ? local_matches(h.destination, h.source) : 0;
   if (!reaches_elsewhere(h.destination)) {
     if (here > 0) enqueue(Inbound{h, copy_payload(payload), h.source});
     resolve_soon(std::move(on_resolved), {key, here > 0 ? AckOutcome::acknowledged : AckOutcome::refused, 0});
-    return;
+    return key;
   }
   if (acks_.track(h, payload, clock_.now(), policy) != TrackResult::tracked) {
     ++counters_.send_failures;
@@ -424,12 +424,18 @@ void Node::send_acknowledged(const Header& given, std::span<const std::uint8_t> 
              h.destination.to_string() + " not sent";
     });
     resolve_soon(std::move(on_resolved), {key, AckOutcome::exhausted, 0});
-    return;
+    return key;
   }
   if (on_resolved) ack_callbacks_[key] = std::move(on_resolved);
   if (here > 0) enqueue(Inbound{h, copy_payload(payload), h.source});
   transmit(h, payload);
   arm_ack_timer();
+  return key;
+}
+
+std::optional<std::uint32_t> Node::forget_acknowledged(const AckKey& key) {
+  ack_callbacks_.erase(key);
+  return acks_.forget(key);
 }
 
 void Node::resolve(const AckResolution& resolution) {

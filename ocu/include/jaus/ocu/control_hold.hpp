@@ -67,8 +67,9 @@ class ControlHold {
   // Longest time without a message to the component while holding: the
   // default controller timeout / 12.
   static constexpr jaus::rt::Duration kKeepalive = std::chrono::milliseconds(250);
-  // Release Component Control: every 50 ms until ACKed, half a second at most.
-  static constexpr MustArrivePolicy kReleasePolicy{std::chrono::milliseconds(50), 10};
+  // Release Component Control: paced by the measured round trip until
+  // ACKed, a second at most (clean-up after Ctrl-C).
+  static constexpr MustArrivePolicy kReleasePolicy = MustArrivePolicy::cleanup();
   // How often the hold asks who has control.
   static constexpr jaus::rt::Duration kControlCheck = std::chrono::seconds(1);
 

@@ -146,10 +146,11 @@ class JssSession : public SessionCore<JssReceived> {
     return send_contents(to, contents, priority);
   }
 
-  // With an ACK request, the same packet (same sequence number) again every
-  // policy.retransmit_after until `to` ACKs (or NAKs: refused) it, at most
-  // policy.max_transmissions times. A broadcast ID is sent that many times
-  // and is `unacknowledged`. Contents above max_packet_contents cannot be
+  // With an ACK request, the same packet (same sequence number) again per
+  // `policy` (must_arrive.hpp: by default at the pace of the round trip
+  // measured to `to`'s node) until `to` ACKs (or NAKs: refused) it. A
+  // broadcast ID is sent policy.max_transmissions times, policy.
+  // retransmit_after apart, and is `unacknowledged`. Contents above max_packet_contents cannot be
   // acknowledged as one packet: unacknowledged, nothing sent.
   ArrivalResult send_contents_must_arrive(const jss::JssId& to, std::span<const std::uint8_t> contents,
                                           jss::JudpPriority priority = jss::JudpPriority::normal,

@@ -134,8 +134,8 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   // call and never after the node is destroyed; it may send again:
   // - acknowledged / refused: the destination answered ACK / NAK. A
   //   broadcast destination is settled by the first node that answers;
-  // - exhausted: every transmission went unanswered (called
-  //   policy.retransmit_after after the last one);
+  // - exhausted: every transmission went unanswered (called when the
+  //   policy gives up: one wait after the last transmission, or its deadline);
   // - posted at once, transmissions 0, when nothing crosses a network:
   //   acknowledged when the destination is on this node and some component
   //   here matches it (local delivery is immediate and cannot be lost),
@@ -144,9 +144,15 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   //   answers one packet) or max_pending messages already awaiting an
   //   answer (both counted as send_failures).
   // A destination both here and elsewhere (a broadcast) is delivered here
-  // and settled by the network's first answer.
-  void send_acknowledged(const Header& header, std::span<const std::uint8_t> payload, AckPolicy policy,
-                         AckCallback on_resolved);
+  // and settled by the network's first answer. Returns the message's key
+  // (forget_acknowledged).
+  AckKey send_acknowledged(const Header& header, std::span<const std::uint8_t> payload, AckPolicy policy,
+                           AckCallback on_resolved);
+  // Stops retransmitting a message sent with send_acknowledged (its sender
+  // gave up waiting, e.g. interrupted): nothing more of it goes out and its
+  // callback is never called. How many times it went out; none when it was
+  // no longer pending.
+  std::optional<std::uint32_t> forget_acknowledged(const AckKey& key);
 
   // rt::NodeDirectory.
   std::vector<const rt::Component*> local_components() const override;

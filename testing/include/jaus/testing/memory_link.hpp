@@ -14,10 +14,14 @@
 // disconnect (on_receive({})) or outlive the packets still in flight.
 //
 // A lossy radio link: link.set_loss(0.1, 0.1, seed) drops 10 % of what the
-// link sends and 10 % of what reaches it, at random but the same for a seed.
+// link sends and 10 % of what reaches it, at random but the same for a seed;
+// link.set_burst_loss(...) drops in bursts, as a radio does; and
+// network.set_jitter(extra, seed) delays each packet by up to `extra` more
+// than the latency, so packets overtake each other.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <functional>
@@ -61,9 +65,17 @@ class MemoryLink final : public node::Link {
   void set_loss(double outbound, double inbound, std::uint32_t seed) {
     outbound_loss_ = std::clamp(outbound, 0.0, 1.0);
     inbound_loss_ = std::clamp(inbound, 0.0, 1.0);
+    outbound_burst_ = inbound_burst_ = Burst{};
     random_.seed(seed);
   }
-  // Packets dropped by set_loss, both ways (not those of a pulled cable).
+  // Loss in bursts, as a radio fades: each way alternates good and bad
+  // periods, their lengths drawn at random (exponentially distributed) with
+  // these means, and what is sent or arrives in a bad period is lost. The
+  // mean loss is mean_bad / (mean_good + mean_bad), whatever the traffic.
+  // Replaces set_loss's random loss (and the reverse); the same periods for
+  // a seed.
+  void set_burst_loss(rt::Duration mean_good, rt::Duration mean_bad, std::uint32_t seed);
+  // Packets dropped by set_loss or set_burst_loss, both ways (not those of a pulled cable).
   std::uint64_t packets_lost() const { return lost_; }
 
   std::uint8_t subsystem() const { return subsystem_; }
@@ -84,7 +96,7 @@ class MemoryLink final : public node::Link {
       : network_(network), subsystem_(subsystem), node_(node) {}
   void arrive(std::span<const std::uint8_t> packet) {
     if (!connected_ || !receiver_) return;
-    if (lost(inbound_loss_)) return;
+    if (lost(inbound_loss_) || lost_in_burst(inbound_burst_)) return;
     ++received_;
     receiver_(packet);
   }
@@ -95,10 +107,25 @@ class MemoryLink final : public node::Link {
 
   bool lost(double probability) {
     if (probability <= 0) return false;
-    // mt19937 draws 32-bit values: lost when below probability * 2^32.
-    const bool dropped = static_cast<double>(random_()) < probability * 4294967296.0;
+    const bool dropped = draw(probability);
     lost_ += dropped;
     return dropped;
+  }
+  // mt19937 draws 32-bit values: true when below probability * 2^32.
+  bool draw(double probability) { return static_cast<double>(random_()) < probability * 4294967296.0; }
+
+  struct Burst {
+    rt::Duration mean_good{};
+    rt::Duration mean_bad{};  // zero: no bursts
+    bool bad = false;
+    rt::TimePoint until{};    // when the period under way ends
+  };
+  bool lost_in_burst(Burst& burst);
+  // A period's length: exponentially distributed with this mean (1 ns at least).
+  rt::Duration period_of(rt::Duration mean) {
+    const double u = (static_cast<double>(random_()) + 0.5) / 4294967296.0;
+    return std::max(rt::Duration(1), rt::Duration(static_cast<rt::Duration::rep>(
+                                         -std::log(u) * static_cast<double>(mean.count()))));
   }
 
   MemoryNetwork& network_;
@@ -107,6 +134,8 @@ class MemoryLink final : public node::Link {
   bool connected_ = true;
   double outbound_loss_ = 0;
   double inbound_loss_ = 0;
+  Burst outbound_burst_;
+  Burst inbound_burst_;
   std::mt19937 random_;
   std::uint64_t lost_ = 0;
   Receiver receiver_;
@@ -131,6 +160,14 @@ class MemoryNetwork {
 
   rt::Duration latency() const { return latency_; }
   void set_latency(rt::Duration latency) { latency_ = latency; }
+  // Each packet (each copy of a broadcast) takes the latency plus up to
+  // `extra` more, uniformly (the same delays for a seed, with every
+  // compiler): packets sent closer together than `extra` may overtake each
+  // other, as on a radio.
+  void set_jitter(rt::Duration extra, std::uint32_t seed) {
+    jitter_ = std::max(extra, rt::Duration::zero());
+    jitter_random_.seed(seed);
+  }
 
  private:
   friend class MemoryLink;
@@ -143,7 +180,7 @@ class MemoryNetwork {
       if (!bytes) bytes = std::make_shared<const std::vector<std::uint8_t>>(packet.begin(), packet.end());
       // Packets already in flight when the network goes are dropped.
       std::weak_ptr<const char> alive = alive_;
-      scheduler_.call_at(clock_.now() + latency_, [alive, to = link.get(), bytes] {
+      scheduler_.call_at(clock_.now() + latency_ + jitter(), [alive, to = link.get(), bytes] {
         if (!alive.expired()) to->arrive(*bytes);
       });
     }
@@ -151,16 +188,46 @@ class MemoryNetwork {
 
   rt::Clock& clock_;
   rt::Scheduler& scheduler_;
+  rt::Duration jitter() {
+    if (jitter_ <= rt::Duration::zero()) return {};
+    // A 32-bit draw scaled onto [0, jitter_].
+    return rt::Duration(static_cast<rt::Duration::rep>(static_cast<double>(jitter_random_()) / 4294967295.0 *
+                                                       static_cast<double>(jitter_.count())));
+  }
+
   rt::Duration latency_;
+  rt::Duration jitter_{};
+  std::mt19937 jitter_random_;
   std::vector<std::unique_ptr<MemoryLink>> links_;
   std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);
 };
+
+inline void MemoryLink::set_burst_loss(rt::Duration mean_good, rt::Duration mean_bad, std::uint32_t seed) {
+  outbound_loss_ = inbound_loss_ = 0;
+  random_.seed(seed);
+  const rt::TimePoint now = network_.clock_.now();
+  for (Burst* burst : {&outbound_burst_, &inbound_burst_}) {
+    *burst = Burst{mean_good, std::max(mean_bad, rt::Duration::zero()), false, {}};
+    burst->until = now + period_of(mean_good);
+  }
+}
+
+inline bool MemoryLink::lost_in_burst(Burst& burst) {
+  if (burst.mean_bad <= rt::Duration::zero()) return false;
+  const rt::TimePoint now = network_.clock_.now();
+  while (now >= burst.until) {
+    burst.bad = !burst.bad;
+    burst.until += period_of(burst.bad ? burst.mean_bad : burst.mean_good);
+  }
+  lost_ += burst.bad;
+  return burst.bad;
+}
 
 inline void MemoryLink::transmit(const Header& header, std::span<const std::uint8_t> packet) {
   if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
-  if (lost(outbound_loss_)) return;
+  if (lost(outbound_loss_) || lost_in_burst(outbound_burst_)) return;
   network_.carry(*this, header, packet);
 }
 
@@ -168,7 +235,7 @@ inline void MemoryLink::transmit_to_every_link(const Header& header, std::span<c
   if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
-  if (lost(outbound_loss_)) return;
+  if (lost(outbound_loss_) || lost_in_burst(outbound_burst_)) return;
   network_.carry(*this, header, packet, true);
 }
 
