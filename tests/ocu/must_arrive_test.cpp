@@ -105,8 +105,9 @@ TEST_F(MustArriveTest, FirstTransmissionsLostAStopIsSentAgainAtAnUndoubledPace) 
 TEST_F(MustArriveTest, FirstTransmissionsLostACommandsWaitsDouble) {
   auto ocu = open_lossy_ocu();
   ASSERT_TRUE(ocu);
-  // Nothing measured yet: the initial timeout, 100 ms. The transmissions at 0
-  // and 100 ms are lost; the next goes 200 ms later.
+  // Set Emergency sent as any command (the default policy). Nothing measured
+  // yet: the initial timeout, 100 ms. The transmissions at 0 and 100 ms are
+  // lost; the next goes 200 ms later.
   cut_for(120ms);
   const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical);
   EXPECT_EQ(set.outcome, Arrival::acknowledged);
@@ -121,7 +122,8 @@ TEST_F(MustArriveTest, TheMeasuredRoundTripSetsThePace) {
   // Measured: 10 ms each time (5 ms each way), so the timeout is the least one, 50 ms.
   for (int i = 0; i < 3; ++i)
     ASSERT_EQ(ocu::send_must_arrive(*ocu, kCommunicator, jaus::msg::Resume{}).outcome, Arrival::acknowledged);
-  const auto* measured = ocu->node().acks().round_trip(jaus::Address{kCommunicator.subsystem, kCommunicator.node, 0, 0});
+  const jaus::Address communicator_node{kCommunicator.subsystem, kCommunicator.node, 0, 0};
+  const auto* measured = ocu->node().acks().round_trip(communicator_node);
   ASSERT_NE(measured, nullptr);
   EXPECT_EQ(measured->smoothed(), 2 * kOneWay);
   EXPECT_EQ(measured->timeout(), 50ms);
