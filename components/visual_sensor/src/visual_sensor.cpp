@@ -341,7 +341,7 @@ bool VisualSensor::query_allowed(const Address& requester) {
 void VisualSensor::on_query_image(const Header& h) {
   if (!images_flow(state())) {
     ++sensor_counters_.image_queries_paused;
-    log_repeated("commands not executed outside Ready", LogLevel::warn, [&] {
+    log_repeated("Query Image not answered outside Ready and Emergency", LogLevel::warn, [&] {
       return "Query Image from " + h.source.to_string() + " not answered in " + std::string(to_string(state()));
     });
     return;

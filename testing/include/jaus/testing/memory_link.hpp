@@ -186,8 +186,7 @@ class MemoryNetwork {
     }
   }
 
-  rt::Clock& clock_;
-  rt::Scheduler& scheduler_;
+  // The extra delay of one packet (set_jitter).
   rt::Duration jitter() {
     if (jitter_ <= rt::Duration::zero()) return {};
     // A 32-bit draw scaled onto [0, jitter_].
@@ -195,6 +194,8 @@ class MemoryNetwork {
                                                        static_cast<double>(jitter_.count())));
   }
 
+  rt::Clock& clock_;
+  rt::Scheduler& scheduler_;
   rt::Duration latency_;
   rt::Duration jitter_{};
   std::mt19937 jitter_random_;
