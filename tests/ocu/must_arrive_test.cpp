@@ -58,6 +58,16 @@ class MustArriveTest : public LossyOcuTest {
     return f;
   }
 
+  // Set Emergency per `policy` from a fresh OCU whose link is cut for the
+  // first 120 ms.
+  ocu::ArrivalResult set_emergency_through_a_cut(const ocu::MustArrivePolicy& policy) {
+    auto ocu = open_lossy_ocu();
+    EXPECT_TRUE(ocu);
+    if (!ocu) return {};
+    cut_for(120ms);
+    return ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical, policy);
+  }
+
   // Notes the first moment (1 ms resolution) the component is in Emergency.
   void watch_for_emergency(std::optional<jaus::rt::TimePoint>& acted, jaus::rt::TimePoint until) {
     if (in_emergency()) {
@@ -91,11 +101,8 @@ TEST_F(MustArriveTest, OnAGoodLinkOneTransmissionIsAcknowledgedWithinARoundTrip)
 }
 
 TEST_F(MustArriveTest, FirstTransmissionsLostAStopIsSentAgainAtAnUndoubledPace) {
-  auto ocu = open_lossy_ocu();
-  ASSERT_TRUE(ocu);
-  cut_for(120ms);  // nothing measured yet: a stop goes every 50 ms; those at 0, 50 and 100 ms are lost
-  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical,
-                                         ocu::MustArrivePolicy::emergency());
+  // Nothing measured yet: a stop goes every 50 ms; those at 0, 50 and 100 ms are lost.
+  const auto set = set_emergency_through_a_cut(ocu::MustArrivePolicy::emergency());
   EXPECT_EQ(set.outcome, Arrival::acknowledged);
   EXPECT_EQ(set.transmissions, 4u);
   EXPECT_EQ(set.elapsed, 150ms + 2 * kOneWay);
@@ -103,13 +110,10 @@ TEST_F(MustArriveTest, FirstTransmissionsLostAStopIsSentAgainAtAnUndoubledPace) 
 }
 
 TEST_F(MustArriveTest, FirstTransmissionsLostACommandsWaitsDouble) {
-  auto ocu = open_lossy_ocu();
-  ASSERT_TRUE(ocu);
   // Set Emergency sent as any command (the default policy). Nothing measured
   // yet: the initial timeout, 100 ms. The transmissions at 0 and 100 ms are
   // lost; the next goes 200 ms later.
-  cut_for(120ms);
-  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical);
+  const auto set = set_emergency_through_a_cut(ocu::MustArrivePolicy{});
   EXPECT_EQ(set.outcome, Arrival::acknowledged);
   EXPECT_EQ(set.transmissions, 3u);
   EXPECT_EQ(set.elapsed, 300ms + 2 * kOneWay);
