@@ -358,7 +358,19 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                   t.unverified_total_bytes_per_second = integer<std::size_t>(e, 0, kMaxUnverifiedTotalBytes);
                 }},
                {"max_peers",
-                [&](const Entry& e) { t.max_peers = integer<std::size_t>(e, 1, kMaxPeersLimit); }}});
+                [&](const Entry& e) { t.max_peers = integer<std::size_t>(e, 1, kMaxPeersLimit); }},
+               {"send_rate_kbit",
+                [&](const Entry& e) {
+                  t.send_rate_kbit = integer<std::uint64_t>(e, 0, kMaxSendRateKbit);
+                  if (t.send_rate_kbit != 0 && t.send_rate_kbit < kMinSendRateKbit)
+                    fail(e.value_line(), "'send_rate_kbit' must be 0 (no budget) or " +
+                                             std::to_string(kMinSendRateKbit) + ".." +
+                                             std::to_string(kMaxSendRateKbit) + ", got " +
+                                             std::to_string(t.send_rate_kbit));
+                }},
+               {"send_queue_bytes", [&](const Entry& e) {
+                  t.send_queue_bytes = integer<std::size_t>(e, kMinSendQueueBytes, kMaxSendQueueBytes);
+                }}});
           for (const auto& p : peers) {
             t.peers.push_back(StaticPeer{p.endpoint, p.framing.value_or(t.framing)});
             lines.peers.push_back(p.line);

@@ -28,6 +28,10 @@ inline constexpr std::size_t kMaxPeersLimit = 65535;
 // endpoint, 16 MiB all together; 0 allows nothing beyond what they sent.
 inline constexpr long long kMaxUnverifiedBytes = 1 << 20;
 inline constexpr long long kMaxUnverifiedTotalBytes = 16 << 20;
+// The send budget: a radio of 16 kbit/s to 10 Gbit/s (0: none); each class
+// of what waits holds 8 KiB (two full packets) to 64 MiB.
+inline constexpr long long kMinSendRateKbit = 16, kMaxSendRateKbit = 10'000'000;
+inline constexpr long long kMinSendQueueBytes = 8192, kMaxSendQueueBytes = 64 << 20;
 // 254 subsystems x 254 nodes x a few components is the most JAUS IDs name;
 // the floor leaves room for this node's own peers and one OCU.
 inline constexpr std::size_t kMinLivenessEntries = 16;

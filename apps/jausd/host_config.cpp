@@ -106,6 +106,8 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.link.amplification.unverified_total_burst_bytes = config.transport.unverified_total_burst_bytes;
   h.link.amplification.unverified_total_bytes_per_second = config.transport.unverified_total_bytes_per_second;
   h.link.routes.max_entries = config.transport.max_peers;
+  h.send_budget.bits_per_second = config.transport.send_rate_kbit * 1000;
+  h.send_budget.queue_bytes = config.transport.send_queue_bytes;
 
   rt::ComponentConfig& c = h.settings.defaults;
   c.controller_timeout = seconds(config.controller_timeout_s);

@@ -160,6 +160,15 @@ std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines
   }
   if (t.max_peers < 1 || t.max_peers > kMaxPeersLimit)
     return Issue{0, "'max_peers' must be an integer 1..65535, got " + std::to_string(t.max_peers)};
+  if (t.send_rate_kbit != 0 &&
+      (t.send_rate_kbit < static_cast<std::uint64_t>(kMinSendRateKbit) ||
+       t.send_rate_kbit > static_cast<std::uint64_t>(kMaxSendRateKbit)))
+    return Issue{0, "'send_rate_kbit' must be 0 (no budget) or " + std::to_string(kMinSendRateKbit) + ".." +
+                        std::to_string(kMaxSendRateKbit) + ", got " + std::to_string(t.send_rate_kbit)};
+  if (t.send_queue_bytes < static_cast<std::size_t>(kMinSendQueueBytes) ||
+      t.send_queue_bytes > static_cast<std::size_t>(kMaxSendQueueBytes))
+    return Issue{0, "'send_queue_bytes' must be " + std::to_string(kMinSendQueueBytes) + ".." +
+                        std::to_string(kMaxSendQueueBytes) + ", got " + std::to_string(t.send_queue_bytes)};
   for (const auto& cidr : t.allow)
     if (cidr.prefix_length > 32) return Issue{0, "'allow' prefix length must be 0..32, got " +
                                                      std::to_string(cidr.prefix_length)};

@@ -62,6 +62,10 @@ struct TransportConfig {
   std::size_t unverified_total_burst_bytes = 32768;
   std::size_t unverified_total_bytes_per_second = 16384;
   std::size_t max_peers = 256;  // peers learnt from traffic remembered at once (static ones come on top)
+  // A field radio's rate: the node sends no faster, stops first and images
+  // last (jaus/node/budgeted_link.hpp). 0: no budget, everything at once.
+  std::uint64_t send_rate_kbit = 0;
+  std::size_t send_queue_bytes = 256 * 1024;  // what may wait, per class
 };
 
 using ComponentSpec = jaus::host::ComponentSpec;  // kinds and options: jaus/host/component_kinds.hpp

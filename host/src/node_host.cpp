@@ -118,6 +118,13 @@ void NodeHost::make_node(node::Link& link) {
     face_link_ = std::make_unique<jss_face::FaceLink>(link);
     node_link = face_link_.get();
   }
+  if (config_.send_budget.enabled()) {
+    // Images in pieces the radio carries in 50 ms: a stop is never long behind one.
+    config_.node.large_data_set_piece =
+        std::min(config_.node.large_data_set_piece, node::piece_size_for(config_.send_budget));
+    budgeted_link_ = std::make_unique<node::BudgetedLink>(*node_link, *clock_, *scheduler_, config_.send_budget);
+    node_link = budgeted_link_.get();
+  }
   rt::LogFn node_log = log_;
   if (config_.jss.enabled) {
     // The components know a JSS client only by its alias: their lines
@@ -469,6 +476,9 @@ void NodeHost::stop(const std::string& why) {
   // Safety: the node shuts every component down (platform commanded to stop)
   // while the link can still carry their last messages.
   node_->shutdown(why);
+  // Its last messages (Reject Component Control, ...) go now, not at the
+  // budget's pace: the loop may not run again.
+  if (budgeted_link_) budgeted_link_->flush();
   // No frame is wanted after Shutdown (a frame thread ends here, before
   // anything it was given could go), and the stop's zero setpoint goes out
   // now, before a process exits without running its io_context again.
@@ -477,8 +487,10 @@ void NodeHost::stop(const std::string& why) {
   if (persist_retry_ != rt::kNoTimer) scheduler_->cancel(persist_retry_);  // nothing keeps the loop after the stop
   persist_retry_ = rt::kNoTimer;
   const auto& n = node_->counters();
+  const std::string budget = budgeted_link_ ? ", " + budgeted_link_->summary() : "";
   if (!udp_link_) {
-    log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(n.delivered) + " messages delivered");
+    log_(rt::LogLevel::info,
+         "stopped (" + why + "): " + std::to_string(n.delivered) + " messages delivered" + budget);
     return;
   }
   const auto& l = udp_link_->counters();
@@ -498,7 +510,7 @@ void NodeHost::stop(const std::string& why) {
   log_(rt::LogLevel::info, "stopped (" + why + "): " + std::to_string(l.datagrams_received) + " datagrams in, " +
                                std::to_string(l.dropped_total()) + " dropped" + reasons + ", " +
                                std::to_string(n.delivered) + " messages delivered, " +
-                               std::to_string(l.datagrams_sent) + " datagrams out" + jss);
+                               std::to_string(l.datagrams_sent) + " datagrams out" + jss + budget);
   udp_link_->close();
 }
 

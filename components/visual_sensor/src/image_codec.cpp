@@ -110,12 +110,12 @@ Expected<std::vector<std::uint8_t>> encode_jpeg(const RgbImage& image, int quali
   return out;
 }
 
-Expected<Image> encode_image(const RgbImage& image, std::uint8_t format) {
+Expected<Image> encode_image(const RgbImage& image, std::uint8_t format, int jpeg_quality) {
   Expected<std::vector<std::uint8_t>> data = unexpected(codec_error("unsupported"));
   if (format == image_format::kPng)
     data = encode_png(image);
   else if (format == image_format::kJpeg)
-    data = encode_jpeg(image);
+    data = encode_jpeg(image, jpeg_quality);
   else
     return unexpected(make_error(ErrorCode::invalid_argument,
                                  "image format " + std::to_string(format) + " is not produced (7 JPEG, 11 PNG)"));

@@ -165,7 +165,7 @@ CaptureJob SimulatedCameras::capture_job(std::uint8_t camera_id, const ImageRequ
   return [request, frame]() -> Expected<Image> {
     if (request.width == 0 || request.height == 0)
       return unexpected(make_error(ErrorCode::invalid_argument, "image size 0"));
-    return encode_image(test_pattern(request.width, request.height, frame), request.format);
+    return encode_image(test_pattern(request.width, request.height, frame), request.format, request.jpeg_quality);
   };
 }
 

@@ -247,7 +247,8 @@ void VisualSensor::request_capture() {
   const Camera* c = find(key_.camera);
   if (!c) return;
   const CameraSettings& s = c->settings;
-  CaptureJob job = images_->capture_job(key_.camera, ImageRequest{s.image_format, s.width, s.height, s.frame_rate_fps});
+  CaptureJob job = images_->capture_job(
+      key_.camera, ImageRequest{s.image_format, s.width, s.height, s.frame_rate_fps, sensor_counters_.jpeg_quality});
   const FrameKey key = key_;
   const std::uint64_t id = capture_id_ + 1;
   const bool submitted = worker_->submit(
@@ -290,6 +291,9 @@ void VisualSensor::capture_done(const FrameKey& key, std::uint64_t id, Expected<
       log_repeated({"cameras with images again", kNoteworthyBurst}, LogLevel::info,
                    [&] { return "camera " + id_text(key.camera) + ": images again"; });
     capture_error_.reset();
+    if (image->format == image_format::kJpeg)
+      sensor_counters_.jpeg_quality = next_jpeg_quality(sensor_counters_.jpeg_quality, image->data.size(),
+                                                        env().outbox.link_bits_per_second());
     auto report = std::make_shared<msg::ReportImage>();
     report->camera_id = key.camera;
     report->image_format = image->format;

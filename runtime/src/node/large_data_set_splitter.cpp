@@ -18,20 +18,25 @@ DataFlag ra_data_flag_of(PieceRole role) {
   }
 }
 
+
+std::size_t clamped_piece(std::size_t piece_size) { return std::clamp<std::size_t>(piece_size, 1, kMaxPayloadSize); }
+
 }  // namespace
 
-std::size_t LargeDataSetSplitter::packets_needed(std::size_t payload_size) {
-  return pieces_needed(payload_size, kMaxPayloadSize);
+std::size_t LargeDataSetSplitter::packets_needed(std::size_t payload_size, std::size_t piece_size) {
+  return pieces_needed(payload_size, clamped_piece(piece_size));
 }
 
 Expected<LargeDataSetSplitter, Error> LargeDataSetSplitter::create(const Header& header,
-                                                                   std::span<const std::uint8_t> payload) {
-  const std::size_t count = packets_needed(payload.size());
+                                                                   std::span<const std::uint8_t> payload,
+                                                                   std::size_t piece_size) {
+  piece_size = clamped_piece(piece_size);
+  const std::size_t count = packets_needed(payload.size(), piece_size);
   if (count > kMaxPacketsPerSet)
     return unexpected(Error{ErrorCode::payload_too_large, 0, "payload",
                             std::to_string(payload.size()) + " bytes need " + std::to_string(count) +
                                 " packets, at most " + std::to_string(kMaxPacketsPerSet)});
-  LargeDataSetSplitter splitter(header, payload, count);
+  LargeDataSetSplitter splitter(header, payload, count, piece_size);
   // The shared fields are the same in every packet: checking the first checks all.
   if (auto checked = encode_header(splitter.packet(0).header); !checked) return unexpected(checked.error());
   return splitter;
@@ -40,7 +45,7 @@ Expected<LargeDataSetSplitter, Error> LargeDataSetSplitter::create(const Header&
 PacketView LargeDataSetSplitter::packet(std::size_t index) const {
   PacketView view{header_, {}};
   if (index >= count_) return view;  // out of range: an empty view rather than a read past the end
-  const PieceSlice slice = piece_of(payload_.size(), kMaxPayloadSize, count_, index);
+  const PieceSlice slice = piece_of(payload_.size(), piece_size_, count_, index);
   view.payload = payload_.subspan(slice.offset, slice.size);
   Header& h = view.header;
   h.data_size = static_cast<std::uint16_t>(view.payload.size());

@@ -26,6 +26,25 @@ TEST(LargeDataSetSplitter, UpTo4080BytesIsOnePacketWithFlag0) {
   }
 }
 
+TEST(LargeDataSetSplitter, SmallerPiecesForASlowRadio) {
+  const auto payload = patterned_payload(2500);
+  auto splitter = LargeDataSetSplitter::create(image_header(10), payload, 1000);
+  ASSERT_TRUE(splitter);
+  const auto packets = splitter->packets();
+  ASSERT_EQ(packets.size(), 3u);
+  const std::array<std::size_t, 3> sizes{1000, 1000, 500};
+  for (std::size_t i = 0; i < packets.size(); ++i) {
+    EXPECT_EQ(packets[i].payload.size(), sizes[i]) << i;
+    EXPECT_EQ(packets[i].payload.data(), payload.data() + 1000 * i) << i;
+    EXPECT_EQ(packets[i].header.sequence, 10 + i) << i;
+  }
+  EXPECT_EQ(packets.back().header.data_flag, DataFlag::last);
+  EXPECT_EQ(LargeDataSetSplitter::packets_needed(2500, 1000), 3u);
+  // Out of range, the piece is clamped to 1..4080.
+  EXPECT_EQ(LargeDataSetSplitter::packets_needed(2500, 0), 2500u);
+  EXPECT_EQ(LargeDataSetSplitter::packets_needed(8160, 100000), 2u);
+}
+
 TEST(LargeDataSetSplitter, LargerPayloadsGoFirstMiddleLastWithConsecutiveNumbers) {
   const auto payload = patterned_payload(3 * kMaxPayloadSize + 1);
   Header header = image_header(100);

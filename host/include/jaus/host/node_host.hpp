@@ -23,6 +23,7 @@
 #include "jaus/host/platform.hpp"
 #include "jaus/host/platform_kinds.hpp"
 #include "jaus/jss_face/face.hpp"
+#include "jaus/node/budgeted_link.hpp"
 #include "jaus/node/node.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/udp_link.hpp"
@@ -32,6 +33,9 @@ namespace jaus::host {
 struct HostConfig {
   node::NodeConfig node;            // subsystem and node IDs, dialect, liveness, queues
   transport::UdpLinkOptions link;   // bind, framing, peers, ...; its IDs are the node's
+  // The rate the node may send at, stops first (a field radio's); off by
+  // default (node/budgeted_link.hpp).
+  node::SendBudgetOptions send_budget;
   ComponentSettings settings;       // what every component shares, the node manager's identity
   std::vector<ComponentSpec> components;
   // The vehicle the mobility components drive and read, made when one of
@@ -134,6 +138,8 @@ class NodeHost {
   const HostConfig& config() const { return config_; }
   node::Node& node() { return *node_; }
   const node::Node& node() const { return *node_; }
+  // The send budget in front of the link; nullptr when none is set.
+  const node::BudgetedLink* send_budget() const { return budgeted_link_.get(); }
   // The UDP link of an opened host; nullptr for an attached one.
   transport::UdpLink* udp_link() { return udp_link_.get(); }
   const transport::UdpLink* udp_link() const { return udp_link_.get(); }
@@ -217,6 +223,9 @@ class NodeHost {
   // The node's link when the face is on (around the UDP or the attached
   // link): declared after that link and before the node, which uses it.
   std::unique_ptr<jss_face::FaceLink> face_link_;
+  // Around both when a send budget is set: what goes to JSS clients is held
+  // to the rate too. After them, before the node.
+  std::unique_ptr<node::BudgetedLink> budgeted_link_;
   // Declared before the node: components refer to its backends, so they outlive them.
   std::unique_ptr<Platform> platform_;
   rt::Backends backends_;  // what the components are made with: the platform's, by interface

@@ -8,7 +8,7 @@
 // trip is waited for instead of sending every command five times), each
 // wait twice the last, at most 10 transmissions, given up 3 s after the
 // first. A stop keeps trying harder: MustArrivePolicy::emergency() sends
-// again at the measured pace without doubling, at least every 200 ms, for
+// again at the measured pace without doubling, at least every 100 ms, for
 // 10 s. The destination's
 // node ACKs after its component has handled the message, so the ACK's time
 // bounds when it was acted on. Retransmissions repeat the packet exactly
@@ -54,15 +54,16 @@ struct MustArrivePolicy : jaus::node::AckPolicy {
   // A stop: again after each timeout of the measured round trip (at least
   // 50 ms; every 50 ms before anything is measured: a stop never waits
   // longer than a LAN's pace to learn the link), never doubled and at least
-  // every 200 ms, for 10 s: over a radio's 300 ms round trip a lost copy
-  // costs 200 ms, not a round trip and its variation (bench_radio_acks: p99
-  // 1.3-1.5 s instead of 2.1-2.5 s at 20 % loss each way, 2.7 copies instead
-  // of 1.6), and a link back from a drop-out gets it within 200 ms.
+  // every 100 ms, for 10 s: over a radio's 300 ms round trip a lost copy
+  // costs 100 ms, not a round trip and its variation (bench_radio_acks at
+  // 20 % loss each way: p99 1.24-1.25 s, 4.5 copies of 53 bytes; 1.3-1.5 s
+  // at 200 ms, 2.1-2.5 s at 500 ms), and a link back from a drop-out gets it
+  // within 100 ms.
   static constexpr MustArrivePolicy emergency() {
     MustArrivePolicy policy;
     policy.max_transmissions = 200;
     policy.give_up_after = std::chrono::seconds(10);
-    policy.max_retransmit_after = std::chrono::milliseconds(200);
+    policy.max_retransmit_after = std::chrono::milliseconds(100);
     policy.back_off = false;
     policy.unmeasured_wait = std::chrono::milliseconds(50);
     return policy;

@@ -51,6 +51,8 @@ class Link {
   // again) and the packet's bytes, 16-byte header and payload (at most 4080
   // bytes). The bytes are valid only during the call: copy what is kept.
   virtual void transmit(const Header& header, std::span<const std::uint8_t> packet) = 0;
+  // The rate the link holds what it is given to, bits a second; 0: none.
+  virtual std::uint64_t bits_per_second() const { return 0; }
 };
 
 struct NodeConfig {
@@ -59,6 +61,10 @@ struct NodeConfig {
   wire::Dialect dialect = wire::Dialect::ra;  // how payloads from peers are read
   std::size_t inbound_queue_capacity = 1024;
   AssemblyLimits large_data_sets = RaLargeDataSets::kDefaultLimits;
+  // The most payload in one packet this node sends (1..4080): a payload over
+  // it goes as a large data set of pieces this size. Below 4080 only on a slow
+  // radio, where one full packet holds the air (and a stop behind it) for long.
+  std::size_t large_data_set_piece = kMaxPayloadSize;
   AckTracker::Options acks;
   DuplicateFilter::Options duplicates;
   LivenessTable::Options liveness;
@@ -128,6 +134,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
 
   // rt::Outbox: a message from a local component.
   void send(const Header& header, std::span<const std::uint8_t> payload) override;
+  std::uint64_t link_bits_per_second() const override { return link_.bits_per_second(); }
   // Sends a message from a local component with an ACK request (the
   // header's ack_nak is set here), retransmitted per `policy` until answered.
   // `on_resolved` (may be empty) is called exactly once, never during this

@@ -17,6 +17,10 @@ class Outbox {
  public:
   virtual ~Outbox() = default;
   virtual void send(const Header& header, std::span<const std::uint8_t> payload) = 0;
+  // The rate what is sent here may leave at, bits a second (a field radio's
+  // send budget); 0: not limited. A component that can make its data
+  // smaller (a camera's JPEG quality) reads it.
+  virtual std::uint64_t link_bits_per_second() const { return 0; }
 };
 
 struct Environment {

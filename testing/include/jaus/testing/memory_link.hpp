@@ -17,7 +17,8 @@
 // link sends and 10 % of what reaches it, at random but the same for a seed;
 // link.set_burst_loss(...) drops in bursts, as a radio does; and
 // network.set_jitter(extra, seed) delays each packet by up to `extra` more
-// than the latency, so packets overtake each other.
+// than the latency, so packets overtake each other; link.set_rate(...) makes
+// the link a radio of that many bits a second, with a buffer of its own.
 #pragma once
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include <random>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -78,6 +80,20 @@ class MemoryLink final : public node::Link {
   // Packets dropped by set_loss or set_burst_loss, both ways (not those of a pulled cable).
   std::uint64_t packets_lost() const { return lost_; }
 
+  // A radio of `bits_per_second` (0: none, the default): what this link
+  // transmits leaves one packet after another, each taking its size plus
+  // `overhead_bytes` (IP and UDP headers, framing) at that rate, first in
+  // first out; a packet that finds `buffer_bytes` already waiting is dropped
+  // (counted in packets_overflowed), as a radio's full buffer drops it.
+  void set_rate(std::uint64_t bits_per_second, std::size_t buffer_bytes, std::size_t overhead_bytes = 36) {
+    bits_per_second_ = bits_per_second;
+    buffer_bytes_ = buffer_bytes;
+    overhead_bytes_ = overhead_bytes;
+  }
+  std::uint64_t packets_overflowed() const { return overflowed_; }
+  // How long what the radio holds now takes to leave.
+  rt::Duration radio_backlog() const;
+
   std::uint8_t subsystem() const { return subsystem_; }
   std::uint8_t node() const { return node_; }
   std::uint64_t packets_sent() const { return sent_; }
@@ -94,12 +110,7 @@ class MemoryLink final : public node::Link {
   friend class MemoryNetwork;
   MemoryLink(MemoryNetwork& network, std::uint8_t subsystem, std::uint8_t node)
       : network_(network), subsystem_(subsystem), node_(node) {}
-  void arrive(std::span<const std::uint8_t> packet) {
-    if (!connected_ || !receiver_) return;
-    if (lost(inbound_loss_) || lost_in_burst(inbound_burst_)) return;
-    ++received_;
-    receiver_(packet);
-  }
+  void arrive(std::span<const std::uint8_t> packet);
   bool reached_by(const Address& destination) const {
     return (destination.subsystem == subsystem_ || destination.subsystem == Address::kBroadcast) &&
            (destination.node == node_ || destination.node == Address::kBroadcast);
@@ -120,7 +131,11 @@ class MemoryLink final : public node::Link {
     bool bad = false;
     rt::TimePoint until{};    // when the period under way ends
   };
-  bool lost_in_burst(Burst& burst);
+  // Whether what is on the air at `at` is lost (`at` never goes back for one burst).
+  bool lost_in_burst(Burst& burst, rt::TimePoint at);
+  // How long the packet waits in the radio before its last bit has left
+  // (set_rate); nullopt: the radio's buffer is full.
+  std::optional<rt::Duration> radio_delay(std::size_t packet_size);
   // A period's length: exponentially distributed with this mean (1 ns at least).
   rt::Duration period_of(rt::Duration mean) {
     const double u = (static_cast<double>(random_()) + 0.5) / 4294967296.0;
@@ -138,6 +153,11 @@ class MemoryLink final : public node::Link {
   Burst inbound_burst_;
   std::mt19937 random_;
   std::uint64_t lost_ = 0;
+  std::uint64_t bits_per_second_ = 0;
+  std::size_t buffer_bytes_ = 0;
+  std::size_t overhead_bytes_ = 0;
+  rt::TimePoint radio_free_at_{};  // when the radio has sent all it holds
+  std::uint64_t overflowed_ = 0;
   Receiver receiver_;
   Tap tap_;
   std::uint64_t sent_ = 0;
@@ -173,14 +193,14 @@ class MemoryNetwork {
   friend class MemoryLink;
 
   void carry(const MemoryLink& from, const Header& header, std::span<const std::uint8_t> packet,
-             bool to_every_link = false) {
+             bool to_every_link = false, rt::Duration queued = {}) {
     std::shared_ptr<const std::vector<std::uint8_t>> bytes;
     for (const auto& link : links_) {
       if (link.get() == &from || (!to_every_link && !link->reached_by(header.destination))) continue;
       if (!bytes) bytes = std::make_shared<const std::vector<std::uint8_t>>(packet.begin(), packet.end());
       // Packets already in flight when the network goes are dropped.
       std::weak_ptr<const char> alive = alive_;
-      scheduler_.call_at(clock_.now() + latency_ + jitter(), [alive, to = link.get(), bytes] {
+      scheduler_.call_at(clock_.now() + queued + latency_ + jitter(), [alive, to = link.get(), bytes] {
         if (!alive.expired()) to->arrive(*bytes);
       });
     }
@@ -213,10 +233,9 @@ inline void MemoryLink::set_burst_loss(rt::Duration mean_good, rt::Duration mean
   }
 }
 
-inline bool MemoryLink::lost_in_burst(Burst& burst) {
+inline bool MemoryLink::lost_in_burst(Burst& burst, rt::TimePoint at) {
   if (burst.mean_bad <= rt::Duration::zero()) return false;
-  const rt::TimePoint now = network_.clock_.now();
-  while (now >= burst.until) {
+  while (at >= burst.until) {
     burst.bad = !burst.bad;
     burst.until += period_of(burst.bad ? burst.mean_bad : burst.mean_good);
   }
@@ -224,20 +243,53 @@ inline bool MemoryLink::lost_in_burst(Burst& burst) {
   return burst.bad;
 }
 
+inline void MemoryLink::arrive(std::span<const std::uint8_t> packet) {
+  if (!connected_ || !receiver_) return;
+  if (lost(inbound_loss_) || lost_in_burst(inbound_burst_, network_.clock_.now())) return;
+  ++received_;
+  receiver_(packet);
+}
+
+inline rt::Duration MemoryLink::radio_backlog() const {
+  return std::max(rt::Duration::zero(), radio_free_at_ - network_.clock_.now());
+}
+
+inline std::optional<rt::Duration> MemoryLink::radio_delay(std::size_t packet_size) {
+  if (bits_per_second_ == 0) return rt::Duration::zero();
+  const rt::TimePoint now = network_.clock_.now();
+  const rt::Duration backlog = radio_backlog();
+  const double held_bytes = std::chrono::duration<double>(backlog).count() * static_cast<double>(bits_per_second_) / 8;
+  const std::size_t cost = packet_size + overhead_bytes_;
+  if (held_bytes + static_cast<double>(cost) > static_cast<double>(buffer_bytes_)) {
+    ++overflowed_;
+    return std::nullopt;
+  }
+  const auto airtime = std::chrono::duration_cast<rt::Duration>(
+      std::chrono::duration<double>(static_cast<double>(cost) * 8 / static_cast<double>(bits_per_second_)));
+  radio_free_at_ = now + backlog + airtime;
+  return backlog + airtime;
+}
+
 inline void MemoryLink::transmit(const Header& header, std::span<const std::uint8_t> packet) {
   if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
-  if (lost(outbound_loss_) || lost_in_burst(outbound_burst_)) return;
-  network_.carry(*this, header, packet);
+  const auto queued = radio_delay(packet.size());
+  if (!queued) return;
+  // A fade takes what is on the air then: the packet's last bit leaves at now + queued.
+  if (lost(outbound_loss_) || lost_in_burst(outbound_burst_, network_.clock_.now() + *queued)) return;
+  network_.carry(*this, header, packet, false, *queued);
 }
 
 inline void MemoryLink::transmit_to_every_link(const Header& header, std::span<const std::uint8_t> packet) {
   if (tap_) tap_(header, packet);
   if (!connected_) return;
   ++sent_;
-  if (lost(outbound_loss_) || lost_in_burst(outbound_burst_)) return;
-  network_.carry(*this, header, packet, true);
+  const auto queued = radio_delay(packet.size());
+  if (!queued) return;
+  // A fade takes what is on the air then: the packet's last bit leaves at now + queued.
+  if (lost(outbound_loss_) || lost_in_burst(outbound_burst_, network_.clock_.now() + *queued)) return;
+  network_.carry(*this, header, packet, true, *queued);
 }
 
 }  // namespace jaus::testing

@@ -54,6 +54,7 @@ struct ImageRequest {
   std::uint16_t width = 320;
   std::uint16_t height = 240;
   std::uint16_t frame_rate_fps = 10;  // a video source's frame period
+  int jpeg_quality = 85;              // 1..100, for an encoder that makes JPEG (lowered on a slow link)
 };
 
 // One frame: a whole PNG or JPEG file, and the format it really is (a file

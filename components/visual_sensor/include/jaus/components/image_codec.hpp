@@ -22,7 +22,7 @@ struct RgbImage {
 Expected<std::vector<std::uint8_t>> encode_png(const RgbImage& image);
 Expected<std::vector<std::uint8_t>> encode_jpeg(const RgbImage& image, int quality = 85);
 // PNG (11) or JPEG (7); any other format code is an error.
-Expected<Image> encode_image(const RgbImage& image, std::uint8_t format);
+Expected<Image> encode_image(const RgbImage& image, std::uint8_t format, int jpeg_quality = 85);
 
 // The format code of an encoded file from its magic bytes (PNG or JPEG), or nullopt.
 std::optional<std::uint8_t> sniff_image_format(std::span<const std::uint8_t> bytes);

@@ -59,6 +59,7 @@
 #include "jaus/components/camera.hpp"
 #include "jaus/components/camera_reports.hpp"
 #include "jaus/components/frame_worker.hpp"
+#include "jaus/components/jpeg_quality.hpp"
 #include "jaus/runtime/component.hpp"
 
 namespace jaus::components {
@@ -81,6 +82,7 @@ struct VisualSensorCounters {
   std::uint64_t captures_refused = 0;        // the worker was full: the newest frame served instead
   std::uint64_t image_queries_limited = 0;   // Query Image beyond its requester's rate, ignored
   std::uint64_t image_queries_paused = 0;    // Query Image outside Ready and Emergency, ignored
+  int jpeg_quality = kDefaultJpegQuality;    // of the next JPEG frame (lower on a slow link: jpeg_quality.hpp)
 };
 
 class VisualSensor final : public rt::Component {
