@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "jaus/core/stop_commands.hpp"
 #include "jaus/messages/core_messages.hpp"
 #include "jaus/messages/discovery_messages.hpp"
 
@@ -18,10 +19,7 @@ bool is_real_id(std::uint8_t v) { return v != 0 && v != kAny; }
 
 }  // namespace
 
-bool is_stop(std::uint16_t command_code) {
-  return command_code == jaus::msg::SetEmergency::code || command_code == jaus::msg::Standby::code ||
-         command_code == jaus::msg::Shutdown::code;
-}
+bool is_stop(std::uint16_t command_code) { return is_stop_command(command_code); }
 
 std::vector<jaus::Address> WildcardResult::confirmed() const {
   std::vector<jaus::Address> out;

@@ -1,8 +1,10 @@
 #include "jaus/transport/inbound.hpp"
 
+#include "jaus/core/stop_commands.hpp"
+
 namespace jaus::transport {
 
-bool is_stop(std::uint16_t code) { return code == 0x0002 || code == 0x0003 || code == 0x0006; }
+bool is_stop(std::uint16_t code) { return is_stop_command(code); }
 
 bool is_command(std::uint16_t code) { return code < 0x2000; }
 

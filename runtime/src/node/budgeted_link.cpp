@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <chrono>
 
+#include "jaus/core/stop_commands.hpp"
+
 namespace jaus::node {
 
 namespace {
 
-// Core commands by code (core_messages.hpp); runtime names no message types
-// here so the classes stay a property of the header alone.
-constexpr std::uint16_t kShutdownCode = 0x0002;
-constexpr std::uint16_t kStandbyCode = 0x0003;
+// What travels with the stops so that none overtakes another (core_messages.hpp).
 constexpr std::uint16_t kResumeCode = 0x0004;
-constexpr std::uint16_t kSetEmergencyCode = 0x0006;
 constexpr std::uint16_t kClearEmergencyCode = 0x0007;
 
 bool is_command(std::uint16_t code) { return (code >> 12) == 0x0; }
@@ -20,7 +18,7 @@ bool is_command(std::uint16_t code) { return (code >> 12) == 0x0; }
 // A command that stops what it reaches (a request, not an ACK or NAK of one).
 bool halts(const Header& h) {
   if (h.ack_nak == AckNak::ack || h.ack_nak == AckNak::nak) return false;
-  return h.command_code == kSetEmergencyCode || h.command_code == kShutdownCode || h.command_code == kStandbyCode;
+  return is_stop_command(h.command_code);
 }
 
 bool same_stream(const Header& a, const Header& b) {
@@ -50,8 +48,8 @@ std::size_t piece_size_for(const SendBudgetOptions& options) {
 
 SendClass send_class_of(const Header& h, std::size_t packet_size, const SendBudgetOptions& options) {
   const std::uint16_t code = h.command_code;
-  if (h.priority >= priority::kSafetyCritical || code == kSetEmergencyCode || code == kClearEmergencyCode ||
-      code == kShutdownCode || code == kStandbyCode || code == kResumeCode)
+  if (h.priority >= priority::kSafetyCritical || is_stop_command(code) || code == kClearEmergencyCode ||
+      code == kResumeCode)
     return SendClass::stop;
   if (h.data_flag != DataFlag::single || packet_size > options.bulk_threshold) return SendClass::bulk;
   if (is_command(code)) return SendClass::command;

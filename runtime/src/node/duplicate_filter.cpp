@@ -2,13 +2,11 @@
 
 #include <algorithm>
 
+#include "jaus/core/stop_commands.hpp"
+
 namespace jaus::node {
 
 namespace {
-
-constexpr std::uint16_t kShutdown = 0x0002;
-constexpr std::uint16_t kStandby = 0x0003;
-constexpr std::uint16_t kSetEmergency = 0x0006;
 
 // Where senders number from after a start: Jr from 1, JRM (and our nodes) from 0.
 constexpr std::uint16_t kHighestFirstSequence = 1;
@@ -54,9 +52,7 @@ DuplicateFilter::DuplicateFilter(Options options) : options_(options) {
   options_.max_entries = std::max<std::size_t>(options_.max_entries, 1);
 }
 
-bool DuplicateFilter::always_delivered(std::uint16_t code) {
-  return code == kSetEmergency || code == kStandby || code == kShutdown;
-}
+bool DuplicateFilter::always_delivered(std::uint16_t code) { return is_stop_command(code); }
 
 DuplicateVerdict DuplicateFilter::check(const PacketIdentity& p, rt::TimePoint now) {
   if (p.piece && !options_.pieces_filtered) return DuplicateVerdict::not_filtered;

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "jaus/base/virtual_time.hpp"
+#include "jaus/core/stop_commands.hpp"
+#include "jaus/messages/core_messages.hpp"
 
 namespace jaus::node {
 namespace {
@@ -223,6 +225,11 @@ TEST_F(BudgetedLinkTest, AFullClassDropsWhatDoesNotFitAndCountsIt) {
   EXPECT_EQ(below.handed.size(), 11u);
   EXPECT_GE(link.counters().longest_wait, 30ms);
 }
+
+// The one list of stops names the messages' own codes.
+static_assert(is_stop_command(msg::SetEmergency::code) && is_stop_command(msg::Standby::code) &&
+              is_stop_command(msg::Shutdown::code));
+static_assert(!is_stop_command(msg::Resume::code) && !is_stop_command(msg::ClearEmergency::code));
 
 TEST_F(BudgetedLinkTest, ClassifiesByHeader) {
   const SendBudgetOptions o;
