@@ -368,8 +368,12 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                                              std::to_string(kMaxSendRateKbit) + ", got " +
                                              std::to_string(t.send_rate_kbit));
                 }},
-               {"send_queue_bytes", [&](const Entry& e) {
+               {"send_queue_bytes",
+                [&](const Entry& e) {
                   t.send_queue_bytes = integer<std::size_t>(e, kMinSendQueueBytes, kMaxSendQueueBytes);
+                }},
+               {"receive_buffer_bytes", [&](const Entry& e) {
+                  t.receive_buffer_bytes = integer<std::size_t>(e, 0, kMaxReceiveBufferBytes);
                 }}});
           for (const auto& p : peers) {
             t.peers.push_back(StaticPeer{p.endpoint, p.framing.value_or(t.framing)});

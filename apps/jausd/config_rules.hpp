@@ -32,6 +32,8 @@ inline constexpr long long kMaxUnverifiedTotalBytes = 16 << 20;
 // of what waits holds 8 KiB (two full packets) to 64 MiB.
 inline constexpr long long kMinSendRateKbit = 16, kMaxSendRateKbit = 10'000'000;
 inline constexpr long long kMinSendQueueBytes = 8192, kMaxSendQueueBytes = 64 << 20;
+// SO_RCVBUF asked of the sockets: 0 (the system's default) to 256 MiB.
+inline constexpr long long kMaxReceiveBufferBytes = 256 << 20;
 // 254 subsystems x 254 nodes x a few components is the most JAUS IDs name;
 // the floor leaves room for this node's own peers and one OCU.
 inline constexpr std::size_t kMinLivenessEntries = 16;

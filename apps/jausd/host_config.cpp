@@ -108,6 +108,7 @@ host::HostConfig host_config(const JausdConfig& config) {
   h.link.routes.max_entries = config.transport.max_peers;
   h.send_budget.bits_per_second = config.transport.send_rate_kbit * 1000;
   h.send_budget.queue_bytes = config.transport.send_queue_bytes;
+  h.link.receive_buffer_bytes = config.transport.receive_buffer_bytes;
 
   rt::ComponentConfig& c = h.settings.defaults;
   c.controller_timeout = seconds(config.controller_timeout_s);

@@ -169,6 +169,9 @@ std::optional<Issue> check_transport(const TransportConfig& t, const SourceLines
       t.send_queue_bytes > static_cast<std::size_t>(kMaxSendQueueBytes))
     return Issue{0, "'send_queue_bytes' must be " + std::to_string(kMinSendQueueBytes) + ".." +
                         std::to_string(kMaxSendQueueBytes) + ", got " + std::to_string(t.send_queue_bytes)};
+  if (t.receive_buffer_bytes > static_cast<std::size_t>(kMaxReceiveBufferBytes))
+    return Issue{0, "'receive_buffer_bytes' must be 0.." + std::to_string(kMaxReceiveBufferBytes) + ", got " +
+                        std::to_string(t.receive_buffer_bytes)};
   for (const auto& cidr : t.allow)
     if (cidr.prefix_length > 32) return Issue{0, "'allow' prefix length must be 0..32, got " +
                                                      std::to_string(cidr.prefix_length)};

@@ -66,6 +66,7 @@ struct TransportConfig {
   // last (jaus/node/budgeted_link.hpp). 0: no budget, everything at once.
   std::uint64_t send_rate_kbit = 0;
   std::size_t send_queue_bytes = 256 * 1024;  // what may wait, per class
+  std::size_t receive_buffer_bytes = 1 << 20;  // SO_RCVBUF asked (the kernel caps it); 0: the system's default
 };
 
 using ComponentSpec = jaus::host::ComponentSpec;  // kinds and options: jaus/host/component_kinds.hpp

@@ -166,6 +166,11 @@ int main(int argc, char** argv) {
   const auto& link = *(*host)->udp_link();
   logger->info("node {}.{} listening on {} ({})", int{config.subsystem}, int{config.node},
                jaus::transport::to_string(link.local_endpoint()), jaus::transport::to_string(config.transport.framing));
+  // Linux reports twice the data it holds for a socket; less than asked: net.core.rmem_max capped it.
+  if (const std::size_t asked = config.transport.receive_buffer_bytes;
+      asked > 0 && link.receive_buffer_bytes() / 2 < asked)
+    logger->info("receive buffer {} KiB per socket, {} KiB asked: net.core.rmem_max caps it (docs/deployment.md)",
+                 link.receive_buffer_bytes() / 2 / 1024, asked / 1024);
   if (const auto* face = (*host)->jss_face()) {
     const auto manager = face->jss_id_of(jaus::Address{config.subsystem, config.node, 1, 1});
     logger->info("JSS (SAE JAUS, AS5669A) on {} as subsystem {}, node manager {}, group {}",

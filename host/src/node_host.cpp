@@ -9,6 +9,7 @@ namespace jaus::host {
 namespace {
 // How often a failed write of the emergency holds is tried again (besides at every change).
 constexpr rt::Duration kPersistRetry = std::chrono::seconds(2);
+constexpr rt::Duration kDropSummaryPeriod = std::chrono::minutes(1);
 }  // namespace
 
 NodeHost::NodeHost(HostConfig config, rt::LogFn log)
@@ -91,6 +92,7 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::open(HostConfig config, boost::asi
   }
   // What was restored, now with every binding known (issue 42: the holders' hosts).
   h->persist_emergency_holds();
+  h->arm_drop_summary();
   h->udp_link_->start();
   return h;
 }
@@ -109,6 +111,7 @@ Expected<std::unique_ptr<NodeHost>> NodeHost::attach(HostConfig config, node::Li
     h->rebind_jss_holders();
   }
   h->persist_emergency_holds();
+  h->arm_drop_summary();
   return h;
 }
 
@@ -426,6 +429,21 @@ std::size_t NodeHost::clear_emergency_holds_locally(const std::string& why) {
   return cleared;
 }
 
+void NodeHost::arm_drop_summary() {
+  if (config_.operator_unit || stopped_) return;
+  const auto counts = [this] {
+    return drop_counts(udp_link_ ? &udp_link_->counters() : nullptr, node_->counters(),
+                       budgeted_link_ ? &budgeted_link_->counters() : nullptr);
+  };
+  drops_seen_ = counts();
+  drop_summary_ = scheduler_->call_at(clock_->now() + kDropSummaryPeriod, [this, counts] {
+    drop_summary_ = rt::kNoTimer;
+    const DropCounts now = counts();
+    if (const std::string line = describe_drops(drops_seen_, now); !line.empty()) log_(rt::LogLevel::warn, line);
+    arm_drop_summary();
+  });
+}
+
 const rt::EmergencyLatch* NodeHost::emergency_latch(const std::string& name) const {
   const auto it = latches_.find(name);
   return it == latches_.end() ? nullptr : it->second.get();
@@ -486,6 +504,8 @@ void NodeHost::stop(const std::string& why) {
   persist_emergency_holds();  // a change still waiting for the loop
   if (persist_retry_ != rt::kNoTimer) scheduler_->cancel(persist_retry_);  // nothing keeps the loop after the stop
   persist_retry_ = rt::kNoTimer;
+  if (drop_summary_ != rt::kNoTimer) scheduler_->cancel(drop_summary_);
+  drop_summary_ = rt::kNoTimer;
   const auto& n = node_->counters();
   const std::string budget = budgeted_link_ ? ", " + budgeted_link_->summary() : "";
   if (!udp_link_) {

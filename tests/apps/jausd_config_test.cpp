@@ -161,6 +161,7 @@ void expect_defaults(const JausdConfig& c) {
   EXPECT_EQ(c.transport.max_peers, 256u);
   EXPECT_EQ(c.transport.send_rate_kbit, 0u);  // no send budget: the node sends at once, as on a LAN
   EXPECT_FALSE(jausd::host_config(c).send_budget.enabled());
+  EXPECT_EQ(jausd::host_config(c).link.receive_buffer_bytes, 1u << 20);
   EXPECT_TRUE(c.jss.enabled);
   EXPECT_FALSE(c.jss.subsystem);
   EXPECT_TRUE(c.jss.components.empty());
@@ -332,6 +333,7 @@ transport:
   max_peers: 1
   send_rate_kbit: 230
   send_queue_bytes: 65536
+  receive_buffer_bytes: 0
 components:
   - kind: node_manager
     authority: 255
@@ -391,19 +393,20 @@ logging:
   const auto budget = jausd::host_config(c).send_budget;
   EXPECT_EQ(budget.bits_per_second, 230'000u);
   EXPECT_EQ(budget.queue_bytes, 65536u);
+  EXPECT_EQ(jausd::host_config(c).link.receive_buffer_bytes, 0u);  // the system's default
   ASSERT_EQ(c.components.size(), 3u);
   EXPECT_EQ(c.components[0].authority, 255);
   EXPECT_EQ(c.components[0].name, "NM");
-  EXPECT_EQ(c.components[0].line, 46);
+  EXPECT_EQ(c.components[0].line, 47);
   EXPECT_EQ(c.components[1].kind, "communicator");
   EXPECT_EQ(c.components[1].id, 36);
   EXPECT_EQ(c.components[1].instance, 2);
   EXPECT_EQ(c.components[1].authority, 7);
   EXPECT_EQ(c.components[1].name, "communicator");
-  EXPECT_EQ(c.components[1].line, 49);
+  EXPECT_EQ(c.components[1].line, 50);
   EXPECT_EQ(c.components[2].options.at("command_timeout_s"), "0.2");
   EXPECT_EQ(c.components[2].options.at("stop_brake_percent"), "0");
-  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 55);
+  EXPECT_EQ(c.components[2].option_lines.at("command_timeout_s"), 56);
   EXPECT_EQ(c.log_level, "debug");
 }
 
@@ -540,7 +543,7 @@ TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
                "unknown key 'port' in transport (known: bind, framing, multicast, multicast_framing, "
                "broadcast_to_peers, relay, peers, allow, control_from, verify_endpoints, unverified_burst_bytes, "
                "unverified_bytes_per_second, unverified_total_burst_bytes, unverified_total_bytes_per_second, max_peers, "
-               "send_rate_kbit, send_queue_bytes)");
+               "send_rate_kbit, send_queue_bytes, receive_buffer_bytes)");
   expect_error("transport:\n  peers:\n    - address: 127.0.0.2\n      framming: judp\n", 4,
                "unknown key 'framming' in transport.peers (known: address, framing)");
   expect_error("components:\n  - kind: node_manager\n  - kind: communicator\n    ID: 35\n", 4,
@@ -634,6 +637,8 @@ TEST(JausdConfigErrors, OutOfRange) {
                "'send_rate_kbit' must be 0 (no budget) or 16..10000000, got 8");
   expect_error("transport:\n  send_rate_kbit: -1\n", 2,
                "'send_rate_kbit' must be an integer 0..10000000, got '-1'");
+  expect_error("transport:\n  receive_buffer_bytes: 1e12\n", 2,
+               "'receive_buffer_bytes' must be an integer 0..268435456, got '1e12'");
   expect_error("transport:\n  send_queue_bytes: 100\n", 2,
                "'send_queue_bytes' must be an integer 8192..67108864, got '100'");
   expect_error("transport:\n  unverified_burst_bytes: -1\n", 2,

@@ -513,6 +513,43 @@ class AttachedHost : public ::testing::Test {
   std::vector<std::string> lines;
 };
 
+TEST_F(AttachedHost, OnceAMinuteItSaysWhatWasDroppedAndOnlyWhenSomethingWas) {
+  auto host = attach(loopback_config());
+  ASSERT_NE(host, nullptr);
+  const auto summaries = [&] {
+    return std::count_if(lines.begin(), lines.end(),
+                         [](const std::string& l) { return l.rfind("in the last minute: ", 0) == 0; });
+  };
+  time.advance(61s);
+  EXPECT_EQ(summaries(), 0);  // nothing dropped: nothing said
+  const std::uint8_t junk[] = {0x06, 0x00, 0x01};
+  host->node().receive_bytes(junk);
+  host->node().receive_bytes(junk);
+  time.advance(60s);
+  ASSERT_EQ(summaries(), 1);
+  const auto line = *std::find_if(lines.begin(), lines.end(),
+                                  [](const std::string& l) { return l.rfind("in the last minute: ", 0) == 0; });
+  EXPECT_EQ(line, "in the last minute: 2 malformed packets");
+  time.advance(60s);
+  EXPECT_EQ(summaries(), 1);  // a quiet minute: no line
+  host->stop("test");
+}
+
+TEST(DropSummary, NamesEachCountThatGrewAndTheReplacedOnlyBesideADrop) {
+  DropCounts before;
+  DropCounts now = before;
+  now.budget_replaced = 40;
+  now.received[static_cast<std::size_t>(transport::DropReason::from_self)] = 60;  // our multicast, looped back
+  EXPECT_EQ(describe_drops(before, now), "");  // frames replaced by newer are the budget at work
+  now.received[static_cast<std::size_t>(transport::DropReason::not_allowed)] = 10;
+  now.received[static_cast<std::size_t>(transport::DropReason::truncated)] = 4;
+  now.not_sent = 2;
+  now.budget_full = 3;
+  EXPECT_EQ(describe_drops(before, now),
+            "in the last minute: 14 datagrams dropped on receipt (4 truncated, 10 source not allowed), 2 messages not sent, "
+            "3 dropped by the send budget (queue full), 40 waiting reports and frames replaced by newer");
+}
+
 TEST_F(AttachedHost, EveryBuiltInKindAnswersAQueryOverAMemoryLink) {
   auto host = attach(loopback_config());
   ASSERT_NE(host, nullptr);

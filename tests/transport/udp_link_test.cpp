@@ -164,6 +164,25 @@ TEST_F(UdpNodeTest, ABusyPortIsOneClearError) {
   EXPECT_EQ(foreign.error().message(), "192.0.2.1:3794 is not an address of this machine");
 }
 
+TEST_F(UdpNodeTest, TheReceiveBufferIsWhatWasAskedWithinWhatTheKernelAllows) {
+  UdpLinkOptions options;
+  options.bind = Ipv4Endpoint{0x7F000001, 0};
+  options.multicast.reset();
+  options.receive_buffer_bytes = 0;  // the system's default
+  auto by_default = UdpLink::open(io, runtime, runtime, options);
+  ASSERT_TRUE(by_default) << by_default.error().message();
+  const std::size_t system_default = (*by_default)->receive_buffer_bytes();
+  EXPECT_GT(system_default, 0u);
+  // 64 KiB is under any kernel's cap: granted (Linux keeps twice as much, for its bookkeeping).
+  options.receive_buffer_bytes = 64 * 1024;
+  auto small = UdpLink::open(io, runtime, runtime, options);
+  ASSERT_TRUE(small);
+  EXPECT_GE((*small)->receive_buffer_bytes(), 64u * 1024);
+  EXPECT_LE((*small)->receive_buffer_bytes(), 2u * 64 * 1024);
+  // The default asks 1 MiB: never less than the system's own default.
+  EXPECT_GE(link->receive_buffer_bytes(), system_default);
+}
+
 TEST_F(UdpNodeTest, EachPeerIsAnsweredInTheFramingItUses) {
   const auto query = packet_of(kOcu, kManager, msg::QueryIdentification{});
   send(framed(Framing::judp, query));

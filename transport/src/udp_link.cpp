@@ -1,7 +1,9 @@
 #include "jaus/transport/udp_link.hpp"
 
 #include <boost/asio/ip/multicast.hpp>
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -26,6 +28,19 @@ std::string bind_error(const Ipv4Endpoint& endpoint, const boost::system::error_
   if (ec == boost::system::errc::address_not_available) return to_string(endpoint) + " is not an address of this machine";
   if (ec == boost::system::errc::permission_denied) return "not allowed to bind " + to_string(endpoint) + " (" + ec.message() + ")";
   return "cannot bind " + to_string(endpoint) + ": " + ec.message();
+}
+
+// Asks for `bytes` of receive buffer (0: the system's default stays), best
+// effort: the kernel caps it. Returns what it granted (0: not readable).
+std::size_t size_receive_buffer(udp::socket& socket, std::size_t bytes) {
+  boost::system::error_code ec;
+  if (bytes > 0)
+    socket.set_option(udp::socket::receive_buffer_size(static_cast<int>(
+                          std::min<std::size_t>(bytes, std::numeric_limits<int>::max()))),
+                      ec);
+  udp::socket::receive_buffer_size granted;
+  socket.get_option(granted, ec);
+  return ec || granted.value() < 0 ? 0 : static_cast<std::size_t>(granted.value());
 }
 
 constexpr rt::Duration kExpiryPeriod = std::chrono::seconds(1);
@@ -128,6 +143,7 @@ Expected<void> UdpLink::bind_sockets() {
   if (ec) return failed(bind_error(options_.bind, ec));
   main_->socket.non_blocking(true, ec);
   if (ec) return failed("cannot make the socket non-blocking: " + ec.message());
+  receive_buffer_bytes_ = size_receive_buffer(main_->socket, options_.receive_buffer_bytes);
   local_port_ = main_->socket.local_endpoint(ec).port();
 
   if (options_.multicast && !options_.multicast->is_multicast())
@@ -180,6 +196,7 @@ Expected<void> UdpLink::join_group(const Ipv4Endpoint& group) {
   auto socket = std::make_unique<Socket>(io_);
   socket->socket.open(udp::v4(), ec);
   if (!ec) socket->socket.set_option(udp::socket::reuse_address(true), ec);
+  if (!ec) size_receive_buffer(socket->socket, options_.receive_buffer_bytes);
   if (!ec) socket->socket.bind(to_asio(group), ec);
   if (!ec) socket->socket.set_option(asio::ip::multicast::join_group(group_address, interface), ec);
   if (ec) return failed("cannot receive", ec);

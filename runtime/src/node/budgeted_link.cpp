@@ -51,8 +51,10 @@ SendClass send_class_of(const Header& h, std::size_t packet_size, const SendBudg
   if (h.priority >= priority::kSafetyCritical || is_stop_command(code) || code == kClearEmergencyCode ||
       code == kResumeCode)
     return SendClass::stop;
-  if (h.data_flag != DataFlag::single || packet_size > options.bulk_threshold) return SendClass::bulk;
+  // A command is never dropped for a newer one: however large, it keeps its
+  // place among the commands.
   if (is_command(code)) return SendClass::command;
+  if (h.data_flag != DataFlag::single || packet_size > options.bulk_threshold) return SendClass::bulk;
   if (h.service_connection) return SendClass::connection;
   return SendClass::status;
 }
@@ -125,7 +127,18 @@ void BudgetedLink::offer(SendClass send_class, const Header& header, std::span<c
 
 void BudgetedLink::offer_bulk(const Header& header, std::span<const std::uint8_t> packet, rt::TimePoint now) {
   auto& per_class = counters_.classes[static_cast<std::size_t>(SendClass::bulk)];
-  const bool opens = header.data_flag != DataFlag::middle && header.data_flag != DataFlag::last;
+  if (header.data_flag == DataFlag::retransmitted) {
+    // One packet of a set sent again on request: it replaces nothing.
+    if (!fits(SendClass::bulk, packet.size())) {
+      ++per_class.dropped;
+      return;
+    }
+    BulkUnit unit{header, {}, true, true};
+    unit.packets.push_back(Waiting{header, {packet.begin(), packet.end()}, now});
+    bulk_.push_back(std::move(unit));
+    return;
+  }
+  const bool opens = header.data_flag == DataFlag::first || header.data_flag == DataFlag::single;
   if (!opens) {
     // The rest of a set: after its first packet (dropped with it if that was).
     const auto unit = std::find_if(bulk_.rbegin(), bulk_.rend(), [&](const BulkUnit& u) {

@@ -245,6 +245,43 @@ TEST_F(BudgetedLinkTest, ClassifiesByHeader) {
   auto part = header_of(kReportPose);
   part.data_flag = DataFlag::last;
   EXPECT_EQ(send_class_of(part, 60, o), SendClass::bulk);
+  // A large command (a long path, say) is a command: never replaced by a newer one.
+  auto path = header_of(kSetWrenchEffort);
+  path.data_flag = DataFlag::first;
+  EXPECT_EQ(send_class_of(path, 4000, o), SendClass::command);
+}
+
+TEST_F(BudgetedLinkTest, LargeCommandsAllGoInOrderNoneReplaced) {
+  BudgetedLink link(below, time, time, radio());
+  send(link, header_of(kReportImage), 4000);  // into debt
+  for (std::uint8_t i = 1; i <= 3; ++i) {
+    auto h = header_of(kSetWrenchEffort, kVehicle, kOcu);
+    h.data_flag = DataFlag::first;
+    send(link, h, 2000, i);
+    h.data_flag = DataFlag::last;
+    send(link, h, 500, i);
+  }
+  time.advance(2s);
+  ASSERT_EQ(below.handed.size(), 7u);
+  const std::vector<std::uint8_t> order{1, 1, 2, 2, 3, 3};
+  for (std::size_t i = 0; i < order.size(); ++i) EXPECT_EQ(below.handed[i + 1].first_byte, order[i]) << i;
+  EXPECT_EQ(link.counters().of(SendClass::command).superseded, 0u);
+}
+
+TEST_F(BudgetedLinkTest, APacketSentAgainOnRequestReplacesNoFrame) {
+  BudgetedLink link(below, time, time, radio());
+  send(link, header_of(kQueryStatus), 968);
+  send(link, header_of(kQueryStatus), 968);  // into debt
+  auto frame = header_of(kReportImage);
+  send(link, frame, 3000, 1);  // a whole frame, waiting
+  auto again = frame;
+  again.data_flag = DataFlag::retransmitted;
+  send(link, again, 3000, 2);
+  time.advance(2s);
+  ASSERT_EQ(below.handed.size(), 4u);
+  EXPECT_EQ(below.handed[2].first_byte, 1);
+  EXPECT_EQ(below.handed[3].first_byte, 2);
+  EXPECT_EQ(link.counters().of(SendClass::bulk).superseded, 0u);
 }
 
 }  // namespace

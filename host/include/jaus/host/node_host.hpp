@@ -19,6 +19,7 @@
 #include "jaus/components/camera_config.hpp"
 #include "jaus/components/simulated_vehicle.hpp"
 #include "jaus/host/component_kinds.hpp"
+#include "jaus/host/drop_summary.hpp"
 #include "jaus/host/emergency_holds.hpp"
 #include "jaus/host/platform.hpp"
 #include "jaus/host/platform_kinds.hpp"
@@ -179,6 +180,9 @@ class NodeHost {
   bool latch_configured(const std::string& name) const;  // a latch this configuration makes
   void schedule_persisting();
   void persist_emergency_holds();
+  // Once a minute, one line of what was dropped since the last (nothing
+  // dropped: no line). jausd's, not an operator unit's.
+  void arm_drop_summary();
   // Who holds a latch, as persisted: dialect, ID and host of each holder.
   PersistedHold describe_for_persisting(const rt::EmergencyLatch& latch) const;
   void persisting_failed(const Error& error);
@@ -218,6 +222,8 @@ class NodeHost {
   bool persist_posted_ = false;
   bool persisting_fails_ = false;  // the last write failed (said once per streak; clears refused meanwhile)
   rt::TimerId persist_retry_ = rt::kNoTimer;
+  rt::TimerId drop_summary_ = rt::kNoTimer;
+  DropCounts drops_seen_;  // at the last summary
   std::shared_ptr<char> alive_ = std::make_shared<char>(0);  // posted work runs only while the host lives
   std::unique_ptr<transport::UdpLink> udp_link_;  // an opened host's
   // The node's link when the face is on (around the UDP or the attached

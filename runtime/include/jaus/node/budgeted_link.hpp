@@ -13,12 +13,13 @@
 //               anything of priority 12-15, with their ACKs and NAKs: never
 //               waits (charged to the budget all the same). Resume and Clear
 //               Emergency travel with the stops so none overtakes another.
-//   command     every other command (control, motion, ...) and its ACK/NAK.
+//   command     every other command (control, motion, ...) and its ACK/NAK,
+//               however large (a command is never dropped for a newer one).
 //   status      queries, reports that answer them, events, node management.
 //   connection  service-connection reports: of each (source, destination,
 //               code) only the newest waits; it replaces the older in place.
 //   bulk        packets of large data sets (images) and single packets over
-//               `bulk_threshold` bytes: of each (source, destination, code)
+//               `bulk_threshold` bytes, commands aside: of each (source, destination, code)
 //               the set already on its way is finished (a frame cut short is
 //               a frame lost) and only the newest other one waits. So a
 //               camera's rate falls to what the budget leaves it, whole
@@ -65,7 +66,7 @@ struct SendBudgetOptions {
   // Most bytes waiting in each class.
   std::size_t queue_bytes = 256 * 1024;
   // A single packet larger than this is bulk (a large data set's packets
-  // always are).
+  // always are), unless it is a command.
   std::size_t bulk_threshold = 1024;
 
   bool enabled() const { return bits_per_second > 0; }

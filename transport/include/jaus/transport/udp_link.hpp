@@ -94,6 +94,11 @@ struct UdpLinkOptions {
   // what the common RA implementation reads on 224.1.0.1).
   std::optional<Framing> multicast_framing;
   std::uint8_t multicast_ttl = 1;
+  // SO_RCVBUF asked of each socket, so that a burst (a discovery answered by
+  // a hundred subsystems, a camera's frame) waits in the kernel instead of
+  // being dropped; the kernel caps it at net.core.rmem_max (Linux: 208 KiB by
+  // default, and it keeps twice what it grants). 0: the system's default.
+  std::size_t receive_buffer_bytes = 1 << 20;
   bool broadcast_to_peers = true;           // broadcasts also go to every known peer
   // A subsystem's broadcast (S.255...) goes to the peers heard as its nodes;
   // with this, also to the static peers not heard from yet (they may be its
@@ -229,6 +234,9 @@ class UdpLink final : public node::Link {
   void receive_datagram(const Ipv4Endpoint& from, std::span<const std::uint8_t> datagram);
 
   Ipv4Endpoint local_endpoint() const;
+  // What the kernel granted the main socket's receive buffer (SO_RCVBUF as
+  // read back; Linux reports twice the data it holds); 0 when not read.
+  std::size_t receive_buffer_bytes() const { return receive_buffer_bytes_; }
   const UdpLinkCounters& counters() const { return counters_; }
   const RouteTable& routes() const { return routes_; }
   const RouteTable& jss_routes() const { return jss_routes_; }
@@ -314,6 +322,7 @@ class UdpLink final : public node::Link {
   rt::RepeatedLines repeated_lines_;
   // Rate limit of drop logs: one line per reason per second.
   std::uint16_t local_port_ = 0;  // the bound port (options_.bind.port may be 0: any)
+  std::size_t receive_buffer_bytes_ = 0;
   bool closed_ = false;
   // Completion handlers can run after the link is destroyed (the io_context
   // outlives it); they hold a weak reference to this and do nothing once it expires.
