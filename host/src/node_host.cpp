@@ -9,6 +9,7 @@ namespace jaus::host {
 namespace {
 // How often a failed write of the emergency holds is tried again (besides at every change).
 constexpr rt::Duration kPersistRetry = std::chrono::seconds(2);
+// How often jausd says what it dropped (only in a period when it dropped anything).
 constexpr rt::Duration kDropSummaryPeriod = std::chrono::minutes(1);
 }  // namespace
 

@@ -197,6 +197,58 @@ TEST_F(NodeTest, LargePayloadsTravelAsLargeDataSets) {
   EXPECT_EQ(ocu->images[0], image.data);
 }
 
+// On a slow radio (a send budget) large payloads go in smaller pieces; a
+// message that must arrive stays one packet, as its copies are.
+TEST(NodePieces, SmallerPiecesForLargePayloadsButAMustArriveMessageStaysWhole) {
+  rt::VirtualTime time;
+  testing::MemoryNetwork network{time, time, 1ms};
+  auto& link_a = network.attach(1, 1);
+  auto& link_b = network.attach(2, 1);
+  node::NodeConfig ca;
+  ca.subsystem = 1;
+  ca.node = 1;
+  ca.large_data_set_piece = 1000;
+  node::NodeConfig cb;
+  cb.subsystem = 2;
+  cb.node = 1;
+  node::Node a(ca, time, time, link_a);
+  node::Node b(cb, time, time, link_b);
+  link_a.deliver_to(a);
+  link_b.deliver_to(b);
+  const Address camera_address{1, 1, 37, 1};
+  const Address ocu_address{2, 1, 40, 1};
+  auto& camera = static_cast<ImageSink&>(a.add(std::make_unique<ImageSink>(config_for(camera_address, "camera"), a.environment())));
+  auto& ocu = static_cast<ImageSink&>(b.add(std::make_unique<ImageSink>(config_for(ocu_address, "ocu"), b.environment())));
+  LinkTransmissions sent{link_a};
+  msg::ReportImage image;
+  image.data.resize(2500);
+  for (std::size_t i = 0; i < image.data.size(); ++i) image.data[i] = static_cast<std::uint8_t>(i * 13);
+  camera.send_to(ocu_address, image);
+  time.advance(10ms);
+  auto headers = sent.headers();
+  ASSERT_EQ(headers.size(), 3u);  // 2,503 bytes of payload in pieces of 1,000
+  for (const auto& h : headers) EXPECT_LE(h.data_size, 1000u);
+  EXPECT_EQ(headers[2].data_flag, DataFlag::last);
+  ASSERT_EQ(ocu.images.size(), 1u);
+  EXPECT_EQ(ocu.images[0], image.data);
+
+  sent.packets.clear();
+  Header must_arrive;
+  must_arrive.command_code = msg::ReportImage::code;
+  must_arrive.source = camera_address;
+  must_arrive.destination = ocu_address;
+  must_arrive.ack_nak = AckNak::ack_requested;
+  std::vector<std::uint8_t> payload(kMaxPayloadSize);
+  payload.resize(*wire::encode_payload(image, payload));
+  a.send(must_arrive, payload);
+  time.advance(10ms);
+  headers = sent.headers();
+  ASSERT_EQ(headers.size(), 1u);
+  EXPECT_EQ(headers[0].data_flag, DataFlag::single);
+  EXPECT_EQ(headers[0].data_size, payload.size());
+  EXPECT_EQ(ocu.images.size(), 2u);
+}
+
 TEST_F(NodeTest, AShutDownComponentLeavesTheNode) {
   ocu->send_to(kDriver, msg::RequestComponentControl{{10}});
   ocu->send_to(kDriver, msg::Shutdown{});

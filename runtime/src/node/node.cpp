@@ -366,14 +366,19 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
     }
     arm_ack_timer();
   }
-  if (payload.size() <= std::clamp<std::size_t>(config_.large_data_set_piece, 1, kMaxPayloadSize)) {
+  // A message that must arrive keeps whole packets: its copies go again as
+  // one packet (transmit), so its first transmission does too.
+  const std::size_t piece = h.ack_nak == AckNak::ack_requested
+                                ? kMaxPayloadSize
+                                : std::clamp<std::size_t>(config_.large_data_set_piece, 1, kMaxPayloadSize);
+  if (payload.size() <= piece) {
     transmit(h, payload);
     return;
   }
   // The common RA 3.3 peer drops a large data set whose first packet is not
   // numbered 0 (the RA leaves the start free): for it, every set starts at 0.
   if (config_.dialect == wire::Dialect::openjaus) h.sequence = 0;
-  auto splitter = LargeDataSetSplitter::create(h, payload, config_.large_data_set_piece);
+  auto splitter = LargeDataSetSplitter::create(h, payload, piece);
   if (!splitter) {
     ++counters_.send_failures;
     lines_.write("messages that cannot be split", rt::LogLevel::error, [&] {

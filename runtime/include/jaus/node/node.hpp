@@ -62,8 +62,9 @@ struct NodeConfig {
   std::size_t inbound_queue_capacity = 1024;
   AssemblyLimits large_data_sets = RaLargeDataSets::kDefaultLimits;
   // The most payload in one packet this node sends (1..4080): a payload over
-  // it goes as a large data set of pieces this size. Below 4080 only on a slow
-  // radio, where one full packet holds the air (and a stop behind it) for long.
+  // it goes as a large data set of pieces this size (one that requests an ACK
+  // keeps 4080). Below 4080 only on a slow radio, where one full packet holds
+  // the air (and a stop behind it) for long.
   std::size_t large_data_set_piece = kMaxPayloadSize;
   AckTracker::Options acks;
   DuplicateFilter::Options duplicates;
