@@ -8,7 +8,7 @@
 
 #include "jaus/base/virtual_time.hpp"
 #include "jaus/core/stop_commands.hpp"
-#include "jaus/messages/core_messages.hpp"
+#include "jaus/messages/all.hpp"
 
 namespace jaus::node {
 namespace {
@@ -47,12 +47,13 @@ Header header_of(std::uint16_t code, Address to = kOcu, Address from = kVehicle)
   return h;
 }
 
-constexpr std::uint16_t kReportPose = 0x4402;
-constexpr std::uint16_t kReportVelocity = 0x4404;
-constexpr std::uint16_t kReportImage = 0x4D00;
-constexpr std::uint16_t kSetWrenchEffort = 0x0405;
-constexpr std::uint16_t kQueryStatus = 0x2002;
-constexpr std::uint16_t kSetEmergency = 0x0006;
+// The messages' own codes (their descriptions), never literals.
+constexpr std::uint16_t kReportPose = msg::ReportGlobalPose::code;
+constexpr std::uint16_t kReportVelocity = msg::ReportVelocityState::code;
+constexpr std::uint16_t kReportImage = msg::ReportImage::code;
+constexpr std::uint16_t kSetWrenchEffort = msg::SetWrenchEffort::code;
+constexpr std::uint16_t kQueryStatus = msg::QueryComponentStatus::code;
+constexpr std::uint16_t kSetEmergency = msg::SetEmergency::code;
 
 class BudgetedLinkTest : public ::testing::Test {
  protected:
@@ -233,12 +234,12 @@ static_assert(!is_stop_command(msg::Resume::code) && !is_stop_command(msg::Clear
 
 TEST_F(BudgetedLinkTest, ClassifiesByHeader) {
   const SendBudgetOptions o;
-  EXPECT_EQ(send_class_of(header_of(0x0007), 20, o), SendClass::stop);  // Clear Emergency
-  EXPECT_EQ(send_class_of(header_of(0x0004), 16, o), SendClass::stop);  // Resume: never overtakes a Standby
+  EXPECT_EQ(send_class_of(header_of(msg::ClearEmergency::code), 20, o), SendClass::stop);
+  EXPECT_EQ(send_class_of(header_of(msg::Resume::code), 16, o), SendClass::stop);  // never overtakes a Standby
   auto urgent = header_of(kReportPose);
   urgent.priority = 12;
   EXPECT_EQ(send_class_of(urgent, 60, o), SendClass::stop);
-  EXPECT_EQ(send_class_of(header_of(0x000D), 20, o), SendClass::command);  // Request Component Control
+  EXPECT_EQ(send_class_of(header_of(msg::RequestComponentControl::code), 20, o), SendClass::command);
   EXPECT_EQ(send_class_of(header_of(kQueryStatus), 16, o), SendClass::status);
   EXPECT_EQ(send_class_of(header_of(kReportImage), 900, o), SendClass::status);
   EXPECT_EQ(send_class_of(header_of(kReportImage), 2000, o), SendClass::bulk);
