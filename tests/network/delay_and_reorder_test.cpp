@@ -52,7 +52,7 @@ class DelayAndReorder : public NetworkTest {
     options.jitter = 80ms;
     options.drop_probability = 0.05;
     options.seed = static_cast<std::uint32_t>(::getpid());
-    options.on_delivery_to_vehicle = [this](std::span<const std::uint8_t> datagram) { note_delivery(datagram); };
+    options.on_delivery_to_vehicle = [this](std::span<const std::uint8_t> datagram, auto) { note_delivery(datagram); };
     auto started = DelayLine::start(options);
     ASSERT_TRUE(started) << started.error().message();
     line = std::move(*started);

@@ -6,6 +6,18 @@
 // from. Each datagram waits base + uniform(0, jitter) before it goes on (so a
 // jitter larger than the spacing of two datagrams reorders them) unless it
 // is dropped, with probability drop_probability.
+//
+// It can also be a field radio (issue 45, step 3; the same model as the
+// virtual radio of jaus::testing::MemoryLink::set_rate and set_burst_loss,
+// so what bench_radio_link measures in virtual time can be compared): each
+// way a radio of `bits_per_second` sends what it holds one datagram after
+// another (its size plus `overhead_bytes` at that rate), drops a datagram
+// that finds `buffer_bytes` already waiting, and fades: each way alternates
+// good and faded periods of random length (exponentially distributed, means
+// mean_good and mean_fade) and a datagram whose last bit leaves in a fade is
+// lost. The delay (base + jitter) starts when the datagram has left the
+// radio. drop_out(d) loses everything, both ways, for d (a radio out of
+// range): what is received meanwhile and what falls due meanwhile.
 #pragma once
 
 #include <arpa/inet.h>
@@ -23,6 +35,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <optional>
 #include <random>
 #include <span>
 #include <string>
@@ -43,9 +56,17 @@ struct DelayLineOptions {
   std::chrono::milliseconds jitter{80};
   double drop_probability = 0.0;
   std::uint32_t seed = 32;
+  // The radio, each way; bits_per_second 0: no limit (nor buffer).
+  std::uint64_t bits_per_second = 0;
+  std::size_t buffer_bytes = 32 * 1024;
+  std::size_t overhead_bytes = 36;  // IP and UDP headers and the radio's framing, per datagram
+  // Fades, each way; mean_fade zero: none. 20 % of the time lost: 600 and 150 ms.
+  std::chrono::milliseconds mean_good{600};
+  std::chrono::milliseconds mean_fade{0};
   // Called on the relay's thread with each datagram as it goes on to the
-  // vehicle (a test's look at what arrived in which order); may be empty.
-  std::function<void(std::span<const std::uint8_t>)> on_delivery_to_vehicle;
+  // vehicle and how long it was in the line (a test's look at what arrived
+  // in which order, and when); may be empty.
+  std::function<void(std::span<const std::uint8_t>, std::chrono::steady_clock::duration)> on_delivery_to_vehicle;
 };
 
 inline sockaddr_in ipv4_endpoint(const char* address, std::uint16_t port) {
@@ -63,6 +84,9 @@ class DelayLine {
     std::uint64_t forwarded = 0;
     std::uint64_t dropped = 0;
     std::uint64_t reordered = 0;  // delivered after a datagram of the same direction received later
+    std::uint64_t faded = 0;       // lost in a fade
+    std::uint64_t overflowed = 0;  // dropped by a radio whose buffer was full
+    std::uint64_t dropped_out = 0;  // lost in a drop-out
   };
 
   static jaus::Expected<std::unique_ptr<DelayLine>> start(DelayLineOptions options) {
@@ -82,20 +106,66 @@ class DelayLine {
   DelayLine& operator=(const DelayLine&) = delete;
 
   Counters counters() const {
-    return {received_.load(), forwarded_.load(), dropped_.load(), reordered_.load()};
+    return {received_.load(), forwarded_.load(), dropped_.load(), reordered_.load(),
+            faded_.load(),    overflowed_.load(), dropped_out_.load()};
+  }
+
+  // Everything lost, both ways, from now for `d`.
+  void drop_out(std::chrono::milliseconds d) {
+    drop_out_until_.store((Clock::now() + d).time_since_epoch().count());
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   enum Direction { to_vehicle = 0, to_ocu = 1 };
   struct Pending {
+    Clock::time_point received;
     Clock::time_point due;
     std::uint64_t index;  // order of arrival within its direction
     Direction direction;
     std::vector<std::uint8_t> bytes;
   };
 
-  explicit DelayLine(DelayLineOptions options) : options_(std::move(options)), random_(options_.seed) {}
+  // One way's radio: when it has sent all it holds, and its fades.
+  struct Radio {
+    Clock::time_point free_at{};
+    bool faded = false;
+    Clock::time_point period_ends{};  // of the good or faded period under way
+  };
+
+  explicit DelayLine(DelayLineOptions options)
+      : options_(std::move(options)), random_(options_.seed), fade_random_(options_.seed + 1) {}
+
+  bool dropped_out(Clock::time_point at) const { return at.time_since_epoch().count() < drop_out_until_.load(); }
+
+  // A period's length: exponentially distributed with this mean.
+  Clock::duration period_of(std::chrono::milliseconds mean) {
+    std::exponential_distribution<double> length(1.0);
+    return std::chrono::duration_cast<Clock::duration>(mean * length(fade_random_));
+  }
+  // Whether what leaves the radio at `at` is lost in a fade (`at` never goes back for one radio).
+  bool faded(Radio& radio, Clock::time_point at) {
+    if (options_.mean_fade <= std::chrono::milliseconds::zero()) return false;
+    if (radio.period_ends == Clock::time_point{}) radio.period_ends = at + period_of(options_.mean_good);
+    while (at >= radio.period_ends) {
+      radio.faded = !radio.faded;
+      radio.period_ends += period_of(radio.faded ? options_.mean_fade : options_.mean_good);
+    }
+    return radio.faded;
+  }
+  // When a datagram of `size` bytes has left `radio`, handed to it now;
+  // nullopt: the radio's buffer is full.
+  std::optional<Clock::time_point> through_radio(Radio& radio, std::size_t size, Clock::time_point now) {
+    if (options_.bits_per_second == 0) return now;
+    const double rate = static_cast<double>(options_.bits_per_second);
+    const auto backlog = std::max(radio.free_at - now, Clock::duration::zero());
+    const double held_bytes = std::chrono::duration<double>(backlog).count() * rate / 8;
+    const std::size_t cost = size + options_.overhead_bytes;
+    if (held_bytes + static_cast<double>(cost) > static_cast<double>(options_.buffer_bytes)) return std::nullopt;
+    radio.free_at = now + backlog +
+                    std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(cost) * 8 / rate));
+    return radio.free_at;
+  }
 
   static jaus::Unexpected<jaus::Error> failure(const std::string& what) {
     return jaus::unexpected(jaus::make_error(jaus::ErrorCode::io, what + ": " + std::strerror(errno)));
@@ -152,12 +222,26 @@ class DelayLine {
         if (direction == to_vehicle) ocu_ = from;
         ++received_;
         const auto index = next_index[direction]++;
+        const auto received_at = Clock::now();
+        if (dropped_out(received_at)) {
+          ++dropped_out_;
+          continue;
+        }
         if (drop(random_)) {
           ++dropped_;
           continue;
         }
+        const auto left_radio = through_radio(radios_[direction], static_cast<std::size_t>(n), received_at);
+        if (!left_radio) {
+          ++overflowed_;
+          continue;
+        }
+        if (faded(radios_[direction], *left_radio)) {
+          ++faded_;
+          continue;
+        }
         const auto delay = options_.base + std::chrono::milliseconds(jitter_ms(random_));
-        pending_.push_back({Clock::now() + delay, index, direction,
+        pending_.push_back({received_at, *left_radio + delay, index, direction,
                             std::vector<std::uint8_t>(buffer.begin(), buffer.begin() + n)});
       }
       // Due datagrams go out in the order of their due times.
@@ -166,11 +250,15 @@ class DelayLine {
       auto first_not_due = pending_.begin();
       for (; first_not_due != pending_.end() && first_not_due->due <= due_now; ++first_not_due) {
         const Pending& p = *first_not_due;
+        if (dropped_out(due_now)) {
+          ++dropped_out_;
+          continue;
+        }
         if (p.index + 1 < latest_delivered[p.direction]) ++reordered_;
         latest_delivered[p.direction] = std::max(latest_delivered[p.direction], p.index + 1);
         const bool to_the_vehicle = p.direction == to_vehicle;
         if (!to_the_vehicle && ocu_.sin_family != AF_INET) continue;  // nobody to answer yet
-        if (to_the_vehicle && options_.on_delivery_to_vehicle) options_.on_delivery_to_vehicle(p.bytes);
+        if (to_the_vehicle && options_.on_delivery_to_vehicle) options_.on_delivery_to_vehicle(p.bytes, due_now - p.received);
         const int socket = to_the_vehicle ? vehicle_side_ : ocu_side_;
         const sockaddr_in& to = to_the_vehicle ? options_.vehicle : ocu_;
         if (::sendto(socket, p.bytes.data(), p.bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to) >= 0)
@@ -182,6 +270,9 @@ class DelayLine {
 
   DelayLineOptions options_;
   std::mt19937 random_;
+  std::mt19937 fade_random_;
+  Radio radios_[2];
+  std::atomic<Clock::rep> drop_out_until_{0};
   std::unique_ptr<InNamespace> in_namespace_;
   int ocu_side_ = -1;
   int vehicle_side_ = -1;
@@ -190,6 +281,7 @@ class DelayLine {
   std::thread thread_;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> received_{0}, forwarded_{0}, dropped_{0}, reordered_{0};
+  std::atomic<std::uint64_t> faded_{0}, overflowed_{0}, dropped_out_{0};
 };
 
 }  // namespace jaus::test::network
