@@ -16,6 +16,7 @@
 #include "jaus/console/operator_console.hpp"
 #include "jaus/console/web_server.hpp"
 #include "jaus/host/component_plugins.hpp"
+#include "jaus/ocu/must_arrive_options.hpp"
 #include "jaus/ocu/operator_identity.hpp"
 #include "jaus/transport/asio_runtime.hpp"
 #include "jaus/transport/ipv4.hpp"
@@ -34,6 +35,7 @@ struct Options {
   int authority = 0;
   std::string token;
   std::vector<std::string> plugins;
+  jaus::ocu::MustArriveText must_arrive;
   int verbosity = 0;
 };
 
@@ -91,6 +93,8 @@ int main(int argc, char** argv) {
                  "shows what each says an operator unit shows of it (repeat for several)")
       ->type_name("PATH");
   app.add_flag("-v,--verbose", o.verbosity, "log more: -v the console's events, -vv the runtime's debug lines");
+  // How hard the emergency buttons' commands are tried (as jausctl's).
+  jaus::ocu::add_must_arrive_options(&app, o.must_arrive);
   CLI11_PARSE(app, argc, argv);
 
   auto listen = jaus::transport::parse_endpoint(o.listen, jaus::console::kDefaultConsolePort);
@@ -116,6 +120,9 @@ int main(int argc, char** argv) {
       return bad_usage("--as: '" + o.as + "' is not an OCU address S.N.C.I (1..254 each, component not 1)");
   }
   if (o.authority < 0 || o.authority > 255) return bad_usage("--authority: 0..255");
+  auto must_arrive = jaus::ocu::parse_must_arrive(o.must_arrive);
+  if (!must_arrive) return bad_usage(must_arrive.error().message());
+  session_options.must_arrive = *must_arrive;
   // Before the console looks any kind up (the kinds' operator views, kind_views.hpp).
   for (const auto& path : o.plugins) {
     auto plugin = jaus::host::load_component_plugin(path);

@@ -18,6 +18,7 @@
 #include "ocu/cli_values.hpp"
 #include "jaus/messages/environment_messages.hpp"
 #include "jaus/ocu/message_json.hpp"
+#include "jaus/ocu/must_arrive_options.hpp"
 #include "jaus/ocu/operator_identity.hpp"
 #include "ocu/jss_commands.hpp"
 #include "ocu/ocu_commands.hpp"
@@ -37,6 +38,7 @@ struct CommonOptions {
   std::string as;  // empty: the kept operator ID (jaus/ocu/operator_identity.hpp)
   std::string timeout = "1";
   std::string dialect = "ra";
+  jaus::ocu::MustArriveText must_arrive;
   int verbosity = 0;
 };
 
@@ -59,6 +61,9 @@ void add_common_options(CLI::App* cmd, CommonOptions& c) {
       ->type_name("ra|openjaus|jss")
       ->capture_default_str();
   cmd->add_flag("-v,--verbose", c.verbosity, "log the runtime: -v warnings, -vv info, -vvv debug");
+  // How hard a command that must arrive (ACK requested: emergency, send of a
+  // command) is tried: docs/talk-to-your-node.md, "Over a slow or long link".
+  jaus::ocu::add_must_arrive_options(cmd, c.must_arrive);
 }
 
 struct Common {
@@ -110,6 +115,9 @@ Parsed<Common> parse_common(const CommonOptions& c) {
   if (!timeout) return ocu::invalid("--timeout: " + timeout.error().message());
   if (c.dialect != "ra" && c.dialect != "openjaus")
     return ocu::invalid("--dialect: bad dialect '" + c.dialect + "': expected ra, openjaus or jss");
+  auto must_arrive = jaus::ocu::parse_must_arrive(c.must_arrive);
+  if (!must_arrive) return jaus::unexpected(must_arrive.error());
+  out.session.must_arrive = *must_arrive;
   out.session.bind = *bind;
   out.session.framing = *framing;
   out.session.dialect = c.dialect == "openjaus" ? jaus::wire::Dialect::openjaus : jaus::wire::Dialect::ra;
@@ -170,7 +178,11 @@ bool is_jss(const CommonOptions& c) { return c.dialect == "jss"; }
 // --dialect jss: the JSS operator unit's options ("--framing" is the RA's: AS5669A has one).
 Parsed<ocu::JssCommon> parse_jss_common(const CommonOptions& c) {
   auto parsed = ocu::parse_jss_common(ocu::JssCommonText{c.to, c.multicast, c.bind, c.as, c.timeout});
-  if (parsed) parsed->session.log = stderr_log(c.verbosity);
+  if (!parsed) return parsed;
+  auto must_arrive = jaus::ocu::parse_must_arrive(c.must_arrive);
+  if (!must_arrive) return jaus::unexpected(must_arrive.error());
+  parsed->session.must_arrive = *must_arrive;
+  parsed->session.log = stderr_log(c.verbosity);
   return parsed;
 }
 

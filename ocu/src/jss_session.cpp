@@ -34,10 +34,18 @@ jss::JudpBroadcast broadcast_of(const jss::JssId& to) {
   return to.is_broadcast() ? jss::JudpBroadcast::local : jss::JudpBroadcast::none;
 }
 
+// The tracker's round-trip bounds are the session's.
+detail::JudpAckTracker::Options jss_ack_options(const MustArriveSettings& settings) {
+  detail::JudpAckTracker::Options options;
+  options.round_trip = settings.round_trip;
+  return options;
+}
+
 }  // namespace
 
 struct JssSession::Impl {
-  explicit Impl(JssSessionOptions o) : options(std::move(o)), assembler(options.reassembly) {
+  explicit Impl(JssSessionOptions o)
+      : options(std::move(o)), assembler(options.reassembly), acks(jss_ack_options(options.must_arrive)) {
     if (!options.log) options.log = rt::silent_log();
   }
 
@@ -55,6 +63,7 @@ struct JssSession::Impl {
   void sync_link_counters();
   ArrivalResult must_arrive(JssSession& session, const jss::JssId& to, std::span<const std::uint8_t> contents,
                             jss::JudpPriority priority, MustArrivePolicy policy, bool through_stop);
+  MustArrivePolicy policy_for(std::span<const std::uint8_t> contents) const;
 
   JssSessionOptions options;
   JssSession* owner = nullptr;  // whose listeners hear what arrives
@@ -330,15 +339,23 @@ std::uint16_t JssSession::send_contents(const jss::JssId& to, std::span<const st
   return impl_->send(to, contents, priority, ack_requested, nullptr);
 }
 
+// The session's policy for `contents` (its message ID first, little-endian).
+MustArrivePolicy JssSession::Impl::policy_for(std::span<const std::uint8_t> contents) const {
+  const std::uint16_t id = contents.size() >= 2 ? static_cast<std::uint16_t>(contents[0] | contents[1] << 8) : 0;
+  return MustArrivePolicy::for_code(id, options.must_arrive);
+}
+
 ArrivalResult JssSession::send_contents_must_arrive(const jss::JssId& to, std::span<const std::uint8_t> contents,
-                                                    jss::JudpPriority priority, MustArrivePolicy policy) {
-  return impl_->must_arrive(*this, to, contents, priority, policy, false);
+                                                    jss::JudpPriority priority,
+                                                    std::optional<MustArrivePolicy> policy) {
+  return impl_->must_arrive(*this, to, contents, priority, policy.value_or(impl_->policy_for(contents)), false);
 }
 
 ArrivalResult JssSession::send_contents_must_arrive_through_stop(const jss::JssId& to,
                                                                  std::span<const std::uint8_t> contents,
-                                                                 jss::JudpPriority priority, MustArrivePolicy policy) {
-  return impl_->must_arrive(*this, to, contents, priority, policy, true);
+                                                                 jss::JudpPriority priority,
+                                                                 std::optional<MustArrivePolicy> policy) {
+  return impl_->must_arrive(*this, to, contents, priority, policy.value_or(impl_->policy_for(contents)), true);
 }
 
 ArrivalResult JssSession::Impl::must_arrive(JssSession& session, const jss::JssId& to,

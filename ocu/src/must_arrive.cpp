@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 
+#include "jaus/core/stop_commands.hpp"
 #include "repeat_broadcast.hpp"
 
 namespace jaus::ocu {
@@ -79,6 +80,37 @@ ArrivalResult send(OcuSession& session, const jaus::Address& to, jaus::Header he
 
 }  // namespace
 
+MustArrivePolicy MustArrivePolicy::command(const MustArriveSettings& settings) {
+  MustArrivePolicy policy;
+  policy.give_up_after = settings.give_up_after;
+  policy.max_retransmit_after = settings.resend_at_most;
+  // The deadline decides, not the count: enough copies for a give-up at the
+  // round trip's least timeout doubling up to resend_at_most.
+  policy.max_transmissions =
+      std::max<std::uint32_t>(policy.max_transmissions,
+                              static_cast<std::uint32_t>(settings.give_up_after / settings.resend_at_most) + 7);
+  return policy;
+}
+
+MustArrivePolicy MustArrivePolicy::stop(const MustArriveSettings& settings) {
+  MustArrivePolicy policy = emergency();
+  policy.give_up_after = settings.stop_give_up_after;
+  policy.max_retransmit_after = settings.stop_resend_at_most;
+  policy.unmeasured_wait = std::min(policy.unmeasured_wait, settings.stop_resend_at_most);
+  // Never doubled: one copy every stop_resend_at_most at the least, or at
+  // the round trip's least timeout when that is shorter.
+  const auto fastest = std::max<jaus::rt::Duration>(
+      std::min(settings.stop_resend_at_most, settings.round_trip.min_timeout), 1ms);
+  policy.max_transmissions = std::max<std::uint32_t>(
+      policy.max_transmissions, static_cast<std::uint32_t>(std::min<std::int64_t>(
+                                    settings.stop_give_up_after / fastest, 100'000)));
+  return policy;
+}
+
+MustArrivePolicy MustArrivePolicy::for_code(std::uint16_t command_code, const MustArriveSettings& settings) {
+  return jaus::is_stop_command(command_code) ? stop(settings) : command(settings);
+}
+
 jaus::rt::Duration MustArrivePolicy::longest_wait() const {
   // Fixed: given up one period after the last transmission.
   if (timing == jaus::node::RetransmitTiming::fixed) return retransmit_after * max_transmissions;
@@ -101,8 +133,10 @@ std::string_view to_string(Arrival arrival) {
 }
 
 ArrivalResult send_must_arrive(OcuSession& session, const jaus::Address& to, jaus::Header header,
-                               std::span<const std::uint8_t> payload, MustArrivePolicy policy) {
-  return send(session, to, header, payload, policy, false);
+                               std::span<const std::uint8_t> payload, std::optional<MustArrivePolicy> policy) {
+  const MustArrivePolicy chosen =
+      policy ? *policy : MustArrivePolicy::for_code(header.command_code, session.options().must_arrive);
+  return send(session, to, header, payload, chosen, false);
 }
 
 ArrivalResult send_must_arrive_through_stop(OcuSession& session, const jaus::Address& to, jaus::Header header,

@@ -59,6 +59,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::open(SessionOptions opti
   // command with the number the last run gave it, and a vehicle would take it
   // for that run's retransmitted copy (ACKed, not acted on).
   config.node.sequences.first = static_cast<std::uint16_t>(std::random_device{}());
+  config.node.acks.round_trip = o.must_arrive.round_trip;
   config.link.bind = o.bind;
   config.link.framing = o.framing;
   config.link.multicast = o.multicast;
@@ -90,6 +91,7 @@ jaus::Expected<std::unique_ptr<OcuSession>> OcuSession::attach(SessionOptions op
   node_config.subsystem = o.self.subsystem;
   node_config.node = o.self.node;
   node_config.dialect = o.dialect;
+  node_config.acks.round_trip = o.must_arrive.round_trip;
   SessionEnvironment& env = s->environment_;
   s->own_node_ = std::make_unique<jaus::node::Node>(node_config, *env.clock, *env.scheduler, *env.link, o.log);
   s->node_ = s->own_node_.get();

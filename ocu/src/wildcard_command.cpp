@@ -151,8 +151,9 @@ void WildcardCommand::add_member(const jaus::Address& member) {
   // Its own copy, ACK requested: the ACK is the member's confirmation (the
   // node ACKs once the component has acted on it).
   std::weak_ptr<Answers> answers = answers_;
+  const MustArrivePolicy policy = policy_.per_member.value_or(MustArrivePolicy::command(session_.options().must_arrive));
   session_.node().send_acknowledged(
-      header_to(member), payload_, policy_.per_member, [answers, member](const jaus::node::AckResolution& resolution) {
+      header_to(member), payload_, policy, [answers, member](const jaus::node::AckResolution& resolution) {
         const auto alive = answers.lock();
         if (!alive) return;  // the command is gone
         const Arrival outcome = resolution.outcome == jaus::node::AckOutcome::acknowledged ? Arrival::acknowledged

@@ -110,6 +110,17 @@ TEST_F(JssOcuTest, ACommandToNobodyIsUnacknowledgedAtItsDeadline) {
   EXPECT_EQ(arrival.elapsed, 3s);
 }
 
+TEST_F(JssOcuTest, WithoutAPolicyAStopToNobodyKeepsTryingAsTheSettingsSay) {
+  // Its ID picks the stop's policy (SessionOptions::must_arrive's defaults):
+  // every 50 ms (nothing measured), never doubled, for 10 s.
+  msg::SetEmergency stop;
+  stop.emergency_code = 1;
+  const auto arrival = session->send_must_arrive(jss::JssId{1, 1, 99}, stop, jss::JudpPriority::safety_critical);
+  EXPECT_EQ(arrival.outcome, ocu::Arrival::unacknowledged);
+  EXPECT_EQ(arrival.transmissions, 200u);
+  EXPECT_EQ(arrival.elapsed, 10s);
+}
+
 TEST_F(JssOcuTest, AnInterruptedCommandIsNotSentAgain) {
   // Stopped while it waits for its ACK (Ctrl-C): interrupted after the
   // transmissions so far, and no retransmission of it follows (the ACK

@@ -164,11 +164,23 @@ TEST_F(LossyCommandsTest, SendRetransmitsACommandUntilAcknowledged) {
 TEST_F(LossyCommandsTest, SendSaysWhenACommandIsNotAcknowledged) {
   auto ocu = open_lossy_ocu();
   ASSERT_TRUE(ocu);
+  auto resume = ocu::prepare_message(ocu::Json::parse(R"({"name":"Resume"})"), jaus::wire::Dialect::ra);
+  ASSERT_TRUE(resume) << resume.error().message();
+  lose(1, 1, 3);
+  EXPECT_EQ(ocu::run_send(*ocu, kCommunicator, *resume, 300ms, io()), kExitFailure);
+  EXPECT_EQ(err.str(), "jausctl send: Resume to 1.1.35.1 not acknowledged (6 transmissions in 3 s)\n");
+}
+
+TEST_F(LossyCommandsTest, SendOfAStopTriesAsAStop) {
+  // Standby is a stop: as `emergency set` sends Set Emergency (the session's
+  // stop settings), at least every 100 ms, never doubled, for 10 s.
+  auto ocu = open_lossy_ocu();
+  ASSERT_TRUE(ocu);
   auto standby = ocu::prepare_message(ocu::Json::parse(R"({"name":"Standby"})"), jaus::wire::Dialect::ra);
   ASSERT_TRUE(standby) << standby.error().message();
   lose(1, 1, 3);
   EXPECT_EQ(ocu::run_send(*ocu, kCommunicator, *standby, 300ms, io()), kExitFailure);
-  EXPECT_EQ(err.str(), "jausctl send: Standby to 1.1.35.1 not acknowledged (6 transmissions in 3 s)\n");
+  EXPECT_EQ(err.str(), "jausctl send: Standby to 1.1.35.1 not acknowledged (200 transmissions in 10 s)\n");
 }
 
 }  // namespace

@@ -26,9 +26,11 @@ class LossyOcuTest : public VirtualOcuTest {
   virtual TargetOptions target_options() const { return {}; }
 
   // The OCU at 254.1.40.1 on its own link (ocu_link).
-  std::unique_ptr<ocu::OcuSession> open_lossy_ocu(std::uint8_t authority = 0) {
+  std::unique_ptr<ocu::OcuSession> open_lossy_ocu(std::uint8_t authority = 0,
+                                                  ocu::MustArriveSettings must_arrive = {}) {
     ocu::SessionOptions options;
     options.authority = authority;
+    options.must_arrive = must_arrive;
     ocu_link = &network.attach(options.self.subsystem, options.self.node);
     auto session = jaus::test_support::attach_ocu(time, *ocu_link, options);
     if (!session) {

@@ -142,7 +142,9 @@ TEST_F(MustArriveTest, AnAckLostIsRetransmittedAndTheDuplicateDoesNoHarm) {
   auto ocu = open_lossy_ocu();
   ASSERT_TRUE(ocu);
   lose(0, 1, 1);  // everything back to the OCU is lost: the command arrives, its ACKs never do
-  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical);
+  // As a command (a stop's own policy would keep trying for 10 s).
+  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical,
+                                         ocu::MustArrivePolicy{});
   EXPECT_EQ(set.outcome, Arrival::unacknowledged);
   EXPECT_EQ(set.transmissions, 6u);
   EXPECT_TRUE(in_emergency());  // acted on, though nobody could tell the OCU
@@ -173,6 +175,47 @@ TEST_F(MustArriveTest, EverythingLostAStopKeepsTryingForTenSeconds) {
   EXPECT_EQ(set.transmissions, 200u);
   EXPECT_EQ(set.elapsed, 10s);
   EXPECT_FALSE(in_emergency());
+}
+
+TEST_F(MustArriveTest, WithoutAPolicyAStopGoesAsTheSessionsSettingsSay) {
+  ocu::MustArriveSettings settings;
+  settings.stop_give_up_after = 2s;
+  auto ocu = open_lossy_ocu(0, settings);
+  ASSERT_TRUE(ocu);
+  lose(1, 1, 1);
+  // A stop by its code: every 50 ms (nothing measured), never doubled, for 2 s.
+  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical);
+  EXPECT_EQ(set.outcome, Arrival::unacknowledged);
+  EXPECT_EQ(set.transmissions, 40u);
+  EXPECT_EQ(set.elapsed, 2s);
+}
+
+TEST_F(MustArriveTest, ACommandGivesUpAtTheSessionsDeadline) {
+  ocu::MustArriveSettings settings;
+  settings.give_up_after = 6s;
+  auto ocu = open_lossy_ocu(0, settings);
+  ASSERT_TRUE(ocu);
+  lose(1, 1, 1);
+  // Again after 100, 200, 400, 800 ms, then every second: at 0, 0.1, 0.3, 0.7, 1.5, 2.5, 3.5, 4.5, 5.5 s.
+  const auto resume = ocu::send_must_arrive(*ocu, kCommunicator, jaus::msg::Resume{});
+  EXPECT_EQ(resume.outcome, Arrival::unacknowledged);
+  EXPECT_EQ(resume.transmissions, 9u);
+  EXPECT_EQ(resume.elapsed, 6s);
+}
+
+TEST_F(MustArriveTest, TheRoundTripBoundsAreTheSessions) {
+  ocu::MustArriveSettings settings;
+  settings.round_trip.min_timeout = 300ms;
+  settings.round_trip.initial_timeout = 300ms;
+  settings.resend_at_most = 2s;
+  auto ocu = open_lossy_ocu(0, settings);
+  ASSERT_TRUE(ocu);
+  lose(1, 1, 1);
+  // Waits of 300, 600, 1200 ms (a slow link's least timeout), given up at 3 s: at 0, 0.3, 0.9, 2.1 s.
+  const auto resume = ocu::send_must_arrive(*ocu, kCommunicator, jaus::msg::Resume{});
+  EXPECT_EQ(resume.outcome, Arrival::unacknowledged);
+  EXPECT_EQ(resume.transmissions, 4u);
+  EXPECT_EQ(resume.elapsed, 3s);
 }
 
 TEST_F(MustArriveTest, AFixedPolicySetsThePaceAndTheCount) {
@@ -214,7 +257,8 @@ TEST_F(MustArriveTest, AStopRequestEndsTheWaitAndTheRetransmissions) {
     if (h.command_code == SetEmergency::code) ++sent;
   });
   time.call_at(time.now() + 120ms, [&] { ocu->request_stop(); });
-  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical);
+  const auto set = ocu::send_must_arrive(*ocu, kCommunicator, SetEmergency{{1}}, jaus::priority::kSafetyCritical,
+                                         ocu::MustArrivePolicy{});
   EXPECT_EQ(set.outcome, Arrival::interrupted);
   EXPECT_EQ(set.transmissions, 2u) << "at 0 and 100 ms";
   EXPECT_EQ(set.elapsed, 120ms);

@@ -106,9 +106,8 @@ int run_jss_emergency(JssSession& session, const JssId& target, bool set, jaus::
   set_message.emergency_code = 1;  // STOP, the only code JSS defines
   jss_msg::ClearEmergency clear_message;
   clear_message.emergency_code = 1;
-  // A stop keeps trying longer (MustArrivePolicy::emergency()).
-  const auto arrival = set ? session.send_must_arrive(target, set_message, jaus::jss::JudpPriority::safety_critical,
-                                                      jaus::ocu::MustArrivePolicy::emergency())
+  // A stop keeps trying longer (the session's policy for its ID: --stop-give-up-after).
+  const auto arrival = set ? session.send_must_arrive(target, set_message, jaus::jss::JudpPriority::safety_critical)
                            : session.send_must_arrive(target, clear_message);
   const std::string what = set ? "Set Emergency" : "Clear Emergency";
   if (target.is_broadcast()) {

@@ -186,9 +186,10 @@ int run_emergency(OcuSession& session, const jaus::Address& target, bool set, ja
     return run_wildcard(session, "emergency", what, target, header, std::span(payload).first(*size), timeout, io);
   }
   // Retransmitted until ACKed: the ACK comes once the component has acted on it.
-  // A stop keeps trying longer (MustArrivePolicy::emergency()). A peer of
-  // the openjaus dialect may never ACK: its status is asked after a second.
-  auto policy = set ? jaus::ocu::MustArrivePolicy::emergency() : jaus::ocu::MustArrivePolicy{};
+  // A stop keeps trying longer (--stop-give-up-after). A peer of the
+  // openjaus dialect may never ACK: its status is asked after a second.
+  auto policy = jaus::ocu::MustArrivePolicy::for_code(
+      set ? jaus::msg::SetEmergency::code : jaus::msg::ClearEmergency::code, session.options().must_arrive);
   if (session.options().dialect == jaus::wire::Dialect::openjaus) policy.give_up_after = kOpenJausAckWait;
   const auto arrival = set ? send_must_arrive(session, target, jaus::msg::SetEmergency{{1}},
                                               jaus::priority::kSafetyCritical, policy)

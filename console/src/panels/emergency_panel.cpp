@@ -6,17 +6,6 @@
 
 namespace jaus::console {
 
-namespace {
-
-// Set Emergency keeps trying harder than Clear Emergency (jaus/ocu/must_arrive.hpp):
-// both retransmitted at the pace of the measured round trip until acknowledged.
-jaus::node::AckPolicy must_arrive_policy(std::uint16_t code) {
-  return code == jaus::msg::SetEmergency::code ? jaus::ocu::MustArrivePolicy::emergency()
-                                               : jaus::ocu::MustArrivePolicy{};
-}
-
-}  // namespace
-
 EmergencyPanel::~EmergencyPanel() { wildcards_.clear(); }  // their timers and listeners go with them
 
 void EmergencyPanel::page_opened(PageId page) {
@@ -64,8 +53,12 @@ void EmergencyPanel::send_must_arrive(const jaus::Address& to, const M& message,
   header.data_size = static_cast<std::uint16_t>(payload.size());
   if (to.is_broadcast()) return send_to_every_member(to, header, std::move(payload), what);
   std::weak_ptr<int> alive = alive_;
+  // Set Emergency keeps trying harder than Clear Emergency, both at the pace
+  // of the measured round trip, as the session's settings say (jaus-console's
+  // --stop-give-up-after and the like; jaus/ocu/must_arrive.hpp).
+  const auto policy = jaus::ocu::MustArrivePolicy::for_code(M::code, session().options().must_arrive);
   session().node().send_acknowledged(
-      header, payload, must_arrive_policy(M::code), [this, alive, what](const jaus::node::AckResolution& resolution) {
+      header, payload, policy, [this, alive, what](const jaus::node::AckResolution& resolution) {
         if (alive.expired()) return;
         const bool arrived = resolution.outcome == jaus::node::AckOutcome::acknowledged;
         pages().event(arrived ? EventLevel::info : EventLevel::error,

@@ -81,6 +81,9 @@ struct JssSessionOptions {
   // JSS nodes whose endpoint is remembered (the transport's route table:
   // newcomers beyond it are not recorded, silent ones forgotten after 30 s).
   std::size_t max_learnt_endpoints = 1024;
+  // How long and how often a message that must arrive is sent again, and
+  // the round-trip bounds of its pace (must_arrive_settings.hpp).
+  MustArriveSettings must_arrive{};
   rt::LogFn log;
 };
 
@@ -147,21 +150,23 @@ class JssSession : public SessionCore<JssReceived> {
   }
 
   // With an ACK request, the same packet (same sequence number) again per
-  // `policy` (must_arrive.hpp: by default at the pace of the round trip
-  // measured to `to`'s node) until `to` ACKs (or NAKs: refused) it. A
+  // `policy` (must_arrive.hpp: at the pace of the round trip measured to
+  // `to`'s node; none: the session's must_arrive settings for the message's
+  // ID, a stop trying harder than a command) until `to` ACKs (or NAKs: refused) it. A
   // broadcast ID is sent policy.max_transmissions times, policy.
   // retransmit_after apart, and is `unacknowledged`. Contents above max_packet_contents cannot be
   // acknowledged as one packet: unacknowledged, nothing sent.
   ArrivalResult send_contents_must_arrive(const jss::JssId& to, std::span<const std::uint8_t> contents,
                                           jss::JudpPriority priority = jss::JudpPriority::normal,
-                                          MustArrivePolicy policy = {});
+                                          std::optional<MustArrivePolicy> policy = std::nullopt);
   // The same, going on after request_stop() (clean-up: Release Control).
   ArrivalResult send_contents_must_arrive_through_stop(const jss::JssId& to, std::span<const std::uint8_t> contents,
                                                        jss::JudpPriority priority = jss::JudpPriority::normal,
-                                                       MustArrivePolicy policy = {});
+                                                       std::optional<MustArrivePolicy> policy = std::nullopt);
   template <class M>
   ArrivalResult send_must_arrive(const jss::JssId& to, const M& message,
-                                 jss::JudpPriority priority = jss::JudpPriority::normal, MustArrivePolicy policy = {}) {
+                                 jss::JudpPriority priority = jss::JudpPriority::normal,
+                                 std::optional<MustArrivePolicy> policy = std::nullopt) {
     const auto contents = jss::encode_contents(message);
     return send_contents_must_arrive(to, contents, priority, policy);
   }

@@ -6,11 +6,13 @@
 // jaus/node/round_trip.hpp): sent again after its retransmission timeout
 // (at least 50 ms: a LAN's loss is repaired at once; a radio's 300 ms round
 // trip is waited for instead of sending every command five times), each
-// wait twice the last, at most 10 transmissions, given up 3 s after the
-// first. A stop keeps trying harder: MustArrivePolicy::emergency() sends
-// again at the measured pace without doubling, at least every 100 ms, for
-// 10 s. The destination's
-// node ACKs after its component has handled the message, so the ACK's time
+// wait twice the last, at most 1 s apart, given up 3 s after the first. A
+// stop keeps trying harder: MustArrivePolicy::emergency() sends again at the
+// measured pace without doubling, at least every 100 ms, for 10 s. These
+// are the defaults of a session's MustArriveSettings (must_arrive_settings.hpp;
+// jausctl's and jaus-console's --give-up-after and the like), which a send
+// without a policy follows by its message's code. The destination's node
+// ACKs after its component has handled the message, so the ACK's time
 // bounds when it was acted on. Retransmissions repeat the packet exactly
 // (same sequence number): a receiver drops a retransmitted duplicate it
 // already handled, except stops (Set Emergency and the like), which are
@@ -26,11 +28,13 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include "jaus/node/ack_tracker.hpp"
+#include "jaus/ocu/must_arrive_settings.hpp"
 #include "jaus/ocu/session.hpp"
 #include "jaus/wire/message.hpp"
 
@@ -76,6 +80,14 @@ struct MustArrivePolicy : jaus::node::AckPolicy {
     return policy;
   }
 
+  // A command's and a stop's policies under `settings` (a session's:
+  // SessionOptions::must_arrive); MustArrivePolicy{} and emergency() are
+  // these under the default settings.
+  static MustArrivePolicy command(const MustArriveSettings& settings);
+  static MustArrivePolicy stop(const MustArriveSettings& settings);
+  // A stop's for a stop command (jaus::is_stop_command), a command's otherwise.
+  static MustArrivePolicy for_code(std::uint16_t command_code, const MustArriveSettings& settings);
+
   // When the sender has given up at the latest: the longest a send waits.
   jaus::rt::Duration longest_wait() const;
 };
@@ -97,10 +109,12 @@ std::string_view to_string(Arrival arrival);
 
 // The raw form: a message known only at run time (jausctl send). The header's
 // command code and priority are kept; source, destination (`to`), data size
-// and ack_nak are set here. More than 4080 bytes of payload cannot be
+// and ack_nak are set here. Without a policy, the session's settings say it
+// (MustArrivePolicy::for_code: a stop tries harder than a command). More than 4080 bytes of payload cannot be
 // acknowledged (one ACK answers one packet): unacknowledged, nothing sent.
 ArrivalResult send_must_arrive(OcuSession& session, const jaus::Address& to, jaus::Header header,
-                               std::span<const std::uint8_t> payload, MustArrivePolicy policy = {});
+                               std::span<const std::uint8_t> payload,
+                               std::optional<MustArrivePolicy> policy = std::nullopt);
 
 // The same, but the wait goes on after the session was asked to stop:
 // clean-up after Ctrl-C (a Release Component Control), bounded by the policy
@@ -109,11 +123,12 @@ ArrivalResult send_must_arrive_through_stop(OcuSession& session, const jaus::Add
                                             std::span<const std::uint8_t> payload, MustArrivePolicy policy);
 
 // Sends `message` from the session's OCU component with an ACK request and
-// again per `policy` until the destination ACKs or NAKs it; runs the session
-// until then.
+// again per `policy` (none: the session's, for its code) until the
+// destination ACKs or NAKs it; runs the session until then.
 template <class M>
 ArrivalResult send_must_arrive(OcuSession& session, const jaus::Address& to, const M& message,
-                               std::uint8_t priority = jaus::priority::kDefault, MustArrivePolicy policy = {}) {
+                               std::uint8_t priority = jaus::priority::kDefault,
+                               std::optional<MustArrivePolicy> policy = std::nullopt) {
   std::vector<std::uint8_t> payload(jaus::kMaxPayloadSize);
   const auto size = jaus::wire::encode_payload(message, payload);
   if (!size) return ArrivalResult{};  // too large to acknowledge (or not encodable): nothing sent

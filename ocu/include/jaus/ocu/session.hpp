@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "jaus/node/node.hpp"
+#include "jaus/ocu/must_arrive_settings.hpp"
 #include "jaus/ocu/ocu_component.hpp"
 #include "jaus/ocu/session_core.hpp"
 #include "jaus/transport/framing.hpp"
@@ -66,6 +67,9 @@ struct SessionOptions {
   jaus::transport::Framing framing = jaus::transport::Framing::opc;
   jaus::wire::Dialect dialect = jaus::wire::Dialect::ra;
   std::uint8_t authority = 0;  // the OCU component's own authority
+  // How long and how often a command that must arrive is sent again
+  // (must_arrive.hpp), and the round-trip bounds of its node's pace.
+  MustArriveSettings must_arrive{};
   jaus::rt::LogFn log;
 };
 

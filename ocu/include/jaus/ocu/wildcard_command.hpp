@@ -49,7 +49,9 @@ struct WildcardPolicy {
   jaus::rt::Duration ask_every = std::chrono::milliseconds(250);    // Query Configuration again
   jaus::rt::Duration look_for = std::chrono::seconds(3);            // the longest it runs
   jaus::rt::Duration settle = std::chrono::milliseconds(500);       // quiet before it is finished
-  MustArrivePolicy per_member{};                                    // each member's own copy
+  // Each member's own copy; none: the session's settings for a command
+  // (SessionOptions::must_arrive; the broadcast repeats a stop meanwhile).
+  std::optional<MustArrivePolicy> per_member;
 };
 
 struct WildcardMember {
