@@ -11,6 +11,8 @@
 
 #include "jaus/base/quoted.hpp"
 #include "jaus/host/component_options.hpp"
+#include "jaus/host/http_token.hpp"
+#include "jaus/host/metrics_server.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -131,6 +133,29 @@ ComponentSpec component(const YAML::Node& node) {
     }
   }
   return spec;
+}
+
+// metrics: {listen: ADDR[:PORT] (9794 when left out; null: off), token: TEXT}.
+// Beyond loopback only with a token, as jaus-console's page.
+void read_metrics(const Entry& section, MetricsConfig& m) {
+  int listen_line = section.key_line;
+  read_map(section.value, "metrics", section.key_line,
+           {{"listen",
+             [&](const Entry& e) {
+               listen_line = e.value_line();
+               if (e.is_null()) {
+                 m.listen.reset();
+                 return;
+               }
+               auto parsed = jaus::transport::parse_endpoint(e.scalar("an IPv4 address a.b.c.d[:port]"),
+                                                             jaus::host::kDefaultMetricsPort);
+               if (!parsed) fail(e.value_line(), "'listen': " + parsed.error().message());
+               m.listen = *parsed;
+             }},
+            {"token", [&](const Entry& e) { m.token = e.scalar("a token scrapes must give"); }}});
+  if (m.listen && !jaus::host::is_loopback_address(m.listen->address) && m.token.empty())
+    fail(listen_line, "'metrics.listen' " + jaus::quoted(jaus::transport::to_string(*m.listen)) +
+                          " is beyond loopback: give 'metrics.token' too (scrapes then send it as a bearer token)");
 }
 
 // The simulated vehicle of the mobility components (components/vehicle/simulated_vehicle.hpp).
@@ -391,6 +416,7 @@ JausdConfig read_config(const YAML::Node& root, SourceLines& lines) {
                                                                           : jaus::host::EmergencyScope::vehicle;
         }},
        {"state_directory", [&](const Entry& e) { c.state_directory = e.scalar("a directory jausd may write"); }},
+       {"metrics", [&](const Entry& s) { read_metrics(s, c.metrics); }},
        {"vehicle", [&](const Entry& s) { read_vehicle(s, c.vehicle); }},
        {"platform",
         [&](const Entry& s) {

@@ -115,6 +115,13 @@ struct JssConfig {
   std::size_t max_packet_contents = 1400;  // larger contents go as a large message
 };
 
+// metrics: the node's counters over HTTP in Prometheus's text format
+// (jaus/host/metrics_server.hpp; docs/configuration.md "metrics").
+struct MetricsConfig {
+  std::optional<jaus::transport::Ipv4Endpoint> listen;  // none: off (the default)
+  std::string token;                                    // needed beyond loopback
+};
+
 struct JausdConfig {
   // identification
   std::uint8_t subsystem = 1;  // 1..254
@@ -148,6 +155,7 @@ struct JausdConfig {
   // (systemd's StateDirectory=), else not persisted (a warning at start).
   std::string state_directory;
   JssConfig jss;
+  MetricsConfig metrics;
 
   // Every built-in kind that says it is in the default node
   // (ComponentKind::default_node_authority), each at its own ID, instance 1.

@@ -12,6 +12,7 @@
 #include <boost/asio/signal_set.hpp>
 #include <csignal>
 #include <cstdlib>
+#include <memory>
 #include <optional>
 
 #include <unistd.h>
@@ -19,6 +20,8 @@
 
 #include "host_config.hpp"
 #include "jaus/base/version.hpp"
+#include "jaus/host/metrics.hpp"
+#include "jaus/host/metrics_server.hpp"
 #include "logging.hpp"
 #include "pid_file.hpp"
 
@@ -177,6 +180,23 @@ int main(int argc, char** argv) {
                  jaus::transport::to_string(link.local_endpoint()),
                  int{config.jss.subsystem.value_or(config.subsystem)}, manager ? manager->to_string() : "?",
                  config.jss.multicast ? jaus::transport::to_string(*config.jss.multicast) : "none");
+  }
+  // The counters for Prometheus (off by default; docs/running.md, "Metrics").
+  std::unique_ptr<jaus::host::MetricsServer> metrics;
+  if (config.metrics.listen) {
+    jaus::host::MetricsServerOptions options;
+    options.listen = *config.metrics.listen;
+    options.token = config.metrics.token;
+    auto started = jaus::host::MetricsServer::start(
+        io, options, [node_host = host->get()] { return jaus::host::metrics_text(*node_host); });
+    if (!started) {
+      logger->error("{}", started.error().message());
+      (*host)->stop("metrics cannot be served");
+      return drain_logs_at_exit.exiting_with(kExitBadInput);
+    }
+    metrics = std::move(*started);
+    logger->info("metrics on http://{}:{}/metrics{}", jaus::transport::ipv4_to_string(options.listen.address),
+                 metrics->port(), options.token.empty() ? "" : " (a bearer token is needed)");
   }
   logger->info("configuration {}", source);
   for (const auto& plugin : jausd::plugin_summaries(config)) logger->info("{}", plugin);

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "jaus/console/web_assets.hpp"
+#include "jaus/host/http_token.hpp"
 
 namespace jaus::console {
 
@@ -30,29 +31,6 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-// The value of `name` in a target's query ("/ws?token=abc" -> "abc").
-std::string query_value(std::string_view target, std::string_view name) {
-  const auto q = target.find('?');
-  if (q == std::string_view::npos) return {};
-  std::string_view query = target.substr(q + 1);
-  while (!query.empty()) {
-    const auto amp = query.find('&');
-    const auto pair = query.substr(0, amp);
-    const auto eq = pair.find('=');
-    if (eq != std::string_view::npos && pair.substr(0, eq) == name) return std::string(pair.substr(eq + 1));
-    if (amp == std::string_view::npos) break;
-    query = query.substr(amp + 1);
-  }
-  return {};
-}
-
-// Equal in time independent of where they differ (the token).
-bool same_secret(std::string_view a, std::string_view b) {
-  unsigned char diff = a.size() == b.size() ? 0 : 1;
-  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i] ^ (i < b.size() ? b[i] : 0));
-  return diff == 0;
-}
-
 jaus::Unexpected<jaus::Error> refused(std::string why) {
   return jaus::unexpected(jaus::make_error(jaus::ErrorCode::refused, std::move(why)));
 }
@@ -73,13 +51,13 @@ std::string generate_token() {
   return token;
 }
 
-bool is_loopback(std::uint32_t address) { return (address >> 24) == 127; }
+bool is_loopback(std::uint32_t address) { return jaus::host::is_loopback_address(address); }
 
 jaus::Expected<void> check_upgrade(const WebServerOptions& options, std::uint16_t bound_port,
                                    const UpgradeRequest& request) {
   std::string_view path = request.target.substr(0, request.target.find('?'));
   if (path != "/ws") return refused("no WebSocket at " + std::string(path));
-  if (!options.token.empty() && !same_secret(query_value(request.target, "token"), options.token))
+  if (!options.token.empty() && !jaus::host::same_secret(jaus::host::query_value(request.target, "token"), options.token))
     return refused("a wrong or missing ?token=");
   const std::string host = lower(request.host);
   if (is_loopback(options.listen.address)) {

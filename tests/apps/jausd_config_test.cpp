@@ -259,6 +259,23 @@ TEST(JausdConfig, EmergencyScopeAndStateDirectory) {
   expect_error("emergency_scope: subsystem\n", 1, "'emergency_scope' must be one of vehicle, component, got 'subsystem'");
 }
 
+TEST(JausdConfig, MetricsAreOffByDefaultAndBeyondLoopbackNeedAToken) {
+  EXPECT_FALSE(expect_ok("{}").metrics.listen);
+  const auto local = expect_ok("metrics:\n  listen: 127.0.0.1\n");
+  ASSERT_TRUE(local.metrics.listen);
+  EXPECT_EQ(*local.metrics.listen, endpoint("127.0.0.1:9794"));  // the default port
+  const auto remote = expect_ok("metrics: {listen: '0.0.0.0:9100', token: abc}\n");
+  EXPECT_EQ(*remote.metrics.listen, endpoint("0.0.0.0:9100"));
+  EXPECT_EQ(remote.metrics.token, "abc");
+  EXPECT_FALSE(expect_ok("metrics: {listen: null}\n").metrics.listen);
+  expect_error("metrics:\n  listen: 10.0.0.5\n", 2,
+               "'metrics.listen' '10.0.0.5:9794' is beyond loopback: give 'metrics.token' too (scrapes then send it "
+               "as a bearer token)");
+  expect_error("metrics:\n  listen: robot\n", 2,
+               "'listen': 'robot' is not an IPv4 address a.b.c.d (host names are not resolved)");
+  expect_error("metrics:\n  port: 9100\n", 2, "unknown key 'port' in metrics (known: listen, token)");
+}
+
 TEST(JausdConfig, DefaultFileLoadsAndHoldsTheDefaults) {
   const auto result = load_config_file(JAUSD_DEFAULT_CONFIG);
   ASSERT_TRUE(result.has_value()) << result.error().message();
@@ -524,7 +541,8 @@ TEST(JausdConfigErrors, TheFileMustBeAMap) {
 TEST(JausdConfigErrors, UnknownKeysAtEveryLevel) {
   expect_error("heartbeat_hz: 1\nhearbeat_hz: 2\n", 2,
                "unknown key 'hearbeat_hz' (known: identification, dialect, heartbeat_hz, control, "
-               "service_connections, liveness, transport, jss, emergency_scope, state_directory, vehicle, platform, clearpath, "
+               "service_connections, liveness, transport, jss, emergency_scope, state_directory, metrics, vehicle, platform, "
+               "clearpath, "
                "cameras, manipulator, "
                "plugins, components, logging)");
   expect_error("identification:\n  subsystem: 1\n  sub_system: 2\n", 3,

@@ -38,15 +38,20 @@ class LabJausd {
  public:
   LabJausd(const NetworkLab& lab, LabNodeSpec spec, const std::filesystem::path& dir)
       : spec_(std::move(spec)), exec_(lab.exec_in(spec_.host)), config_(dir / (std::string(spec_.host.name) + ".yaml")) {
-    std::ofstream out(config_);
-    out << "identification: {subsystem: " << int{spec_.subsystem} << ", node: " << int{spec_.node}
-        << ", subsystem_name: subsystem-" << int{spec_.subsystem} << ", node_name: " << spec_.host.name << "}\n"
-        << "transport: {bind: " << spec_.host.address << ":3794"
-        << (spec_.transport.empty() ? "" : ", " + spec_.transport) << "}\n"
-        << "components:\n";
-    for (const auto& c : spec_.components)
-      out << "  - {kind: " << c.kind << (c.more.empty() ? "" : ", " + c.more) << "}\n";
-    out << spec_.more;
+    {
+      // Closed (flushed) before jausd starts: a file read half-written, or
+      // empty, is a valid configuration too (the defaults: node 1.1 on
+      // 0.0.0.0), and the test would run against the wrong node.
+      std::ofstream out(config_);
+      out << "identification: {subsystem: " << int{spec_.subsystem} << ", node: " << int{spec_.node}
+          << ", subsystem_name: subsystem-" << int{spec_.subsystem} << ", node_name: " << spec_.host.name << "}\n"
+          << "transport: {bind: " << spec_.host.address << ":3794"
+          << (spec_.transport.empty() ? "" : ", " + spec_.transport) << "}\n"
+          << "components:\n";
+      for (const auto& c : spec_.components)
+        out << "  - {kind: " << c.kind << (c.more.empty() ? "" : ", " + c.more) << "}\n";
+      out << spec_.more;
+    }
     log_ = dir / (std::string(spec_.host.name) + "-jausd");
     start();
   }

@@ -226,6 +226,14 @@ class RadioLink : public NetworkTest {
       longest = std::max(longest, std::chrono::duration<double>(frames[i] - frames[i - 1]).count());
     return longest;
   }
+  // How many of the simulator's last `n` states (10 a second) show it moving.
+  std::size_t moving_states_in_the_last(std::size_t n) const {
+    const auto states = simulator->states();
+    std::size_t moving = 0;
+    for (std::size_t i = states.size() - std::min(n, states.size()); i < states.size(); ++i)
+      moving += ClearpathSimulator::moving(states[i]) ? 1 : 0;
+    return moving;
+  }
   std::vector<double> efforts_delivered() {
     std::lock_guard lock(efforts_mutex);
     return effort_ms;
@@ -329,7 +337,9 @@ TEST_F(RadioLink, OutOfRangeFor5sTheVehicleStopsAndIsDrivenAgainOnceBack) {
     ASSERT_TRUE(take_control(hold));
     hold.send_while_held(wrench_effort(60), 100ms);
     ASSERT_EQ(hold.hold(8s), Hold::End::time_up) << "control lost before the drop-out";
-    ASSERT_TRUE(ClearpathSimulator::moving(*simulator->state())) << "not driving when the radio dropped out";
+    // Driving when the radio drops out: moving in the last 2 s (a fade
+    // longer than the driver's command timeout may pause it for a moment).
+    ASSERT_GT(moving_states_in_the_last(20), 0u) << "not driving when the radio dropped out";
     const auto states_before = simulator->states().size();
     line->drop_out(5s);
     const auto dropped = Clock::now();
@@ -352,8 +362,9 @@ TEST_F(RadioLink, OutOfRangeFor5sTheVehicleStopsAndIsDrivenAgainOnceBack) {
   ASSERT_TRUE(take_control(hold)) << "control not granted again once the radio was back";
   const double regained_s = seconds_since(back);
   hold.send_while_held(wrench_effort(60), 100ms);
+  const auto states_back = simulator->states().size();
   ASSERT_EQ(hold.hold(8s), Hold::End::time_up) << "control lost after the radio came back";
-  EXPECT_TRUE(ClearpathSimulator::moving(*simulator->state())) << "not driven again";
+  EXPECT_GT(moving_states_in_the_last(simulator->states().size() - states_back), 0u) << "not driven again";
   hold.release();
   const auto stop = jaus::ocu::send_must_arrive(*ocu, kDriver, jaus::msg::SetEmergency{{1}},
                                                 jaus::priority::kSafetyCritical,

@@ -231,5 +231,51 @@ TEST_F(AcknowledgedSendTest, PlainAckRequestsKeepTheNodeWideDefault) {
   EXPECT_TRUE(any_line_contains(logs, "after 3 transmissions"));
 }
 
+TEST_F(AcknowledgedSendTest, EachPeerCountsItsPacketsAndHowItsAckRequestsEnded) {
+  send_emergency(kDriver);                  // ACKed
+  send_emergency(Address{1, 1, 99, 1});     // no such component there: NAKed
+  time.advance(100ms);
+  link_a.set_connected(false);
+  send_emergency(kDriver);                  // never answered: 10 transmissions
+  time.advance(1s);
+  ASSERT_EQ(resolutions.size(), 3u);
+  const auto& peers = b->peer_counters().peers();
+  ASSERT_EQ(peers.size(), 1u);
+  const node::PeerCounts& a_seen_from_b = peers.at({1, 1});
+  EXPECT_EQ(a_seen_from_b.packets_sent, 12u);
+  EXPECT_EQ(a_seen_from_b.packets_received, 2u);  // the ACK and the NAK
+  EXPECT_EQ(a_seen_from_b.acknowledged, 1u);
+  EXPECT_EQ(a_seen_from_b.refused, 1u);
+  EXPECT_EQ(a_seen_from_b.unacknowledged, 1u);
+  EXPECT_EQ(a_seen_from_b.retransmissions, 9u);
+  const node::PeerCounts& b_seen_from_a = a->peer_counters().peers().at({2, 1});
+  EXPECT_EQ(b_seen_from_a.packets_received, 2u);  // the third never reached it
+  EXPECT_EQ(b_seen_from_a.packets_sent, 2u);
+}
+
+TEST_F(AcknowledgedSendTest, CopiesOfACommandAlreadyHandledAreCountedForTheirSender) {
+  link_b.set_loss(0, 1, 1);  // a's ACKs never reach b: b sends every copy
+  b->send_acknowledged(header_to(kOcu, kDriver, msg::Resume::code), {}, kFast, {});
+  time.advance(1s);
+  const node::PeerCounts& b_seen_from_a = a->peer_counters().peers().at({2, 1});
+  EXPECT_EQ(b_seen_from_a.packets_received, 10u);
+  EXPECT_EQ(b_seen_from_a.duplicates, 9u);  // acted on once, ACKed ten times
+  EXPECT_EQ(a->counters().duplicates_filtered, 9u);
+}
+
+TEST(PeerCounters, BeyondItsPeersItCountsTheRestTogetherAndBroadcastsAreNobodys) {
+  node::PeerCounters counters(2);
+  ++counters.of(Address{1, 1, 33, 1})->packets_received;
+  ++counters.of(Address{1, 2, 1, 1})->packets_received;
+  ++counters.of(Address{3, 1, 1, 1})->packets_received;  // a third node: the rest
+  ++counters.of(Address{4, 1, 1, 1})->packets_received;
+  ++counters.of(Address{1, 1, 1, 1})->packets_received;  // a known node's other component
+  EXPECT_EQ(counters.peers().size(), 2u);
+  EXPECT_EQ(counters.peers().at({1, 1}).packets_received, 2u);
+  EXPECT_EQ(counters.others().packets_received, 2u);
+  EXPECT_EQ(counters.of(Address{1, 255, 255, 255}), nullptr);
+  EXPECT_EQ(counters.of(Address{255, 255, 255, 255}), nullptr);
+}
+
 }  // namespace
 }  // namespace jaus::test

@@ -1,11 +1,15 @@
 // Two jausd processes on one host (127.0.0.21 and 127.0.0.22, port 3794, as
 // peers that answer IP:3794 require), and an OCU node in the test on
 // 127.0.0.23: they find each other, the OCU controls a component of one and
-// subscribes to another, and when one node dies the other notices. Real
+// subscribes to another, when one node dies the other notices, and one
+// serves its counters for Prometheus (metrics). Real
 // processes and sockets: only outcomes are asserted, with generous deadlines.
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 #include <csignal>
 #include <cstring>  // sigabbrev_np
 #include <array>
@@ -15,6 +19,7 @@
 #include <unistd.h>
 #include <fstream>
 
+#include "../support/prometheus_text.hpp"
 #include "child_process.hpp"
 #include "jaus/messages/all.hpp"
 #include "jaus/host/node_host.hpp"
@@ -72,7 +77,8 @@ class TwoNodes : public ::testing::Test {
   void SetUp() override {
     dir = fs::temp_directory_path() / ("jaus-two-nodes-" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    a = start("a", node_config(1, "127.0.0.21:3794", "127.0.0.22:3794"));
+    // Node a also serves its counters (docs/running.md, "Metrics").
+    a = start("a", node_config(1, "127.0.0.21:3794", "127.0.0.22:3794") + "metrics: {listen: 127.0.0.21}\n");
     b = start("b", node_config(2, "127.0.0.22:3794", "127.0.0.21:3794"));
 
     host::HostConfig config;
@@ -152,6 +158,37 @@ class TwoNodes : public ::testing::Test {
   std::unique_ptr<host::NodeHost> node_host;
   Ocu* ocu = nullptr;
 };
+
+// GET http://127.0.0.21:9794/metrics, as Prometheus scrapes it.
+std::string scrape_node_a() {
+  namespace http = boost::beast::http;
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket socket(io);
+  boost::beast::error_code ec;
+  socket.connect({boost::asio::ip::make_address_v4("127.0.0.21"), 9794}, ec);
+  if (ec) return "connect: " + ec.message();
+  http::request<http::empty_body> request(http::verb::get, "/metrics", 11);
+  request.set(http::field::host, "127.0.0.21:9794");
+  http::write(socket, request, ec);
+  boost::beast::flat_buffer buffer;
+  http::response<http::string_body> response;
+  http::read(socket, buffer, response, ec);
+  return response.result() == http::status::ok ? response.body() : "status " + std::to_string(response.result_int());
+}
+
+TEST_F(TwoNodes, ANodeServesItsCountersForPrometheus) {
+  // SetUp's queries reached it from the OCU; the other node's heartbeats come every 200 ms.
+  run_for(1s);
+  const std::string text = scrape_node_a();
+  const auto samples = parse_exposition(text);
+  ASSERT_FALSE(samples.empty()) << text;
+  EXPECT_GE(samples.at(R"(jaus_peer_packets_received_total{peer="9.1"})"), 1) << text;
+  EXPECT_GE(samples.at(R"(jaus_peer_packets_received_total{peer="2.1"})"), 2) << text;
+  EXPECT_GE(samples.at(R"(jaus_transport_datagrams_received_total)"), 3);
+  EXPECT_EQ(first_sample(samples, R"(jaus_component_primary_status{component="1.1.35.1",)"),
+            static_cast<double>(msg::PrimaryStatus::ready))
+      << text;
+}
 
 TEST_F(TwoNodes, FindEachOther) {
   EXPECT_TRUE(subsystem_list_shows(kManagerA, 2, true)) << a->output();

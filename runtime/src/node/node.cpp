@@ -185,6 +185,7 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
     ++counters_.from_self;
     return;
   }
+  if (auto* peer = peers_.of(s)) ++peer->packets_received;
   const rt::TimePoint now = clock_.now();
   const HeardResult heard = liveness_.heard(s, now);
   if (heard.new_subsystem && s.subsystem != config_.subsystem) {
@@ -211,6 +212,8 @@ void Node::receive(const PacketView& packet, rt::SenderStanding standing) {
   if (h.ack_nak == AckNak::ack || h.ack_nak == AckNak::nak) {
     const auto resolution = acks_.on_reply(h, now);
     if (!resolution) return;
+    if (auto* peer = peers_.of(s))
+      ++(resolution->outcome == AckOutcome::acknowledged ? peer->acknowledged : peer->refused);
     if (resolution->outcome != AckOutcome::acknowledged)
       lines_.write("packets to unresolved destinations dropped", rt::LogLevel::warn, [&] {
         return "0x" + wire::detail::hex_u32(h.command_code) + " to " + s.to_string() + " " +
@@ -277,6 +280,7 @@ void Node::drain() {
       });
     if (is_dropped(verdict)) {
       ++counters_.duplicates_filtered;
+      if (auto* peer = peers_.of(h.source)) ++peer->duplicates;
       answer_ack_request(h, first_local_match(h.destination));  // the ACK of the first copy was lost
       recycle_payload(std::move(message->payload));
       continue;
@@ -397,6 +401,7 @@ void Node::send(const Header& given, std::span<const std::uint8_t> payload) {
       return;
     }
     ++counters_.packets_sent;
+    if (auto* peer = peers_.of(packet.header.destination)) ++peer->packets_sent;
     link_.transmit(packet.header, std::span(tx_buffer_).first(*size));
   }
 }
@@ -469,6 +474,7 @@ void Node::transmit(const Header& header, std::span<const std::uint8_t> payload)
   encode_header_unchecked(h, std::span(tx_buffer_).first<kHeaderSize>());
   std::copy(payload.begin(), payload.end(), tx_buffer_.begin() + kHeaderSize);
   ++counters_.packets_sent;
+  if (auto* peer = peers_.of(h.destination)) ++peer->packets_sent;
   link_.transmit(h, std::span(tx_buffer_).first(kHeaderSize + payload.size()));
 }
 
@@ -526,9 +532,13 @@ void Node::arm_ack_timer() {
 
 void Node::service_acks() {
   auto poll = acks_.poll(clock_.now());
-  for (const auto& again : poll.retransmit) transmit(again.header, again.payload);
+  for (const auto& again : poll.retransmit) {
+    if (auto* peer = peers_.of(again.header.destination)) ++peer->retransmissions;
+    transmit(again.header, again.payload);
+  }
   const std::weak_ptr<const char> alive = alive_;
   for (const auto& failed : poll.failed) {
+    if (auto* peer = peers_.of(failed.key.peer)) ++peer->unacknowledged;
     lines_.write({"messages never acknowledged", rt::kNoteworthyBurst}, rt::LogLevel::warn, [&] {
       return "no ACK for 0x" + wire::detail::hex_u32(failed.key.command_code) + " to " + failed.key.peer.to_string() +
              " after " + std::to_string(failed.transmissions) + " transmissions";

@@ -34,6 +34,7 @@
 #include "jaus/node/ack_tracker.hpp"
 #include "jaus/node/duplicate_filter.hpp"
 #include "jaus/node/liveness_table.hpp"
+#include "jaus/node/peer_counters.hpp"
 #include "jaus/node/priority_queue.hpp"
 #include "jaus/node/sequence_counters.hpp"
 #include "jaus/runtime/repeat_limiter.hpp"
@@ -172,6 +173,8 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   const LivenessTable& liveness() const { return liveness_; }
   const RaLargeMessageAssembler& assembler() const { return assembler_; }
   const AckTracker& acks() const { return acks_; }
+  // Per peer node: packets each way, ACK outcomes, copies filtered (peer_counters.hpp).
+  const PeerCounters& peer_counters() const { return peers_; }
   const DuplicateFilter& duplicates() const { return duplicates_; }
 
  private:
@@ -229,6 +232,7 @@ class Node final : public rt::Outbox, public rt::NodeDirectory {
   // in with its standing as its doubt (rt::doubt_of).
   RaLargeMessageAssembler assembler_;
   AckTracker acks_;
+  PeerCounters peers_;
   DuplicateFilter duplicates_;
   std::map<AckKey, AckCallback> ack_callbacks_;  // of send_acknowledged messages still pending
   rt::TimerId ack_timer_ = rt::kNoTimer;
