@@ -8,7 +8,7 @@
 // node drops a copy of a command it already handled).
 #include <cstdlib>
 
-#include "delay_line.hpp"
+#include "delay_line_test.hpp"
 #include "jaus/ocu/must_arrive.hpp"
 #include "jaus/transport/framing.hpp"
 #include "network_test.hpp"
@@ -22,7 +22,6 @@ using Hold = jaus::ocu::ControlHold;
 
 const jaus::Address kDriver{1, 1, 33, 1};
 constexpr std::uint8_t kAuthority = 10;  // above the vector driver's 1
-constexpr std::uint16_t kRelayPort = 4794;
 constexpr auto kHoldFor = 15s;
 constexpr int kEmergencyRounds = 30;
 constexpr auto kManyCopies = jaus::ocu::MustArrivePolicy::every(50ms, 10);
@@ -35,7 +34,7 @@ constexpr int kResumeStandbyRounds = 40;
 // margin: copies still on their way by then are late copies.
 constexpr auto kLateCopiesLand = 300ms;
 
-class DelayAndReorder : public NetworkTest {
+class DelayAndReorder : public ThroughDelayLine {
  protected:
   // veh1 and the simulator, the delay line, and an OCU whose only peer is the line.
   void SetUp() override {
@@ -45,33 +44,14 @@ class DelayAndReorder : public NetworkTest {
     start_node(veh1_spec(Finding::alone));
     ASSERT_TRUE(wait_for_status("1.1.33.1", kVeh1, "ready", 30s)) << node(kVeh1).output();
     DelayLineOptions options;
-    options.name_space = lab->namespace_of(kOcu);
-    options.listen = ipv4_endpoint(kOcu.address, kRelayPort);
-    options.vehicle = ipv4_endpoint(kVeh1.address, 3794);
     options.base = 40ms;
     options.jitter = 80ms;
     options.drop_probability = 0.05;
     options.seed = static_cast<std::uint32_t>(::getpid());
     options.on_delivery_to_vehicle = [this](std::span<const std::uint8_t> datagram, auto) { note_delivery(datagram); };
-    auto started = DelayLine::start(options);
-    ASSERT_TRUE(started) << started.error().message();
-    line = std::move(*started);
-
-    auto entered = InNamespace::enter(lab->namespace_of(kOcu));
-    ASSERT_TRUE(entered) << entered.error().message();
-    in_ocu_namespace = std::move(*entered);
-    jaus::ocu::SessionOptions session_options;
-    session_options.self = {254, 10, 40, 1};
-    session_options.to = {*jaus::transport::parse_endpoint(std::string(kOcu.address) + ":" + std::to_string(kRelayPort))};
-    session_options.bind = ocu_any_port();
-    auto opened = jaus::ocu::OcuSession::open(session_options);
-    ASSERT_TRUE(opened) << opened.error().message();
-    ocu = std::move(*opened);
-  }
-  void TearDown() override {
-    ocu.reset();  // before the line: nothing left to relay
-    line.reset();
-    NetworkTest::TearDown();
+    start_line(std::move(options));
+    if (HasFatalFailure()) return;
+    open_ocu_through_line();
   }
 
   void print_line(const std::string& after) const {
@@ -117,7 +97,6 @@ class DelayAndReorder : public NetworkTest {
 
   std::atomic<int> latest_standby_delivered{-1};
   std::atomic<int> resumes_delivered_after_a_later_standby{0};
-  std::unique_ptr<DelayLine> line;
 };
 
 TEST_F(DelayAndReorder, AHoldDrivesFor15sWithoutSpuriousLossOfControl) {

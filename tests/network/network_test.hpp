@@ -167,6 +167,13 @@ class NetworkTest : public ::testing::Test {
   // lines kept. Null (and a failure) when it cannot be opened.
   jaus::ocu::OcuSession* open_ocu(const std::vector<LabHost>& to,
                                   jaus::Address self = {254, 10, 40, 1}) {
+    std::vector<jaus::transport::Ipv4Endpoint> endpoints;
+    for (const auto& host : to) endpoints.push_back(*jaus::transport::parse_endpoint(host.address));
+    return open_ocu_at(endpoints, self);
+  }
+  // The same, talking to these endpoints (a delay line's, say).
+  jaus::ocu::OcuSession* open_ocu_at(const std::vector<jaus::transport::Ipv4Endpoint>& to,
+                                     jaus::Address self = {254, 10, 40, 1}) {
     if (!in_ocu_namespace) {
       auto entered = InNamespace::enter(lab->namespace_of(kOcu));
       EXPECT_TRUE(entered) << (entered ? "" : entered.error().message());
@@ -174,8 +181,7 @@ class NetworkTest : public ::testing::Test {
     }
     jaus::ocu::SessionOptions options;
     options.self = self;
-    options.to.clear();
-    for (const auto& host : to) options.to.push_back(*jaus::transport::parse_endpoint(host.address));
+    options.to = to;
     options.bind = ocu_any_port();
     options.log = [this](jaus::rt::LogLevel, const std::string& line) {
       ocu_log.push_back({Clock::now(), line});

@@ -28,7 +28,7 @@
 #include <memory>
 #include <mutex>
 
-#include "delay_line.hpp"
+#include "delay_line_test.hpp"
 #include "jaus/ocu/discover.hpp"
 #include "jaus/ocu/must_arrive.hpp"
 #include "jaus/transport/framing.hpp"
@@ -44,7 +44,6 @@ using Hold = jaus::ocu::ControlHold;
 const jaus::Address kDriver{1, 1, 33, 1};
 const jaus::Address kCamera{1, 1, 37, 1};
 constexpr std::uint8_t kAuthority = 10;
-constexpr std::uint16_t kRadioPort = 4794;
 constexpr auto kStopEvery = 3s;
 constexpr auto kClearAfter = 1500ms;
 
@@ -142,7 +141,7 @@ class StopsOnATimer {
   jaus::rt::TimerId next_{};
 };
 
-class RadioLink : public NetworkTest {
+class RadioLink : public ThroughDelayLine {
  protected:
   // veh1 with a driver and a camera behind `radio`, its budget at 90 %, and an
   // OCU whose only peer is the radio.
@@ -158,9 +157,6 @@ class RadioLink : public NetworkTest {
                     "cameras:\n  - {id: 1, name: front, formats: [jpeg]}\n"});
     ASSERT_TRUE(wait_for_status("1.1.33.1", kVeh1, "ready", 30s)) << node(kVeh1).output();
     DelayLineOptions options;
-    options.name_space = lab->namespace_of(kOcu);
-    options.listen = ipv4_endpoint(kOcu.address, kRadioPort);
-    options.vehicle = ipv4_endpoint(kVeh1.address, 3794);
     options.base = 100ms;
     options.jitter = 100ms;
     options.bits_per_second = radio.bits_per_second;
@@ -173,25 +169,9 @@ class RadioLink : public NetworkTest {
       std::lock_guard lock(efforts_mutex);
       effort_ms.push_back(milliseconds(in_line));
     };
-    auto started = DelayLine::start(options);
-    ASSERT_TRUE(started) << started.error().message();
-    line = std::move(*started);
-
-    auto entered = InNamespace::enter(lab->namespace_of(kOcu));
-    ASSERT_TRUE(entered) << entered.error().message();
-    in_ocu_namespace = std::move(*entered);
-    jaus::ocu::SessionOptions session_options;
-    session_options.self = {254, 10, 40, 1};
-    session_options.to = {*jaus::transport::parse_endpoint(std::string(kOcu.address) + ":" + std::to_string(kRadioPort))};
-    session_options.bind = ocu_any_port();
-    auto opened = jaus::ocu::OcuSession::open(session_options);
-    ASSERT_TRUE(opened) << opened.error().message();
-    ocu = std::move(*opened);
-  }
-  void TearDown() override {
-    ocu.reset();  // before the line: nothing left to relay
-    line.reset();
-    NetworkTest::TearDown();
+    start_line(std::move(options));
+    if (HasFatalFailure()) return;
+    open_ocu_through_line();
   }
 
   // Discovery through the radio finds the driver and the camera (asked
@@ -308,7 +288,6 @@ class RadioLink : public NetworkTest {
     }
   }
 
-  std::unique_ptr<DelayLine> line;
   std::vector<Clock::time_point> frames;
   std::size_t frame_bytes = 0;
   std::mutex efforts_mutex;
