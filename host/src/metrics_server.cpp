@@ -1,6 +1,7 @@
 #include "jaus/host/metrics_server.hpp"
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <chrono>
@@ -20,17 +21,19 @@ using namespace std::chrono_literals;
 
 constexpr std::size_t kMaxMetricsRequestHeader = 8 * 1024;  // a scrape's GET: headers only
 constexpr auto kMetricsConnectionTime = 5s;
+constexpr auto kAcceptRetry = 100ms;
 constexpr const char* kExpositionType = "text/plain; version=0.0.4; charset=utf-8";
 
 }  // namespace
 
 struct MetricsServer::Impl {
   Impl(asio::io_context& io, MetricsServerOptions o, std::function<std::string()> r)
-      : acceptor(io), options(std::move(o)), render(std::move(r)) {}
+      : acceptor(io), retry(io), options(std::move(o)), render(std::move(r)) {}
 
   void accept(std::shared_ptr<Impl> self);
 
   tcp::acceptor acceptor;
+  asio::steady_timer retry;  // after a failed accept (no file descriptors left): no busy loop
   MetricsServerOptions options;
   std::function<std::string()> render;  // emptied when the server goes: what it reads may be gone
   MetricsServerCounters counters;
@@ -114,12 +117,18 @@ class MetricsConnection : public std::enable_shared_from_this<MetricsConnection>
 void MetricsServer::Impl::accept(std::shared_ptr<Impl> self) {
   acceptor.async_accept([self](beast::error_code ec, tcp::socket socket) {
     if (ec == asio::error::operation_aborted || !self->acceptor.is_open()) return;  // the server is gone
-    if (!ec) {
-      if (self->open_connections >= self->options.max_connections) {
-        ++self->counters.turned_away;  // `socket` closes here
-      } else {
-        std::make_shared<MetricsConnection>(std::move(socket), self)->start();
-      }
+    if (ec) {
+      ++self->counters.failed;
+      self->retry.expires_after(kAcceptRetry);
+      self->retry.async_wait([self](beast::error_code waited) {
+        if (!waited && self->acceptor.is_open()) self->accept(self);
+      });
+      return;
+    }
+    if (self->open_connections >= self->options.max_connections) {
+      ++self->counters.turned_away;  // `socket` closes here
+    } else {
+      std::make_shared<MetricsConnection>(std::move(socket), self)->start();
     }
     self->accept(self);
   });
@@ -151,6 +160,7 @@ MetricsServer::~MetricsServer() {
   impl_->render = nullptr;
   beast::error_code ignored;
   impl_->acceptor.close(ignored);
+  impl_->retry.cancel();
 }
 
 std::uint16_t MetricsServer::port() const { return impl_->port; }

@@ -39,7 +39,7 @@ struct MetricsServerCounters {
   std::uint64_t unauthorized = 0;  // 401: a wrong or missing token
   std::uint64_t not_found = 0;     // 404 and 405
   std::uint64_t turned_away = 0;   // closed at once: max_connections were open
-  std::uint64_t failed = 0;        // a request that did not parse, or timed out
+  std::uint64_t failed = 0;        // a request that did not parse or timed out, or a connection not accepted
 };
 
 class MetricsServer {
